@@ -1,0 +1,218 @@
+"""The averaged theory: cycle-mean spin-up, stall criterion and time constant (paper Eqs. 18-25).
+
+Averaging the load over a revolution (Eq. 18) turns Eq. (12) into the Riccati equation (19) for the
+cycle-mean crank speed. In crank speed [rad/s] it reads
+
+    d theta_dot / dt = -k [(theta_dot - p)^2 - delta^2],   k = R+^3 T_m / (I_eff omega_m^2),
+
+with ``p = omega_m / R+`` (the crank speed at the windmill's peak torque) and
+``delta^2 = p^2 (1 - 1/margin)``: the roots ``p +- delta`` are alpha+- omega_m of Eq. (21).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy import integrate
+
+from .design import Design
+from .kinematics import lever_arm
+from .validation import non_negative, rod_ratio
+
+
+class StallError(ValueError):
+    """The windmill cannot carry the load: the margin of Eq. (22) is 1 or less."""
+
+    def __init__(self, margin: float, what: str):
+        self.margin = margin
+        super().__init__(
+            f"{what} does not exist: the stall margin T_m+ pi / (R+ L+) = {margin:.6g} "
+            f"must exceed 1 (Eq. 22); the windmill cannot carry this load"
+        )
+
+
+def mean_lever_arm(L_over_R: float) -> float:
+    """Cycle mean of the load's lever arm over the exhaust half, the integral of Eq. (18) [-].
+
+    ``(1/2 pi) int_pi^2pi sin(theta + theta_c)/cos(theta_c) dtheta``, evaluated by adaptive
+    quadrature; it equals -1/pi for every L/R > 1 (model-notes.md).
+
+    Parameters
+    ----------
+    L_over_R : float
+        Rod-to-crank ratio, > 1.
+
+    Examples
+    --------
+    >>> import math
+    >>> round(mean_lever_arm(3.75) * math.pi, 12)
+    -1.0
+    """
+    ratio = rod_ratio(L_over_R)
+    value, _ = integrate.quad(
+        lambda theta: float(lever_arm(theta, ratio)), math.pi, 2 * math.pi,
+        epsabs=1e-14, epsrel=1e-13, limit=200,
+    )
+    return value / (2 * math.pi)
+
+
+def stall_margin(design: Design) -> float:
+    """Stall margin T_m+ pi / (R+ L+) [-] of Eq. (22): above 1 the windmill can carry the load.
+
+    Equivalently the windmill's peak torque reflected to the crank, R+ T_m, over the mean load
+    torque rho_w g h A R / pi. Infinite when h = 0.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> round(stall_margin(Design.seed_example()), 2)
+    5.1
+    """
+    if design.load_torque == 0.0:
+        return math.inf
+    return design.Tm_dagger * math.pi / (design.R_dagger * design.L_dagger)
+
+
+def steady_speeds(design: Design) -> tuple[float, float]:
+    """Steady cycle-mean crank speeds (alpha+, alpha-) x omega_m [rad/s] (Eq. 21).
+
+    ``alpha+- = (pi T+ +- sqrt(pi^2 T+^2 - pi R+ T+ L+)) / (pi R+ T+)``. alpha+ is the stable running
+    speed; a pump below alpha- decays and stalls (in the averaged model).
+
+    Raises
+    ------
+    StallError
+        When the stall margin (Eq. 22) is 1 or less: there is no steady speed.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> a_plus, a_minus = steady_speeds(Design.seed_example())
+    >>> round(a_plus, 2), round(a_minus, 3)
+    (23.69, 1.306)
+    """
+    margin = stall_margin(design)
+    if margin <= 1.0:
+        raise StallError(margin, "a steady speed")
+    T, Rd, Ld = design.Tm_dagger, design.R_dagger, design.L_dagger
+    root = math.sqrt(math.pi**2 * T**2 - math.pi * Rd * T * Ld)
+    denominator = math.pi * Rd * T
+    return (
+        (math.pi * T + root) / denominator * design.omega_m,
+        (math.pi * T - root) / denominator * design.omega_m,
+    )
+
+
+def time_constant(design: Design) -> float:
+    """Spin-up time constant tau = tau+ / omega_m [s] of Eq. (25).
+
+    ``tau+ = pi / (2 sqrt(pi^2 T+^2 - pi R+ T+ L+))``; it grows without bound as the margin
+    of Eq. (22) falls to 1.
+
+    Raises
+    ------
+    StallError
+        When the stall margin is 1 or less.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> round(time_constant(Design.seed_example()), 1)
+    78.6
+    """
+    margin = stall_margin(design)
+    if margin <= 1.0:
+        raise StallError(margin, "a spin-up time constant")
+    T, Rd, Ld = design.Tm_dagger, design.R_dagger, design.L_dagger
+    tau_dagger = math.pi / (2 * math.sqrt(math.pi**2 * T**2 - math.pi * Rd * T * Ld))
+    return tau_dagger / design.omega_m
+
+
+def _riccati(design: Design) -> tuple[float, float, float]:
+    """(k [1/rad], p [rad/s], delta^2 [rad^2/s^2]) of the averaged equation (19) in crank speed."""
+    k = design.R_dagger**3 * design.T_m / (design.I_eff * design.omega_m**2)
+    p = design.omega_m / design.R_dagger
+    inverse_margin = design.load_torque / (math.pi * design.R_dagger * design.T_m)
+    return k, p, p * p * (1.0 - inverse_margin)
+
+
+def _g(t, k: float, delta2: float):
+    """The time function of the Riccati solution: tanh(k d t)/d, k t, or tan(k q t)/q (d^2 = -q^2)."""
+    if delta2 > 0.0:
+        d = math.sqrt(delta2)
+        return np.tanh(k * d * t) / d
+    if delta2 < 0.0:
+        q = math.sqrt(-delta2)
+        return np.tan(k * q * t) / q
+    return k * t
+
+
+def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
+    """When the averaged model (Eq. 19) started at theta_dot0 stalls [s], or None if it never does.
+
+    It stalls when the margin of Eq. (22) is 1 or less, or when kicked below alpha- (Eq. 21).
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> averaged_stall_time(Design.seed_example(), 3.0) is None
+    True
+    >>> round(averaged_stall_time(Design.seed_example(), 1.0), 1)
+    14.8
+    """
+    theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
+    if theta_dot0 == 0.0:
+        return 0.0
+    k, p, delta2 = _riccati(design)
+    bend = delta2 + p * (theta_dot0 - p)
+    if bend >= 0.0:
+        return None
+    g_star = -theta_dot0 / bend
+    if delta2 > 0.0:
+        d = math.sqrt(delta2)
+        return math.atanh(d * g_star) / (k * d) if d * g_star < 1.0 else None
+    if delta2 < 0.0:
+        q = math.sqrt(-delta2)
+        return math.atan(q * g_star) / (k * q)
+    return g_star / k
+
+
+def spinup(design: Design, t, theta_dot0: float):
+    """Cycle-mean crank speed [rad/s] at times t [s] by the averaged theory, Eq. (24).
+
+    The closed-form solution of Eq. (19) from the initial crank speed theta_dot0: it rises or falls
+    to alpha+ (Eq. 21) on the time scale tau (Eq. 25) when kicked above alpha-, and decays to a stall
+    when kicked below alpha- or when the margin of Eq. (22) is 1 or less; after the stall
+    (:func:`averaged_stall_time`) the speed is 0.
+
+    Parameters
+    ----------
+    design : Design
+    t : array_like
+        Times [s], >= 0.
+    theta_dot0 : float
+        Initial crank speed [rad/s], >= 0.
+
+    Returns
+    -------
+    ndarray
+        Cycle-mean crank speed [rad/s], the shape of t.
+
+    Examples
+    --------
+    >>> from windpump import Design, spinup
+    >>> [round(float(w), 2) for w in spinup(Design.seed_example(), [0.0, 79.0, 600.0], 3.0)]
+    [3.0, 15.81, 23.69]
+    """
+    theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
+    t = np.asarray(t, dtype=float)
+    if not np.all(np.isfinite(t)) or np.any(t < 0.0):
+        raise ValueError(f"t must hold finite times >= 0 s; got min {np.min(t)!r}")
+    k, p, delta2 = _riccati(design)
+    t_stall = averaged_stall_time(design, theta_dot0)
+    running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)
+    g = _g(np.where(running, t, 0.0), k, delta2)
+    z0 = theta_dot0 - p
+    speed = p + (z0 + delta2 * g) / (1.0 + z0 * g)
+    return np.where(running, speed, 0.0)

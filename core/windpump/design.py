@@ -1,0 +1,167 @@
+"""The wind pump's design: geometry, inertias, windmill curve and load, with the paper's groups."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from .validation import ParameterError, non_negative, positive
+
+# Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
+UNITS = {
+    "R0": "m",
+    "R1": "m",
+    "R": "m",
+    "L": "m",
+    "A": "m^2",
+    "I0": "kg m^2",
+    "I1": "kg m^2",
+    "T_m": "N m",
+    "omega_m": "rad/s",
+    "h": "m",
+    "rho_w": "kg/m^3",
+    "g": "m/s^2",
+}
+
+
+@dataclasses.dataclass(frozen=True)
+class Design:
+    """A wind pump: windmill, chain drive, slider-crank and single-acting piston (SI units).
+
+    Every field is checked on construction; a bad value raises
+    :class:`~windpump.ParameterError` (a ``ValueError``) naming the field, its value and the
+    allowed range.
+
+    Parameters
+    ----------
+    R0 : float
+        Small sprocket radius, on the windmill shaft [m].
+    R1 : float
+        Large sprocket radius, on the crankshaft [m].
+    R : float
+        Crank radius [m].
+    L : float
+        Connecting-rod length [m]; must exceed ``R``.
+    A : float
+        Piston cross-section [m^2].
+    I0 : float
+        Inertia of windmill blades + shaft + small sprocket [kg m^2].
+    I1 : float
+        Inertia of large sprocket + crank [kg m^2].
+    T_m : float
+        Windmill torque scale of Eq. (11): the peak torque, at ``omega_m`` [N m].
+    omega_m : float
+        Windmill speed of peak torque, Eq. (11) [rad/s]; torque vanishes at 0 and ``2 omega_m``.
+    h : float
+        Head: height the water is lifted above the tank's waterline [m]; 0 means no load.
+    rho_w : float, default 1000.0
+        Water density [kg/m^3].
+    g : float, default 9.81
+        Gravity [m/s^2].
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> d = Design.seed_example()
+    >>> round(d.R_dagger, 3), round(d.I_eff, 2)
+    (4.0, 27.07)
+    >>> d.replace(h=5.0).h
+    5.0
+    """
+
+    R0: float
+    R1: float
+    R: float
+    L: float
+    A: float
+    I0: float
+    I1: float
+    T_m: float
+    omega_m: float
+    h: float
+    rho_w: float = 1000.0
+    g: float = 9.81
+
+    def __post_init__(self) -> None:
+        for field in dataclasses.fields(self):
+            check = non_negative if field.name == "h" else positive
+            value = check(field.name, getattr(self, field.name), UNITS[field.name])
+            object.__setattr__(self, field.name, value)
+        if self.L <= self.R:
+            raise ParameterError(
+                "L", self.L, f"> R = {self.R!r} m", "m", why="the rod cannot reach the crank"
+            )
+
+    @classmethod
+    def seed_example(cls) -> Design:
+        """The design of the paper's Fig. 3 example, read as in model-notes.md (h = 3 m).
+
+        Steel sprockets 1 cm thick (density 8000 kg/m^3) and three 0.75 m blades of
+        2000 kg/m^3 x 0.1 m x 0.02 m (footnote 4: ``I = rho_b A_b R_b^3 / 3`` each).
+        """
+        steel_disc = 8000 * math.pi / 2 * 0.01  # rho * pi/2 * thickness: I = this * r^4
+        blades = 3 * 2000 * 0.1 * 0.02 * 0.75**3 / 3
+        return cls(
+            R0=0.03,
+            R1=0.12,
+            R=0.04,
+            L=0.15,
+            A=math.pi / 4 * 0.04**2,
+            I0=steel_disc * 0.04**4 + blades,
+            I1=steel_disc * 0.15**4,
+            T_m=0.6,
+            omega_m=50.0,
+            h=3.0,
+            rho_w=1000.0,
+            g=9.81,
+        )
+
+    def replace(self, **changes: float) -> Design:
+        """Return a new, validated Design with ``changes`` applied.
+
+        Raises ``TypeError`` for a name that is not a field, and
+        :class:`~windpump.ParameterError` for a value out of range.
+        """
+        unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
+        if unknown:
+            raise TypeError(f"Design has no parameter(s) {sorted(unknown)}; fields: {list(UNITS)}")
+        return dataclasses.replace(self, **changes)
+
+    def as_dict(self) -> dict[str, float]:
+        """The fields as a plain dict [SI units]."""
+        return dataclasses.asdict(self)
+
+    @property
+    def L_over_R(self) -> float:
+        """Rod-to-crank ratio L/R [-] (Eq. 1 and sin(theta_c) = sin(theta)/(L/R))."""
+        return self.L / self.R
+
+    @property
+    def R_dagger(self) -> float:
+        """Sprocket ratio R-dagger = R1/R0 [-] (Eq. 13): windmill speed / crank speed, Eq. (4)."""
+        return self.R1 / self.R0
+
+    @property
+    def I_eff(self) -> float:
+        """Inertia reflected to the crank, I1 + I0 (R1/R0)^2 [kg m^2] (Eq. 12)."""
+        return self.I1 + self.I0 * self.R_dagger**2
+
+    @property
+    def Tm_dagger(self) -> float:
+        """Characteristic windmill torque T_m-dagger [-] (Eq. 14)."""
+        return self.R_dagger**2 * self.T_m / (self.omega_m**2 * self.I_eff)
+
+    @property
+    def L_dagger(self) -> float:
+        """Characteristic pump load L-dagger [-] (Eq. 15)."""
+        return self.load_torque / (self.omega_m**2 * self.I_eff)
+
+    @property
+    def load_torque(self) -> float:
+        """Piston force times crank radius, rho_w g h A R [N m] (the load scale of Eq. 12)."""
+        return self.rho_w * self.g * self.h * self.A * self.R
+
+    @property
+    def stroke_volume(self) -> float:
+        """Volume delivered per crank revolution, 2 R A [m^3] (Eq. 16)."""
+        return 2.0 * self.R * self.A

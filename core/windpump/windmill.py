@@ -1,0 +1,112 @@
+"""The windmill's torque and power curves (paper Eq. 11) and the pump's load line (Eq. 5)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .averaged import StallError, stall_margin
+from .design import Design
+
+
+def windmill_torque(design: Design, omega):
+    """Windmill torque T [N m] at windmill speed omega [rad/s] (Eq. 11).
+
+    ``T = T_m x (2 - x)`` with ``x = omega/omega_m``: zero at rest and at ``2 omega_m``, peak
+    ``T_m`` at ``omega_m``, negative (a brake) beyond ``2 omega_m``.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> d = Design.seed_example()
+    >>> float(windmill_torque(d, 50.0)), float(windmill_torque(d, 100.0))
+    (0.6, 0.0)
+    """
+    x = np.asarray(omega, dtype=float) / design.omega_m
+    return design.T_m * x * (2.0 - x)
+
+
+def windmill_power(design: Design, omega):
+    """Windmill shaft power T(omega) omega [W] (Eq. 11 times omega)."""
+    return windmill_torque(design, omega) * np.asarray(omega, dtype=float)
+
+
+def load_power(design: Design, omega):
+    """Mean power the pump draws at steady windmill speed omega [W] (Eq. 5).
+
+    ``P = rho_w g h (A R / pi) (R0 / R1) omega``: a straight line through the origin.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> round(float(load_power(Design.seed_example(), 40.0)), 3)
+    1.177
+    """
+    return design.load_torque / (np.pi * design.R_dagger) * np.asarray(omega, dtype=float)
+
+
+@dataclasses.dataclass(frozen=True)
+class OperatingPoint:
+    """Where the pump's load line (Eq. 5) meets the windmill's power curve (Eq. 11).
+
+    Attributes
+    ----------
+    omega : float
+        Stable windmill speed [rad/s] (R+ alpha+ omega_m).
+    power : float
+        Shaft power there [W] (= rho_w g h Q, the hydraulic power at the mean flow Q).
+    crank_speed : float
+        Crank speed omega / R+ [rad/s].
+    flow : float
+        Mean pumped flow A R theta_dot / pi [m^3/s] (Eq. 2).
+    omega_unstable : float
+        The other intersection [rad/s] (R+ alpha- omega_m): below it the pump decelerates.
+    power_unstable : float
+        Shaft power at omega_unstable [W].
+    """
+
+    omega: float
+    power: float
+    crank_speed: float
+    flow: float
+    omega_unstable: float
+    power_unstable: float
+
+
+def operating_point(design: Design) -> OperatingPoint:
+    """The stable intersection of the load line, Eq. (5), with the windmill's power curve.
+
+    Solves ``T_m x (2 - x) = rho_w g h A R / (pi R+)`` for ``x = omega/omega_m`` and takes the
+    larger root, where the windmill torque falls with speed (stable).
+
+    Raises
+    ------
+    StallError
+        When the line misses the curve: the stall margin of Eq. (22) is 1 or less.
+
+    Examples
+    --------
+    >>> from windpump import Design, operating_point
+    >>> op = operating_point(Design.seed_example())
+    >>> round(op.omega, 2), round(op.power, 2)
+    (94.77, 2.79)
+    """
+    load = design.load_torque / (math.pi * design.R_dagger)  # torque of the load line [N m]
+    discriminant = 1.0 - load / design.T_m
+    if discriminant <= 0.0:
+        raise StallError(stall_margin(design), "an operating point")
+    x_stable = 1.0 + math.sqrt(discriminant)
+    x_unstable = 1.0 - math.sqrt(discriminant)
+    omega = x_stable * design.omega_m
+    omega_unstable = x_unstable * design.omega_m
+    crank_speed = omega / design.R_dagger
+    return OperatingPoint(
+        omega=omega,
+        power=float(windmill_power(design, omega)),
+        crank_speed=crank_speed,
+        flow=design.A * design.R * crank_speed / math.pi,
+        omega_unstable=omega_unstable,
+        power_unstable=float(windmill_power(design, omega_unstable)),
+    )

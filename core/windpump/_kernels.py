@@ -3,16 +3,21 @@
 Method (model-notes.md, "Dynamics")
 -----------------------------------
 The load switches on and off at the dead centres theta = k pi, where the right-hand side has a kink.
-Between dead centres the crank angle is the independent variable, with state ``u = theta_dot^2/2``
-and the quadratures ``t`` and ``W`` (shaft work)::
+Between dead centres the crank angle is the independent variable, with ``u = theta_dot^2/2`` and the
+quadratures ``t`` and ``W`` (shaft work)::
 
     du/dtheta = (R+ T(R+ theta_dot) + load(theta)) / I_eff,  dt/dtheta = 1/theta_dot,  dW/dtheta = R+ T
 
 so every stroke (dead centre to dead centre) is integrated on its own and no step straddles a
 switch. A stroke is split into m equal Dormand-Prince 5(4) sub-steps, m chosen from the error
-estimates; every exhaust stroke is the same in theta, so the loads at the stage nodes of a split
-are tabulated once per run. Samples on the uniform output grid come from the method's order-4
-continuous extension.
+estimates; every exhaust stroke is the same in theta, so what a split needs at its stage nodes is
+tabulated once per run.
+
+The load's work over a stroke is known in closed form from Eq. (1), so the angle domain integrates
+``u - Lambda(theta)`` (see :func:`load_work`): only the windmill torque is left to integrate, and it
+is also the integrand of the shaft work W. A Runge-Kutta method keeps such a linear relation exactly,
+so the energy balance ``I_eff du = dW + I_eff dLambda`` closes to round-off, sub-step by sub-step.
+Samples on the uniform output grid come from the method's order-4 continuous extension.
 
 Where theta is a poor variable the same tableau integrates in time, with state
 ``(theta, theta_dot)`` and quadrature ``W``: approaching theta_dot = 0 (a stall, located by Newton's
@@ -119,6 +124,21 @@ def load_on_crank(theta, exhaust, p):
 
 
 @kernel
+def load_work(theta, exhaust, p):
+    """Work of the load since the stroke began, per unit inertia, Lambda [J/(kg m^2)].
+
+    The integral of the load of Eq. (12) over theta, in closed form from Eq. (1):
+    ``rho_w g h A R (x/R - 2) / I_eff`` while exhausting (from bottom dead centre, x = 2R), else 0.
+    It is ``-rho_w g h`` times the volume delivered in the stroke, over I_eff.
+    """
+    if not exhaust:
+        return 0.0
+    lr = p[L_OVER_R]
+    s = math.sin(theta)
+    return p[LOAD_TORQUE] * p[INV_I_EFF] * (lr - 1.0 - math.sqrt(lr * lr - s * s) - math.cos(theta))
+
+
+@kernel
 def windmill_torque_on_crank(theta_dot, p):
     """R+ T(R+ theta_dot) [N m]: the windmill torque of Eq. (11) reflected to the crank."""
     x = p[R_DAGGER] * theta_dot / p[OMEGA_M]
@@ -126,52 +146,54 @@ def windmill_torque_on_crank(theta_dot, p):
 
 
 @kernel
-def rates(domain, s, x0, x1, load, p, exhaust):
+def rates(domain, s, x0, x1, aux, p, exhaust):
     """Derivatives (dx0, dx1, dq0, dq1) with respect to the independent variable s.
 
-    ANGLE: s = theta, x0 = u = theta_dot^2/2, q = (t, W). ``load`` is the load at s (NaN: compute).
+    ANGLE: s = theta, x0 = u - Lambda(theta) with u = theta_dot^2/2, q = (t, W); ``aux`` is the
+    load work Lambda at s (NaN: compute), so that only the windmill drives x0 and W.
     TIME: s = t, x = (theta, theta_dot), q = (W, -).
     """
     if domain == ANGLE:
-        theta_dot = math.sqrt(2.0 * x0)
+        if aux != aux:
+            aux = load_work(s, exhaust, p)
+        theta_dot = math.sqrt(2.0 * (x0 + aux))
         drive = windmill_torque_on_crank(theta_dot, p)
-        if load != load:
-            load = load_on_crank(s, exhaust, p)
-        return (drive + load) * p[INV_I_EFF], 0.0, 1.0 / theta_dot, drive
+        return drive * p[INV_I_EFF], 0.0, 1.0 / theta_dot, drive
     drive = windmill_torque_on_crank(x1, p)
     return x1, (drive + load_on_crank(x0, exhaust, p)) * p[INV_I_EFF], drive * x1, 0.0
 
 
 @kernel
-def dp5_step(domain, s, x0, x1, q0, q1, h, k1, loads, exhaust, p):
+def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, exhaust, p):
     """One Dormand-Prince 5(4) step of size h from (s; x0, x1; q0, q1) with k1 = rates there.
 
-    ``loads`` holds the load at the 7 stage nodes (NaN: compute). Returns whether the step is valid
-    (in the ANGLE domain u must stay > 0; a stage below 0 makes the error NaN), the new state, its rates
+    ``aux`` holds the ANGLE domain's load work at the 7 stage nodes (NaN: compute; see
+    :func:`rates`). Returns whether the step is valid (in the ANGLE domain u must stay > 0 at every
+    stage), the new state, its rates
     (k7, for the next step: first same as last), the error estimates of x0, x1 and q0, and the
     dense-output terms of x0, q0 and q1 (for :func:`dense_value`).
     """
     a0, a1, a2, a3 = k1
     y0 = x0 + h * A21 * a0
     y1 = x1 + h * A21 * a1
-    b0, b1, b2, b3 = rates(domain, s + C2 * h, y0, y1, loads[1], p, exhaust)
+    b0, b1, b2, b3 = rates(domain, s + C2 * h, y0, y1, aux[1], p, exhaust)
     y0 = x0 + h * (A31 * a0 + A32 * b0)
     y1 = x1 + h * (A31 * a1 + A32 * b1)
-    c0, c1, c2, c3 = rates(domain, s + C3 * h, y0, y1, loads[2], p, exhaust)
+    c0, c1, c2, c3 = rates(domain, s + C3 * h, y0, y1, aux[2], p, exhaust)
     y0 = x0 + h * (A41 * a0 + A42 * b0 + A43 * c0)
     y1 = x1 + h * (A41 * a1 + A42 * b1 + A43 * c1)
-    d0, d1, d2, d3 = rates(domain, s + C4 * h, y0, y1, loads[3], p, exhaust)
+    d0, d1, d2, d3 = rates(domain, s + C4 * h, y0, y1, aux[3], p, exhaust)
     y0 = x0 + h * (A51 * a0 + A52 * b0 + A53 * c0 + A54 * d0)
     y1 = x1 + h * (A51 * a1 + A52 * b1 + A53 * c1 + A54 * d1)
-    e0, e1, e2, e3 = rates(domain, s + C5 * h, y0, y1, loads[4], p, exhaust)
+    e0, e1, e2, e3 = rates(domain, s + C5 * h, y0, y1, aux[4], p, exhaust)
     y0 = x0 + h * (A61 * a0 + A62 * b0 + A63 * c0 + A64 * d0 + A65 * e0)
     y1 = x1 + h * (A61 * a1 + A62 * b1 + A63 * c1 + A64 * d1 + A65 * e1)
-    f0, f1, f2_, f3 = rates(domain, s + h, y0, y1, loads[5], p, exhaust)
+    f0, f1, f2_, f3 = rates(domain, s + h, y0, y1, aux[5], p, exhaust)
     n0 = x0 + h * (B1 * a0 + B3 * c0 + B4 * d0 + B5 * e0 + B6 * f0)
     n1 = x1 + h * (B1 * a1 + B3 * c1 + B4 * d1 + B5 * e1 + B6 * f1)
     m0 = q0 + h * (B1 * a2 + B3 * c2 + B4 * d2 + B5 * e2 + B6 * f2_)
     m1 = q1 + h * (B1 * a3 + B3 * c3 + B4 * d3 + B5 * e3 + B6 * f3)
-    k7 = rates(domain, s + h, n0, n1, loads[6], p, exhaust)
+    k7 = rates(domain, s + h, n0, n1, aux[6], p, exhaust)
     g0, g1, g2 = k7[0], k7[1], k7[2]
     err0 = h * (E1 * a0 + E3 * c0 + E4 * d0 + E5 * e0 + E6 * f0 + E7 * g0)
     err1 = h * (E1 * a1 + E3 * c1 + E4 * d1 + E5 * e1 + E6 * f1 + E7 * g1)
@@ -181,11 +203,11 @@ def dp5_step(domain, s, x0, x1, q0, q1, h, k1, loads, exhaust, p):
         h * (D1 * a2 + D3 * c2 + D4 * d2 + D5 * e2 + D6 * f2_ + D7 * g2),
         h * (D1 * a3 + D3 * c3 + D4 * d3 + D5 * e3 + D6 * f3 + D7 * k7[3]),
     )
-    valid = domain != ANGLE or n0 > 0.0  # a stage at u < 0 has made the error NaN as well
+    valid = math.isfinite(err0) and math.isfinite(err2)  # a stage at u <= 0 makes them NaN or inf
     return valid, (n0, n1, m0, m1), k7, (err0, err1, err2), dense
 
 
-NO_TABLE = np.full(7, np.nan)  # stage loads to be computed, not looked up
+NO_TABLE = np.full(8, np.nan)  # stage values to be computed, not looked up
 
 
 @kernel
@@ -200,20 +222,31 @@ def step_factor(err):
 def locate_in_time_step(t, x0, x1, q0, h_hi, k1, exhaust, p, component, target):
     """Step length h in (0, h_hi] at which x[component] of a time step reaches target.
 
-    Newton's method on the step length, with the slope taken from the rates at the step's end:
-    the step is a smooth function of h, so a few iterations reach round-off. Returns (h, state).
+    The step's result is a smooth function of its length, crossing target between 0 and h_hi.
+    Newton's method on the length, with the slope from the rates at the step's end, inside a
+    bracket that shrinks with every iterate; an iterate that leaves the bracket is replaced by
+    its midpoint, so the search always converges. Returns (h, state).
     """
+    lo, hi = 0.0, h_hi
+    rising = target > (x0 if component == 0 else x1)  # the sign of the crossing
     h = h_hi
-    for _ in range(60):
+    for _ in range(200):
         _, y, k7, _, _ = dp5_step(TIME, t, x0, x1, q0, 0.0, h, k1, NO_TABLE, exhaust, p)
+        residual = y[component] - target
+        if residual == 0.0:
+            break
+        if (residual > 0.0) == rising:
+            hi = h
+        else:
+            lo = h
         slope = k7[component]
-        if slope == 0.0:
+        h_next = h - residual / slope if slope != 0.0 else -1.0
+        if not lo < h_next < hi:
+            h_next = 0.5 * (lo + hi)
+        if hi - lo <= 4e-16 * hi or h_next == h:
+            h = hi  # the end of the bracket past the crossing
             break
-        h_new = min(h_hi, max(h - (y[component] - target) / slope, 0.0))
-        converged = abs(h_new - h) <= 1e-15 * h or h_new == 0.0
-        h = h_new
-        if converged:
-            break
+        h = h_next
     _, y, _, _, _ = dp5_step(TIME, t, x0, x1, q0, 0.0, h, k1, NO_TABLE, exhaust, p)
     return h, y
 
@@ -227,7 +260,6 @@ def advance_in_time(t, theta, theta_dot, W, theta_target, t_target, exhaust, p, 
     REACHED_T_END or OVER_BUDGET.
     """
     scale_theta = rtol * math.pi
-    scale_speed = rtol * p[OMEGA_M] / p[R_DAGGER]
     k1 = rates(TIME, t, theta, theta_dot, np.nan, p, exhaust)
     h = t_target - t
     if k1[1] < 0.0:
@@ -240,6 +272,9 @@ def advance_in_time(t, theta, theta_dot, W, theta_target, t_target, exhaust, p, 
         h = min(h, t_target - t)
         last = h == t_target - t
         _, y, k7, err, _ = dp5_step(TIME, t, theta, theta_dot, W, 0.0, h, k1, NO_TABLE, exhaust, p)
+        # Relative in speed: near theta_dot = 0 the windmill torque is linear in theta_dot, so a
+        # start-up grows exponentially from however small a kick.
+        scale_speed = rtol * max(abs(theta_dot), abs(y[1]), 1e-300)
         scaled = max(abs(err[0]) / scale_theta, abs(err[1]) / scale_speed)
         if not scaled <= 1.0:
             h *= step_factor(scaled) if math.isfinite(scaled) else 0.2
@@ -274,19 +309,28 @@ def dense_value(sigma, start, end, rate_start, rate_end, dense, h):
 
 
 @kernel
-def grid_tables(n_per_stroke, L_over_R):
-    """Swept strokes and f2 at the grid angles k pi / n_per_stroke of one revolution."""
+def grid_tables(n_per_stroke, p):
+    """Swept strokes, f2 and load work at the grid angles k pi / n_per_stroke of a revolution."""
     delta = math.pi / n_per_stroke
     strokes = np.empty(2 * n_per_stroke)
     f2s = np.empty(2 * n_per_stroke)
+    works = np.empty(2 * n_per_stroke)
     for row in range(2 * n_per_stroke):
-        strokes[row] = swept_strokes(row * delta, L_over_R)
-        f2s[row] = f2(row * delta, L_over_R)
-    return strokes, f2s
+        strokes[row] = swept_strokes(row * delta, p[L_OVER_R])
+        f2s[row] = f2(row * delta, p[L_OVER_R])
+        works[row] = load_work(row * delta, row >= n_per_stroke, p)
+    return strokes, f2s, works
 
 
 @kernel
-def record(out, n, t, theta, theta_dot, W, strokes, f2_value):
+def record(out, n, t, theta, theta_dot, W, strokes, f2_value, final=False):
+    """Write sample n; return the sample count. A sample no later than the last one (the crank
+    moved less than time can resolve) replaces it, but the initial state stays as given."""
+    if n > 0 and t <= out[n - 1, OUT_T]:
+        if n > 1:
+            n -= 1
+        elif not final:
+            return n
     out[n, OUT_T] = t
     out[n, OUT_THETA] = theta
     out[n, OUT_THETA_DOT] = theta_dot
@@ -297,27 +341,31 @@ def record(out, n, t, theta, theta_dot, W, strokes, f2_value):
 
 
 @kernel
-def record_anywhere(out, n, t, theta, theta_dot, W, p):
+def record_anywhere(out, n, t, theta, theta_dot, W, p, final):
+    """Write a sample off the grid (the start or the end of the run)."""
     lr = p[L_OVER_R]
-    return record(out, n, t, theta, theta_dot, W, swept_strokes(theta, lr), f2(theta, lr))
+    return record(out, n, t, theta, theta_dot, W, swept_strokes(theta, lr), f2(theta, lr), final)
 
 
 # The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's
 # duration. At 10 rtol it leaves running designs to the u test and still guards slow starts.
 TIME_RTOL_FACTOR = 10.0
 MAX_TABLED_SUBSTEPS = 64  # strokes split into more equal sub-steps compute their loads
+MAX_SUBSTEPS = 2**20  # a stroke that needs more is finished in time
 
 
 @kernel
 def tabulate_stroke(m, p, tables, built):
-    """Load at the 7 stage nodes of each of m equal sub-steps of an exhaust stroke [N m].
+    """For each of m equal sub-steps of an exhaust stroke: the load work Lambda at its 7 stage nodes,
+    and (column 7) the load at its start [N m].
 
     Every exhaust stroke is the same in theta, so a run computes each used m once.
     """
     h = math.pi / m
     for i in range(m):
         for stage in range(7):
-            tables[m, i, stage] = load_on_crank(math.pi + (i + NODES[stage]) * h, True, p)
+            tables[m, i, stage] = load_work(math.pi + (i + NODES[stage]) * h, True, p)
+        tables[m, i, 7] = load_on_crank(math.pi + i * h, True, p)
     built[m] = True
 
 
@@ -335,14 +383,15 @@ def integrate(p, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps, out):
     """
     period = 2 * n_per_stroke
     delta = math.pi / n_per_stroke
-    strokes_table, f2_table = grid_tables(n_per_stroke, p[L_OVER_R])
-    tables = np.empty((MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 7))
+    strokes_table, f2_table, work_table = grid_tables(n_per_stroke, p)
+    tables = np.empty((MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 8))
     built = np.zeros(MAX_TABLED_SUBSTEPS + 1, dtype=np.bool_)
-    scale_u = 0.5 * (p[OMEGA_M] / p[R_DAGGER]) ** 2
+    stroke_work = -2.0 * p[LOAD_TORQUE] * p[INV_I_EFF]  # Lambda at the end of an exhaust stroke
 
     t, theta, W = 0.0, theta0, 0.0
-    u = 0.5 * theta_dot0 * theta_dot0
-    n = record_anywhere(out, 0, t, theta, theta_dot0, W, p)
+    theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
+    u = 0.5 * theta_dot * theta_dot
+    n = record_anywhere(out, 0, t, theta, theta_dot0, W, p, False)
     if theta_dot0 <= 0.0:
         return n, STALLED, 0
 
@@ -363,7 +412,9 @@ def integrate(p, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps, out):
             tabulate_stroke(m_seg, p, tables, built)
         segment_start = theta
         h = (stroke_end - theta) / m_seg
-        k1 = rates(ANGLE, theta, u, 0.0, np.nan, p, exhaust)
+        work = tables[m_seg, 0, 0] if use_table else load_work(theta, exhaust, p)
+        u_free = u - work  # u less the load's work: only the windmill changes it
+        k1 = rates(ANGLE, theta, u_free, 0.0, work, p, exhaust)
         worst = 0.0
         failed = False
         i = 0
@@ -371,67 +422,87 @@ def integrate(p, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps, out):
             if steps >= max_steps:
                 return n, OVER_BUDGET, steps
             theta_i = segment_start + i * h
-            if k1[0] < 0.0 and u < -k1[0] * max(h, g * delta - theta_i):
-                break  # theta_dot may reach 0 before the next grid angle: go on in time
-            if theta_i + h <= theta_i:
-                break  # sub-steps no longer resolve theta: go on in time
-            loads = tables[m_seg, i] if use_table else NO_TABLE
-            ok, y, k7, err, dense = dp5_step(ANGLE, theta_i, u, 0.0, t, W, h, k1, loads, exhaust, p)
+            aux = tables[m_seg, i] if use_table else NO_TABLE
+            load = aux[7] if use_table else load_on_crank(theta_i, exhaust, p)
+            if abs(k1[0] + load * p[INV_I_EFF]) * max(h, g * delta - theta_i) >= u:
+                # u may change by more than itself before the next grid angle: theta_dot is near 0,
+                # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
+                break
+            ok, y, k7, err, dense = dp5_step(
+                ANGLE, theta_i, u_free, 0.0, t, W, h, k1, aux, exhaust, p
+            )
             steps += 1
             scaled = max(
-                abs(err[0]) / (rtol * max(scale_u, u)),
+                abs(err[0]) / (rtol * u),
                 abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
             )
             if not (ok and scaled <= 1.0):
-                # Finish the stroke from here in smaller equal sub-steps.
-                shrink = step_factor(scaled) if ok else 0.25
-                m = max(m + 1, int(math.ceil(math.pi / (h * shrink))))
+                needed = math.pi / (h * (step_factor(scaled) if ok else 0.25))
+                if needed > MAX_SUBSTEPS:
+                    break  # sub-steps this fine no longer suit theta: go on in time
+                m = max(m + 1, int(math.ceil(needed)))
                 failed = True
                 break
             if y[2] > t_end:
                 break  # the sub-step would pass t_end: go on in time
             last = i == m_seg - 1
-            theta_new = stroke_end if last else theta_i + h
+            if last:
+                theta_new, work = stroke_end, stroke_work if exhaust else 0.0
+            else:
+                theta_new = theta_i + h
+                work = aux[6] if use_table else load_work(theta_new, exhaust, p)
+            u_new = y[0] + work
             # Samples at the grid angles this sub-step passed, from the continuous extension; the
             # stroke's end is a grid angle by index, whatever the round-off in g * delta.
             while g * delta <= theta_new or (last and g <= last_grid):
                 row = g % period
                 if g * delta >= theta_new or (last and g == last_grid):
-                    u_g, t_g, W_g = y[0], y[2], y[3]
+                    u_g, t_g, W_g = u_new, y[2], y[3]
                 else:
                     sigma = (g * delta - theta_i) / h
-                    u_g = dense_value(sigma, u, y[0], k1[0], k7[0], dense[0], h)
+                    u_g = work_table[row] + dense_value(
+                        sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+                    )
                     t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h)
                     W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
                 n = record(
-                    out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g,
-                    g // period + strokes_table[row], f2_table[row],
+                    out,
+                    n,
+                    t_g,
+                    g * delta,
+                    math.sqrt(2.0 * u_g),
+                    W_g,
+                    g // period + strokes_table[row],
+                    f2_table[row],
                 )
                 g += 1
                 if n >= out.shape[0] - 1:
                     return n, OVER_BUDGET, steps
-            u, t, W, theta = y[0], y[2], y[3], theta_new
+            u_free, t, W, theta = y[0], y[2], y[3], theta_new
+            u = u_new
+            theta_dot = math.sqrt(2.0 * u)
             k1 = k7
             worst = max(worst, scaled)
             i += 1
         if i == m_seg:  # the stroke is done: size the next one's sub-steps
             if t >= t_end:
                 if out[n - 1, OUT_T] < t:
-                    n = record_anywhere(out, n, t, theta, math.sqrt(2.0 * u), W, p)
+                    n = record_anywhere(out, n, t, theta, theta_dot, W, p, True)
                 return n, REACHED_T_END, steps
-            m = max(1, int(math.ceil(math.pi / (h * step_factor(worst)))))
+            if full or m_seg > 1:  # a single sub-step of a stroke's tail is short by position
+                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(math.pi / (h * step_factor(worst))))))
             continue
         if failed:
             continue
-        # theta_dot may reach 0 (singular in theta, regular in time), or the sub-step would pass
-        # t_end, or sub-steps no longer resolve theta: go on in time as far as the next grid angle.
+        # theta_dot is near 0 (singular in theta, regular in time), or the sub-step would pass t_end,
+        # or sub-steps no longer suit theta: go on in time as far as the next grid angle.
         outcome, t, theta, theta_dot, W, used = advance_in_time(
-            t, theta, math.sqrt(2.0 * u), W, g * delta, t_end, exhaust, p, rtol, max_steps - steps
+            t, theta, theta_dot, W, g * delta, t_end, exhaust, p, rtol, max_steps - steps
         )
         steps += used
         if outcome != LANDED:
             if outcome != OVER_BUDGET:
-                n = record_anywhere(out, n, t, theta, theta_dot, W, p)
+                n = record_anywhere(out, n, t, theta, theta_dot, W, p, True)
             return n, outcome, steps
         u = 0.5 * theta_dot * theta_dot
         row = g % period

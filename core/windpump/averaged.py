@@ -51,8 +51,12 @@ def mean_lever_arm(L_over_R: float) -> float:
     """
     ratio = rod_ratio(L_over_R)
     value, _ = integrate.quad(
-        lambda theta: float(lever_arm(theta, ratio)), math.pi, 2 * math.pi,
-        epsabs=1e-14, epsrel=1e-13, limit=200,
+        lambda theta: float(lever_arm(theta, ratio)),
+        math.pi,
+        2 * math.pi,
+        epsabs=1e-14,
+        epsrel=1e-13,
+        limit=200,
     )
     return value / (2 * math.pi)
 
@@ -69,9 +73,11 @@ def stall_margin(design: Design) -> float:
     >>> round(stall_margin(Design.seed_example()), 2)
     5.1
     """
+    # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
+    # underflow L+ to zero on the way.
     if design.load_torque == 0.0:
         return math.inf
-    return design.Tm_dagger * math.pi / (design.R_dagger * design.L_dagger)
+    return math.pi * design.R_dagger * design.T_m / design.load_torque
 
 
 def steady_speeds(design: Design) -> tuple[float, float]:
@@ -97,11 +103,11 @@ def steady_speeds(design: Design) -> tuple[float, float]:
         raise StallError(margin, "a steady speed")
     T, Rd, Ld = design.Tm_dagger, design.R_dagger, design.L_dagger
     root = math.sqrt(math.pi**2 * T**2 - math.pi * Rd * T * Ld)
-    denominator = math.pi * Rd * T
-    return (
-        (math.pi * T + root) / denominator * design.omega_m,
-        (math.pi * T - root) / denominator * design.omega_m,
-    )
+    alpha_plus = (math.pi * T + root) / (math.pi * Rd * T)
+    # alpha- from the product of the roots of Eq. (20), alpha+ alpha- = L+ / (pi R+ T+): the
+    # difference in Eq. (21) cancels when the load is light.
+    alpha_minus = Ld / (math.pi * Rd * T * alpha_plus)
+    return alpha_plus * design.omega_m, alpha_minus * design.omega_m
 
 
 def time_constant(design: Design) -> float:

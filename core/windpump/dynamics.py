@@ -22,6 +22,9 @@ MAX_SAMPLES = 1_000_000
 MAX_STEPS = 20 * MAX_SAMPLES
 """Largest number of integration steps a run may take (a stiff design hits this)."""
 
+SMALLEST_KICK = 1e-300
+"""Smallest non-zero initial crank speed [rad/s]."""
+
 RTOL = 1e-8
 """Local relative tolerance of the integrator (u = theta_dot^2/2, and the time per step)."""
 
@@ -174,11 +177,12 @@ class Intermittency:
     speed_ripple: float
 
 
-def sample_bound(design: Design, t_end: float, theta_dot0: float) -> int:
+def sample_bound(design: Design, t_end: float, theta_dot0: float) -> float:
     """Most samples :func:`simulate` can produce for this run (the crank speed never exceeds
-    max(theta_dot0, 2 omega_m / R+), where the windmill torque turns negative)."""
+    max(theta_dot0, 2 omega_m / R+), where the windmill torque turns negative). A float: it may be
+    too large for an integer."""
     fastest = max(theta_dot0, 2 * design.omega_m / design.R_dagger)
-    return int(math.ceil(fastest * t_end / (math.pi / SAMPLES_PER_STROKE))) + 3
+    return fastest * t_end / (math.pi / SAMPLES_PER_STROKE) + 3
 
 
 def simulate(
@@ -200,7 +204,8 @@ def simulate(
     theta0 : float, default pi/2
         Initial crank angle from TDC [rad].
     theta_dot0 : float, default 3.0
-        Initial crank speed [rad/s], >= 0. The windmill has no torque at rest, so 0 never starts.
+        Initial crank speed [rad/s]: 0 (the windmill has no torque at rest, so the pump never
+        starts) or at least ``SMALLEST_KICK``.
 
     Returns
     -------
@@ -226,15 +231,31 @@ def simulate(
     t_end = positive("t_end", t_end, "s")
     theta0 = real("theta0", theta0, "rad")
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    capacity = sample_bound(design, t_end, theta_dot0)
-    if capacity > MAX_SAMPLES:
-        longest = t_end * (MAX_SAMPLES - 3) / (capacity - 3)
+    if 0.0 < theta_dot0 < SMALLEST_KICK:
         raise ParameterError(
-            "t_end", t_end, f"<= {longest:.6g} s for this design and theta_dot0", "s",
-            why=f"the run could need {capacity} samples; the bound is {MAX_SAMPLES}",
+            "theta_dot0",
+            theta_dot0,
+            f"0 or >= {SMALLEST_KICK:g} rad/s",
+            "rad/s",
+            why="a smaller kick is below double precision's normal range",
         )
+    bound = sample_bound(design, t_end, theta_dot0)
+    if bound > MAX_SAMPLES:
+        longest = t_end * (MAX_SAMPLES - 3) / (bound - 3)
+        raise ParameterError(
+            "t_end",
+            t_end,
+            f"<= {longest:.6g} s for this design and theta_dot0",
+            "s",
+            why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}",
+        )
+    capacity = math.ceil(bound)
     params = _kernels.pack_params(
-        design.R_dagger, design.T_m, design.omega_m, design.I_eff, design.load_torque,
+        design.R_dagger,
+        design.T_m,
+        design.omega_m,
+        design.I_eff,
+        design.load_torque,
         design.L_over_R,
     )
     out = np.empty((capacity, 6))

@@ -1,0 +1,46 @@
+"""Shared designs and the reference runs, computed once per test session."""
+
+from __future__ import annotations
+
+import math
+import os
+
+import pytest
+import windpump
+from hypothesis import settings
+from reference import reference_run
+
+SEED = windpump.Design.seed_example()
+SEED_MARGIN = windpump.stall_margin(SEED)
+
+# name: (design, t_end [s], theta0 [rad], theta_dot0 [rad/s])
+ACCURACY_CASES = {
+    "seed example": (SEED, 600.0, math.pi / 2, 3.0),
+    "short rod L/R = 1.5": (SEED.replace(L=0.06), 300.0, math.pi / 2, 3.0),
+    "near stall, margin 1.05": (SEED.replace(h=3.0 * SEED_MARGIN / 1.05), 600.0, math.pi / 2, 12.0),
+    "overload, margin 0.95": (SEED.replace(h=3.0 * SEED_MARGIN / 0.95), 1200.0, math.pi / 2, 12.0),
+    "kick below alpha-": (SEED, 600.0, math.pi / 2, 1.0),
+    "light rotor, large ripple": (
+        SEED.replace(I0=SEED.I0 / 100, I1=SEED.I1 / 100, h=6.0),
+        60.0,
+        0.3,
+        5.0,
+    ),
+}
+
+
+@pytest.fixture(scope="session")
+def runs():
+    """name -> (case, windpump.simulate result, reference) for every accuracy case."""
+    return {
+        name: (case, windpump.simulate(*case), reference_run(*case))
+        for name, case in ACCURACY_CASES.items()
+    }
+
+
+# CI runs a fixed set of examples, so a landing never depends on a newly drawn one.
+# A longer hunt for counter-examples: pytest --hypothesis-profile=thorough
+settings.register_profile("ci", derandomize=True, print_blob=True)
+settings.register_profile("thorough", max_examples=1000, deadline=None)
+if os.environ.get("CI"):
+    settings.load_profile("ci")

@@ -6,8 +6,10 @@ import math
 import os
 
 import pytest
-import windpump
 from hypothesis import settings
+
+import windpump
+
 from reference import reference_run
 
 SEED = windpump.Design.seed_example()

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+
 from windpump import Design
 
 RTOL = 1e-11

@@ -6,11 +6,13 @@ import math
 
 import numpy as np
 import pytest
-import windpump
-from conftest import SEED, SEED_MARGIN
-from reference import averaged_rhs
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
+
+import windpump
+
+from conftest import SEED, SEED_MARGIN
+from reference import averaged_rhs
 
 NEAR_STALL = SEED.replace(h=3.0 * SEED_MARGIN / 1.05)
 OVERLOAD = SEED.replace(h=3.0 * SEED_MARGIN / 0.95)

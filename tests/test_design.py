@@ -6,6 +6,7 @@ import dataclasses
 import math
 
 import pytest
+
 import windpump
 from windpump import Design, ParameterError
 

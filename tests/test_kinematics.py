@@ -6,8 +6,9 @@ import math
 
 import numpy as np
 import pytest
-import windpump
 from scipy.integrate import quad
+
+import windpump
 
 R, L = 0.04, 0.15
 THETA = np.linspace(-2 * math.pi, 4 * math.pi, 601)

@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 import pytest
-import windpump
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
+
+import windpump
 from windpump import Design, ParameterError
 from windpump.dynamics import SMALLEST_KICK
 

@@ -6,7 +6,9 @@ import math
 
 import numpy as np
 import pytest
+
 import windpump
+
 from conftest import ACCURACY_CASES, SEED
 from reference import reference_run
 

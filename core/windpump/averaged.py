@@ -96,7 +96,7 @@ def steady_speeds(design: Design) -> tuple[float, float]:
     >>> from windpump import Design
     >>> a_plus, a_minus = steady_speeds(Design.seed_example())
     >>> round(a_plus, 2), round(a_minus, 3)
-    (23.69, 1.306)
+    (23.71, 1.293)
     """
     margin = stall_margin(design)
     if margin <= 1.0:
@@ -165,7 +165,7 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     >>> averaged_stall_time(Design.seed_example(), 3.0) is None
     True
     >>> round(averaged_stall_time(Design.seed_example(), 1.0), 1)
-    14.8
+    113.3
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     if theta_dot0 == 0.0:
@@ -209,7 +209,7 @@ def spinup(design: Design, t, theta_dot0: float):
     --------
     >>> from windpump import Design, spinup
     >>> [round(float(w), 2) for w in spinup(Design.seed_example(), [0.0, 79.0, 600.0], 3.0)]
-    [3.0, 15.81, 23.69]
+    [3.0, 5.41, 23.58]
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     t = np.asarray(t, dtype=float)

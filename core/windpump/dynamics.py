@@ -114,19 +114,22 @@ class SimulationResult:
         start, end = self.revolutions()
         if len(start) == 0:
             raise ValueError("the run has no complete crank revolution to measure")
-        t0, t1 = start[-min(revolutions, len(start))], end[-1]
-        window = (self.t >= t0) & (self.t <= t1)
-        volume = np.interp([t0, t1], self.t, self.volume)
-        mean_flow = (volume[1] - volume[0]) / (t1 - t0)
-        speed = self.theta_dot[window]
-        mean_speed = 2 * math.pi * min(revolutions, len(start)) / (t1 - t0)
+        start, end = start[-revolutions:], end[-revolutions:]
+        volume = np.interp([start[0], end[-1]], self.t, self.volume)
+        mean_flow = (volume[1] - volume[0]) / (end[-1] - start[0])
+        mean_speed = 2 * math.pi * len(start) / (end[-1] - start[0])
+        window = (self.t >= start[0]) & (self.t <= end[-1])
         peak_flow = float(self.flow[window].max())
+        ripple = 0.0
+        for t0, t1 in zip(start, end, strict=True):
+            speed = self.theta_dot[(self.t >= t0) & (self.t <= t1)]
+            ripple = max(ripple, float(np.ptp(speed)) * (t1 - t0) / (2 * math.pi))
         return Intermittency(
             mean_flow=mean_flow,
             peak_flow=peak_flow,
             peak_to_mean=peak_flow / mean_flow if mean_flow > 0 else math.inf,
             mean_speed=mean_speed,
-            speed_ripple=float((speed.max() - speed.min()) / mean_speed),
+            speed_ripple=ripple,
         )
 
     def to_csv(self, path: str | os.PathLike | io.TextIOBase | None = None) -> str | None:
@@ -167,7 +170,7 @@ class Intermittency:
     mean_speed : float
         Cycle-mean crank speed [rad/s].
     speed_ripple : float
-        (max - min) / mean of the crank speed [-].
+        Largest (max - min) / mean of the crank speed within one revolution [-].
     """
 
     mean_flow: float
@@ -224,7 +227,7 @@ def simulate(
     >>> from windpump import Design, simulate
     >>> run = simulate(Design.seed_example(), 600.0, theta0=math.pi / 2, theta_dot0=3.0)
     >>> run.stalled, round(float(run.theta_dot[-1]), 1)
-    (False, 23.7)
+    (False, 23.6)
     """
     if not isinstance(design, Design):
         raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")

@@ -30,7 +30,7 @@ def piston_position(theta, R: float, L: float):
     Examples
     --------
     >>> import math
-    >>> float(piston_position(math.pi, R=0.04, L=0.15))
+    >>> round(float(piston_position(math.pi, R=0.04, L=0.15)), 12)  # 2R at bottom dead centre
     0.08
     """
     R = positive("R", R, "m")

@@ -42,7 +42,7 @@ def load_power(design: Design, omega):
     --------
     >>> from windpump import Design
     >>> round(float(load_power(Design.seed_example(), 40.0)), 3)
-    1.177
+    4.709
     """
     return design.load_torque / (np.pi * design.R_dagger) * np.asarray(omega, dtype=float)
 
@@ -91,7 +91,7 @@ def operating_point(design: Design) -> OperatingPoint:
     >>> from windpump import Design, operating_point
     >>> op = operating_point(Design.seed_example())
     >>> round(op.omega, 2), round(op.power, 2)
-    (94.77, 2.79)
+    (94.83, 11.16)
     """
     load = design.load_torque / (math.pi * design.R_dagger)  # torque of the load line [N m]
     discriminant = 1.0 - load / design.T_m

@@ -1,0 +1,93 @@
+"""windpump.simulate against a straightforward port of the paper's ODE45 set-up, on its example.
+
+Run: python benchmarks/bench_simulate.py
+
+The port integrates Eq. (17), dimensionless, in one scipy solve_ivp RK45 call over the whole run with
+ODE45's default tolerances and the paper's maximum step, a quarter of the crank period at 2 omega_m
+(dt+ < pi R+ / 4). Both sides are warmed up, then timed in this process; the ratio of the medians and
+each side's error against the tight reference of tests/reference.py (DOP853, rtol 1e-11, stroke by
+stroke) are printed.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+import windpump
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from reference import reference_run  # noqa: E402
+
+T_END, THETA0, THETA_DOT0 = 600.0, math.pi / 2, 3.0
+
+
+def paper_port(design: windpump.Design, t_end: float, theta0: float, theta_dot0: float):
+    """Eq. (17) as the paper integrates it: (theta, theta_dot+, V+) in t+ = t omega_m, ODE45."""
+    Rd, ratio = design.R_dagger, design.L_over_R
+    Tm, Ld = design.Tm_dagger, design.L_dagger
+
+    def rhs(_t, y):
+        theta, speed = y[0], y[1]
+        theta_c = math.asin(math.sin(theta) / ratio)
+        lever = math.sin(theta + theta_c) / math.cos(theta_c)
+        exhaust = math.fmod(theta, 2 * math.pi) > math.pi
+        force = -1.0 if exhaust else 0.0  # F+
+        f2 = -lever / 2 if exhaust else 0.0  # pistonkin
+        return [speed, Tm * speed * (2 - Rd * speed) - Ld * force * lever, speed * f2]
+
+    w = design.omega_m
+    sol = solve_ivp(
+        rhs, (0, t_end * w), [theta0, theta_dot0 / w, 0.0], method="RK45", max_step=math.pi * Rd / 4
+    )
+    theta, speed, strokes = sol.y[:, -1]
+    return theta, speed * w, strokes * design.stroke_volume
+
+
+def windpump_final(design, t_end, theta0, theta_dot0):
+    run = windpump.simulate(design, t_end, theta0, theta_dot0)
+    return run.theta[-1], run.theta_dot[-1], run.volume[-1]
+
+
+def median_time(function, repeats):
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), result
+
+
+def main():
+    design = windpump.Design.seed_example()
+    args = (design, T_END, THETA0, THETA_DOT0)
+    ref = reference_run(*args)
+    truth = np.array([ref.theta, ref.theta_dot, ref.volume])
+
+    windpump_final(*args), paper_port(*args)  # warm-up: compile (or load the cache), import paths
+    fast, fast_result = median_time(lambda: windpump_final(*args), 101)
+    slow, slow_result = median_time(lambda: paper_port(*args), 7)
+
+    print(
+        f"seed example: theta0 = pi/2, theta_dot0 = {THETA_DOT0} rad/s, {T_END:.0f} s "
+        f"({ref.theta / (2 * math.pi):.0f} crank revolutions)"
+    )
+    print(f"{'':28s}{'median time':>14s}{'theta':>11s}{'theta_dot':>11s}{'volume':>11s}")
+    print(f"{'':28s}{'':>14s}{'(relative error against the reference)':>33s}")
+    for name, seconds, result in [
+        ("windpump.simulate", fast, fast_result),
+        ("paper port (solve_ivp RK45)", slow, slow_result),
+    ]:
+        errors = np.abs(np.array(result) - truth) / np.abs(truth)
+        print(f"{name:28s}{seconds * 1e3:11.2f} ms" + "".join(f"{e:11.1e}" for e in errors))
+    print(f"speed-up: {slow / fast:.0f}x")
+
+
+if __name__ == "__main__":
+    main()

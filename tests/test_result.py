@@ -1,0 +1,93 @@
+"""What a designer does with a run: cycle means, intermittency figures, CSV; and the core's isolation."""
+
+from __future__ import annotations
+
+import io
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import windpump
+
+from conftest import SEED
+from reference import reference_run
+
+
+@pytest.fixture(scope="module")
+def run():
+    return windpump.simulate(SEED, 600.0)
+
+
+def test_cycle_mean_speed_is_two_pi_over_each_revolutions_duration(run):
+    """Against the reference: the time of the 100th revolution, integrated independently."""
+    t_mid, speed = run.cycle_mean_speed()
+    start, end = run.revolutions()
+    theta0 = run.theta[0]
+
+    def time_at(angle):  # the reference run up to the time the run says theta reaches angle
+        t = float(np.interp(angle, run.theta, run.t))
+        return t, reference_run(SEED, t, theta0, 3.0).theta
+
+    t99, theta99 = time_at(theta0 + 2 * math.pi * 99)
+    t100, theta100 = time_at(theta0 + 2 * math.pi * 100)
+    assert theta99 == pytest.approx(theta0 + 2 * math.pi * 99, abs=1e-5)
+    assert theta100 == pytest.approx(theta0 + 2 * math.pi * 100, abs=1e-5)
+    assert speed[99] == pytest.approx(2 * math.pi / (t100 - t99), rel=1e-4)
+    assert t_mid[99] == pytest.approx(0.5 * (start[99] + end[99]))
+
+
+def test_intermittency_of_the_seed_example(run):
+    figures = run.intermittency(revolutions=10)
+    # At 600 s the pump is still 0.5 % below alpha+: compare with the averaged curve then.
+    assert figures.mean_speed == pytest.approx(
+        float(windpump.spinup(SEED, [597.0], 3.0)[0]), rel=1e-3
+    )
+    assert figures.mean_flow == pytest.approx(
+        SEED.A * SEED.R * figures.mean_speed / math.pi, rel=1e-9
+    )
+    # At an almost steady speed the flow peaks where the lever arm does: pi max|lever| x the mean.
+    lever = windpump.lever_arm(np.linspace(math.pi, 2 * math.pi, 100_001), SEED.L_over_R)
+    assert figures.peak_to_mean == pytest.approx(math.pi * np.max(-lever), rel=5e-3)
+    # At a nearly steady speed the windmill supplies the mean load torque P/pi, so the kinetic
+    # energy swings by the peak-to-peak of F = P theta/pi + (work of the load, Eq. 1) over a
+    # revolution, and the speed by that over I_eff theta_dot^2.
+    theta = np.linspace(0, 2 * math.pi, 200_001)
+    P = SEED.load_torque
+    load_work = np.where(
+        theta > math.pi, -P * (2 - windpump.piston_position(theta, SEED.R, SEED.L) / SEED.R), 0
+    )
+    swing = np.ptp(P * theta / math.pi + load_work)
+    settled = windpump.simulate(SEED, 2000.0).intermittency()  # 25 tau: steady to 1e-10
+    expected = swing / (SEED.I_eff * settled.mean_speed**2)
+    assert settled.speed_ripple == pytest.approx(expected, rel=0.01)
+
+
+def test_intermittency_needs_a_whole_revolution():
+    short = windpump.simulate(SEED, 0.5)
+    with pytest.raises(ValueError, match="no complete crank revolution"):
+        short.intermittency()
+    with pytest.raises(windpump.ParameterError, match="revolutions"):
+        windpump.simulate(SEED, 60.0).intermittency(revolutions=0)
+
+
+def test_csv_round_trip(run, tmp_path):
+    text = run.to_csv()
+    header = text.splitlines()[0]
+    assert header == "t [s],theta [rad],theta_dot [rad/s],volume [m^3],flow [m^3/s],shaft_work [J]"
+    table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)
+    np.testing.assert_allclose(table[:, 2], run.theta_dot, rtol=1e-11)
+    np.testing.assert_allclose(table[:, 3], run.volume, rtol=1e-11, atol=1e-300)
+    path = tmp_path / "run.csv"
+    assert run.to_csv(path) is None
+    assert path.read_text(encoding="utf-8") == text
+
+
+def test_importing_the_core_does_not_import_the_app_libraries():
+    code = (
+        "import sys, windpump; windpump.simulate(windpump.Design.seed_example(), 1.0); "
+        "assert 'panel' not in sys.modules and 'bokeh' not in sys.modules, 'app library imported'"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -22,20 +22,34 @@ from .averaged import (
 )
 from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, simulate
+from .exploration import Exploration, Status, explore
 from .kinematics import f2, lever_arm, piston_position, rod_angle, swept_strokes
 from .validation import ParameterError
-from .windmill import OperatingPoint, load_power, operating_point, windmill_power, windmill_torque
+from .windmill import (
+    OperatingPoint,
+    TorqueFit,
+    fit_torque_curve,
+    load_power,
+    operating_point,
+    windmill_power,
+    windmill_torque,
+)
 
 __all__ = [
     "MAX_SAMPLES",
     "Design",
+    "Exploration",
     "Intermittency",
     "OperatingPoint",
     "ParameterError",
     "SimulationResult",
     "StallError",
+    "Status",
+    "TorqueFit",
     "averaged_stall_time",
+    "explore",
     "f2",
+    "fit_torque_curve",
     "lever_arm",
     "load_power",
     "mean_lever_arm",

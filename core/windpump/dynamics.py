@@ -125,10 +125,10 @@ class SimulationResult:
             speed = self.theta_dot[(self.t >= t0) & (self.t <= t1)]
             ripple = max(ripple, float(np.ptp(speed)) * (t1 - t0) / (2 * math.pi))
         return Intermittency(
-            mean_flow=mean_flow,
+            mean_flow=float(mean_flow),
             peak_flow=peak_flow,
-            peak_to_mean=peak_flow / mean_flow if mean_flow > 0 else math.inf,
-            mean_speed=mean_speed,
+            peak_to_mean=float(peak_flow / mean_flow) if mean_flow > 0 else math.inf,
+            mean_speed=float(mean_speed),
             speed_ripple=ripple,
         )
 

@@ -9,6 +9,7 @@ import numpy as np
 
 from .averaged import StallError, stall_margin
 from .design import Design
+from .validation import ParameterError
 
 
 def windmill_torque(design: Design, omega):
@@ -109,4 +110,86 @@ def operating_point(design: Design) -> OperatingPoint:
         flow=design.A * design.R * crank_speed / math.pi,
         omega_unstable=omega_unstable,
         power_unstable=float(windmill_power(design, omega_unstable)),
+    )
+
+
+@dataclasses.dataclass(frozen=True)
+class TorqueFit:
+    """A least-squares fit of Eq. (11) to measured windmill torques (the paper's Fig. 2).
+
+    Attributes
+    ----------
+    T_m : float
+        Peak torque [N m].
+    omega_m : float
+        Speed of the peak [rad/s].
+    rms_residual : float
+        Root-mean-square of measured minus fitted torque [N m].
+    """
+
+    T_m: float
+    omega_m: float
+    rms_residual: float
+
+
+def fit_torque_curve(omega, torque) -> TorqueFit:
+    """Fit ``T = T_m x (2 - x)``, ``x = omega/omega_m`` (Eq. 11), to measured (omega, T) pairs.
+
+    The curve is linear in ``a = 2 T_m/omega_m`` and ``b = -T_m/omega_m^2`` (``T = a omega + b
+    omega^2``), so the fit is a linear least-squares problem; then ``omega_m = -a/(2b)`` and
+    ``T_m = a omega_m / 2``.
+
+    Parameters
+    ----------
+    omega : array_like
+        Windmill speeds [rad/s], finite and >= 0, at least two distinct values > 0.
+    torque : array_like
+        Measured torques [N m], finite, the same length.
+
+    Raises
+    ------
+    ParameterError
+        When the data are not of that form, or do not describe a torque that rises then falls.
+
+    Examples
+    --------
+    >>> fit = fit_torque_curve([10, 25, 50, 75, 90], [0.216, 0.45, 0.6, 0.45, 0.216])
+    >>> round(fit.T_m, 3), round(fit.omega_m, 2)
+    (0.6, 50.0)
+    """
+    omega = np.asarray(omega, dtype=float).ravel()
+    torque = np.asarray(torque, dtype=float).ravel()
+    if omega.shape != torque.shape:
+        raise ParameterError("torque", f"{torque.size} values", f"as many as omega ({omega.size})")
+    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(torque))):
+        raise ParameterError("omega, torque", "non-finite values", "finite numbers")
+    if np.any(omega < 0):
+        raise ParameterError("omega", float(omega.min()), ">= 0 everywhere", "rad/s")
+    if np.unique(omega[omega > 0]).size < 2:
+        raise ParameterError(
+            "omega",
+            f"{np.unique(omega).size} distinct speeds",
+            "at least two distinct speeds > 0",
+            "rad/s",
+        )
+    (a, b), *_ = np.linalg.lstsq(np.column_stack([omega, omega**2]), torque, rcond=None)
+    if not (a > 0 and b < 0):
+        raise ParameterError(
+            "torque",
+            "a curve that does not rise then fall",
+            "an inverted parabola through 0 (Eq. 11)",
+            why=f"the best fit has T = {a:.4g} omega + {b:.4g} omega^2",
+        )
+    omega_m = -a / (2 * b)
+    if omega_m > 10 * omega.max():
+        raise ParameterError(
+            "torque",
+            "a curve with no visible peak",
+            "a torque that peaks near the measured speeds",
+            why=f"the fit puts the peak at {omega_m:.4g} rad/s, over 10 x the fastest measured speed",
+        )
+    T_m = a * omega_m / 2
+    residual = torque - T_m * (omega / omega_m) * (2 - omega / omega_m)
+    return TorqueFit(
+        T_m=float(T_m), omega_m=float(omega_m), rms_residual=float(np.sqrt(np.mean(residual**2)))
     )

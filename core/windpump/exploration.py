@@ -1,0 +1,158 @@
+"""One call for everything known about a design and a kick: the full run and the averaged theory."""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import math
+
+import numpy as np
+
+from .averaged import (
+    averaged_stall_time,
+    spinup,
+    stall_margin,
+    steady_speeds,
+    time_constant,
+)
+from .design import Design
+from .dynamics import Intermittency, SimulationResult, simulate
+from .windmill import OperatingPoint, operating_point
+
+
+class Status(enum.Enum):
+    """How a run went, in words anyone can read at a glance."""
+
+    RUNNING = "running"
+    """Still turning at t_end, and the windmill can carry the load (margin > 1, Eq. 22)."""
+    SLOWING = "slowing to a stall"
+    """Still turning at t_end, but the margin is 1 or less: the averaged theory says it will stall."""
+    STALLED = "stalled"
+    """It was turning and came to rest: the load won (the margin is 1 or less, or ripple)."""
+    NEVER_STARTED = "never started"
+    """The kick was too small: 0, or below alpha- (Eq. 21), so it came to rest."""
+
+
+@dataclasses.dataclass(frozen=True)
+class Exploration:
+    """A design run in full (Eq. 12) beside the averaged theory (Eqs. 19-25) and the operating point.
+
+    Attributes
+    ----------
+    run : SimulationResult
+        The full integration.
+    theta_dot0 : float
+        The kick [rad/s].
+    margin : float
+        Stall margin of Eq. (22) [-].
+    alpha_plus, alpha_minus : float or None
+        Steady cycle-mean crank speeds of Eq. (21) [rad/s]; None when the margin is 1 or less.
+    tau : float or None
+        Spin-up time constant of Eq. (25) [s]; None when the margin is 1 or less.
+    averaged_t_stall : float or None
+        When the averaged model stalls [s] (kicked below alpha-, or margin <= 1); else None.
+    spinup_t, spinup_speed : ndarray
+        The averaged spin-up of Eq. (24) [s], [rad/s], on ``points`` times over the run.
+    cycle_t, cycle_speed : ndarray
+        The integration's cycle-mean crank speed per revolution [s], [rad/s].
+    intermittency : Intermittency or None
+        Flow and speed figures over the last revolutions; None without a complete revolution.
+    operating_point : OperatingPoint or None
+        Eq. (5) against Eq. (11); None when the margin is 1 or less.
+    status : Status
+    """
+
+    run: SimulationResult
+    theta_dot0: float
+    margin: float
+    alpha_plus: float | None
+    alpha_minus: float | None
+    tau: float | None
+    averaged_t_stall: float | None
+    spinup_t: np.ndarray
+    spinup_speed: np.ndarray
+    cycle_t: np.ndarray
+    cycle_speed: np.ndarray
+    intermittency: Intermittency | None
+    operating_point: OperatingPoint | None
+    status: Status
+
+    @property
+    def design(self) -> Design:
+        return self.run.design
+
+    @property
+    def pumped_volume(self) -> float:
+        """Water pumped over the run [m^3]."""
+        return float(self.run.volume[-1])
+
+    @property
+    def mean_flow(self) -> float:
+        """Water pumped over the run / its duration [m^3/s] (0 for a run of no duration)."""
+        duration = float(self.run.t[-1])
+        return self.pumped_volume / duration if duration > 0 else 0.0
+
+
+def explore(
+    design: Design,
+    t_end: float,
+    theta0: float = math.pi / 2,
+    theta_dot0: float = 3.0,
+    points: int = 400,
+) -> Exploration:
+    """Run a design in full and beside the averaged theory, as the paper's Fig. 3 does.
+
+    Parameters
+    ----------
+    design : Design
+    t_end, theta0, theta_dot0 : float
+        As for :func:`windpump.simulate` [s], [rad], [rad/s].
+    points : int, default 400
+        Times at which the averaged spin-up (Eq. 24) is evaluated, evenly over the run.
+
+    Raises
+    ------
+    ParameterError
+        For an argument out of range (see :func:`windpump.simulate`).
+
+    Examples
+    --------
+    >>> from windpump import Design, explore
+    >>> seen = explore(Design.seed_example(), 600.0)
+    >>> seen.status.value, round(seen.alpha_plus, 2), round(seen.tau, 1)
+    ('running', 23.71, 78.6)
+    """
+    run = simulate(design, t_end, theta0, theta_dot0)
+    margin = stall_margin(design)
+    alpha_plus = alpha_minus = tau = point = None
+    if margin > 1.0:
+        alpha_plus, alpha_minus = steady_speeds(design)
+        tau = time_constant(design)
+        point = operating_point(design)
+    spinup_t = np.linspace(0.0, float(run.t[-1]), max(2, int(points)))
+    cycle_t, cycle_speed = run.cycle_mean_speed()
+    whole_revolutions = len(cycle_t) > 0
+    return Exploration(
+        run=run,
+        theta_dot0=float(theta_dot0),
+        margin=margin,
+        alpha_plus=alpha_plus,
+        alpha_minus=alpha_minus,
+        tau=tau,
+        averaged_t_stall=averaged_stall_time(design, theta_dot0),
+        spinup_t=spinup_t,
+        spinup_speed=spinup(design, spinup_t, theta_dot0),
+        cycle_t=cycle_t,
+        cycle_speed=cycle_speed,
+        intermittency=run.intermittency() if whole_revolutions else None,
+        operating_point=point,
+        status=_status(run, margin, alpha_minus, theta_dot0),
+    )
+
+
+def _status(run: SimulationResult, margin: float, alpha_minus, theta_dot0: float) -> Status:
+    if not run.stalled:
+        return Status.RUNNING if margin > 1.0 else Status.SLOWING
+    if theta_dot0 == 0.0 or (alpha_minus is not None and theta_dot0 < alpha_minus):
+        return Status.NEVER_STARTED
+    return Status.STALLED

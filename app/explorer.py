@@ -35,6 +35,12 @@ MORE_SLIDERS = {
     "I0": ("Rotor inertia I₀ [kg·m²]", 0.05, 10.0, 0.05, SEED.I0, "0.00"),
     "I1": ("Crank inertia I₁ [kg·m²]", 0.005, 1.0, 0.005, SEED.I1, "0.000"),
 }
+# Parameters the core may reject -> the slider that sets them.
+SLIDER_OF_PARAMETER = {
+    "L": "L_over_R",
+    "R1": "R_dagger",
+    **{n: n for n in (*MAIN_SLIDERS, *MORE_SLIDERS)},
+}
 STATUS_STYLE = {
     Status.RUNNING: "success",
     Status.SLOWING: "warning",
@@ -151,7 +157,7 @@ class Explorer:
             with pn.io.hold():
                 self._draw(seen)
         except ValueError as error:  # the core's verdict on an input: say so, keep the last plots
-            self._show_error(f"This design cannot be run: {error}")
+            self._show_error(f"{self._culprit(error)}cannot be run: {error}")
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("update failed")
             self._show_error(
@@ -160,6 +166,11 @@ class Explorer:
         else:
             self.seen = seen
             self.error.visible = False
+
+    def _culprit(self, error: ValueError) -> str:
+        """The slider behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
+        name = SLIDER_OF_PARAMETER.get(getattr(error, "name", None))
+        return f"{self.sliders[name].name} = {self.value(name):g} " if name else "This design "
 
     def _show_error(self, message: str) -> None:
         self.error.object = message

@@ -1,0 +1,131 @@
+"""A classroom at once: 20 headless pages on one `panel serve` process, each moving its own slider.
+
+Every session must get its own update with no error, and the server's memory must come back near
+where it started once the pages close. Bounded: 20 sessions, loopback only, a few minutes at most.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import time
+
+import pytest
+
+import windpump
+
+from served import (
+    CHROMIUM,
+    CHROMIUM_FLAGS,
+    DEEP_TEXT,
+    require_chromium,
+    resident_memory,
+    served_app,
+)
+
+pytestmark = pytest.mark.browser
+
+SESSIONS = 20
+# What the core computes for the head each session ends on (3 m + 0.1 m per key press).
+EXPECTED_READOUT = {
+    steps: f"{1e3 * windpump.explore(windpump.Design.seed_example().replace(h=3 + steps / 10), 600.0).mean_flow:.4f} L/s"
+    for steps in range(1, 5)
+}
+SETTLE = 60.0  # s allowed for the server to drop closed sessions
+
+
+async def one_student(browser, url, k):
+    """Open the page, move the head slider k % 4 + 1 steps, and see this session's readout follow."""
+    page = await browser.new_page()
+    problems = []
+    page.on(
+        "console",
+        lambda m: (
+            problems.append(f"{m.text} ({m.location.get('url')})") if m.type == "error" else None
+        ),
+    )  # noqa: E501
+    page.on("pageerror", lambda error: problems.append(str(error)))
+    try:
+        await page.goto(url, timeout=120_000)
+        await page.wait_for_function(
+            f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
+        )
+        before = await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]")
+        title = page.locator(".bk-slider-title", has_text="Head h [m]")
+        await page.locator(".bk-input-group", has=title).locator(".noUi-handle").focus()
+        steps = k % 4 + 1
+        for _ in range(steps):
+            await page.keyboard.press("ArrowRight")
+        await page.locator(
+            ".bk-slider-title", has_text=f"Head h [m]: {3 + steps / 10:.1f}"
+        ).wait_for(timeout=120_000)
+        expected = EXPECTED_READOUT[steps]
+        await page.wait_for_function(
+            f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e", arg=expected, timeout=120_000
+        )
+        assert expected != before
+        return await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]"), problems
+    finally:
+        await page.close()
+
+
+async def classroom(browser, url):
+    return await asyncio.wait_for(
+        asyncio.gather(*(one_student(browser, url, k) for k in range(SESSIONS))), timeout=600
+    )
+
+
+def settled_memory(pid, target):
+    """Resident memory once it falls to target or SETTLE seconds pass (closed sessions are dropped
+    after a second, then their memory is handed back: app/serving.py)."""
+    deadline = time.monotonic() + SETTLE
+    while (memory := resident_memory(pid)) > target and time.monotonic() < deadline:
+        time.sleep(2)
+    return memory
+
+
+def test_twenty_concurrent_sessions():
+    require_chromium()
+    lifetime = ["--unused-session-lifetime", "1000", "--check-unused-sessions", "1000"]
+    with served_app(*lifetime) as (url, server):
+        seen = {}
+
+        async def lecture():
+            from playwright.async_api import async_playwright
+
+            async with async_playwright() as playwright:
+                browser = await playwright.chromium.launch(
+                    executable_path=CHROMIUM, args=CHROMIUM_FLAGS
+                )
+                try:
+                    await one_student(browser, url, 0)  # imports, compiled kernels
+                    await asyncio.sleep(3)
+                    seen["start"] = resident_memory(server.pid)
+                    seen["first"] = await classroom(browser, url)
+                    seen["busy"] = resident_memory(server.pid)
+                    seen["after first"] = settled_memory(server.pid, seen["start"] * 1.1)
+                    seen["second"] = await classroom(browser, url)
+                finally:
+                    await browser.close()
+
+        asyncio.run(lecture())
+        seen["after second"] = settled_memory(server.pid, seen["after first"] * 1.02)
+
+    for results in (seen["first"], seen["second"]):
+        readouts = [readout for readout, _ in results]
+        assert readouts == [EXPECTED_READOUT[k % 4 + 1] for k in range(SESSIONS)]
+        problems = [p for _, session in results for p in session]
+        # Known, not ours to fix here: when many sessions start at once, Panel 1.9.4 sometimes
+        # resolves a page's component stylesheets to cdn.holoviz.org (a race on its process-wide
+        # resource mode), which this offline machine cannot reach. Those pages work, less some
+        # styling. Anything else in the console fails the test.
+        cdn_css = [p for p in problems if "cdn.holoviz.org" in p and ".css" in p]
+        assert [p for p in problems if p not in cdn_css] == []
+        print(f"stylesheets requested from the CDN: {len(cdn_css)} across {SESSIONS} sessions")
+
+    start, busy, first, second = (seen[k] for k in ("start", "busy", "after first", "after second"))
+    print(
+        f"server memory: {start / 1e6:.0f} MB at start, {busy / 1e6:.0f} MB with {SESSIONS} "
+        f"sessions, {first / 1e6:.0f} MB after they closed, {second / 1e6:.0f} MB after a second class"
+    )
+    assert first <= start + 100e6  # a one-time warm-up of caches, at most
+    assert second <= first * 1.05 + 10e6  # and no growth from one class to the next

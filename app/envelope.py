@@ -10,15 +10,16 @@ from __future__ import annotations
 import numpy as np
 
 
-def band(x, y, bins: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def band(x, y, bins: int | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The lowest and highest y in each of ``bins`` equal bins of x (x increasing).
 
     Returns ``(x_mid, lower, upper)``, one row per non-empty bin, x_mid the middle of the bin's
-    samples. A trace of no more than ``bins`` samples comes back whole, with lower = upper = y.
+    samples. A trace of no more than ``bins`` samples (or any trace, with ``bins=None``) comes
+    back whole, with lower = upper = y.
     """
     x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     n = len(x)
-    if n <= bins:
+    if bins is None or n <= bins:
         return x, y, y
     starts = np.unique(np.searchsorted(x, np.linspace(x[0], x[-1], bins + 1)[:-1]))
     ends = np.append(starts[1:], n) - 1

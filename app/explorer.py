@@ -68,7 +68,8 @@ def readout(label: str, value: str, name: str) -> str:
 class Explorer:
     """One session's explorer: build it, then ``template()`` or ``layout()`` it."""
 
-    def __init__(self):
+    def __init__(self, bins: int | None = BINS):
+        self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self.sliders = {
             name: slider(*spec) for name, spec in {**MAIN_SLIDERS, **MORE_SLIDERS}.items()
         }
@@ -182,7 +183,7 @@ class Explorer:
         s = self.sources
         s["speed"].data = self._band(run.t, run.theta_dot)
         s["spinup"].data = {"t": seen.spinup_t, "speed": seen.spinup_speed}
-        cycle_t, lower, upper = band(seen.cycle_t, seen.cycle_speed, BINS)
+        cycle_t, lower, upper = band(seen.cycle_t, seen.cycle_speed, self.bins)
         s["cycle_mean"].data = {"t": cycle_t, "speed": 0.5 * (lower + upper)}
         s["alpha_plus"].data = self._level(seen.alpha_plus, t_end)
         near_alpha_minus = (
@@ -225,9 +226,8 @@ class Explorer:
             f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
         )
 
-    @staticmethod
-    def _band(t, values) -> dict:
-        return dict(zip(("t", "lower", "upper"), band(t, values, BINS), strict=True))
+    def _band(self, t, values) -> dict:
+        return dict(zip(("t", "lower", "upper"), band(t, values, self.bins), strict=True))
 
     @staticmethod
     def _level(speed: float | None, t_end: float) -> dict:

@@ -3,11 +3,13 @@
 import logging
 
 import panel as pn
-from explorer import Explorer
+from explorer import BINS, Explorer
 from serving import release_memory
 
 pn.extension(notifications=False)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)
-Explorer().template().servable()
+# ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
+full = pn.state.session_args.get("resolution", [b""])[0] == b"full"
+Explorer(bins=None if full else BINS).template().servable()

@@ -57,7 +57,13 @@ READOUT_CSS = """
 
 def slider(label, start, end, step, value, fmt):
     return pn.widgets.FloatSlider(
-        name=label, start=start, end=end, step=step, value=value, format=fmt, stylesheets=LARGE_TEXT
+        label=label,
+        start=start,
+        end=end,
+        step=step,
+        value=value,
+        format=fmt,
+        stylesheets=LARGE_TEXT,
     )
 
 
@@ -73,15 +79,13 @@ class Explorer:
         self.sliders = {
             name: slider(*spec) for name, spec in {**MAIN_SLIDERS, **MORE_SLIDERS}.items()
         }
-        self.reset_button = pn.widgets.Button(
-            name="Reset to the paper's example", button_type="primary"
-        )
-        self.lab_data = pn.widgets.FileInput(accept=".csv,.txt", name="Lab torque curve")
+        self.reset_button = pn.widgets.Button(label="Reset to the paper's example", color="primary")
+        self.lab_data = pn.widgets.FileInput(accept=".csv,.txt", label="Lab torque curve")
         self.download = pn.widgets.FileDownload(
             callback=self._csv,
             filename="windpump_run.csv",
             label="Download this run (CSV)",
-            button_type="light",
+            color="light",
         )
         self.speed_figure, speed_sources = speed_view()
         self.flow_figure, self.closeup_figure, flow_sources = flow_views()
@@ -171,7 +175,7 @@ class Explorer:
     def _culprit(self, error: ValueError) -> str:
         """The slider behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
         name = SLIDER_OF_PARAMETER.get(getattr(error, "name", None))
-        return f"{self.sliders[name].name} = {self.value(name):g} " if name else "This design "
+        return f"{self.sliders[name].label} = {self.value(name):g} " if name else "This design "
 
     def _show_error(self, message: str) -> None:
         self.error.object = message

@@ -116,3 +116,19 @@ def test_spinup_rejects_bad_input(bad):
         windpump.spinup(SEED, [0.0, 1.0], bad)
     with pytest.raises(ValueError, match="t must"):
         windpump.spinup(SEED, [0.0, bad], 3.0)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: windpump.windmill_torque(SEED, [10.0, math.nan]),
+        lambda: windpump.windmill_power(SEED, -1.0),
+        lambda: windpump.load_power(SEED, math.inf),
+        lambda: windpump.lever_arm([0.0, math.inf], 3.75),
+        lambda: windpump.f2(math.nan, 3.75),
+        lambda: windpump.piston_position("far", SEED.R, SEED.L),
+    ],
+)
+def test_curves_and_kinematics_reject_bad_arrays(call):
+    with pytest.raises(ParameterError, match=r"^(omega|theta) = "):
+        call()

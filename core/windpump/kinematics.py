@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _kernels
-from .validation import positive, rod_ratio
+from .validation import finite_array, positive, rod_ratio
 
 TWO_PI = 2.0 * np.pi
 
@@ -35,7 +35,7 @@ def piston_position(theta, R: float, L: float):
     """
     R = positive("R", R, "m")
     rod_ratio(positive("L", L, "m") / R)
-    theta = np.asarray(theta, dtype=float)
+    theta = finite_array("theta", theta, "rad")
     return L + R - (np.sqrt(L**2 - (R * np.sin(theta)) ** 2) + R * np.cos(theta))
 
 
@@ -48,7 +48,7 @@ def rod_angle(theta, L_over_R: float):
     >>> round(float(rod_angle(math.pi / 2, 2.0)), 6)  # asin(1/2)
     0.523599
     """
-    return np.arcsin(np.sin(np.asarray(theta, dtype=float)) / rod_ratio(L_over_R))
+    return np.arcsin(np.sin(finite_array("theta", theta, "rad")) / rod_ratio(L_over_R))
 
 
 def lever_arm(theta, L_over_R: float):
@@ -63,12 +63,12 @@ def lever_arm(theta, L_over_R: float):
     >>> float(lever_arm(3 * math.pi / 2, 3.75))
     -1.0
     """
-    return _kernels.lever_arm_ufunc(np.asarray(theta, dtype=float), rod_ratio(L_over_R))
+    return _kernels.lever_arm_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
 
 
 def in_exhaust(theta):
     """True where the cylinder exhausts, pi < theta mod 2 pi < 2 pi (the load acts, Eq. 12)."""
-    return np.mod(np.asarray(theta, dtype=float), TWO_PI) > np.pi
+    return np.mod(finite_array("theta", theta, "rad"), TWO_PI) > np.pi
 
 
 def f2(theta, L_over_R: float):
@@ -84,7 +84,7 @@ def f2(theta, L_over_R: float):
     >>> float(f2(3 * math.pi / 2, 3.75)), float(f2(math.pi / 2, 3.75))
     (0.5, 0.0)
     """
-    return _kernels.f2_ufunc(np.asarray(theta, dtype=float), rod_ratio(L_over_R))
+    return _kernels.f2_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
 
 
 def swept_strokes(theta, L_over_R: float):
@@ -100,4 +100,4 @@ def swept_strokes(theta, L_over_R: float):
     >>> float(swept_strokes(2 * math.pi, 3.75)), float(swept_strokes(3 * math.pi, 3.75))
     (1.0, 1.0)
     """
-    return _kernels.swept_strokes_ufunc(np.asarray(theta, dtype=float), rod_ratio(L_over_R))
+    return _kernels.swept_strokes_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))

@@ -58,3 +58,18 @@ def rod_ratio(value: object) -> float:
     if as_float <= 1.0:
         raise ParameterError("L_over_R", value, "> 1", why="the rod cannot reach the crank")
     return as_float
+
+
+def finite_array(name: str, value, unit: str = "", minimum: float | None = None):
+    """Return ``value`` as a float array if every element is finite (and >= ``minimum``)."""
+    import numpy as np
+
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "finite real numbers", unit) from None
+    if not np.all(np.isfinite(array)):
+        raise ParameterError(name, "non-finite values", "finite real numbers", unit)
+    if minimum is not None and array.size and array.min() < minimum:
+        raise ParameterError(name, float(array.min()), f">= {minimum:g} everywhere", unit)
+    return array

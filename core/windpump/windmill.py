@@ -9,7 +9,7 @@ import numpy as np
 
 from .averaged import StallError, stall_margin
 from .design import Design
-from .validation import ParameterError
+from .validation import ParameterError, finite_array
 
 
 def windmill_torque(design: Design, omega):
@@ -25,13 +25,13 @@ def windmill_torque(design: Design, omega):
     >>> float(windmill_torque(d, 50.0)), float(windmill_torque(d, 100.0))
     (0.6, 0.0)
     """
-    x = np.asarray(omega, dtype=float) / design.omega_m
+    x = finite_array("omega", omega, "rad/s", minimum=0.0) / design.omega_m
     return design.T_m * x * (2.0 - x)
 
 
 def windmill_power(design: Design, omega):
     """Windmill shaft power T(omega) omega [W] (Eq. 11 times omega)."""
-    return windmill_torque(design, omega) * np.asarray(omega, dtype=float)
+    return windmill_torque(design, omega) * finite_array("omega", omega, "rad/s", minimum=0.0)
 
 
 def load_power(design: Design, omega):
@@ -45,7 +45,8 @@ def load_power(design: Design, omega):
     >>> round(float(load_power(Design.seed_example(), 40.0)), 3)
     4.709
     """
-    return design.load_torque / (np.pi * design.R_dagger) * np.asarray(omega, dtype=float)
+    omega = finite_array("omega", omega, "rad/s", minimum=0.0)
+    return design.load_torque / (np.pi * design.R_dagger) * omega
 
 
 @dataclasses.dataclass(frozen=True)

@@ -12,8 +12,6 @@ import numpy as np
 from . import _kernels
 from .validation import finite_array, positive, rod_ratio
 
-TWO_PI = 2.0 * np.pi
-
 
 def piston_position(theta, R: float, L: float):
     """Piston displacement from TDC, x [m] (Eq. 1).
@@ -64,11 +62,6 @@ def lever_arm(theta, L_over_R: float):
     -1.0
     """
     return _kernels.lever_arm_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
-
-
-def in_exhaust(theta):
-    """True where the cylinder exhausts, pi < theta mod 2 pi < 2 pi (the load acts, Eq. 12)."""
-    return np.mod(finite_array("theta", theta, "rad"), TWO_PI) > np.pi
 
 
 def f2(theta, L_over_R: float):

@@ -74,6 +74,13 @@ def pack_params(R_dagger, T_m, omega_m, I_eff, load_torque, L_over_R):
 
 
 @kernel
+def piston_over_R(theta, L_over_R):
+    """Piston position from top dead centre over the crank radius, x/R, Eq. (1) [-]."""
+    s = math.sin(theta)
+    return L_over_R + 1.0 - (math.sqrt(L_over_R * L_over_R - s * s) + math.cos(theta))
+
+
+@kernel
 def lever_arm(theta, L_over_R):
     """sin(theta + theta_c)/cos(theta_c) = (dx/dtheta)/R, from Eq. (1) [-]."""
     s = math.sin(theta)
@@ -95,9 +102,12 @@ def swept_strokes(theta, L_over_R):
     phi = theta - 2.0 * math.pi * revolutions
     if phi <= math.pi:
         return revolutions
-    s = math.sin(phi)
-    x_over_R = L_over_R + 1.0 - (math.sqrt(L_over_R * L_over_R - s * s) + math.cos(phi))
-    return revolutions + 0.5 * (2.0 - x_over_R)
+    return revolutions + 0.5 * (2.0 - piston_over_R(phi, L_over_R))
+
+
+@vectorize(["float64(float64, float64)"], cache=True)
+def piston_over_R_ufunc(theta, L_over_R):
+    return piston_over_R(theta, L_over_R)
 
 
 @vectorize(["float64(float64, float64)"], cache=True)
@@ -133,9 +143,7 @@ def load_work(theta, exhaust, p):
     """
     if not exhaust:
         return 0.0
-    lr = p[L_OVER_R]
-    s = math.sin(theta)
-    return p[LOAD_TORQUE] * p[INV_I_EFF] * (lr - 1.0 - math.sqrt(lr * lr - s * s) - math.cos(theta))
+    return p[LOAD_TORQUE] * p[INV_I_EFF] * (piston_over_R(theta, p[L_OVER_R]) - 2.0)
 
 
 @kernel

@@ -32,9 +32,8 @@ def piston_position(theta, R: float, L: float):
     0.08
     """
     R = positive("R", R, "m")
-    rod_ratio(positive("L", L, "m") / R)
-    theta = finite_array("theta", theta, "rad")
-    return L + R - (np.sqrt(L**2 - (R * np.sin(theta)) ** 2) + R * np.cos(theta))
+    ratio = rod_ratio(positive("L", L, "m") / R)
+    return R * _kernels.piston_over_R_ufunc(finite_array("theta", theta, "rad"), ratio)
 
 
 def rod_angle(theta, L_over_R: float):

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import numbers
 
+import numpy as np
+
 
 class ParameterError(ValueError):
     """A parameter is outside its allowed range.
@@ -62,8 +64,6 @@ def rod_ratio(value: object) -> float:
 
 def finite_array(name: str, value, unit: str = "", minimum: float | None = None):
     """Return ``value`` as a float array if every element is finite (and >= ``minimum``)."""
-    import numpy as np
-
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):

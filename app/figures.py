@@ -6,6 +6,7 @@ from bokeh.models import ColumnDataSource, FactorRange, Legend, LegendItem
 from bokeh.plotting import figure
 
 WIDTH, HEIGHT = 900, 380
+ZOOM = "pan,box_zoom,wheel_zoom,reset,save"
 COLORS = {
     "integrated": "#1f77b4",
     "averaged": "#2ca02c",
@@ -23,8 +24,11 @@ def empty(*columns: str) -> ColumnDataSource:
     return ColumnDataSource({column: [] for column in columns})
 
 
-def styled(fig, x_label: str, y_label: str):
-    """Fonts and lines a projector can carry."""
+def new_figure(
+    title: str, x_label: str, y_label: str, height: int = HEIGHT, tools: str = ZOOM, **options
+):
+    """A figure with the fonts and lines a projector can carry."""
+    fig = figure(title=title, width=WIDTH, height=height, tools=tools, **options)
     fig.title.text_font_size = "16pt"
     for axis, label in ((fig.xaxis, x_label), (fig.yaxis, y_label)):
         axis.axis_label = label
@@ -34,11 +38,17 @@ def styled(fig, x_label: str, y_label: str):
     return fig
 
 
-def legend(fig, items, location="top_left", place="center"):
-    """A legend inside the plot at ``location``, or beside it with ``place="right"``."""
+def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = "solid"):
+    return fig.line(x, y, source=source, color=color, line_width=width, line_dash=dash)
+
+
+def legend(fig, items: dict, location="top_left", place="center"):
+    """A legend of {label: renderer} inside the plot at ``location``, or beside it (``place``)."""
     fig.add_layout(
         Legend(
-            items=[LegendItem(label=label, renderers=[renderer]) for label, renderer in items],
+            items=[
+                LegendItem(label=label, renderers=[renderer]) for label, renderer in items.items()
+            ],
             location=location,
             label_text_font_size="12pt",
             click_policy="hide",
@@ -51,127 +61,59 @@ def legend(fig, items, location="top_left", place="center"):
 def draw_band(fig, source, color):
     """A min-to-max band with its edges drawn, so a band thinner than a pixel still shows."""
     area = fig.varea("t", "lower", "upper", source=source, color=color, alpha=0.35)
-    fig.line("t", "lower", source=source, color=color, line_width=1.5)
-    fig.line("t", "upper", source=source, color=color, line_width=1.5)
+    line(fig, "t", "lower", source, color, width=1.5)
+    line(fig, "t", "upper", source, color, width=1.5)
     return area
 
 
 def speed_view():
     """View 1: crank speed, integrated and averaged, with the steady speeds."""
-    sources = {
-        "speed": empty("t", "lower", "upper"),
-        "spinup": empty("t", "speed"),
-        "cycle_mean": empty("t", "speed"),
-        "alpha_plus": empty("t", "speed"),
-        "alpha_minus": empty("t", "speed"),
+    s = {
+        name: empty("t", "speed") for name in ("spinup", "cycle_mean", "alpha_plus", "alpha_minus")
     }
-    fig = styled(
-        figure(
-            title="Crank speed",
-            width=WIDTH,
-            height=HEIGHT,
-            tools="pan,box_zoom,wheel_zoom,reset,save",
+    s["speed"] = empty("t", "lower", "upper")
+    fig = new_figure("Crank speed", "time t [s]", "crank speed θ̇ [rad/s]")
+    items = {
+        "integrated, Eq. (12)": draw_band(fig, s["speed"], COLORS["integrated"]),
+        "averaged spin-up, Eq. (24)": line(
+            fig, "t", "speed", s["spinup"], COLORS["averaged"], 3, "dashed"
         ),
-        "time t [s]",
-        "crank speed θ̇ [rad/s]",
-    )
-    items = [
-        (
-            "integrated, Eq. (12)",
-            draw_band(fig, sources["speed"], COLORS["integrated"]),
+        "cycle mean of the integration": line(fig, "t", "speed", s["cycle_mean"], COLORS["mean"]),
+        "α₊, Eq. (21)": line(fig, "t", "speed", s["alpha_plus"], COLORS["alpha_plus"], 2, "dotted"),
+        "α₋, Eq. (21)": line(
+            fig, "t", "speed", s["alpha_minus"], COLORS["alpha_minus"], 2, "dotted"
         ),
-        (
-            "averaged spin-up, Eq. (24)",
-            fig.line(
-                "t",
-                "speed",
-                source=sources["spinup"],
-                color=COLORS["averaged"],
-                line_width=3,
-                line_dash="dashed",
-            ),
-        ),
-        (
-            "cycle mean of the integration",
-            fig.line(
-                "t", "speed", source=sources["cycle_mean"], color=COLORS["mean"], line_width=2
-            ),
-        ),
-        (
-            "α₊, Eq. (21)",
-            fig.line(
-                "t",
-                "speed",
-                source=sources["alpha_plus"],
-                color=COLORS["alpha_plus"],
-                line_width=2,
-                line_dash="dotted",
-            ),
-        ),
-        (
-            "α₋, Eq. (21)",
-            fig.line(
-                "t",
-                "speed",
-                source=sources["alpha_minus"],
-                color=COLORS["alpha_minus"],
-                line_width=2,
-                line_dash="dotted",
-            ),
-        ),
-    ]
+    }
     legend(fig, items, location="bottom_right")
-    return fig, sources
+    return fig, s
 
 
 def flow_views():
     """View 2: the flow over the whole run (envelope) and a close-up of its last revolutions."""
-    sources = {
+    s = {
         "flow": empty("t", "lower", "upper"),
         "mean_flow": empty("t", "flow"),
         "closeup": empty("t", "flow"),
     }
-    whole = styled(
-        figure(
-            title="Flow rate over the run",
-            width=WIDTH,
-            height=HEIGHT,
-            tools="pan,box_zoom,wheel_zoom,reset,save",
-        ),
-        "time t [s]",
-        "flow [L/s]",
-    )
-    items = [
-        (
-            "instantaneous (band: min to max)",
-            draw_band(whole, sources["flow"], COLORS["flow"]),
-        ),
-        (
-            "mean over the run",
-            whole.line(
-                "t",
-                "flow",
-                source=sources["mean_flow"],
-                color=COLORS["mean"],
-                line_width=3,
-                line_dash="dashed",
+    whole = new_figure("Flow rate over the run", "time t [s]", "flow [L/s]")
+    legend(
+        whole,
+        {
+            "instantaneous (band: min to max)": draw_band(whole, s["flow"], COLORS["flow"]),
+            "mean over the run": line(
+                whole, "t", "flow", s["mean_flow"], COLORS["mean"], 3, "dashed"
             ),
-        ),
-    ]
-    legend(whole, items)
-    closeup = styled(
-        figure(
-            title="Close-up: the last revolutions, every sample",
-            width=WIDTH,
-            height=HEIGHT,
-            tools="pan,box_zoom,reset,save",
-        ),
+        },
+    )
+    closeup = new_figure(
+        "Close-up: the last revolutions, every sample",
         "time t [s]",
         "flow [L/s]",
+        tools="pan,box_zoom,reset,save",
     )
-    closeup.line("t", "flow", source=sources["closeup"], color=COLORS["flow"], line_width=2)
-    closeup.scatter("t", "flow", source=sources["closeup"], color=COLORS["flow"], size=4)
-    return whole, closeup, sources
+    line(closeup, "t", "flow", s["closeup"], COLORS["flow"])
+    closeup.scatter("t", "flow", source=s["closeup"], color=COLORS["flow"], size=4)
+    return whole, closeup, s
 
 
 def stall_view():
@@ -180,16 +122,13 @@ def stall_view():
     source = ColumnDataSource(
         {"name": names, "value": [0.0, 0.0], "color": [COLORS["windmill"], COLORS["load"]]}
     )
-    fig = styled(
-        figure(
-            title="Stall criterion, Eq. (22)",
-            y_range=FactorRange(*names),
-            width=WIDTH,
-            height=HEIGHT * 2 // 3,
-            tools="save",
-        ),
+    fig = new_figure(
+        "Stall criterion, Eq. (22)",
         "dimensionless torque (Eqs. 14, 15)",
         "",
+        height=HEIGHT * 2 // 3,
+        tools="save",
+        y_range=FactorRange(*names),
     )
     fig.hbar(y="name", right="value", height=0.6, color="color", source=source)
     fig.x_range.start = 0
@@ -199,63 +138,27 @@ def stall_view():
 
 def operating_view():
     """View 4: Eq. (5) against the windmill's power curve, with their intersections."""
-    sources = {
-        "curve": empty("omega", "power"),
-        "load_line": empty("omega", "power"),
-        "stable": empty("omega", "power"),
-        "unstable": empty("omega", "power"),
-        "data": empty("omega", "power"),
+    s = {
+        name: empty("omega", "power")
+        for name in ("curve", "load_line", "stable", "unstable", "data")
     }
-    fig = styled(
-        figure(
-            title="Operating point, Eq. (5)",
-            width=WIDTH,
-            height=HEIGHT,
-            tools="pan,box_zoom,reset,save",
-        ),
+    fig = new_figure(
+        "Operating point, Eq. (5)",
         "windmill speed ω [rad/s]",
         "power [W]",
+        tools="pan,box_zoom,reset,save",
     )
-    items = [
-        (
-            "windmill T(ω) ω, Eq. (11)",
-            fig.line(
-                "omega", "power", source=sources["curve"], color=COLORS["windmill"], line_width=3
-            ),
+    point = dict(x="omega", y="power", size=14)
+    items = {
+        "windmill T(ω) ω, Eq. (11)": line(fig, "omega", "power", s["curve"], COLORS["windmill"], 3),
+        "pump load, Eq. (5)": line(fig, "omega", "power", s["load_line"], COLORS["load"], 3),
+        "operating point (stable)": fig.scatter(source=s["stable"], color="black", **point),
+        "unstable intersection": fig.scatter(
+            source=s["unstable"], fill_color="white", line_color="black", line_width=2, **point
         ),
-        (
-            "pump load, Eq. (5)",
-            fig.line(
-                "omega", "power", source=sources["load_line"], color=COLORS["load"], line_width=3
-            ),
+        "measured T ω (lab data)": fig.scatter(
+            "omega", "power", source=s["data"], size=8, marker="triangle", color=COLORS["data"]
         ),
-        (
-            "operating point (stable)",
-            fig.scatter("omega", "power", source=sources["stable"], size=14, color="black"),
-        ),
-        (
-            "unstable intersection",
-            fig.scatter(
-                "omega",
-                "power",
-                source=sources["unstable"],
-                size=14,
-                fill_color="white",
-                line_color="black",
-                line_width=2,
-            ),
-        ),
-        (
-            "measured T ω (lab data)",
-            fig.scatter(
-                "omega",
-                "power",
-                source=sources["data"],
-                size=8,
-                marker="triangle",
-                color=COLORS["data"],
-            ),
-        ),
-    ]
+    }
     legend(fig, items, location="top_left", place="right")
-    return fig, sources
+    return fig, s

@@ -11,6 +11,7 @@ in the docstrings are that paper's.
 (78.6, False)
 """
 
+from . import energy, linkage
 from .averaged import (
     StallError,
     averaged_stall_time,
@@ -22,6 +23,7 @@ from .averaged import (
 )
 from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, simulate
+from .energy import PowerBudget, StartupPower, power_budget, startup_power
 from .exploration import Exploration, Status, explore
 from .kinematics import f2, lever_arm, piston_position, rod_angle, swept_strokes
 from .validation import ParameterError
@@ -42,22 +44,28 @@ __all__ = [
     "Intermittency",
     "OperatingPoint",
     "ParameterError",
+    "PowerBudget",
     "SimulationResult",
     "StallError",
+    "StartupPower",
     "Status",
     "TorqueFit",
     "averaged_stall_time",
+    "energy",
     "explore",
     "f2",
     "fit_torque_curve",
     "lever_arm",
+    "linkage",
     "load_power",
     "mean_lever_arm",
     "operating_point",
     "piston_position",
+    "power_budget",
     "rod_angle",
     "simulate",
     "spinup",
+    "startup_power",
     "stall_margin",
     "steady_speeds",
     "swept_strokes",

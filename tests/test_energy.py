@@ -1,0 +1,147 @@
+"""Start-up power (the ski lift) and the wind pump's power budget, against independent references."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.integrate import quad, simpson
+
+import windpump
+from windpump.energy import power_budget, startup_power
+
+from conftest import SEED
+from reference import equation_12
+
+# -- the seed's ski lift ----------------------------------------------------------------------
+
+
+def test_the_ski_lift_needs_43_7_kilowatts():
+    chairs = 1000 / 20  # 1 km one way, a chair every 20 m
+    power = startup_power(chairs * 250.0, 10 / 3.6, 5.0, 200 / 1000)
+    assert round(power.accelerate / 1e3, 1) == 9.6
+    assert round(power.lift / 1e3, 1) == 34.1
+    assert round(power.total / 1e3, 1) == 43.7
+    accelerate, lift, total = power  # unpacks as (accelerate, lift, total)
+    assert total == pytest.approx(accelerate + lift, rel=1e-15)
+
+
+@given(
+    mass=st.floats(1.0, 1e5),
+    speed=st.floats(0.0, 50.0),
+    duration=st.floats(0.1, 100.0),
+    grade=st.floats(-1.0, 1.0),
+)
+def test_startup_power_is_the_mean_of_force_times_speed(mass, speed, duration, grade):
+    # Constant acceleration a: at time t the drive pushes m (a + g grade) at speed a t.
+    a, g = speed / duration, 9.81
+    accelerate = quad(lambda t: mass * a * (a * t), 0.0, duration)[0] / duration
+    lift = quad(lambda t: mass * g * grade * (a * t), 0.0, duration)[0] / duration
+    power = startup_power(mass, speed, duration, grade)
+    scale = max(abs(accelerate) + abs(lift), 1e-300)
+    assert power.accelerate == pytest.approx(accelerate, abs=1e-12 * scale)
+    assert power.lift == pytest.approx(lift, abs=1e-12 * scale)
+
+
+@pytest.mark.parametrize(
+    "arguments, name",
+    [
+        ((0.0, 1.0, 1.0, 0.1), "mass"),
+        ((1.0, -1.0, 1.0, 0.1), "speed"),
+        ((1.0, 1.0, 0.0, 0.1), "duration"),
+        ((1.0, 1.0, 1.0, 1.5), "grade"),
+        ((1.0, 1.0, 1.0, math.nan), "grade"),
+    ],
+)
+def test_startup_power_names_a_bad_argument(arguments, name):
+    with pytest.raises(windpump.ParameterError) as caught:
+        startup_power(*arguments)
+    assert caught.value.name == name
+
+
+# -- the wind pump's budget -------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def seed_budget(runs):
+    (design, t_end, theta0, theta_dot0), run, reference = runs["seed example"]
+    return design, run, power_budget(design, run), reference
+
+
+def test_the_seed_examples_budget_closes(seed_budget):
+    design, run, budget, reference = seed_budget
+    assert budget.imbalance < 1e-6
+    # ... and each integral agrees with the DOP853 reference, which integrates the shaft power
+    # and the flow as states of its own
+    kinetic = 0.5 * design.I_eff * (reference.theta_dot**2 - run.theta_dot[0] ** 2)
+    lift = design.rho_w * design.g * design.h * reference.volume
+    assert budget.shaft_work[-1] == pytest.approx(reference.shaft_work, rel=1e-6)
+    assert budget.kinetic_energy[-1] == pytest.approx(kinetic, rel=1e-6)
+    assert budget.lift_work[-1] == pytest.approx(lift, rel=1e-6)
+    assert budget.shaft_work[-1] == pytest.approx(kinetic + lift, rel=1e-6)
+
+
+def test_each_power_is_the_papers_at_every_sample(seed_budget):
+    design, run, budget, _ = seed_budget
+    exhaust = np.remainder(run.theta, 2 * math.pi) > math.pi
+    rates = np.array(
+        [
+            equation_12(design, bool(e))(0.0, [theta, speed, 0.0, 0.0])
+            for theta, speed, e in zip(run.theta, run.theta_dot, exhaust, strict=True)
+        ]
+    )
+    peak = budget.shaft_power.max()
+    np.testing.assert_allclose(budget.shaft_power, rates[:, 3], rtol=0, atol=1e-12 * peak)
+    hydraulic = design.rho_w * design.g * design.h * rates[:, 2]
+    np.testing.assert_allclose(budget.hydraulic_power, hydraulic, rtol=0, atol=1e-9 * peak)
+    kinetic = design.I_eff * run.theta_dot * rates[:, 1]  # d(I theta_dot^2 / 2)/dt
+    np.testing.assert_allclose(budget.kinetic_power, kinetic, rtol=0, atol=1e-9 * peak)
+    assert budget.hydraulic_power.min() == 0.0 and budget.hydraulic_power.max() > 0.0
+
+
+def test_the_powers_integrate_to_the_energies(seed_budget):
+    _, _, budget, _ = seed_budget
+    # Simpson's rule on the uneven samples: its pairs of intervals never straddle a dead centre
+    # (16 samples a stroke, the run starts half a stroke before one), so it keeps its 4th order
+    for power, energy in (
+        (budget.shaft_power, budget.shaft_work),
+        (budget.kinetic_power, budget.kinetic_energy),
+        (budget.hydraulic_power, budget.lift_work),
+    ):
+        integral = simpson(power, x=budget.t)
+        assert integral == pytest.approx(energy[-1] - energy[0], rel=1e-5)
+
+
+def test_cycle_means_show_spin_up_giving_way_to_lifting(seed_budget):
+    design, run, budget, _ = seed_budget
+    means = budget.cycle_means()
+    np.testing.assert_allclose(means.shaft, means.kinetic + means.hydraulic, rtol=1e-9)
+    # Most of the power goes into speed early on, mostly into water at the end (tau = 79 s)
+    share = means.kinetic / means.shaft
+    assert share[0] > 0.5 and share.max() > 0.75 and 0 < share[-1] < 0.1
+    assert np.all(np.diff(share[len(share) // 2 :]) < 0)  # and it keeps falling
+    # At the end it lifts rho g h times the mean flow
+    last = run.intermittency(revolutions=1)
+    assert means.hydraulic[-1] == pytest.approx(
+        design.rho_w * design.g * design.h * last.mean_flow, rel=1e-9
+    )
+
+
+@pytest.mark.parametrize("case", ["overload, margin 0.95", "kick below alpha-"])
+def test_a_slowing_rotor_gives_its_energy_back(runs, case):
+    (design, *_), run, _ = runs[case]
+    budget = power_budget(design, run)
+    assert budget.imbalance < 1e-6
+    assert budget.kinetic_energy[-1] < 0  # it ends slower than it was kicked
+    assert budget.cycle_means().kinetic.min() < 0
+
+
+def test_the_budget_needs_the_runs_design():
+    run = windpump.simulate(SEED, 10.0)
+    with pytest.raises(ValueError, match="another design"):
+        power_budget(SEED.replace(h=4.0), run)
+    with pytest.raises(TypeError, match="SimulationResult"):
+        power_budget(SEED, "a run")

@@ -28,3 +28,18 @@ def band(x, y, bins: int | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         np.minimum.reduceat(y, starts),
         np.maximum.reduceat(y, starts),
     )
+
+
+def bin_means(x, columns: dict, bins: int | None) -> dict:
+    """Each column averaged over ``bins`` equal bins of x (x increasing), with x itself averaged.
+
+    For series that are already smooth (cycle means): fewer points than pixels, and stacked
+    columns stay stacked. Short series (or ``bins=None``) come back whole.
+    """
+    x = np.asarray(x, dtype=float)
+    table = {"t": x, **{name: np.asarray(y, dtype=float) for name, y in columns.items()}}
+    if bins is None or len(x) <= bins:
+        return table
+    starts = np.unique(np.searchsorted(x, np.linspace(x[0], x[-1], bins + 1)[:-1]))
+    counts = np.diff(np.append(starts, len(x)))
+    return {name: np.add.reduceat(y, starts) / counts for name, y in table.items()}

@@ -8,8 +8,9 @@ import math
 
 import numpy as np
 import panel as pn
-from envelope import band
-from figures import WIDTH, flow_views, operating_view, speed_view, stall_view
+from envelope import band, bin_means
+from figures import WIDTH, energy_view, flow_views, operating_view, speed_view, stall_view
+from mechanisms import Mechanisms
 
 import windpump
 from windpump import Status
@@ -91,12 +92,21 @@ class Explorer:
         self.flow_figure, self.closeup_figure, flow_sources = flow_views()
         self.stall_figure, stall_sources = stall_view()
         self.operating_figure, operating_sources = operating_view()
-        self.sources = {**speed_sources, **flow_sources, **stall_sources, **operating_sources}
+        self.energy_figure, energy_sources = energy_view()
+        self.mechanisms = Mechanisms(slider)
+        self.sources = {
+            **speed_sources,
+            **flow_sources,
+            **stall_sources,
+            **operating_sources,
+            **energy_sources,
+            **self.mechanisms.sources,
+        }
         for name, source in self.sources.items():
             source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
         self.readouts = {
             name: pn.pane.HTML("", stylesheets=[READOUT_CSS])
-            for name in ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple")
+            for name in ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
         }
         self.status = pn.pane.Alert("", alert_type="success", stylesheets=LARGE_TEXT)
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=LARGE_TEXT)
@@ -171,6 +181,7 @@ class Explorer:
         else:
             self.seen = seen
             self.error.visible = False
+            self.mechanisms.set_design(seen.design)
 
     def _culprit(self, error: ValueError) -> str:
         """The slider behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
@@ -212,6 +223,7 @@ class Explorer:
             "power": [op.power_unstable] if op else [],
         }
 
+        self._draw_energy(seen)
         self._readouts(seen)
         self.status.object, self.status.alert_type = (
             self._status_text(seen),
@@ -228,6 +240,24 @@ class Explorer:
         verdict = "runs" if seen.margin > 1 else "stalls"
         self.stall_figure.title.text = (
             f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
+        )
+
+    def _draw_energy(self, seen: windpump.Exploration) -> None:
+        """The ski lift's lesson on this run: per revolution, power to spin up and to lift water."""
+        budget = windpump.power_budget(seen.design, seen.run)
+        means = budget.cycle_means()
+        self.sources["power_split"].data = bin_means(
+            means.t,
+            {"hydraulic": means.hydraulic, "shaft": means.shaft, "kinetic": means.kinetic},
+            self.bins,
+        )
+        work, kinetic, lift = (
+            float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
+        )
+        self.readouts["energy"].object = readout(
+            "Windmill's work = gained speed + lifted water",
+            f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
+            "energy",
         )
 
     def _band(self, t, values) -> dict:
@@ -333,13 +363,18 @@ class Explorer:
             self.download,
         )
 
-    def main(self) -> pn.Column:
+    def main(self) -> pn.Tabs:
+        return pn.Tabs(("Wind pump", self.pump()), ("Mechanisms", self.mechanisms.layout()))
+
+    def pump(self) -> pn.Column:
         views = dict(sizing_mode="fixed")
         return pn.Column(
             pn.Row(*(self.readouts[name] for name in ("mean_flow", "volume", "tau", "margin"))),
             self.error,
             self.status,
             pn.pane.Bokeh(self.speed_figure, **views),
+            self.readouts["energy"],
+            pn.pane.Bokeh(self.energy_figure, **views),
             pn.pane.Bokeh(self.flow_figure, **views),
             pn.Row(self.readouts["peak_to_mean"], self.readouts["ripple"]),
             pn.pane.Bokeh(self.closeup_figure, **views),

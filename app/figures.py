@@ -162,3 +162,106 @@ def operating_view():
     }
     legend(fig, items, location="top_left", place="right")
     return fig, s
+
+
+def energy_view():
+    """View 5: the windmill's power split between spinning up and lifting water, per revolution."""
+    s = {"power_split": empty("t", "hydraulic", "shaft", "kinetic")}
+    fig = new_figure(
+        "Where the windmill's power goes (per revolution)",
+        "time t [s]",
+        "power [W]",
+        tools="pan,box_zoom,reset,save",
+    )
+    source = s["power_split"]
+    items = {
+        "lifting water, ρ_w g h Q": fig.varea(
+            "t", 0.0, "hydraulic", source=source, color=COLORS["flow"], alpha=0.5
+        ),
+        "spinning up, d(½ I_eff θ̇²)/dt": fig.varea(
+            "t", "hydraulic", "shaft", source=source, color=COLORS["averaged"], alpha=0.5
+        ),
+        "windmill T ω": line(fig, "t", "shaft", source, "black", 2, "dashed"),
+    }
+    legend(fig, items, location="bottom_right")
+    return fig, s
+
+
+MECHANISM_SIZE = 440
+
+
+def mechanism_figure(title: str):
+    """A square drawing with equal scales on both axes, so a link looks as long as it is."""
+    fig = new_figure(
+        title,
+        "x [m]",
+        "y [m]",
+        height=MECHANISM_SIZE,
+        tools="pan,wheel_zoom,reset,save",
+        match_aspect=True,
+    )
+    fig.width = MECHANISM_SIZE
+    fig.title.text_font_size = "13pt"
+    return fig
+
+
+def draw_links(fig, prefix: str, joint_size: int = 12):
+    """Links as thick coloured bars between joints, fixed pivots as triangles, a traced path."""
+    s = {
+        f"{prefix}_links": empty("xs", "ys", "color"),
+        f"{prefix}_joints": empty("x", "y"),
+        f"{prefix}_pivots": empty("x", "y"),
+        f"{prefix}_path": empty("x", "y"),
+    }
+    fig.line(
+        "x", "y", source=s[f"{prefix}_path"], color="#999999", line_dash="dotted", line_width=2
+    )
+    fig.multi_line("xs", "ys", source=s[f"{prefix}_links"], color="color", line_width=7, alpha=0.85)
+    fig.scatter("x", "y", source=s[f"{prefix}_pivots"], marker="triangle", size=22, color="#444444")
+    fig.scatter(
+        "x",
+        "y",
+        source=s[f"{prefix}_joints"],
+        size=joint_size,
+        fill_color="white",
+        line_color="black",
+        line_width=2,
+    )
+    return s
+
+
+def slider_crank_views():
+    """The pump's slider-crank at a chosen crank angle, and its piston travel over a revolution."""
+    drawing = mechanism_figure("The pump's slider-crank (Newton-Raphson)")
+    s = draw_links(drawing, "crank")
+    s["cylinder"] = empty("xs", "ys")
+    s["piston"] = empty("x", "y", "width", "height")
+    drawing.multi_line("xs", "ys", source=s["cylinder"], color="#555555", line_width=3)
+    drawing.rect(
+        "x", "y", "width", "height", source=s["piston"], fill_color="#9ecae1", line_color="black"
+    )
+    travel = new_figure(
+        "Piston position over a revolution",
+        "crank angle θ [°]",
+        "x [mm]",
+        height=MECHANISM_SIZE,
+        tools="save",
+    )
+    travel.width = MECHANISM_SIZE
+    travel.title.text_font_size = "13pt"
+    s["travel"] = empty("angle", "x")
+    s["travel_point"] = empty("angle", "x")
+    items = {
+        "Eq. (1)": line(travel, "angle", "x", s["travel"], COLORS["integrated"], 3),
+        "Newton-Raphson": travel.scatter(
+            "angle", "x", source=s["travel_point"], size=14, color=COLORS["mean"]
+        ),
+    }
+    legend(travel, items, location="top_left")
+    return drawing, travel, s
+
+
+def linkage_view():
+    """A four-bar or Watt six-bar drawn from its Newton-Raphson solution, with its joint's path."""
+    fig = mechanism_figure("Four-bar / double loop (Newton-Raphson)")
+    return fig, draw_links(fig, "linkage")

@@ -112,3 +112,57 @@ def test_a_rejected_value_is_shown_and_the_next_move_recovers(page):
     )
     assert "Running" in page.get_by_text("Running.").first.inner_text()
     assert page.problems == []
+
+
+def model_data(page, name, column):
+    return page.evaluate(
+        f"() => Array.from(window.Bokeh.documents[0].get_model_by_name('{name}').data.{column})"
+    )
+
+
+def press(page, label, key, times):
+    handle(page, label).focus()
+    for _ in range(times):
+        page.keyboard.press(key)
+
+
+def test_the_energy_view_is_on_the_main_page(page):
+    run = windpump.simulate(windpump.Design.seed_example(), 600.0)
+    work = windpump.power_budget(run.design, run).shaft_work[-1]
+    assert f"{work:,.0f} J = " in text(page, "energy")
+    shaft = model_data(page, "power_split", "shaft")
+    assert 0 < len(shaft) and max(shaft) > 0
+    assert page.problems == []
+
+
+def test_the_mechanisms_tab_draws_what_the_loops_close_to(page):
+    page.get_by_text("Mechanisms", exact=True).first.click()
+    page.locator(".bk-slider-title", has_text="Crank angle θ [°]").wait_for(timeout=30_000)
+    assert text(page, "slider_crank").startswith("x = 45.43 mm from TDC")
+    crank_before = model_data(page, "crank_links", "xs")
+
+    press(page, "Crank angle θ [°]", "ArrowRight", 5)  # 90° -> 95°
+    theta = math.radians(95.0)
+    design = windpump.Design.seed_example()
+    x = float(windpump.piston_position(theta, design.R, design.L))
+    theta_c = math.degrees(float(windpump.rod_angle(theta, design.L_over_R)))
+    expected = f"x = {1e3 * x:.2f} mm from TDC, θc = {theta_c:.1f}°"
+    page.wait_for_function(
+        f"(e) => ({DEEP_TEXT})('[data-name=slider_crank]') === e", arg=expected, timeout=30_000
+    )
+    assert model_data(page, "crank_links", "xs") != crank_before
+
+    linkage_before, note_before = model_data(page, "linkage_links", "xs"), text(page, "linkage")
+    press(page, "Input angle θ₁ [°]", "ArrowRight", 10)  # 60° -> 70°
+    page.wait_for_function(
+        f"(b) => ({DEEP_TEXT})('[data-name=linkage]').startsWith('θ₁ = 70.0°')",
+        arg=note_before,
+        timeout=30_000,
+    )
+    assert model_data(page, "linkage_links", "xs") != linkage_before
+
+    press(page, "Coupler r₂ [m]", "Home", 1)  # r2 = 0.2: r2 + r3 cannot span |AD| = 2.82
+    page.get_by_text("Cannot close at θ₁ = 70.0°").first.wait_for(timeout=30_000)
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / "mechanisms.png"))
+    assert page.problems == []

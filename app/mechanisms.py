@@ -1,0 +1,307 @@
+"""The mechanisms tab: the pump's slider-crank at a dragged crank angle, and a four-bar / Watt six-bar
+explorer, both drawn from windpump.linkage's Newton-Raphson solutions."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import panel as pn
+from figures import linkage_view, slider_crank_views
+
+import windpump
+from windpump import linkage
+from windpump.linkage import NoClosure
+
+STEP = math.radians(2.0)  # a dragged input is followed in steps of at most this
+LINK_COLORS = {"r1": "#d62728", "r2": "#1f77b4", "r3": "#2ca02c", "r4": "#9467bd", "r5": "#ff7f0e"}
+FOUR_BAR = "Four-bar"
+SIX_BAR = "Watt six-bar (double loop)"
+# name: (label, start, end, step, value); lengths [m], angles [°]
+FIRST_LOOP = {
+    "r1": ("Input link r₁ [m]", 0.2, 5.0, 0.05, 1.0),
+    "r2": ("Coupler r₂ [m]", 0.2, 5.0, 0.05, 3.0),
+    "r3": ("Output link r₃ [m]", 0.2, 5.0, 0.05, 2.5),
+    "r6": ("Ground r₆ [m]", 0.2, 5.0, 0.05, 3.0),
+}
+SECOND_LOOP = {
+    "r3p": ("Second arm of link 3, r₃′ [m]", 0.2, 5.0, 0.05, 1.5),
+    "r4": ("Coupler r₄ [m]", 0.2, 5.0, 0.05, 2.5),
+    "r5": ("Output link r₅ [m]", 0.2, 5.0, 0.05, 2.0),
+    "r6p": ("Ground D→E, r₆′ [m]", 0.2, 5.0, 0.05, 2.5),
+    "beta": ("Angle between link 3's arms β [°]", -180.0, 180.0, 1.0, 25.0),
+}
+BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
+NOTE_CSS = [":host { font-size: 13pt; }"]
+
+
+def degrees(angle: float) -> str:
+    return f"{round(math.degrees(angle), 1) + 0.0:.1f}°"  # + 0.0: never "-0.0°"
+
+
+def vertical(points: np.ndarray) -> np.ndarray:
+    """Turn the slider-crank's drawing a quarter turn, so the cylinder stands up like a pump's."""
+    return np.column_stack([-points[:, 1], points[:, 0]])
+
+
+def segments(points, pairs, colors) -> dict:
+    return {
+        "xs": [[points[a][0], points[b][0]] for a, b in pairs],
+        "ys": [[points[a][1], points[b][1]] for a, b in pairs],
+        "color": colors,
+    }
+
+
+def xy(points) -> dict:
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    return {"x": points[:, 0], "y": points[:, 1]}
+
+
+class Mechanisms:
+    """The tab's widgets, figures and data sources; ``set_design`` follows the pump's sliders."""
+
+    def __init__(self, slider):
+        self.crank_angle = slider("Crank angle θ [°]", 0.0, 360.0, 1.0, 90.0, "0")
+        self.crank_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
+        self.crank_figure, self.travel_figure, crank_sources = slider_crank_views()
+
+        self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
+        self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
+        self.links.update({name: slider(*spec, "0.00") for name, spec in SECOND_LOOP.items()})
+        self.links["beta"].format = "0"
+        self.input_angle = slider("Input angle θ₁ [°]", -360.0, 360.0, 1.0, 60.0, "0")
+        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1)
+        self.second_branch = pn.widgets.RadioButtonGroup(
+            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1
+        )
+        self.second_loop = pn.Column(
+            *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
+        )
+        self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
+        self.linkage_error = pn.pane.Alert("", alert_type="warning", visible=False)
+        self.linkage_figure, linkage_sources = linkage_view()
+        self.sources = {**crank_sources, **linkage_sources}
+
+        self.design: windpump.Design | None = None
+        self.position: dict | None = None  # the linkage's last closed position (rad, m)
+        self.crank_angle.param.watch(lambda _e: self.draw_slider_crank(), "value")
+        self.input_angle.param.watch(lambda _e: self.follow(), "value")
+        for widget in (self.kind, self.branch, self.second_branch, *self.links.values()):
+            widget.param.watch(lambda _e: self.assemble(), "value")
+        self.assemble()
+
+    # -- the pump's slider-crank -------------------------------------------------------------
+
+    def set_design(self, design: windpump.Design) -> None:
+        self.design = design
+        theta = np.linspace(0.0, 2 * math.pi, 181)
+        self.sources["travel"].data = {
+            "angle": np.degrees(theta),
+            "x": 1e3 * windpump.piston_position(theta, design.R, design.L),
+        }
+        span = design.L + 4 * design.R  # equal spans on a square figure: a circle stays round
+        fig = self.crank_figure
+        fig.x_range.start, fig.x_range.end = -span / 2, span / 2
+        fig.y_range.start, fig.y_range.end = -1.6 * design.R, span - 1.6 * design.R
+        self.draw_slider_crank()
+
+    def draw_slider_crank(self) -> None:
+        d, theta = self.design, math.radians(self.crank_angle.value)
+        x, theta_c = linkage.slider_crank(theta, d.R, d.L)
+        loop = linkage.slider_crank_loop(d.R, d.L)
+        closed = linkage.solve_loop(loop, {"theta": theta}, {"phi": 0.0, "s": d.R + d.L})
+        centre, pin, piston = vertical(linkage.joints(loop, closed.values))[:3]
+        bore = math.sqrt(4 * d.A / math.pi)  # the piston's diameter
+        s = self.sources
+        s["crank_links"].data = segments(
+            [centre, pin, piston], [(0, 1), (1, 2)], ["#d62728", "#1f77b4"]
+        )
+        s["crank_joints"].data = xy([pin, piston])
+        s["crank_pivots"].data = xy([centre])
+        circle = np.linspace(0.0, 2 * math.pi, 73)
+        s["crank_path"].data = {"x": d.R * np.cos(circle), "y": d.R * np.sin(circle)}
+        s["piston"].data = {
+            "x": [piston[0]],
+            "y": [piston[1]],
+            "width": [bore],
+            "height": [0.8 * bore],
+        }
+        bottom, top = d.L - d.R - 0.4 * bore, d.L + d.R + 1.2 * bore
+        s["cylinder"].data = {"xs": [[-bore / 2] * 2, [bore / 2] * 2], "ys": [[bottom, top]] * 2}
+        s["travel_point"].data = {"angle": [self.crank_angle.value], "x": [1e3 * x]}
+        stroke = (
+            "exhausting (lifting water)"
+            if windpump.f2(theta, d.L_over_R) > 0
+            else "taking water in"
+        )
+        self.crank_note.object = (
+            f'<span data-name="slider_crank">x = {1e3 * x:.2f} mm from TDC, '
+            f"θc = {degrees(theta_c)}</span> · {stroke} · Newton-Raphson: "
+            f"{closed.iterations} iterations"
+        )
+
+    # -- the four-bar / Watt six-bar explorer ------------------------------------------------
+
+    def loops(self) -> list:
+        v = {name: widget.value for name, widget in self.links.items()}
+        if self.kind.value == FOUR_BAR:
+            return [linkage.four_bar_loop(v["r1"], v["r2"], v["r3"], v["r6"])]
+        return linkage.watt_six_bar_loops(
+            *(v[name] for name in ("r1", "r2", "r3", "r6", "r3p", "r4", "r5", "r6p")),
+            beta=math.radians(v["beta"]),
+        )
+
+    def assemble(self) -> None:
+        """New links or branch: close the loops from the compass construction on that branch."""
+        self.second_loop.visible = self.kind.value == SIX_BAR
+        theta1 = math.radians(self.input_angle.value)
+        v = {name: widget.value for name, widget in self.links.items()}
+        first = linkage.branch_guess(
+            v["r1"], v["r2"], v["r3"], v["r6"], theta1, 0.0, self.branch.value
+        )
+        guess = {"theta2": first[0], "theta3": first[1]}
+        if self.kind.value == SIX_BAR:
+            arm = first[1] + math.radians(v["beta"])  # loop 2's input, from loop 1's guess
+            second = linkage.branch_guess(
+                v["r3p"], v["r4"], v["r5"], v["r6p"], arm, 0.0, self.second_branch.value
+            )
+            guess.update(theta4=second[0], theta5=second[1])
+        try:
+            closures = linkage.solve_loops(self.loops(), {"theta1": theta1}, guess)
+        except NoClosure as error:
+            self.position = None
+            self._cannot_close(error, theta1)
+            return
+        self.position = closures[-1].values
+        self._trace_path()
+        self._draw_linkage(closures)
+
+    def follow(self) -> None:
+        """A dragged input: follow the branch from the last position, step by step."""
+        if self.position is None:
+            return self.assemble()
+        start, target = self.position["theta1"], math.radians(self.input_angle.value)
+        inputs = np.linspace(start, target, max(2, math.ceil(abs(target - start) / STEP) + 1))
+        swept = linkage.sweep(self.loops(), "theta1", inputs, self.position)
+        last = {name: values[-1] for name, values in swept.values.items()}
+        previous = {name: values[max(0, len(values) - 2)] for name, values in swept.values.items()}
+        closures = linkage.solve_loops(self.loops(), {"theta1": last["theta1"]}, previous)
+        self.position = closures[-1].values
+        self._draw_linkage(closures)
+        if swept.stop is not None:
+            self._cannot_close(swept.stop, target, ends=last["theta1"])
+
+    def _trace_path(self) -> None:
+        """The path of the traced joint over the branch's reach: all the way round, or to its ends."""
+        loops, here = self.loops(), self.position["theta1"]
+        pieces = []
+        for direction in (-1, 1):
+            inputs = here + direction * np.arange(0.0, 2 * math.pi + STEP, STEP)
+            swept = linkage.sweep(loops, "theta1", inputs, self.position)
+            positions = ({n: v[k] for n, v in swept.values.items()} for k in range(len(swept)))
+            pieces.append([self._traced(loops, values) for values in positions])
+        self.sources["linkage_path"].data = xy(pieces[0][::-1] + pieces[1][1:])
+
+    def _traced(self, loops, values) -> np.ndarray:
+        return list(self._joints(loops, values).values())[-1]
+
+    def _joints(self, loops, values) -> dict[str, np.ndarray]:
+        """Named joints: O, A, B, D of loop 1; C (link 3's second arm), F (links 4 and 5) and E
+        (link 5's pivot) of loop 2. The last one named is the joint whose path is traced."""
+        first = linkage.joints(loops[0], values)
+        points = dict(zip("OABD", first[:4], strict=True))
+        if len(loops) > 1:
+            second = linkage.joints(loops[1], values, origin=points["D"])
+            points.update(zip("CFE", second[1:4], strict=True))
+            points["F"] = points.pop("F")  # traced: the six-bar's output joint
+        else:
+            points["B"] = points.pop("B")  # traced: the coupler's joint with the output link
+        return points
+
+    def _draw_linkage(self, closures) -> None:
+        loops, values = self.loops(), closures[-1].values
+        p = self._joints(loops, values)
+        bars = [("O", "A", "r1"), ("A", "B", "r2"), ("B", "D", "r3")]
+        if len(loops) > 1:
+            bars += [("D", "C", "r3"), ("C", "F", "r4"), ("F", "E", "r5")]
+        s = self.sources
+        s["linkage_links"].data = segments(
+            p, [(a, b) for a, b, _ in bars], [LINK_COLORS[link] for *_, link in bars]
+        )
+        s["linkage_pivots"].data = xy([p[name] for name in "ODE" if name in p])
+        s["linkage_joints"].data = xy([p[name] for name in "ABCF" if name in p])
+        self._frame(list(p.values()))
+        self.linkage_error.visible = False
+        self.linkage_note.object = self._describe(closures)
+
+    def _frame(self, points) -> None:
+        """Equal, steady scales: a square around every pivot with room for the longest reach."""
+        v = {name: widget.value for name, widget in self.links.items()}
+        reach = max(v["r1"], v["r2"] + v["r3"]) + (
+            v["r3p"] + v["r4"] if self.kind.value == SIX_BAR else 0.0
+        )
+        centre = np.mean(points, axis=0)
+        fig = self.linkage_figure
+        fig.x_range.start, fig.x_range.end = centre[0] - reach, centre[0] + reach
+        fig.y_range.start, fig.y_range.end = centre[1] - reach, centre[1] + reach
+
+    def _describe(self, closures) -> str:
+        values = closures[-1].values
+        names = ["theta2", "theta3"] + (["theta4", "theta5"] if len(closures) > 1 else [])
+        angles = ", ".join(
+            f"θ{name[-1]} = {degrees(values[name] % (2 * math.pi))}" for name in names
+        )
+        branch = linkage.four_bar_branch(values["theta2"], values["theta3"])
+        v = [self.links[name].value for name in FIRST_LOOP]
+        turns = linkage.is_grashof(*v) and min(v) in (v[0], v[3])
+        histories = " · ".join(
+            "|F|: " + " → ".join(f"{r:.0e}" for r in closure.residuals) for closure in closures
+        )
+        return (
+            f'<span data-name="linkage">θ₁ = {degrees(values["theta1"])}: {angles}</span><br>'
+            f"Branch {branch:+d} ({'B left' if branch > 0 else 'B right'} of the line A→D) · "
+            f"{'Grashof: the input turns fully' if turns else 'the input rocks between limits'}<br>"
+            f"Newton-Raphson: {sum(c.iterations for c in closures)} iterations, {histories}"
+        )
+
+    def _cannot_close(self, error: NoClosure, theta1: float, ends: float | None = None) -> None:
+        at = error.where.get("theta1", theta1)
+        reason = str(error)
+        where = (
+            f" The branch ends between θ₁ = {degrees(ends)} and {degrees(at)}: drawn at its end."
+            if ends is not None
+            else ""
+        )
+        self.linkage_error.object = (
+            f"**Cannot close at θ₁ = {degrees(at)}.** {reason[0].upper()}{reason[1:]}.{where}"
+        )
+        self.linkage_error.visible = True
+
+    # -- layout ------------------------------------------------------------------------------
+
+    def layout(self) -> pn.Column:
+        return pn.Column(
+            pn.pane.Markdown("### The pump's slider-crank, closed as a vector loop"),
+            self.crank_angle,
+            self.crank_note,
+            pn.Row(
+                pn.pane.Bokeh(self.crank_figure, sizing_mode="fixed"),
+                pn.pane.Bokeh(self.travel_figure, sizing_mode="fixed"),
+            ),
+            pn.pane.Markdown("### Four-bar and double loop, by Newton-Raphson"),
+            self.kind,
+            pn.Row(
+                pn.Column(
+                    self.input_angle,
+                    *(self.links[name] for name in FIRST_LOOP),
+                    self.branch,
+                    self.second_loop,
+                    width=420,
+                ),
+                pn.Column(
+                    self.linkage_error,
+                    self.linkage_note,
+                    pn.pane.Bokeh(self.linkage_figure, sizing_mode="fixed"),
+                ),
+            ),
+        )

@@ -1,0 +1,185 @@
+"""The explorer's energy view and mechanisms tab in-process: widgets set, sources checked against
+windpump and against the closed forms of test_linkage."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from test_linkage import half_angle
+
+import windpump
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
+from explorer import BINS, Explorer  # noqa: E402
+from mechanisms import SIX_BAR  # noqa: E402
+
+SEED = windpump.Design.seed_example()
+
+
+@pytest.fixture(scope="module")
+def app():
+    return Explorer()
+
+
+def points(source, *columns):
+    return np.column_stack([np.asarray(source.data[c], dtype=float) for c in columns])
+
+
+def bar_lengths(source):
+    return [
+        math.dist((xs[0], ys[0]), (xs[1], ys[1]))
+        for xs, ys in zip(source.data["xs"], source.data["ys"], strict=True)
+    ]
+
+
+# -- the energy view ----------------------------------------------------------------------------
+
+
+def test_the_energy_view_splits_the_windmills_power(app):
+    app.reset()
+    split = app.sources["power_split"].data
+    assert 0 < len(split["t"]) <= BINS
+    np.testing.assert_allclose(
+        split["shaft"], np.add(split["hydraulic"], split["kinetic"]), rtol=1e-9
+    )
+    run = windpump.simulate(SEED, 600.0)
+    budget = windpump.power_budget(SEED, run)
+    means = budget.cycle_means()
+    # Smooth curves averaged over 2-pixel bins: each point is the curve near the bin's middle
+    for name, curve in (("hydraulic", means.hydraulic), ("shaft", means.shaft)):
+        near = np.interp(split["t"], means.t, curve)
+        np.testing.assert_allclose(split[name], near, rtol=0, atol=0.01 * curve.max())
+    assert max(split["shaft"]) <= means.shaft.max() + 1e-12
+    text = app.readouts["energy"].object
+    assert f"{budget.shaft_work[-1]:,.0f} J = {budget.kinetic_energy[-1]:,.0f} J + " in text
+
+
+def test_the_energy_view_follows_the_sliders(app):
+    app.reset()
+    before = list(app.sources["power_split"].data["hydraulic"])
+    app.sliders["h"].value = 6.0
+    run = windpump.simulate(SEED.replace(h=6.0), 600.0)
+    lift = windpump.power_budget(run.design, run).lift_work[-1]
+    assert list(app.sources["power_split"].data["hydraulic"]) != before
+    assert f"{lift:,.0f} J" in app.readouts["energy"].object
+    app.reset()
+
+
+# -- the pump's slider-crank --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("angle", [0.0, 37.0, 90.0, 200.0, 359.0])
+def test_the_slider_crank_is_drawn_where_eq_1_puts_it(app, angle):
+    app.reset()
+    app.mechanisms.crank_angle.value = angle
+    R, L = SEED.R, SEED.L
+    x = float(windpump.piston_position(math.radians(angle), R, L))
+    (centre,) = points(app.sources["crank_pivots"], "x", "y")
+    pin, piston = points(app.sources["crank_joints"], "x", "y")
+    np.testing.assert_allclose(centre, [0, 0], atol=1e-15)
+    assert piston[0] == pytest.approx(0.0, abs=1e-15)  # on the cylinder's axis
+    assert piston[1] == pytest.approx(L + R - x, abs=1e-14)  # x below top dead centre
+    assert math.dist(centre, pin) == pytest.approx(R) and math.dist(pin, piston) == pytest.approx(L)
+    assert bar_lengths(app.sources["crank_links"]) == pytest.approx([R, L])
+    theta_c = math.degrees(float(windpump.rod_angle(math.radians(angle), SEED.L_over_R)))
+    note = app.mechanisms.crank_note.object
+    assert f"x = {1e3 * x:.2f} mm" in note and f"θc = {theta_c:.1f}°" in note
+    assert app.sources["travel_point"].data == {"angle": [angle], "x": [pytest.approx(1e3 * x)]}
+
+
+def test_the_slider_crank_follows_the_pumps_rod(app):
+    app.sliders["L_over_R"].value = 2.0
+    pin, piston = points(app.sources["crank_joints"], "x", "y")
+    assert math.dist(pin, piston) == pytest.approx(2 * SEED.R)
+    assert max(app.sources["travel"].data["x"]) == pytest.approx(2e3 * SEED.R)
+    app.reset()
+    assert math.dist(*points(app.sources["crank_joints"], "x", "y")) == pytest.approx(SEED.L)
+
+
+# -- the four-bar and double-loop explorer ------------------------------------------------------
+
+
+def four_bar_state(app):
+    m = app.mechanisms
+    for name, value in dict(r1=1.0, r2=3.0, r3=2.5, r6=3.0).items():
+        m.links[name].value = value
+    m.kind.value, m.branch.value = "Four-bar", 1
+    return m
+
+
+@pytest.mark.parametrize("branch", [1, -1])
+@pytest.mark.parametrize("angle", [60.0, 200.0, -150.0])
+def test_the_four_bar_is_drawn_from_its_closed_loop(app, branch, angle):
+    m = four_bar_state(app)
+    m.input_angle.value = 0.0
+    m.branch.value = branch
+    m.input_angle.value = angle  # dragged: followed along the branch
+    origin, D = points(app.sources["linkage_pivots"], "x", "y")
+    A, B = points(app.sources["linkage_joints"], "x", "y")
+    np.testing.assert_allclose([origin, D], [[0, 0], [3.0, 0]], atol=1e-12)
+    theta2, theta3 = half_angle(1.0, 3.0, 2.5, 3.0, math.radians(angle))[branch]
+    np.testing.assert_allclose(A, [math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    np.testing.assert_allclose(
+        B, A + 3.0 * np.array([math.cos(theta2), math.sin(theta2)]), atol=1e-12
+    )
+    np.testing.assert_allclose(
+        B, D + 2.5 * np.array([math.cos(theta3), math.sin(theta3)]), atol=1e-12
+    )
+    assert f"θ2 = {math.degrees(theta2):.1f}°" in m.linkage_note.object
+    assert f"Branch {branch:+d}" in m.linkage_note.object and not m.linkage_error.visible
+    assert len(app.sources["linkage_path"].data["x"]) > 100  # B's whole coupler path
+
+
+def test_a_branch_that_ends_says_so_and_recovers(app):
+    m = app.mechanisms
+    m.input_angle.value = 0.0
+    for name, value in dict(r1=2.0, r2=2.5, r3=2.0, r6=3.0).items():  # non-Grashof
+        m.links[name].value = value
+    assert "rocks between limits" in m.linkage_note.object
+    m.input_angle.value = 170.0
+    limit = math.degrees(math.acos((4 + 9 - 4.5**2) / 12))  # |AD| = r2 + r3
+    assert m.linkage_error.visible and "Cannot close at θ₁ = " in m.linkage_error.object
+    assert "too short to reach" in m.linkage_error.object
+    (A, _) = points(app.sources["linkage_joints"], "x", "y")
+    drawn = math.degrees(math.atan2(A[1], A[0]))
+    assert limit - 2.0 <= drawn < limit  # drawn at the end of its branch
+    assert f"{drawn:.1f}°" in m.linkage_error.object
+    m.input_angle.value = 60.0
+    assert not m.linkage_error.visible
+    A, B = points(app.sources["linkage_joints"], "x", "y")
+    assert math.dist(A, B) == pytest.approx(2.5) and math.dist(B, (3.0, 0.0)) == pytest.approx(2.0)
+    four_bar_state(app)
+
+
+def test_lengths_that_cannot_close_keep_the_last_drawing(app):
+    m = four_bar_state(app)
+    m.input_angle.value = 60.0
+    m.links["r6"].value = 5.0
+    before = dict(app.sources["linkage_links"].data)
+    m.links["r2"].value = 0.5  # r2 + r3 = 3 cannot span |AD| = 4.58
+    assert m.linkage_error.visible and "cannot close" in m.linkage_error.object
+    assert app.sources["linkage_links"].data == before
+    m.links["r2"].value = 3.0
+    assert not m.linkage_error.visible
+    four_bar_state(app)
+
+
+def test_the_double_loop_closes_both_loops(app):
+    m = four_bar_state(app)
+    m.input_angle.value = 60.0
+    m.kind.value = SIX_BAR
+    assert m.second_loop.visible
+    v = {name: widget.value for name, widget in m.links.items()}
+    lengths = bar_lengths(app.sources["linkage_links"])
+    assert lengths == pytest.approx([v[k] for k in ("r1", "r2", "r3", "r3p", "r4", "r5")])
+    _, D, E = points(app.sources["linkage_pivots"], "x", "y")
+    np.testing.assert_allclose(E, D + [v["r6p"], 0.0], atol=1e-12)
+    assert "θ4 = " in m.linkage_note.object and "θ5 = " in m.linkage_note.object
+    m.input_angle.value = 120.0
+    assert bar_lengths(app.sources["linkage_links"]) == pytest.approx(lengths)
+    m.kind.value = "Four-bar"
+    assert not m.second_loop.visible and len(app.sources["linkage_links"].data["xs"]) == 3

@@ -178,8 +178,9 @@ class Mechanisms:
 
     def follow(self) -> None:
         """A dragged input: follow the branch from the last position, step by step."""
-        if self.position is None:
-            return self.assemble()
+        if self.position is None:  # the links did not close last time: start afresh
+            self.assemble()
+            return
         start, target = self.position["theta1"], math.radians(self.input_angle.value)
         inputs = np.linspace(start, target, max(2, math.ceil(abs(target - start) / STEP) + 1))
         swept = linkage.sweep(self.loops(), "theta1", inputs, self.position)

@@ -264,12 +264,11 @@ def solve_loop(
                 "start from another guess",
                 iteration,
             )
-        branch = branch or _sign(np.linalg.det(J))  # the guess's
+        branch = branch or _sign(np.linalg.det(J))  # set at the guess, kept after
         dq = np.linalg.solve(J, -F)
         size = float(np.max(np.abs(dq) / units))
-        q_next, shortened = _step_on_branch(
-            loop, known, unknowns, q, dq * min(1.0, MAX_STEP / size), branch
-        )
+        shrink = min(1.0, MAX_STEP / size) if size > 0 else 1.0
+        q_next, shortened = _step_on_branch(loop, known, unknowns, q, dq * shrink, branch)
         if q_next is None:
             raise NoClosure(
                 NoClosure.NO_CONVERGENCE,

@@ -1,177 +1,219 @@
-"""The live explorer: widgets, layout and drawing. Every number comes from ``windpump``."""
+"""The live explorer: a ``pn.viewable.Viewer`` wiring inputs, views, readouts and files together.
+
+Every number comes from ``windpump``; this module only decides what to show and where.
+"""
 
 from __future__ import annotations
 
-import io
 import logging
-import math
 
-import numpy as np
 import panel as pn
-from envelope import band, bin_means
-from figures import WIDTH, energy_view, flow_views, operating_view, speed_view, stall_view
+import param
+from bokeh.models import ColumnDataSource, Range1d
+from inputs import FORMATS, PRESETS, PumpInputs
+from machine import MachineView
 from mechanisms import Mechanisms
+from views import (
+    BINS,
+    CloseupView,
+    EnergyView,
+    FlowView,
+    OperatingView,
+    SpeedView,
+    StallView,
+)
 
 import windpump
 from windpump import Status
 
 log = logging.getLogger("windpump.app")
 
-SEED = windpump.Design.seed_example()
-BINS = WIDTH // 2  # min/max bands of 2-pixel bins: fewer points than pixels across
-CLOSEUP_REVOLUTIONS = 3
-
-# name: (label with unit, start, end, step, the paper's example, display format)
-MAIN_SLIDERS = {
-    "L_over_R": ("L/R, rod / crank", 1.0, 10.0, 0.05, SEED.L_over_R, "0.00"),
-    "R_dagger": ("R₁/R₀, sprocket ratio", 0.5, 10.0, 0.1, SEED.R_dagger, "0.0"),
-    "h": ("Head h [m]", 0.0, 30.0, 0.1, SEED.h, "0.0"),
-    "T_m": ("Windmill torque Tₘ [N·m]", 0.05, 5.0, 0.05, SEED.T_m, "0.00"),
-}
-MORE_SLIDERS = {
-    "omega_m": ("Windmill peak speed ωₘ [rad/s]", 5.0, 150.0, 1.0, SEED.omega_m, "0"),
-    "t_end": ("Duration t_end [s]", 10.0, 3000.0, 10.0, 600.0, "0"),
-    "theta_dot0": ("Kick θ̇₀ [rad/s]", 0.0, 30.0, 0.1, 3.0, "0.0"),
-    "theta0": ("Start angle θ₀ [rad]", 0.0, round(2 * math.pi, 2), 0.01, math.pi / 2, "0.00"),
-    "I0": ("Rotor inertia I₀ [kg·m²]", 0.05, 10.0, 0.05, SEED.I0, "0.00"),
-    "I1": ("Crank inertia I₁ [kg·m²]", 0.005, 1.0, 0.005, SEED.I1, "0.000"),
-}
-# Parameters the core may reject -> the slider that sets them.
-SLIDER_OF_PARAMETER = {
-    "L": "L_over_R",
-    "R1": "R_dagger",
-    **{n: n for n in (*MAIN_SLIDERS, *MORE_SLIDERS)},
-}
 STATUS_STYLE = {
     Status.RUNNING: "success",
     Status.SLOWING: "warning",
     Status.STALLED: "danger",
     Status.NEVER_STARTED: "warning",
 }
-LARGE_TEXT = [":host { font-size: 15pt; }", ".bk-slider-title { font-size: 14pt; }"]
+TEXT = [":host { font-size: 16px; }", ".bk-slider-title { font-size: 15px; }"]
+COMPACT = [
+    ":host { font-size: 16px; }",
+    ".alert { padding: 8px 14px; margin: 4px 0; }",
+    "p { margin: 0; }",
+]
+FOCUS = (
+    ":host(:focus-within) { outline: 3px solid #f0ad4e; outline-offset: 2px; border-radius: 4px; }"
+)
 READOUT_CSS = """
-.readout {border: 1px solid #ccc; border-radius: 6px; padding: 6px 12px; min-width: 170px}
-.readout .label {font-size: 13pt; color: #555}
-.readout .value {font-size: 22pt; font-weight: bold}
+.readout {border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}
+.readout .label {font-size: 14px; color: inherit; opacity: 0.85}
+.readout .value {font-size: 20px; font-weight: bold}
 """
-
-
-def slider(label, start, end, step, value, fmt):
-    return pn.widgets.FloatSlider(
-        label=label,
-        start=start,
-        end=end,
-        step=step,
-        value=value,
-        format=fmt,
-        stylesheets=LARGE_TEXT,
-    )
+PRESENTATION_CSS = """
+:host { font-size: 20px; }
+.readout .value {font-size: 30px}
+.readout .label {font-size: 17px; opacity: 1}
+"""
+VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
+STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
+READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
+PRESET_PROMPT = "Choose a preset…"
 
 
 def readout(label: str, value: str, name: str) -> str:
-    return f'<div class="readout"><div class="label">{label}</div><div class="value" data-name="{name}">{value}</div></div>'
+    return (
+        f'<div class="readout"><div class="label">{label}</div>'
+        f'<div class="value" data-name="{name}">{value}</div></div>'
+    )
 
 
-class Explorer:
-    """One session's explorer: build it, then ``template()`` or ``layout()`` it."""
+def design_filename(design: windpump.Design) -> str:
+    return (
+        f"windpump_h{design.h:g}m_LR{design.L_over_R:.3g}_Rdagger{design.R_dagger:.3g}"
+        f"_Tm{design.T_m:g}_omegam{design.omega_m:g}.csv"
+    )
 
-    def __init__(self, bins: int | None = BINS):
+
+class Explorer(pn.viewable.Viewer):
+    """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from."""
+
+    inputs = param.ClassSelector(class_=PumpInputs)
+    presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
+    stale = param.Boolean(
+        False, doc="The plots show an earlier design: the last input was rejected."
+    )
+    dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
+
+    def __init__(self, bins: int | None = BINS, query: dict | None = None, **params):
+        super().__init__(inputs=PumpInputs(), **params)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
+        self.seen: windpump.Exploration | None = None
+        self._build_views()
+        self._build_widgets()
+        self._build_results()
+        query = query or {}
+        self.dark = _text(query.get("theme", [b""])) == "dark"
+        values, notices = self.inputs.parse_query(query)
+        self.inputs.param.update(**values)
+        self._show_notices(notices)
+        self.inputs.param.watch(self._on_inputs, self.inputs.names())
+        self.param.watch(self._restyle, "presentation")
+        self.update()
+
+    # -- building ----------------------------------------------------------------------------
+
+    def _build_views(self) -> None:
+        self.time_range = Range1d(0.0, 600.0)
+        self.cursor = ColumnDataSource({"t": [0.0]}, name="cursor")
+        self.speed = SpeedView(self.time_range, self.cursor)
+        self.flow = FlowView(self.time_range, self.cursor)
+        self.energy = EnergyView(self.time_range, self.cursor)
+        self.closeup = CloseupView()
+        self.stall = StallView()
+        self.operating = OperatingView()
+        self.machine = MachineView(self.cursor)
+        self.views = [
+            self.speed,
+            self.flow,
+            self.machine,
+            self.closeup,
+            self.energy,
+            self.stall,
+            self.operating,
+        ]
+        self.mechanisms = Mechanisms(self._slider)
+        self.sources = {"cursor": self.cursor, **self.mechanisms.sources}
+        for view in self.views:
+            self.sources.update(view.sources)
+        for name, source in self.sources.items():
+            source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
+
+    def _slider(self, label, start, end, step, value, fmt):
+        return pn.widgets.FloatSlider(
+            label=label,
+            start=start,
+            end=end,
+            step=step,
+            value=value,
+            format=fmt,
+            stylesheets=[*TEXT, FOCUS],
+            sizing_mode="stretch_width",
+        )
+
+    def _build_widgets(self) -> None:
         self.sliders = {
-            name: slider(*spec) for name, spec in {**MAIN_SLIDERS, **MORE_SLIDERS}.items()
+            name: pn.widgets.FloatSlider.from_param(
+                self.inputs.param[name],
+                format=fmt,
+                stylesheets=[*TEXT, FOCUS],
+                sizing_mode="stretch_width",
+            )
+            for name, (fmt, _main) in FORMATS.items()
         }
-        self.reset_button = pn.widgets.Button(label="Reset to the paper's example", color="primary")
-        self.lab_data = pn.widgets.FileInput(accept=".csv,.txt", label="Lab torque curve")
+        button = dict(stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width")
+        self.reset_button = pn.widgets.Button(
+            label="Reset everything to the paper's example", color="primary", **button
+        )
+        self.preset = pn.widgets.Select(name="Presets", options=[PRESET_PROMPT, *PRESETS], **button)
+        self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
+        self.pin_button = pn.widgets.Button(label="Pin this run", **button)
+        self.clear_button = pn.widgets.Button(label="Clear pinned", disabled=True, **button)
+        self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
+        self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
+        self.copy_link.js_on_click(code=COPY_LINK_JS)
+        self.dark_toggle = pn.widgets.Button(
+            label="Light theme" if self.dark else "Dark theme", **button
+        )
+        self.dark_toggle.js_on_click(code=DARK_JS)
+        self.lab_data = pn.widgets.FileInput(
+            accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width"
+        )
+        self.lab_message = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
+        self.lab_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
+        self.apply_fit = pn.widgets.Button(
+            label="Apply this fit anyway", color="warning", visible=False, **button
+        )
         self.download = pn.widgets.FileDownload(
             callback=self._csv,
             filename="windpump_run.csv",
             label="Download this run (CSV)",
             color="light",
+            **button,
         )
-        self.speed_figure, speed_sources = speed_view()
-        self.flow_figure, self.closeup_figure, flow_sources = flow_views()
-        self.stall_figure, stall_sources = stall_view()
-        self.operating_figure, operating_sources = operating_view()
-        self.energy_figure, energy_sources = energy_view()
-        self.mechanisms = Mechanisms(slider)
-        self.sources = {
-            **speed_sources,
-            **flow_sources,
-            **stall_sources,
-            **operating_sources,
-            **energy_sources,
-            **self.mechanisms.sources,
-        }
-        for name, source in self.sources.items():
-            source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
-        self.readouts = {
-            name: pn.pane.HTML("", stylesheets=[READOUT_CSS])
-            for name in ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
-        }
-        self.status = pn.pane.Alert("", alert_type="success", stylesheets=LARGE_TEXT)
-        self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=LARGE_TEXT)
-        self.lab_note = pn.pane.Markdown("", visible=False)
-        self.seen: windpump.Exploration | None = None
-        self._suspended = False
-        for widget in self.sliders.values():
-            widget.param.watch(self._on_change, "value")
-        self.reset_button.on_click(lambda _event: self.reset())
-        self.lab_data.param.watch(self._on_lab_data, "value")
-        self.update()
-
-    # -- inputs ------------------------------------------------------------------------------
-
-    def value(self, name: str) -> float:
-        return self.sliders[name].value
-
-    def design(self) -> windpump.Design:
-        """The design the sliders describe: the paper's example with its radii R and R0 kept."""
-        return SEED.replace(
-            L=SEED.R * self.value("L_over_R"),
-            R1=SEED.R0 * self.value("R_dagger"),
-            h=self.value("h"),
-            T_m=self.value("T_m"),
-            omega_m=self.value("omega_m"),
-            I0=self.value("I0"),
-            I1=self.value("I1"),
+        self.readouts = {name: pn.pane.HTML("", stylesheets=[READOUT_CSS]) for name in READOUTS}
+        self.status = pn.pane.Alert(
+            "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
         )
-
-    def set_values(self, **values: float) -> None:
-        """Set several sliders, widening a range if needed, then update once."""
-        self._suspended = True
-        try:
-            for name, value in values.items():
-                widget = self.sliders[name]
-                widget.start, widget.end = min(widget.start, value), max(widget.end, value)
-                widget.value = value
-        finally:
-            self._suspended = False
-        self.update()
-
-    def reset(self) -> None:
-        self.set_values(
-            **{name: spec[4] for name, spec in {**MAIN_SLIDERS, **MORE_SLIDERS}.items()}
+        self.error = pn.pane.Alert(
+            "", alert_type="danger", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
         )
-        self.sources["data"].data = {"omega": [], "power": []}
-        self.lab_note.visible = False
+        self.notices = pn.pane.Alert(
+            "", alert_type="warning", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
+        )
+        self._pending_fit: windpump.TorqueFit | None = None
 
-    def _on_change(self, *_events) -> None:
-        # Panel gathers the changes that arrive while an update runs and applies the latest, so a
-        # dragged slider redraws as fast as the machine can and always ends on its final value.
-        if not self._suspended:
-            self.update()
+        self.reset_button.on_click(lambda _e: self.reset())
+        self.preset.param.watch(self._on_preset, "value")
+        self.pin_button.on_click(lambda _e: self.pin())
+        self.clear_button.on_click(lambda _e: self.clear_pinned())
+        self.present_toggle.link(self, value="presentation", bidirectional=True)
+        self.lab_data.param.watch(lambda e: self.load_lab_data(e.new), "value")
+        self.apply_fit.on_click(lambda _e: self._apply_fit(self._pending_fit))
 
     # -- the one path from inputs to screen --------------------------------------------------
 
+    def _on_inputs(self, *_events) -> None:
+        # Panel gathers the changes that arrive while an update runs and applies the latest, so a
+        # dragged slider redraws as fast as the machine can and always ends on its final value.
+        self.update()
+
     def update(self) -> None:
         """Run the core on the current inputs and redraw; a rejected input shows its message."""
+        i = self.inputs
         try:
-            seen = windpump.explore(
-                self.design(), self.value("t_end"), self.value("theta0"), self.value("theta_dot0")
-            )
+            seen = windpump.explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
             with pn.io.hold():
                 self._draw(seen)
-        except ValueError as error:  # the core's verdict on an input: say so, keep the last plots
+        except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
             self._show_error(f"{self._culprit(error)}cannot be run: {error}")
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("update failed")
@@ -181,117 +223,82 @@ class Explorer:
         else:
             self.seen = seen
             self.error.visible = False
-            self.mechanisms.set_design(seen.design)
+            self.stale = False
+            self._mark_stale(False)
 
     def _culprit(self, error: ValueError) -> str:
-        """The slider behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
-        name = SLIDER_OF_PARAMETER.get(getattr(error, "name", None))
-        return f"{self.sliders[name].label} = {self.value(name):g} " if name else "This design "
+        """The control behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
+        name = {"L": "L_over_R", "R1": "R_dagger"}.get(
+            getattr(error, "name", None), getattr(error, "name", None)
+        )
+        if name in FORMATS:
+            return f"{self.inputs.param[name].label} = {getattr(self.inputs, name):g} "
+        return "This design "
 
     def _show_error(self, message: str) -> None:
         self.error.object = message
         self.error.visible = True
+        self.stale = self.seen is not None
+        self._mark_stale(self.stale)
+
+    def _mark_stale(self, stale: bool) -> None:
+        styles = STALE if stale else {"opacity": "1", "filter": "none"}
+        self.results.styles = {**VIEW_FLEX_ROW, **styles}
+        self.readout_row.styles = styles
+        self.status.styles = styles
 
     def _draw(self, seen: windpump.Exploration) -> None:
-        run, d = seen.run, seen.design
-        t_end = float(run.t[-1])
-        s = self.sources
-        s["speed"].data = self._band(run.t, run.theta_dot)
-        s["spinup"].data = {"t": seen.spinup_t, "speed": seen.spinup_speed}
-        cycle_t, lower, upper = band(seen.cycle_t, seen.cycle_speed, self.bins)
-        s["cycle_mean"].data = {"t": cycle_t, "speed": 0.5 * (lower + upper)}
-        s["alpha_plus"].data = self._level(seen.alpha_plus, t_end)
-        near_alpha_minus = (
-            seen.alpha_minus is not None and run.theta_dot.min() < 2 * seen.alpha_minus
-        )
-        s["alpha_minus"].data = self._level(seen.alpha_minus if near_alpha_minus else None, t_end)
-
-        litres = 1e3 * run.flow
-        s["flow"].data = self._band(run.t, litres)
-        s["mean_flow"].data = {"t": [0.0, t_end], "flow": [1e3 * seen.mean_flow] * 2}
-        window = self._closeup_window(run)
-        s["closeup"].data = {"t": run.t[window], "flow": litres[window]}
-
-        self._draw_stall(seen)
-        omega = np.linspace(0.0, 2.1 * d.omega_m, 211)
-        s["curve"].data = {"omega": omega, "power": windpump.windmill_power(d, omega)}
-        s["load_line"].data = {"omega": omega, "power": windpump.load_power(d, omega)}
-        op = seen.operating_point
-        s["stable"].data = {"omega": [op.omega] if op else [], "power": [op.power] if op else []}
-        s["unstable"].data = {
-            "omega": [op.omega_unstable] if op else [],
-            "power": [op.power_unstable] if op else [],
-        }
-
-        self._draw_energy(seen)
+        run = seen.run
+        span = float(run.t[-1]) if run.t[-1] > 0 else float(self.inputs.t_end)
+        self.time_range.update(start=0.0, end=span)
+        if self.mechanisms.design is None or _linkage_of(self.mechanisms.design) != _linkage_of(
+            seen.design
+        ):
+            self.mechanisms.set_design(seen.design)
+            self.machine.set_design(seen.design)
+        for view in self.views:
+            view.update(seen, self.bins)
         self._readouts(seen)
         self.status.object, self.status.alert_type = (
             self._status_text(seen),
             STATUS_STYLE[seen.status],
         )
-
-    def _draw_stall(self, seen: windpump.Exploration) -> None:
-        """Eq. (22)'s two sides in a unit that reads (x 10^k), with the margin in the title."""
-        d = seen.design
-        sides = np.array([d.Tm_dagger, d.R_dagger * d.L_dagger / math.pi])
-        power = math.floor(math.log10(sides.max()))
-        self.sources["stall"].data = {**self.sources["stall"].data, "value": sides / 10.0**power}
-        self.stall_figure.xaxis.axis_label = f"dimensionless torque, Eqs. (14, 15) [× 10^{power}]"
-        verdict = "runs" if seen.margin > 1 else "stalls"
-        self.stall_figure.title.text = (
-            f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
-        )
-
-    def _draw_energy(self, seen: windpump.Exploration) -> None:
-        """The ski lift's lesson on this run: per revolution, power to spin up and to lift water."""
-        budget = windpump.power_budget(seen.design, seen.run)
-        means = budget.cycle_means()
-        self.sources["power_split"].data = bin_means(
-            means.t,
-            {"hydraulic": means.hydraulic, "shaft": means.shaft, "kinetic": means.kinetic},
-            self.bins,
-        )
-        work, kinetic, lift = (
-            float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
-        )
-        self.readouts["energy"].object = readout(
-            "Windmill's work = gained speed + lifted water",
-            f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
-            "energy",
-        )
-
-    def _band(self, t, values) -> dict:
-        return dict(zip(("t", "lower", "upper"), band(t, values, self.bins), strict=True))
-
-    @staticmethod
-    def _level(speed: float | None, t_end: float) -> dict:
-        return (
-            {"t": [0.0, t_end], "speed": [speed, speed]}
-            if speed is not None
-            else {"t": [], "speed": []}
-        )
-
-    @staticmethod
-    def _closeup_window(run: windpump.SimulationResult) -> np.ndarray:
-        """Samples of the last few complete revolutions (or of the whole run, if shorter)."""
-        start, end = run.revolutions()
-        if len(start) == 0:
-            return np.ones(run.t.shape, dtype=bool)
-        first = start[-min(CLOSEUP_REVOLUTIONS, len(start))]
-        return (run.t >= first) & (run.t <= end[-1])
+        self.download.filename = design_filename(seen.design)
 
     def _readouts(self, seen: windpump.Exploration) -> None:
         figures = seen.intermittency
+        started = seen.status is not Status.NEVER_STARTED
         values = {
             "mean_flow": ("Mean flow", f"{1e3 * seen.mean_flow:.4f} L/s"),
             "volume": ("Volume pumped", f"{1e3 * seen.pumped_volume:.1f} L"),
-            "tau": ("Spin-up time τ, Eq. (25)", f"{seen.tau:.1f} s" if seen.tau else "none"),
+            "tau": (
+                "Spin-up time τ, Eq. (25)",
+                f"{seen.tau:.1f} s" if seen.tau and started else "–",
+            ),
             "margin": ("Stall margin, Eq. (22)", f"{seen.margin:.3f}"),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
             "ripple": ("Speed ripple", f"{100 * figures.speed_ripple:.3f} %" if figures else "–"),
+            "energy": self._energy_readout(seen),
         }
         for name, (label, value) in values.items():
             self.readouts[name].object = readout(label, value, name)
+
+    @staticmethod
+    def _energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
+        """The run's energy balance in words that keep the sign: a slowing rotor gives energy back."""
+        budget = windpump.power_budget(seen.design, seen.run)
+        work, kinetic, lift = (
+            float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
+        )
+        if kinetic >= 0:
+            return (
+                "Windmill's work = gained speed + lifted water",
+                f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
+            )
+        return (
+            "Windmill's work + speed given back = lifted water",
+            f"{work:,.0f} J + {-kinetic:,.0f} J = {lift:,.0f} J",
+        )
 
     @staticmethod
     def _status_text(seen: windpump.Exploration) -> str:
@@ -311,6 +318,8 @@ class Explorer:
             )
         if seen.status is Status.STALLED:
             return f"**Stalled** at t = {run.t_stall:.2f} s (stall margin {seen.margin:.3f})."
+        if seen.theta_dot0 == 0.0:
+            return "**Never started.** With no kick (θ̇₀ = 0) this windmill has no torque at rest: give it a kick."
         need = (
             f"α₋ = {seen.alpha_minus:.2f} rad/s"
             if seen.alpha_minus is not None
@@ -321,28 +330,125 @@ class Explorer:
             f"it came to rest at t = {run.t_stall:.2f} s."
         )
 
+    # -- actions -----------------------------------------------------------------------------
+
+    def set_values(self, **values: float) -> None:
+        """Set several inputs and update once."""
+        self.inputs.param.update(**values)
+
+    def reset(self) -> None:
+        """Everything back to the paper's example: inputs, pinned run, lab data, Mechanisms tab."""
+        self.clear_pinned()
+        self.operating.show_lab_data([], [])
+        for pane in (self.lab_note, self.lab_message, self.apply_fit, self.preset_note):
+            pane.visible = False
+        self.preset.value = PRESET_PROMPT
+        self.mechanisms.reset()
+        self.set_values(**self.inputs.defaults())
+
+    def _on_preset(self, event) -> None:
+        if event.new not in PRESETS:
+            return
+        values, sentence = PRESETS[event.new]
+        self.clear_pinned()
+        self.set_values(**{**self.inputs.defaults(), **values})
+        self.preset_note.object = f"**{event.new}.** {sentence}"
+        self.preset_note.visible = True
+
+    def pin(self) -> None:
+        """Keep the current traces as a faint ghost to compare the next change with."""
+        self.speed.pin()
+        self.flow.pin()
+        self.clear_button.disabled = False
+
+    def clear_pinned(self) -> None:
+        self.speed.clear()
+        self.flow.clear()
+        self.clear_button.disabled = True
+
+    def _restyle(self, event) -> None:
+        css = [READOUT_CSS, PRESENTATION_CSS] if event.new else [READOUT_CSS]
+        for pane in self.readouts.values():
+            pane.stylesheets = css
+        for view in self.views:
+            fig = view.figure
+            fig.title.text_font_size = "22px" if event.new else "16px"
+            for axis in (*fig.xaxis, *fig.yaxis):
+                axis.axis_label_text_font_size = "20px" if event.new else "15px"
+                axis.major_label_text_font_size = "18px" if event.new else "14px"
+            for renderer in fig.renderers:
+                glyph = renderer.glyph
+                if hasattr(glyph, "line_width") and isinstance(glyph.line_width, int | float):
+                    glyph.line_width = glyph.line_width * (1.5 if event.new else 1 / 1.5)
+
+    def _show_notices(self, notices: list[str]) -> None:
+        self.notices.object = "**Some values in the link were ignored:**\n\n" + "\n".join(
+            f"- {notice}" for notice in notices
+        )
+        self.notices.visible = bool(notices)
+
     # -- files -------------------------------------------------------------------------------
 
-    def _csv(self) -> io.StringIO:
-        return io.StringIO(self.seen.run.to_csv() if self.seen else "")
+    def _csv(self):
+        import io
 
-    def _on_lab_data(self, event) -> None:
-        """A CSV of windmill speed [rad/s] and torque [N m]: fit Eq. (11) and use T_m, omega_m."""
-        try:
-            table = np.genfromtxt(io.BytesIO(event.new), delimiter=",", comments="#")
-            table = table[~np.isnan(table).any(axis=1)] if table.ndim == 2 else np.empty((0, 2))
-            if table.shape[1] < 2 or len(table) < 2:
-                raise ValueError(
-                    "the file needs two columns, windmill speed [rad/s] and torque [N m]"
-                )
-            fit = windpump.fit_torque_curve(table[:, 0], table[:, 1])
-        except Exception as error:
-            self._show_error(f"Could not use that file: {error}")
+        return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
+
+    def load_lab_data(self, data: bytes | None) -> None:
+        """A CSV of windmill speed [rad/s] and torque [N m]: fit Eq. (11); apply T_m and omega_m
+        if the fit is good, else show it with a warning and apply it only on request."""
+        self.apply_fit.visible = False
+        self._pending_fit = None
+        if data is None:
             return
-        self.sources["data"].data = {"omega": table[:, 0], "power": table[:, 0] * table[:, 1]}
+        try:
+            table = windpump.read_torque_csv(data)
+            fit = windpump.fit_torque_curve(table.omega, table.torque)
+        except ValueError as error:
+            self.lab_message.object = (
+                f"**Could not use that file.** {_sentence(error)} Nothing was changed."
+            )
+            self.lab_message.alert_type = "danger"
+            self.lab_message.visible = True
+            return
+        self.operating.show_lab_data(table.omega, table.torque)
+        summary = (
+            f"Fitted Eq. (11) to {len(table.omega)} points: Tₘ = {fit.T_m:.3f} N·m, "
+            f"ωₘ = {fit.omega_m:.1f} rad/s (rms residual {fit.rms_residual:.3g} N·m, "
+            f"{100 * fit.relative_residual:.0f} % of Tₘ)."
+        )
+        if fit.poor:
+            self.lab_message.object = (
+                f"**A poor fit.** {summary} Eq. (11) misses these data by more than "
+                f"{100 * fit.POOR:.0f} % of Tₘ: are the columns speed, then torque? Not applied."
+            )
+            self.lab_message.alert_type = "warning"
+            self.lab_message.visible = True
+            self._pending_fit = fit
+            self.apply_fit.visible = True
+            return
+        self.lab_message.visible = False
+        self._apply_fit(fit, summary)
+
+    def _apply_fit(self, fit: windpump.TorqueFit | None, summary: str = "") -> None:
+        if fit is None:
+            return
+        outside = [
+            f"{self.inputs.param[name].label} = {value:.3g} is outside {low:g}–{high:g}"
+            for name, value in (("T_m", fit.T_m), ("omega_m", fit.omega_m))
+            for low, high in [self.inputs.param[name].bounds]
+            if not low <= value <= high
+        ]
+        if outside:
+            self.lab_message.object = (
+                f"**The fit cannot be applied:** {'; '.join(outside)}. Nothing was changed."
+            )
+            self.lab_message.alert_type = "danger"
+            self.lab_message.visible = True
+            return
+        self.apply_fit.visible = False
         self.lab_note.object = (
-            f"Fitted Eq. (11) to {len(table)} points: Tₘ = {fit.T_m:.3f} N·m, "
-            f"ωₘ = {fit.omega_m:.1f} rad/s (rms residual {fit.rms_residual:.3g} N·m)."
+            summary or f"Applied the fit: Tₘ = {fit.T_m:.3f} N·m, ωₘ = {fit.omega_m:.1f} rad/s."
         )
         self.lab_note.visible = True
         self.set_values(T_m=fit.T_m, omega_m=fit.omega_m)
@@ -350,36 +456,74 @@ class Explorer:
     # -- layout ------------------------------------------------------------------------------
 
     def controls(self) -> pn.Column:
+        main = [self.sliders[name] for name, (_f, is_main) in FORMATS.items() if is_main]
         more = pn.Card(
-            *(self.sliders[name] for name in MORE_SLIDERS), title="More parameters", collapsed=True
+            *(self.sliders[name] for name, (_f, is_main) in FORMATS.items() if not is_main),
+            title="More parameters",
+            collapsed=True,
+            sizing_mode="stretch_width",
+            stylesheets=TEXT,
         )
         return pn.Column(
-            *(self.sliders[name] for name in MAIN_SLIDERS),
+            self.preset,
+            self.preset_note,
+            *main,
             more,
+            pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),
             self.reset_button,
-            pn.pane.Markdown("**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]"),
+            self.copy_link,
+            pn.Row(self.present_toggle, self.dark_toggle, sizing_mode="stretch_width"),
+            pn.pane.Markdown(
+                "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
+            ),
             self.lab_data,
+            self.lab_message,
+            self.apply_fit,
             self.lab_note,
             self.download,
+            sizing_mode="stretch_width",
+        )
+
+    def _build_results(self) -> None:
+        self.readout_row = pn.FlexBox(
+            *(self.readouts[name] for name in READOUTS), sizing_mode="stretch_width"
+        )
+        panels = [view.panel(styles=VIEW_FLEX) for view in self.views]
+        panels[self.views.index(self.machine)].append(
+            pn.Card(
+                pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width"),
+                title="What is this machine?",
+                collapsed=True,
+                sizing_mode="stretch_width",
+                stylesheets=TEXT,
+            )
+        )
+        self.results = pn.FlexBox(
+            *panels, flex_wrap="wrap", sizing_mode="stretch_width", styles=VIEW_FLEX_ROW
+        )
+
+    def pump(self) -> pn.Column:
+        return pn.Column(
+            self.notices,
+            self.error,
+            self.readout_row,
+            self.status,
+            self.results,
+            sizing_mode="stretch_width",
         )
 
     def main(self) -> pn.Tabs:
-        return pn.Tabs(("Wind pump", self.pump()), ("Mechanisms", self.mechanisms.layout()))
+        return pn.Tabs(
+            ("Wind pump", self.pump()),
+            ("Mechanisms", self.mechanisms.layout()),
+            dynamic=False,
+            sizing_mode="stretch_width",
+            stylesheets=[":host { font-size: 16px; }", ".bk-tab { font-size: 16px; }"],
+        )
 
-    def pump(self) -> pn.Column:
-        views = dict(sizing_mode="fixed")
-        return pn.Column(
-            pn.Row(*(self.readouts[name] for name in ("mean_flow", "volume", "tau", "margin"))),
-            self.error,
-            self.status,
-            pn.pane.Bokeh(self.speed_figure, **views),
-            self.readouts["energy"],
-            pn.pane.Bokeh(self.energy_figure, **views),
-            pn.pane.Bokeh(self.flow_figure, **views),
-            pn.Row(self.readouts["peak_to_mean"], self.readouts["ripple"]),
-            pn.pane.Bokeh(self.closeup_figure, **views),
-            pn.pane.Bokeh(self.stall_figure, **views),
-            pn.pane.Bokeh(self.operating_figure, **views),
+    def __panel__(self) -> pn.Row:
+        return pn.Row(
+            pn.Column(self.controls(), width=340), self.main(), sizing_mode="stretch_width"
         )
 
     def template(self) -> pn.template.BootstrapTemplate:
@@ -387,6 +531,60 @@ class Explorer:
             title="Wind pump explorer — M. Louge, A simple wind-pump analysis (2010)",
             sidebar=[self.controls()],
             main=[self.main()],
-            sidebar_width=380,
+            sidebar_width=330,
             header_background="#0b4f8a",
+            theme="dark" if self.dark else "default",
+            meta_viewport="width=device-width, initial-scale=1",
         )
+
+
+VIEW_FLEX_ROW = {"gap": "8px"}
+
+
+def _linkage_of(design: windpump.Design) -> tuple[float, ...]:
+    """What the Mechanisms tab and the machine's fixed drawing depend on."""
+    return (design.R, design.L, design.A, design.R0, design.R1)
+
+
+def _text(raw) -> str:
+    raw = raw[-1] if isinstance(raw, list | tuple) and raw else raw
+    return raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw or "")
+
+
+def _sentence(error: Exception) -> str:
+    text = str(error)
+    return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
+
+
+COPY_LINK_JS = """
+const url = window.location.href
+const done = () => { cb_obj.label = 'Link copied' ; setTimeout(() => { cb_obj.label = 'Copy link to this state' }, 2500) }
+if (navigator.clipboard && window.isSecureContext) {
+  navigator.clipboard.writeText(url).then(done, () => window.prompt('Copy this link:', url))
+} else {
+  const area = document.createElement('textarea'); area.value = url; document.body.appendChild(area)
+  area.select(); const ok = document.execCommand('copy'); area.remove()
+  if (ok) done(); else window.prompt('Copy this link:', url)
+}
+"""
+
+# The template's theme is set when the page is built: switch it through the link, keeping the state.
+DARK_JS = """
+const url = new URL(window.location.href)
+if (url.searchParams.get('theme') === 'dark') url.searchParams.delete('theme')
+else url.searchParams.set('theme', 'dark')
+window.location.href = url.toString()
+"""
+
+ABOUT = """
+A windmill turns a small sprocket of radius R₀; a chain drives a large sprocket of radius R₁ on the
+crankshaft, so the windmill turns R† = R₁/R₀ times faster than the crank (Eq. 4). A crank of radius R
+and a rod of length L drive a single-acting piston of cross-section A: while it moves up it lifts the
+water above it by a head h (the *exhaust* half of a revolution); while it moves down it takes water in.
+
+The windmill's torque T = Tₘ x(2 − x), x = ω/ωₘ (Eq. 11), is zero at rest and at 2ωₘ: the pump must
+be *kicked* into motion. It then spins up over a time constant τ (Eq. 25) to a steady speed α₊
+(Eq. 21), pulsing once per revolution, unless the load is more than the windmill can carry: the
+stall criterion, Eq. (22). Press ▶ Play to watch the computed run; the time cursor on the plots
+follows it, and the scrubber moves through it. The model is M. Louge, *A simple wind-pump analysis*, Cornell University (2010).
+"""

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from bokeh.models import ColumnDataSource, FactorRange, Legend, LegendItem
+from bokeh.models import ColumnDataSource, Legend, LegendItem
 from bokeh.plotting import figure
 
-WIDTH, HEIGHT = 900, 380
+WIDTH, HEIGHT = 900, 330  # WIDTH: the widest a view is drawn, so bins of 2 px: WIDTH // 2
 ZOOM = "pan,box_zoom,wheel_zoom,reset,save"
+TITLE, LABEL, TICKS = "16px", "15px", "14px"  # nothing a student must read below 14 px
 COLORS = {
     "integrated": "#1f77b4",
     "averaged": "#2ca02c",
@@ -27,13 +28,14 @@ def empty(*columns: str) -> ColumnDataSource:
 def new_figure(
     title: str, x_label: str, y_label: str, height: int = HEIGHT, tools: str = ZOOM, **options
 ):
-    """A figure with the fonts and lines a projector can carry."""
-    fig = figure(title=title, width=WIDTH, height=height, tools=tools, **options)
-    fig.title.text_font_size = "16pt"
+    """A figure that takes the width it is given, with fonts and lines a projector can carry."""
+    options.setdefault("sizing_mode", "stretch_width")
+    fig = figure(title=title, height=height, tools=tools, min_width=300, **options)
+    fig.title.text_font_size = TITLE
     for axis, label in ((fig.xaxis, x_label), (fig.yaxis, y_label)):
         axis.axis_label = label
-        axis.axis_label_text_font_size = "14pt"
-        axis.major_label_text_font_size = "12pt"
+        axis.axis_label_text_font_size = LABEL
+        axis.major_label_text_font_size = TICKS
     fig.toolbar.autohide = True
     return fig
 
@@ -42,20 +44,26 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
     return fig.line(x, y, source=source, color=color, line_width=width, line_dash=dash)
 
 
-def legend(fig, items: dict, location="top_left", place="center"):
-    """A legend of {label: renderer} inside the plot at ``location``, or beside it (``place``)."""
+def legend(fig, items: dict, location="top_left", place="below"):
+    """A legend of {label: renderer} beside the plot (``place``; below by default, so it never
+    covers data), in as many columns as fit. Returns {label: LegendItem}, so an update can hide
+    the items of what is not drawn."""
+    entries = {
+        label: LegendItem(label=label, renderers=[renderer]) for label, renderer in items.items()
+    }
     fig.add_layout(
         Legend(
-            items=[
-                LegendItem(label=label, renderers=[renderer]) for label, renderer in items.items()
-            ],
+            items=list(entries.values()),
             location=location,
-            label_text_font_size="12pt",
+            orientation="horizontal" if place in ("below", "above") else "vertical",
+            nrows=2 if place in ("below", "above") and len(entries) > 2 else "auto",
+            label_text_font_size=TICKS,
             click_policy="hide",
             background_fill_alpha=0.7,
         ),
         place,
     )
+    return entries
 
 
 def draw_band(fig, source, color):
@@ -64,127 +72,6 @@ def draw_band(fig, source, color):
     line(fig, "t", "lower", source, color, width=1.5)
     line(fig, "t", "upper", source, color, width=1.5)
     return area
-
-
-def speed_view():
-    """View 1: crank speed, integrated and averaged, with the steady speeds."""
-    s = {
-        name: empty("t", "speed") for name in ("spinup", "cycle_mean", "alpha_plus", "alpha_minus")
-    }
-    s["speed"] = empty("t", "lower", "upper")
-    fig = new_figure("Crank speed", "time t [s]", "crank speed θ̇ [rad/s]")
-    items = {
-        "integrated, Eq. (12)": draw_band(fig, s["speed"], COLORS["integrated"]),
-        "averaged spin-up, Eq. (24)": line(
-            fig, "t", "speed", s["spinup"], COLORS["averaged"], 3, "dashed"
-        ),
-        "cycle mean of the integration": line(fig, "t", "speed", s["cycle_mean"], COLORS["mean"]),
-        "α₊, Eq. (21)": line(fig, "t", "speed", s["alpha_plus"], COLORS["alpha_plus"], 2, "dotted"),
-        "α₋, Eq. (21)": line(
-            fig, "t", "speed", s["alpha_minus"], COLORS["alpha_minus"], 2, "dotted"
-        ),
-    }
-    legend(fig, items, location="bottom_right")
-    return fig, s
-
-
-def flow_views():
-    """View 2: the flow over the whole run (envelope) and a close-up of its last revolutions."""
-    s = {
-        "flow": empty("t", "lower", "upper"),
-        "mean_flow": empty("t", "flow"),
-        "closeup": empty("t", "flow"),
-    }
-    whole = new_figure("Flow rate over the run", "time t [s]", "flow [L/s]")
-    legend(
-        whole,
-        {
-            "instantaneous (band: min to max)": draw_band(whole, s["flow"], COLORS["flow"]),
-            "mean over the run": line(
-                whole, "t", "flow", s["mean_flow"], COLORS["mean"], 3, "dashed"
-            ),
-        },
-    )
-    closeup = new_figure(
-        "Close-up: the last revolutions, every sample",
-        "time t [s]",
-        "flow [L/s]",
-        tools="pan,box_zoom,reset,save",
-    )
-    line(closeup, "t", "flow", s["closeup"], COLORS["flow"])
-    closeup.scatter("t", "flow", source=s["closeup"], color=COLORS["flow"], size=4)
-    return whole, closeup, s
-
-
-def stall_view():
-    """View 3: Eq. (22), the windmill's characteristic torque against the load's."""
-    names = ["windmill: T_m†", "load: R† L†/π"]
-    source = ColumnDataSource(
-        {"name": names, "value": [0.0, 0.0], "color": [COLORS["windmill"], COLORS["load"]]}
-    )
-    fig = new_figure(
-        "Stall criterion, Eq. (22)",
-        "dimensionless torque (Eqs. 14, 15)",
-        "",
-        height=HEIGHT * 2 // 3,
-        tools="save",
-        y_range=FactorRange(*names),
-    )
-    fig.hbar(y="name", right="value", height=0.6, color="color", source=source)
-    fig.x_range.start = 0
-    fig.xaxis.ticker.desired_num_ticks = 5
-    return fig, {"stall": source}
-
-
-def operating_view():
-    """View 4: Eq. (5) against the windmill's power curve, with their intersections."""
-    s = {
-        name: empty("omega", "power")
-        for name in ("curve", "load_line", "stable", "unstable", "data")
-    }
-    fig = new_figure(
-        "Operating point, Eq. (5)",
-        "windmill speed ω [rad/s]",
-        "power [W]",
-        tools="pan,box_zoom,reset,save",
-    )
-    point = dict(x="omega", y="power", size=14)
-    items = {
-        "windmill T(ω) ω, Eq. (11)": line(fig, "omega", "power", s["curve"], COLORS["windmill"], 3),
-        "pump load, Eq. (5)": line(fig, "omega", "power", s["load_line"], COLORS["load"], 3),
-        "operating point (stable)": fig.scatter(source=s["stable"], color="black", **point),
-        "unstable intersection": fig.scatter(
-            source=s["unstable"], fill_color="white", line_color="black", line_width=2, **point
-        ),
-        "measured T ω (lab data)": fig.scatter(
-            "omega", "power", source=s["data"], size=8, marker="triangle", color=COLORS["data"]
-        ),
-    }
-    legend(fig, items, location="top_left", place="right")
-    return fig, s
-
-
-def energy_view():
-    """View 5: the windmill's power split between spinning up and lifting water, per revolution."""
-    s = {"power_split": empty("t", "hydraulic", "shaft", "kinetic")}
-    fig = new_figure(
-        "Where the windmill's power goes (per revolution)",
-        "time t [s]",
-        "power [W]",
-        tools="pan,box_zoom,reset,save",
-    )
-    source = s["power_split"]
-    items = {
-        "lifting water, ρ_w g h Q": fig.varea(
-            "t", 0.0, "hydraulic", source=source, color=COLORS["flow"], alpha=0.5
-        ),
-        "spinning up, d(½ I_eff θ̇²)/dt": fig.varea(
-            "t", "hydraulic", "shaft", source=source, color=COLORS["averaged"], alpha=0.5
-        ),
-        "windmill T ω": line(fig, "t", "shaft", source, "black", 2, "dashed"),
-    }
-    legend(fig, items, location="bottom_right")
-    return fig, s
 
 
 MECHANISM_SIZE = 440
@@ -199,9 +86,8 @@ def mechanism_figure(title: str):
         height=MECHANISM_SIZE,
         tools="pan,wheel_zoom,reset,save",
         match_aspect=True,
+        max_width=MECHANISM_SIZE,
     )
-    fig.width = MECHANISM_SIZE
-    fig.title.text_font_size = "13pt"
     return fig
 
 
@@ -246,9 +132,8 @@ def slider_crank_views():
         "x [mm]",
         height=MECHANISM_SIZE,
         tools="save",
+        max_width=MECHANISM_SIZE,
     )
-    travel.width = MECHANISM_SIZE
-    travel.title.text_font_size = "13pt"
     s["travel"] = empty("angle", "x")
     s["travel_point"] = empty("angle", "x")
     items = {
@@ -257,7 +142,7 @@ def slider_crank_views():
             "angle", "x", source=s["travel_point"], size=14, color=COLORS["mean"]
         ),
     }
-    legend(travel, items, location="top_left")
+    legend(travel, items, place="below")
     return drawing, travel, s
 
 

@@ -1,4 +1,8 @@
-"""Entry point of the live explorer: ``panel serve app/`` (a Bokeh directory app)."""
+"""Entry point of the live explorer: ``panel serve app/`` (a Bokeh directory app).
+
+The page starts from its URL's query (``?h=5&T_m=0.8``) and keeps the query in step with the
+inputs, so a link reproduces what is on the screen.
+"""
 
 import logging
 
@@ -10,6 +14,9 @@ pn.extension(notifications=False)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)
+query = pn.state.session_args
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
-full = pn.state.session_args.get("resolution", [b""])[0] == b"full"
-Explorer(bins=None if full else BINS).template().servable()
+full = query.get("resolution", [b""])[0] == b"full"
+explorer = Explorer(bins=None if full else BINS, query=query)
+pn.state.location.sync(explorer.inputs, explorer.inputs.names())
+explorer.template().servable()

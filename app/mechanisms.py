@@ -4,6 +4,7 @@ explorer, both drawn from windpump.linkage's Newton-Raphson solutions."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import panel as pn
@@ -32,7 +33,7 @@ SECOND_LOOP = {
     "beta": ("Angle between link 3's arms β [°]", -180.0, 180.0, 1.0, 25.0),
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
-NOTE_CSS = [":host { font-size: 13pt; }"]
+NOTE_CSS = [":host { font-size: 16px; }"]
 
 
 def degrees(angle: float) -> str:
@@ -78,16 +79,19 @@ class Mechanisms:
             *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
         )
         self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
-        self.linkage_error = pn.pane.Alert("", alert_type="warning", visible=False)
+        self.linkage_error = pn.pane.Alert(
+            "", alert_type="warning", visible=False, stylesheets=NOTE_CSS
+        )
         self.linkage_figure, linkage_sources = linkage_view()
         self.sources = {**crank_sources, **linkage_sources}
 
         self.design: windpump.Design | None = None
         self.position: dict | None = None  # the linkage's last closed position (rad, m)
-        self.crank_angle.param.watch(lambda _e: self.draw_slider_crank(), "value")
-        self.input_angle.param.watch(lambda _e: self.follow(), "value")
+        self._quiet = False  # True while reset() sets many controls: one redraw at the end
+        self.crank_angle.param.watch(lambda _e: self._quiet or self.draw_slider_crank(), "value")
+        self.input_angle.param.watch(lambda _e: self._quiet or self.follow(), "value")
         for widget in (self.kind, self.branch, self.second_branch, *self.links.values()):
-            widget.param.watch(lambda _e: self.assemble(), "value")
+            widget.param.watch(lambda _e: self._quiet or self.assemble(), "value")
         self.assemble()
 
     # -- the pump's slider-crank -------------------------------------------------------------
@@ -107,11 +111,10 @@ class Mechanisms:
 
     def draw_slider_crank(self) -> None:
         d, theta = self.design, math.radians(self.crank_angle.value)
-        x, theta_c = linkage.slider_crank(theta, d.R, d.L)
-        loop = linkage.slider_crank_loop(d.R, d.L)
-        closed = linkage.solve_loop(loop, {"theta": theta}, {"phi": 0.0, "s": d.R + d.L})
-        centre, pin, piston = vertical(linkage.joints(loop, closed.values))[:3]
-        bore = math.sqrt(4 * d.A / math.pi)  # the piston's diameter
+        pose = linkage.slider_crank_pose(theta, d.R, d.L)
+        x, theta_c = pose.x, pose.theta_c
+        centre, pin, piston = vertical(pose.joints)
+        bore = d.bore
         s = self.sources
         s["crank_links"].data = segments(
             [centre, pin, piston], [(0, 1), (1, 2)], ["#d62728", "#1f77b4"]
@@ -137,7 +140,7 @@ class Mechanisms:
         self.crank_note.object = (
             f'<span data-name="slider_crank">x = {1e3 * x:.2f} mm from TDC, '
             f"θc = {degrees(theta_c)}</span> · {stroke} · Newton-Raphson: "
-            f"{closed.iterations} iterations"
+            f"{pose.closure.iterations} iterations"
         )
 
     # -- the four-bar / Watt six-bar explorer ------------------------------------------------
@@ -267,42 +270,75 @@ class Mechanisms:
 
     def _cannot_close(self, error: NoClosure, theta1: float, ends: float | None = None) -> None:
         at = error.where.get("theta1", theta1)
-        reason = str(error)
         where = (
             f" The branch ends between θ₁ = {degrees(ends)} and {degrees(at)}: drawn at its end."
             if ends is not None
-            else ""
+            else " The drawing stays at the last position that closed."
         )
-        self.linkage_error.object = (
-            f"**Cannot close at θ₁ = {degrees(at)}.** {reason[0].upper()}{reason[1:]}.{where}"
-        )
+        detail = str(error).split(": ", 1)[-1]  # the core's why, in the labels the student sees
+        labels = {
+            name: spec[0].split(" [")[0] for name, spec in {**FIRST_LOOP, **SECOND_LOOP}.items()
+        }
+        why = re.sub(r"\b(r\d+p?|beta) = ", lambda m: f"{labels.get(m[1], m[1])} = ", detail)
+        self.linkage_error.object = f"**Cannot close at θ₁ = {degrees(at)}**: {why}.{where}"
         self.linkage_error.visible = True
+        if ends is None:
+            self.linkage_note.object = ""
+
+    def reset(self) -> None:
+        """Every control of the tab back to its default."""
+        self._quiet = True
+        try:
+            self.crank_angle.value = 90.0
+            self.input_angle.value = 60.0
+            self.kind.value = FOUR_BAR
+            self.branch.value = self.second_branch.value = 1
+            for name, spec in {**FIRST_LOOP, **SECOND_LOOP}.items():
+                self.links[name].value = spec[-1]
+        finally:
+            self._quiet = False
+        self.assemble()
+        if self.design is not None:
+            self.draw_slider_crank()
 
     # -- layout ------------------------------------------------------------------------------
 
     def layout(self) -> pn.Column:
+        figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)
+        flex = {"flex": "1 1 320px"}
         return pn.Column(
-            pn.pane.Markdown("### The pump's slider-crank, closed as a vector loop"),
+            pn.pane.Markdown(
+                "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
+            ),
             self.crank_angle,
             self.crank_note,
-            pn.Row(
-                pn.pane.Bokeh(self.crank_figure, sizing_mode="fixed"),
-                pn.pane.Bokeh(self.travel_figure, sizing_mode="fixed"),
+            pn.FlexBox(
+                pn.pane.Bokeh(self.crank_figure, styles=flex, **figure),
+                pn.pane.Bokeh(self.travel_figure, styles=flex, **figure),
+                sizing_mode="stretch_width",
             ),
-            pn.pane.Markdown("### Four-bar and double loop, by Newton-Raphson"),
+            pn.pane.Markdown(
+                "### Four-bar and double loop, by Newton-Raphson", stylesheets=NOTE_CSS
+            ),
             self.kind,
-            pn.Row(
+            pn.FlexBox(
                 pn.Column(
                     self.input_angle,
                     *(self.links[name] for name in FIRST_LOOP),
                     self.branch,
                     self.second_loop,
-                    width=420,
+                    styles=flex,
+                    sizing_mode="stretch_width",
+                    max_width=460,
                 ),
                 pn.Column(
                     self.linkage_error,
                     self.linkage_note,
-                    pn.pane.Bokeh(self.linkage_figure, sizing_mode="fixed"),
+                    pn.pane.Bokeh(self.linkage_figure, **figure),
+                    styles=flex,
+                    sizing_mode="stretch_width",
                 ),
+                sizing_mode="stretch_width",
             ),
+            sizing_mode="stretch_width",
         )

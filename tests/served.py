@@ -10,6 +10,7 @@ import os
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 from collections.abc import Iterator
@@ -42,8 +43,13 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def served_app(*extra_args: str, timeout: float = 90.0) -> Iterator[tuple[str, subprocess.Popen]]:
-    """Start `panel serve app/` on 127.0.0.1; yield (page URL, process); stop it afterwards."""
+def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, subprocess.Popen]]:
+    """Start `panel serve app/` on 127.0.0.1; yield (page URL, process); stop it afterwards.
+
+    The server's output goes to a temporary file, never a pipe: a pipe nobody reads fills up and
+    stops a chatty server. Waiting for it is bounded by ``timeout`` [s]; the log is shown if it
+    does not come up.
+    """
     port = free_port()
     command = [
         sys.executable,
@@ -59,28 +65,34 @@ def served_app(*extra_args: str, timeout: float = 90.0) -> Iterator[tuple[str, s
         f"127.0.0.1:{port}",
         *extra_args,
     ]
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     url = f"http://127.0.0.1:{port}/app"
-    try:
-        deadline = time.monotonic() + timeout
-        while True:
-            try:
-                with urllib.request.urlopen(url, timeout=5) as response:
-                    if response.status == 200:
-                        break
-            except OSError:
-                if process.poll() is not None or time.monotonic() > deadline:
-                    raise RuntimeError(
-                        f"panel serve did not come up:\n{process.stdout.read()}"
-                    ) from None
-                time.sleep(0.25)
-        yield url, process
-    finally:
-        process.terminate()
+    with tempfile.TemporaryFile("w+") as log:
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, text=True)
         try:
-            process.wait(timeout=15)
-        except subprocess.TimeoutExpired:
-            process.kill()
+            wait_until_up(url, process, log, timeout)
+            yield url, process
+        finally:
+            process.terminate()
+            try:
+                process.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait(timeout=15)
+
+
+def wait_until_up(url: str, process: subprocess.Popen, log, timeout: float) -> None:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=10) as response:
+                if response.status == 200:
+                    return
+        except OSError:
+            pass
+        if process.poll() is not None or time.monotonic() > deadline:
+            log.seek(0)
+            raise RuntimeError(f"panel serve did not come up within {timeout:.0f} s:\n{log.read()}")
+        time.sleep(0.25)
 
 
 def require_chromium() -> None:

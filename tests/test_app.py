@@ -1,4 +1,4 @@
-"""The explorer in-process: set widgets, and check the data sources and readouts against windpump."""
+"""The explorer in-process: set inputs and widgets, check the data sources and readouts against windpump."""
 
 from __future__ import annotations
 
@@ -14,8 +14,10 @@ import windpump
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
 from envelope import band  # noqa: E402
-from explorer import BINS, Explorer  # noqa: E402
+from explorer import Explorer, design_filename  # noqa: E402
 from figures import WIDTH  # noqa: E402
+from inputs import PRESETS, PumpInputs  # noqa: E402
+from views import BINS  # noqa: E402
 
 SEED = windpump.Design.seed_example()
 
@@ -35,7 +37,7 @@ def readout_text(app, name):
 
 def test_the_default_is_the_papers_example(app):
     seen = expected()
-    assert app.design() == SEED
+    assert app.inputs.design() == SEED
     speed = app.sources["speed"].data
     assert max(speed["upper"]) == pytest.approx(seen.run.theta_dot.max(), rel=1e-12)
     assert min(speed["lower"]) == pytest.approx(seen.run.theta_dot.min(), rel=1e-12)
@@ -46,7 +48,7 @@ def test_the_default_is_the_papers_example(app):
     assert f"{seen.tau:.1f} s" in readout_text(app, "tau")
     assert f"{seen.margin:.3f}" in readout_text(app, "margin")
     assert "Running" in app.status.object and f"{seen.alpha_plus:.2f}" in app.status.object
-    assert not app.error.visible
+    assert not app.error.visible and not app.stale
 
 
 def test_a_slider_move_recomputes_everything(app):
@@ -63,17 +65,43 @@ def test_a_slider_move_recomputes_everything(app):
     assert values[0] / values[1] == pytest.approx(seen.margin, rel=1e-12)
 
 
+def test_only_what_changed_is_sent(app):
+    """The windmill's curve does not depend on h: a head move must not re-send it, nor the
+    Mechanisms tab (R, L, A unchanged)."""
+    curve = app.sources["curve"].data
+    crank = app.sources["crank_links"].data
+    travel = app.sources["piston_table"].data
+    app.inputs.h = 4.0
+    assert app.sources["curve"].data is curve
+    assert app.sources["crank_links"].data is crank
+    assert app.sources["piston_table"].data is travel
+    app.inputs.L_over_R = 3.0
+    assert app.sources["crank_links"].data is not crank
+
+
 def test_the_closeup_holds_every_sample_of_the_last_revolutions(app):
     run = expected().run
-    start, end = run.revolutions()
-    window = (run.t >= start[-3]) & (run.t <= end[-1])
+    start, _ = run.revolutions()
+    window = run.t >= start[-3]
     np.testing.assert_array_equal(app.sources["closeup"].data["t"], run.t[window])
     np.testing.assert_allclose(app.sources["closeup"].data["flow"], 1e3 * run.flow[window])
 
 
+def test_a_stalled_run_shares_its_time_axis_and_shows_its_last_turns(app):
+    app.inputs.h = 21.0
+    run = expected(SEED.replace(h=21.0)).run
+    assert run.stalled and app.time_range.end == pytest.approx(run.t_stall)
+    for name in ("speed", "flow", "power_split"):
+        assert max(app.sources[name].data["t"]) <= run.t_stall
+    closeup = app.sources["closeup"].data["t"]
+    start, _ = run.revolutions()
+    assert closeup[0] == pytest.approx(run.t[run.t >= start[-3]][0])
+    assert closeup[-1] == run.t_stall
+
+
 def test_no_more_points_than_pixels(app):
-    for name in ("speed", "flow", "cycle_mean"):
-        assert len(app.sources[name].data["t"]) <= BINS <= WIDTH
+    for name in ("speed", "flow", "cycle_mean", "power_split"):
+        assert len(app.sources[name].data["t"]) <= BINS <= WIDTH // 2
 
 
 @pytest.mark.parametrize(
@@ -93,18 +121,28 @@ def test_status_reads_at_a_glance(app, changes, status):
         assert (
             app.sources["alpha_plus"].data["t"] == [] and app.sources["stable"].data["omega"] == []
         )
-        assert "none" in readout_text(app, "tau")
+        assert not app.speed.items["α₊, Eq. (21)"].visible
+        assert not app.operating.items["operating point"].visible
+    if status == "Never started":
+        assert "–" in readout_text(app, "tau")  # no time constant for a run that never started
 
 
-def test_a_rejected_value_shows_its_message_and_the_next_move_redraws(app):
+def test_no_kick_draws_a_time_axis_from_zero(app):
+    app.inputs.theta_dot0 = 0.0
+    assert (app.time_range.start, app.time_range.end) == (0.0, 600.0)
+    assert "no kick" in app.status.object
+
+
+def test_a_rejected_value_marks_the_plots_stale_and_the_next_move_redraws(app):
     before = dict(app.sources["speed"].data)
-    app.sliders["L_over_R"].value = 1.0
-    assert app.error.visible
+    app.inputs.L_over_R = 1.0
+    assert app.error.visible and app.stale
     assert app.error.object.startswith("L/R, rod / crank = 1 cannot be run: ")
-    assert "L = 0.04 m is not allowed" in app.error.object and "> R = 0.04 m" in app.error.object
+    assert "L_over_R = 1.0 is not allowed" in app.error.object and "> 1" in app.error.object
+    assert app.results.styles["opacity"] == "0.35" and app.readout_row.styles["opacity"] == "0.35"
     assert app.sources["speed"].data["upper"] is before["upper"]  # the last good plot stays
-    app.sliders["L_over_R"].value = 2.0
-    assert not app.error.visible
+    app.inputs.L_over_R = 2.0
+    assert not app.error.visible and not app.stale and app.results.styles["opacity"] == "1"
     seen = expected(SEED.replace(L=2 * SEED.R))
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(
         seen.run.theta_dot.max(), rel=1e-12
@@ -124,39 +162,203 @@ def test_an_unexpected_exception_is_shown_logged_and_survived(app, monkeypatch, 
 
     monkeypatch.setattr(windpump, "explore", broken)
     with caplog.at_level(logging.ERROR, logger="windpump.app"):
-        app.sliders["h"].value = 4.0
+        app.inputs.h = 4.0
     assert app.error.visible and "RuntimeError: boom" in app.error.object
     assert any("update failed" in record.message for record in caplog.records)
     monkeypatch.undo()
-    app.sliders["h"].value = 5.0
+    app.inputs.h = 5.0
     assert not app.error.visible and "Running" in app.status.object
 
 
-def test_reset_brings_back_the_papers_example(app):
+def test_reset_brings_back_everything(app):
     app.set_values(h=12.0, T_m=2.0, t_end=100.0, I0=5.0)
+    app.pin()
+    app.mechanisms.crank_angle.value = 200.0
+    app.mechanisms.links["r2"].value = 4.0
+    app.mechanisms.kind.value = app.mechanisms.kind.options[1]
     app.reset_button.clicks += 1
-    assert app.design() == SEED and app.value("t_end") == 600.0
+    assert app.inputs.design() == SEED and app.inputs.t_end == 600.0
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(expected().run.theta_dot.max())
+    assert app.sources["speed_ghost"].data["t"] == []
+    assert app.mechanisms.crank_angle.value == 90.0 and app.mechanisms.links["r2"].value == 3.0
+    assert app.mechanisms.kind.value == app.mechanisms.kind.options[0]
+
+
+# -- the energy readout keeps its sign -----------------------------------------------------------
+
+
+def test_a_slowing_rotor_gives_power_back_below_zero(app):
+    """Kicked at 30 rad/s, above alpha+ = 23.7: the rotor slows and gives energy back."""
+    app.set_values(theta_dot0=30.0)
+    seen = expected(theta_dot0=30.0)
+    budget = windpump.power_budget(SEED, seen.run)
+    kinetic = float(budget.kinetic_energy[-1])
+    assert kinetic < 0
+    split = app.sources["power_split"].data
+    assert min(split["kinetic_low"]) < 0 and max(split["kinetic_high"]) <= 1e-12 + max(
+        np.add(split["hydraulic"], np.maximum(split["kinetic"], 0))
+    )
+    text = readout_text(app, "energy")
+    assert "gained speed" not in text and "given back" in text
+    assert (
+        f"{budget.shaft_work[-1]:,.0f} J + {-kinetic:,.0f} J = {budget.lift_work[-1]:,.0f} J"
+        in text
+    )
+
+
+# -- presets and pinning -----------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_every_preset_runs_and_says_what_to_look_at(app, name):
+    values, sentence = PRESETS[name]
+    app.preset.value = name
+    assert app.inputs.values() == {**PumpInputs().defaults(), **values}
+    assert sentence in app.preset_note.object and app.preset_note.visible
+    assert not app.error.visible
+
+
+def test_presets_show_what_they_promise(app):
+    app.preset.value = "A stalled pump"
+    assert app.status.object.startswith("**Stalled")
+    app.preset.value = "Kicked below α₋"
+    assert app.status.object.startswith("**Never started")
+    app.preset.value = "Near the stall boundary"
+    assert 1.0 < expected(app.inputs.design()).margin < 1.1
+
+
+def test_a_pinned_run_stays_as_a_ghost_until_cleared(app):
+    speed = dict(app.sources["speed"].data)
+    app.pin()
+    app.inputs.h = 6.0
+    np.testing.assert_array_equal(app.sources["speed_ghost"].data["upper"], speed["upper"])
+    assert app.speed.items["pinned run"].visible and not app.clear_button.disabled
+    app.clear_pinned()
+    assert app.sources["speed_ghost"].data["t"] == [] and app.sources["flow_ghost"].data["t"] == []
+    assert not app.speed.items["pinned run"].visible
+
+
+# -- state in the link ----------------------------------------------------------------------------
+
+
+def test_a_link_reproduces_the_design_and_the_run():
+    app = Explorer(query={"h": [b"5"], "T_m": [b"0.8"], "theta_dot0": [b"4.5"]})
+    assert app.inputs.design() == SEED.replace(h=5.0, T_m=0.8)
+    seen = expected(SEED.replace(h=5.0, T_m=0.8), theta_dot0=4.5)
+    assert f"{1e3 * seen.mean_flow:.4f} L/s" in readout_text(app, "mean_flow")
+    assert not app.notices.visible
+    again = Explorer(query={k: [v.encode()] for k, v in _query_pairs(app.inputs.query())})
+    assert again.inputs.values() == app.inputs.values()
+
+
+def _query_pairs(query: str):
+    from urllib.parse import parse_qsl
+
+    return parse_qsl(query)
+
+
+@pytest.mark.parametrize(
+    "key, raw, words",
+    [
+        ("h", b"banana", "Head h [m] (h) = “banana” ignored: it must be a number from 0 to 30."),
+        ("h", b"1e9", "from 0 to 30"),
+        ("L_over_R", b"nan", "L/R, rod / crank (L_over_R) = “nan” ignored"),
+        ("T_m", b"-1", "from 0.05 to 5"),
+        ("bogus", b"1", "“bogus” is not a parameter of this page"),
+    ],
+)
+def test_a_tampered_link_is_ignored_with_a_notice(key, raw, words):
+    app = Explorer(query={key: [raw], "h": [b"4"]} if key != "h" else {key: [raw]})
+    assert app.notices.visible and words in app.notices.object
+    assert not app.error.visible and "Running" in app.status.object
+    if key != "h":
+        assert app.inputs.h == 4.0  # the valid values in the same link still apply
+
+
+# -- files ----------------------------------------------------------------------------------------
 
 
 def test_lab_data_sets_the_windmill_curve(app):
     omega = np.linspace(5, 95, 10)
     torque = 0.8 * (omega / 45) * (2 - omega / 45)
     app.lab_data.value = "".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode()
-    assert app.value("T_m") == pytest.approx(0.8) and app.value("omega_m") == pytest.approx(45.0)
+    assert app.inputs.T_m == pytest.approx(0.8) and app.inputs.omega_m == pytest.approx(45.0)
     np.testing.assert_allclose(app.sources["data"].data["power"], omega * torque)
     assert "Tₘ = 0.800 N·m" in app.lab_note.object
-    assert app.design().T_m == pytest.approx(0.8)
+    assert app.operating.items["lab data"].visible
 
 
-def test_lab_data_that_cannot_be_fitted_is_explained(app):
-    app.lab_data.value = b"speed,torque\n1,1\n2,2\n3,3\n"
-    assert app.error.visible and app.error.object.startswith("Could not use that file")
-    assert app.value("T_m") == SEED.T_m
+def test_lab_data_in_a_european_spreadsheet_is_read(app):
+    text = "Drehzahl;Moment\n" + "".join(
+        f"{w:.1f};{0.5 * (w / 40) * (2 - w / 40):.6f}\n".replace(".", ",") for w in range(5, 80, 5)
+    )
+    app.load_lab_data(text.encode())
+    assert app.inputs.T_m == pytest.approx(0.5, rel=1e-4) and app.inputs.omega_m == pytest.approx(
+        40.0, rel=1e-4
+    )
 
 
-def test_download_is_the_run_as_csv(app):
-    assert app._csv().getvalue() == expected().run.to_csv()
+@pytest.mark.parametrize(
+    "content, words",
+    [
+        (b"", "The file is empty"),
+        (b"1,2\n2,3\nabc,4\n", "Line 3, column 1: 'abc' is not a number"),
+        (b"1,2,3\n2,3,4\n", "Line 1: 3 columns where the file needs two columns"),
+        (b"x" * 1_000_001, "at most 1,000,000 are read"),
+        (b"torque,speed\n0.2,10\n0.6,50\n0.2,90\n", "the header names torque first"),
+        (b"speed,torque\n1,1\n2,2\n3,3\n", "Could not use that file"),
+    ],
+)
+def test_lab_data_that_cannot_be_used_is_explained_and_changes_nothing(app, content, words):
+    before = app.inputs.values()
+    app.load_lab_data(content)
+    assert app.lab_message.visible and words in app.lab_message.object
+    assert "Nothing was changed" in app.lab_message.object
+    assert app.inputs.values() == before
+
+
+def test_a_poor_fit_is_shown_and_applied_only_on_request(app):
+    omega = np.linspace(5, 95, 10)
+    torque = 0.6 * (omega / 50) * (2 - omega / 50)
+    swapped = "".join(f"{q},{w}\n" for w, q in zip(omega, torque, strict=True)).encode()
+    app.load_lab_data(swapped)
+    assert app.lab_message.visible and "A poor fit" in app.lab_message.object
+    assert app.apply_fit.visible and app.inputs.T_m == SEED.T_m
+    fit = app._pending_fit
+    if all(
+        low <= v <= high for v, (low, high) in ((fit.T_m, (0.05, 5.0)), (fit.omega_m, (5.0, 150.0)))
+    ):
+        app.apply_fit.clicks += 1
+        assert app.inputs.T_m == pytest.approx(fit.T_m)
+    else:
+        app.apply_fit.clicks += 1
+        assert "cannot be applied" in app.lab_message.object and app.inputs.T_m == SEED.T_m
+
+
+def test_download_is_the_run_in_litres_with_its_design(app):
+    text = app._csv().getvalue()
+    assert text == expected().run.to_csv(litres=True)
+    assert "# h = 3 m" in text and "flow [L/s]" in text
+    assert (
+        app.download.filename
+        == design_filename(SEED)
+        == ("windpump_h3m_LR3.75_Rdagger4_Tm0.6_omegam50.csv")
+    )
+
+
+# -- the machine's frames -------------------------------------------------------------------------
+
+
+def test_the_machine_gets_the_runs_frames_once_per_run(app):
+    run = expected().run
+    frames = app.sources["frames"].data
+    assert frames["t"][0] == 0 and frames["t"][-1] == pytest.approx(600.0)
+    np.testing.assert_allclose(frames["theta"], np.interp(frames["t"], run.t, run.theta), rtol=1e-6)
+    table = app.sources["piston_table"].data
+    np.testing.assert_allclose(table["x"], windpump.piston_position(table["theta"], SEED.R, SEED.L))
+    assert app.machine.scrubber.end == pytest.approx(600.0)
+    app.inputs.t_end = 100.0
+    assert app.sources["frames"].data["t"][-1] == pytest.approx(100.0)
 
 
 def test_band_keeps_each_bins_extremes():

@@ -14,8 +14,9 @@ from test_linkage import half_angle
 import windpump
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import BINS, Explorer  # noqa: E402
+from explorer import Explorer  # noqa: E402
 from mechanisms import SIX_BAR  # noqa: E402
+from views import BINS  # noqa: E402
 
 SEED = windpump.Design.seed_example()
 
@@ -161,7 +162,9 @@ def test_lengths_that_cannot_close_keep_the_last_drawing(app):
     m.links["r6"].value = 5.0
     before = dict(app.sources["linkage_links"].data)
     m.links["r2"].value = 0.5  # r2 + r3 = 3 cannot span |AD| = 4.58
-    assert m.linkage_error.visible and "cannot close" in m.linkage_error.object
+    assert m.linkage_error.visible and "Cannot close at θ₁ = 60.0°" in m.linkage_error.object
+    assert "Coupler r₂ = 0.5 and Output link r₃ = 2.5 are too short" in m.linkage_error.object
+    assert "theta1" not in m.linkage_error.object and m.linkage_note.object == ""
     assert app.sources["linkage_links"].data == before
     m.links["r2"].value = 3.0
     assert not m.linkage_error.visible

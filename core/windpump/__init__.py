@@ -11,13 +11,14 @@ in the docstrings are that paper's.
 (78.6, False)
 """
 
-from . import energy, linkage
+from . import energy, labdata, linkage, playback
 from .averaged import (
     StallError,
     averaged_stall_time,
     mean_lever_arm,
     spinup,
     stall_margin,
+    stall_sides,
     steady_speeds,
     time_constant,
 )
@@ -26,6 +27,8 @@ from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, simulate
 from .energy import PowerBudget, StartupPower, power_budget, startup_power
 from .exploration import Exploration, Status, explore
 from .kinematics import f2, lever_arm, piston_position, rod_angle, swept_strokes
+from .labdata import LabDataError, TorqueTable, read_torque_csv
+from .playback import Playback, piston_table, playback_frames
 from .validation import ParameterError
 from .windmill import (
     OperatingPoint,
@@ -42,31 +45,40 @@ __all__ = [
     "Design",
     "Exploration",
     "Intermittency",
+    "LabDataError",
     "OperatingPoint",
     "ParameterError",
+    "Playback",
     "PowerBudget",
     "SimulationResult",
     "StallError",
     "StartupPower",
     "Status",
     "TorqueFit",
+    "TorqueTable",
     "averaged_stall_time",
     "energy",
     "explore",
     "f2",
     "fit_torque_curve",
+    "labdata",
     "lever_arm",
     "linkage",
     "load_power",
     "mean_lever_arm",
     "operating_point",
     "piston_position",
+    "piston_table",
+    "playback",
+    "playback_frames",
     "power_budget",
+    "read_torque_csv",
     "rod_angle",
     "simulate",
     "spinup",
     "startup_power",
     "stall_margin",
+    "stall_sides",
     "steady_speeds",
     "swept_strokes",
     "time_constant",

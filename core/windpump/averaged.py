@@ -80,6 +80,22 @@ def stall_margin(design: Design) -> float:
     return math.pi * design.R_dagger * design.T_m / design.load_torque
 
 
+def stall_sides(design: Design) -> tuple[float, float]:
+    """The two sides of the stall criterion, Eq. (22): (T_m+, R+ L+ / pi) [-].
+
+    The windmill's characteristic torque (Eq. 14) and the mean load it must carry (Eq. 15 times
+    R+ / pi); it can run when the first exceeds the second. Their ratio is :func:`stall_margin`.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> windmill, load = stall_sides(Design.seed_example())
+    >>> round(windmill / load, 2)
+    5.1
+    """
+    return design.Tm_dagger, design.R_dagger * design.L_dagger / math.pi
+
+
 def steady_speeds(design: Design) -> tuple[float, float]:
     """Steady cycle-mean crank speeds (alpha+, alpha-) x omega_m [rad/s] (Eq. 21).
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from .validation import ParameterError, non_negative, positive
+from .validation import ParameterError, non_negative, positive, rod_ratio
 
 # Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
 UNITS = {
@@ -127,6 +127,33 @@ class Design:
             raise TypeError(f"Design has no parameter(s) {sorted(unknown)}; fields: {list(UNITS)}")
         return dataclasses.replace(self, **changes)
 
+    def with_ratios(
+        self, L_over_R: float | None = None, R_dagger: float | None = None, **changes: float
+    ) -> Design:
+        """A new, validated Design with the rod and sprocket set by their ratios to R and R0.
+
+        ``L = R L/R`` and ``R1 = R0 R+`` (Eq. 13), the crank radius R and the small sprocket R0
+        kept: the ratios the paper's groups (Eqs. 14, 15) and the explorer's sliders speak in.
+        Other ``changes`` are applied as by :meth:`replace`.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``L_over_R`` (must be > 1: the rod cannot reach the crank otherwise) or
+            ``R_dagger`` (> 0), or another field out of range.
+
+        Examples
+        --------
+        >>> d = Design.seed_example().with_ratios(L_over_R=2.0, R_dagger=5.0)
+        >>> round(d.L, 6), round(d.R1, 6)
+        (0.08, 0.15)
+        """
+        if L_over_R is not None:
+            changes["L"] = self.R * rod_ratio(L_over_R)
+        if R_dagger is not None:
+            changes["R1"] = self.R0 * positive("R_dagger", R_dagger)
+        return self.replace(**changes)
+
     def as_dict(self) -> dict[str, float]:
         """The fields as a plain dict [SI units]."""
         return dataclasses.asdict(self)
@@ -165,3 +192,8 @@ class Design:
     def stroke_volume(self) -> float:
         """Volume delivered per crank revolution, 2 R A [m^3] (Eq. 16)."""
         return 2.0 * self.R * self.A
+
+    @property
+    def bore(self) -> float:
+        """Piston diameter sqrt(4 A / pi) [m], from its cross-section A."""
+        return math.sqrt(4.0 * self.A / math.pi)

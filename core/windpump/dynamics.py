@@ -10,7 +10,7 @@ import os
 import numpy as np
 
 from . import _kernels
-from .design import Design
+from .design import UNITS, Design
 from .validation import ParameterError, non_negative, positive, real
 
 SAMPLES_PER_STROKE = 16
@@ -132,17 +132,63 @@ class SimulationResult:
             speed_ripple=ripple,
         )
 
-    def to_csv(self, path: str | os.PathLike | io.TextIOBase | None = None) -> str | None:
-        """Write the samples as CSV with a header of names and units; return the text if no path."""
+    def last_revolutions(self, revolutions: int = 3) -> slice:
+        """The samples from the start of the last ``revolutions`` complete revolutions to the run's
+        end: a close-up of the steady pulses, or of the last turns before a stall.
+
+        A run with fewer complete revolutions gives all of its samples.
+
+        Examples
+        --------
+        >>> from windpump import Design, simulate
+        >>> run = simulate(Design.seed_example(), 60.0)
+        >>> window = run.last_revolutions(3)  # 3 whole turns, and the part of one after them
+        >>> 3 <= float(run.theta[window][-1] - run.theta[window][0]) / (2 * math.pi) < 4
+        True
+        """
+        revolutions = int(positive("revolutions", revolutions))
+        start, _ = self.revolutions()
+        if len(start) == 0:
+            return slice(0, len(self.t))
+        first = start[-min(revolutions, len(start))]
+        return slice(int(np.searchsorted(self.t, first, side="left")), len(self.t))
+
+    def to_csv(
+        self, path: str | os.PathLike | io.TextIOBase | None = None, litres: bool = False
+    ) -> str | None:
+        """Write the samples as CSV; return the text if no path is given.
+
+        The first lines, each starting with ``#``, record the design (every parameter with its
+        unit) and the run's start and end; then a row of column names with units. With
+        ``litres=True`` volume and flow are in L and L/s instead of m^3 and m^3/s.
+
+        Examples
+        --------
+        >>> from windpump import Design, simulate
+        >>> text = simulate(Design.seed_example(), 1.0).to_csv(litres=True)
+        >>> [line for line in text.splitlines() if line.startswith("# h ")]
+        ['# h = 3 m']
+        >>> text.splitlines()[len(UNITS) + 2]
+        't [s],theta [rad],theta_dot [rad/s],volume [L],flow [L/s],shaft_work [J]'
+        """
+        scale, volume_unit = (1e3, "L") if litres else (1.0, "m^3")
         columns = {
             "t [s]": self.t,
             "theta [rad]": self.theta,
             "theta_dot [rad/s]": self.theta_dot,
-            "volume [m^3]": self.volume,
-            "flow [m^3/s]": self.flow,
+            f"volume [{volume_unit}]": scale * self.volume,
+            f"flow [{volume_unit}/s]": scale * self.flow,
             "shaft_work [J]": self.shaft_work,
         }
         buffer = io.StringIO()
+        buffer.write("# windpump run of the design (Louge 2010, Eq. 12)\n")
+        for name, value in self.design.as_dict().items():
+            buffer.write(f"# {name} = {value:.12g} {UNITS[name]}\n")
+        ending = f"stalled at t = {self.t_stall:.12g} s" if self.stalled else "ran to its end"
+        buffer.write(
+            f"# theta0 = {self.theta[0]:.12g} rad, theta_dot0 = {self.theta_dot[0]:.12g} rad/s, "
+            f"t_end = {self.t[-1]:.12g} s, {ending}\n"
+        )
         buffer.write(",".join(columns) + "\n")
         np.savetxt(buffer, np.column_stack(list(columns.values())), delimiter=",", fmt="%.12g")
         if path is None:

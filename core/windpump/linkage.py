@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 from collections.abc import Mapping, Sequence
 
 import numpy as np
@@ -603,12 +604,47 @@ def slider_crank(
     >>> round(x, 6), round(math.degrees(theta_c), 4)
     (0.045432, 15.466)
     """
+    pose = slider_crank_pose(theta, R, L, guess)
+    return pose.x, pose.theta_c
+
+
+class SliderCrankPose(typing.NamedTuple):
+    """The slider-crank closed at one crank angle (see :func:`slider_crank_pose`)."""
+
+    x: float
+    """Piston position from TDC [m] (Eq. 1)."""
+    theta_c: float
+    """Rod angle to the cylinder axis [rad]."""
+    joints: np.ndarray
+    """Crank centre, crank pin and piston pin [m], the cylinder axis along +x, shape (3, 2)."""
+    closure: Closure
+    """The Newton-Raphson solution (iterates, residuals)."""
+
+
+def slider_crank_pose(
+    theta: float, R: float, L: float, guess: tuple[float, float] | None = None
+) -> SliderCrankPose:
+    """The slider-crank at crank angle theta, closed once: x, theta_c, the joints to draw it with
+    and the Newton-Raphson history. Arguments as for :func:`slider_crank`.
+
+    Examples
+    --------
+    >>> import math
+    >>> pose = slider_crank_pose(math.pi / 2, R=0.04, L=0.15)
+    >>> round(pose.x, 6), pose.joints.shape
+    (0.045432, (3, 2))
+    """
     theta = real("theta", theta, "rad")
     loop = slider_crank_loop(R, L)
     R, L = loop[0].length, loop[1].length
     phi, s = guess if guess is not None else (0.0, L + R)
     closed = solve_loop(loop, {"theta": theta}, {"phi": phi, "s": s})
-    return L + R - closed["s"], -math.remainder(closed["phi"], 2 * math.pi)
+    return SliderCrankPose(
+        x=L + R - closed["s"],
+        theta_c=-math.remainder(closed["phi"], 2 * math.pi),
+        joints=joints(loop, closed.values)[:3],
+        closure=closed,
+    )
 
 
 # -- helpers -------------------------------------------------------------------------------

@@ -132,6 +132,20 @@ class TorqueFit:
     omega_m: float
     rms_residual: float
 
+    POOR = 0.1
+    """A fit whose rms residual exceeds this fraction of T_m describes the data poorly."""
+
+    @property
+    def relative_residual(self) -> float:
+        """rms residual / T_m [-]."""
+        return self.rms_residual / self.T_m
+
+    @property
+    def poor(self) -> bool:
+        """True when Eq. (11) misses the data by more than ``POOR`` of the peak torque (say,
+        columns swapped, or data that do not rise and fall)."""
+        return self.relative_residual > self.POOR
+
 
 def fit_torque_curve(omega, torque) -> TorqueFit:
     """Fit ``T = T_m x (2 - x)``, ``x = omega/omega_m`` (Eq. 11), to measured (omega, T) pairs.

@@ -1,0 +1,142 @@
+"""What a student sets: the pump's inputs as a ``param.Parameterized``, presets, and the link's query.
+
+The parameter names are the core's (``L_over_R``, ``R_dagger``, ``h`` ...): they are also the
+URL's query keys, so a link reproduces the design and the run on the screen.
+"""
+
+from __future__ import annotations
+
+import math
+from urllib.parse import urlencode
+
+import param
+
+import windpump
+
+SEED = windpump.Design.seed_example()
+SEED_MARGIN = windpump.stall_margin(SEED)
+
+# name: (display format, main slider?)
+FORMATS = {
+    "L_over_R": ("0.00", True),
+    "R_dagger": ("0.0", True),
+    "h": ("0.0", True),
+    "T_m": ("0.00", True),
+    "omega_m": ("0", False),
+    "t_end": ("0", False),
+    "theta_dot0": ("0.0", False),
+    "theta0": ("0.00", False),
+    "I0": ("0.00", False),
+    "I1": ("0.0000", False),
+}
+
+
+class PumpInputs(param.Parameterized):
+    """The design and the run the explorer shows; defaults are the paper's example (Fig. 3)."""
+
+    L_over_R = param.Number(SEED.L_over_R, bounds=(1.0, 10.0), step=0.05, label="L/R, rod / crank")
+    R_dagger = param.Number(
+        SEED.R_dagger, bounds=(0.5, 10.0), step=0.1, label="R₁/R₀, sprocket ratio"
+    )
+    h = param.Number(SEED.h, bounds=(0.0, 30.0), step=0.1, label="Head h [m]")
+    T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Windmill torque Tₘ [N·m]")
+    omega_m = param.Number(
+        SEED.omega_m, bounds=(5.0, 150.0), step=1.0, label="Windmill peak speed ωₘ [rad/s]"
+    )
+    t_end = param.Number(600.0, bounds=(10.0, 3000.0), step=10.0, label="Duration t_end [s]")
+    theta_dot0 = param.Number(3.0, bounds=(0.0, 30.0), step=0.1, label="Kick θ̇₀ [rad/s]")
+    theta0 = param.Number(
+        math.pi / 2, bounds=(0.0, round(2 * math.pi, 2)), step=0.01, label="Start angle θ₀ [rad]"
+    )
+    I0 = param.Number(SEED.I0, bounds=(0.01, 10.0), step=0.01, label="Rotor inertia I₀ [kg·m²]")
+    I1 = param.Number(SEED.I1, bounds=(0.0005, 1.0), step=0.0005, label="Crank inertia I₁ [kg·m²]")
+
+    def names(self) -> list[str]:
+        return list(FORMATS)
+
+    def values(self) -> dict[str, float]:
+        return {name: getattr(self, name) for name in FORMATS}
+
+    def design(self) -> windpump.Design:
+        """The design these inputs describe: the paper's example with its radii R and R0 kept."""
+        return SEED.with_ratios(
+            L_over_R=self.L_over_R,
+            R_dagger=self.R_dagger,
+            h=self.h,
+            T_m=self.T_m,
+            omega_m=self.omega_m,
+            I0=self.I0,
+            I1=self.I1,
+        )
+
+    def defaults(self) -> dict[str, float]:
+        return {name: self.param[name].default for name in FORMATS}
+
+    def query(self) -> str:
+        """The URL query of the current inputs (shortest repr of each float)."""
+        return urlencode({name: repr(float(value)) for name, value in self.values().items()})
+
+    def parse_query(self, query: dict) -> tuple[dict[str, float], list[str]]:
+        """Values to apply from a URL query (str or bytes values, lists as Tornado gives them),
+        and a notice for each key ignored: unknown, not a number, or out of its range."""
+        values, notices = {}, []
+        for key, raw in query.items():
+            raw = raw[-1] if isinstance(raw, list | tuple) else raw
+            text = raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
+            shown = text if len(text) <= 24 else text[:24] + "…"
+            if key not in FORMATS:
+                if key not in IGNORED_QUERY_KEYS:
+                    notices.append(f"“{key}” is not a parameter of this page; ignored.")
+                continue
+            label, (low, high) = self.param[key].label, self.param[key].bounds
+            try:
+                value = float(text)
+            except ValueError:
+                value = math.nan
+            if not (math.isfinite(value) and low <= value <= high):
+                notices.append(
+                    f"{label} ({key}) = “{shown}” ignored: it must be a number from {low:g} to {high:g}."
+                )
+                continue
+            values[key] = value
+        return values, notices
+
+
+# Keys the page itself uses, not inputs.
+IGNORED_QUERY_KEYS = {"theme", "resolution", "preset"}
+
+# name: (values, one sentence saying what to look at)
+PRESETS = {
+    "The paper's example": (
+        {},
+        "Kicked at 3 rad/s, the pump spins up over τ ≈ 79 s to α₊ and pulses once per revolution "
+        "(the paper's Fig. 3).",
+    ),
+    "Near the stall boundary": (
+        {"h": round(SEED.h * SEED_MARGIN / 1.05, 1), "theta_dot0": 12.0},
+        "Stall margin ≈ 1.05: α₋ and α₊ close in, the spin-up is slow, and the ripple shows how "
+        "thin the margin is.",
+    ),
+    "Kicked below α₋": (
+        {"theta_dot0": 1.0},
+        "A kick below the unstable speed α₋: the windmill cannot overcome the load and the pump "
+        "comes to rest: it never starts.",
+    ),
+    "A light rotor, large ripple": (
+        {
+            "I0": round(SEED.I0 / 100, 2),
+            "I1": 0.0005,
+            "h": 6.0,
+            "t_end": 60.0,
+            "theta0": 0.3,
+            "theta_dot0": 5.0,
+        },
+        "With a hundredth of the inertia the crank speed swings within every revolution: the "
+        "averaged theory (Eq. 24) smooths over what the full Eq. (12) shows.",
+    ),
+    "A stalled pump": (
+        {"h": 21.0},
+        "At h = 21 m the stall margin is below 1 (Eq. 22): the windmill cannot carry the load and "
+        "the pump slows to a stop. The close-up shows its last turns.",
+    ),
+}

@@ -1,0 +1,261 @@
+"""The machine, animated: rotor, chain, sprockets, crank, rod, piston and the water it delivers.
+
+Drawn to the design's proportions (the rotor's blades excepted: they would dwarf the pump). The
+server sends the run's frames once per run (``windpump.playback_frames``) with the piston's travel
+over a revolution (``windpump.piston_table``, Eq. 1); ``player.js`` plays them in the browser.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import panel as pn
+from bokeh.layouts import column, row
+from bokeh.models import Button, ColumnDataSource, CustomJS, InlineStyleSheet, Select, Slider
+from bokeh.plotting import figure
+from figures import COLORS, empty
+from views import View, refill
+
+import windpump
+
+PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
+MAX_FRAMES = 3000  # ~48 kB a run: 4 float32 columns
+SPEEDS = [
+    ("0.1", "0.1× slow motion"),
+    ("0.25", "0.25×"),
+    ("1", "1× real time"),
+    ("5", "5×"),
+    ("20", "20× fast"),
+]
+ASPECT = 16 / 10  # the drawing's width / height
+WIDGET_CSS = InlineStyleSheet(css=":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }")
+LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]  # three blades, sprocket mark, crank, rod
+
+
+def tangents(c0, r0, c1, r1):
+    """The two outer tangent segments of two circles: the chain's straight runs."""
+    (x0, y0), (x1, y1) = c0, c1
+    d = math.hypot(x1 - x0, y1 - y0)
+    base = math.atan2(y1 - y0, x1 - x0)
+    spread = math.acos((r0 - r1) / d)
+    segments = []
+    for sign in (1, -1):
+        a = base + sign * spread
+        segments.append(
+            (
+                [x0 + r0 * math.cos(a), x1 + r1 * math.cos(a)],
+                [y0 + r0 * math.sin(a), y1 + r1 * math.sin(a)],
+            )
+        )
+    return segments
+
+
+class MachineView(View):
+    caption = (
+        "The machine playing the computed run: the windmill turns the small sprocket R₁/R₀ times "
+        "faster than the crank (Eq. 4); the piston follows Eq. (1); the tank fills with the "
+        "volume pumped (Eq. 16). Rotor blades not to scale."
+    )
+
+    def __init__(self, cursor: ColumnDataSource):
+        super().__init__()
+        s = self.sources
+        s["frames"] = empty("t", "theta", "theta_dot", "volume")
+        s["piston_table"] = empty("theta", "x")
+        s["machine_geometry"] = ColumnDataSource({})
+        s["machine_static"] = empty("xs", "ys")
+        s["machine_circles"] = empty("x", "y", "radius")
+        s["machine_links"] = ColumnDataSource(
+            {"xs": [[]] * len(LINK_COLORS), "ys": [[]] * len(LINK_COLORS), "color": LINK_COLORS}
+        )
+        s["machine_joints"] = empty("x", "y")
+        s["machine_piston"] = empty("x", "y", "width", "height")
+        s["machine_water"] = empty("x", "y", "width", "height")
+        s["machine_label"] = ColumnDataSource({"x": [0.0], "y": [0.0], "text": [""]})
+        self.figure = fig = figure(
+            width=640,
+            height=int(640 / ASPECT),
+            sizing_mode="scale_width",
+            max_width=900,
+            tools="save",
+            match_aspect=True,
+            toolbar_location=None,
+        )
+        # Invisible corners of the drawing: the ranges fit them, with equal scales on both axes.
+        s["machine_bounds"] = empty("x", "y")
+        fig.scatter("x", "y", source=s["machine_bounds"], alpha=0.0)
+        fig.axis.visible = False
+        fig.grid.visible = False
+        fig.outline_line_color = None
+        fig.multi_line("xs", "ys", source=s["machine_static"], color="#444444", line_width=3)
+        fig.circle(
+            "x",
+            "y",
+            radius="radius",
+            source=s["machine_circles"],
+            fill_color="#dddddd",
+            line_color="#444444",
+            line_width=2,
+        )
+        fig.rect(
+            "x",
+            "y",
+            "width",
+            "height",
+            source=s["machine_water"],
+            fill_color=COLORS["flow"],
+            fill_alpha=0.6,
+            line_color=None,
+        )
+        fig.multi_line(
+            "xs", "ys", source=s["machine_links"], color="color", line_width=6, alpha=0.9
+        )
+        fig.rect(
+            "x",
+            "y",
+            "width",
+            "height",
+            source=s["machine_piston"],
+            fill_color="#9ecae1",
+            line_color="black",
+            line_width=2,
+        )
+        fig.scatter(
+            "x",
+            "y",
+            source=s["machine_joints"],
+            size=10,
+            fill_color="white",
+            line_color="black",
+            line_width=2,
+        )
+        fig.text(
+            "x", "y", "text", source=s["machine_label"], text_font_size="15px", text_baseline="top"
+        )
+        self._controls(cursor)
+
+    def _controls(self, cursor) -> None:
+        s = self.sources
+        self.button = Button(
+            label="▶ Play", button_type="primary", width=120, stylesheets=[WIDGET_CSS], name="play"
+        )
+        self.speed = Select(
+            value="1", options=SPEEDS, width=170, stylesheets=[WIDGET_CSS], name="playback_speed"
+        )
+        self.scrubber = Slider(
+            start=0.0,
+            end=1.0,
+            value=0.0,
+            step=0.01,
+            title="time t [s]",
+            sizing_mode="stretch_width",
+            stylesheets=[WIDGET_CSS],
+            name="scrubber",
+        )
+        args = dict(
+            frames=s["frames"],
+            table=s["piston_table"],
+            geometry=s["machine_geometry"],
+            links=s["machine_links"],
+            joints=s["machine_joints"],
+            piston=s["machine_piston"],
+            water=s["machine_water"],
+            label=s["machine_label"],
+            cursor=cursor,
+            scrubber=self.scrubber,
+            button=self.button,
+            speed_select=self.speed,
+            plot=self.figure,
+        )
+        callback = CustomJS(args=args, code=PLAYER_JS)
+        self.button.js_on_event("button_click", callback)
+        self.scrubber.js_on_change("value", callback)
+        s["frames"].js_on_change("data", callback)
+        self.figure.js_on_change("inner_width", callback)
+        self.layout = column(
+            self.figure,
+            row(self.button, self.speed, self.scrubber, sizing_mode="stretch_width"),
+            sizing_mode="stretch_width",
+        )
+
+    def panel(self, **options) -> pn.Column:
+        return pn.Column(
+            pn.pane.Bokeh(self.layout, sizing_mode="stretch_width"),
+            pn.pane.HTML(
+                f"<p>{self.caption}</p>", stylesheets=[":host { font-size: 15px; margin: 0 8px; }"]
+            ),
+            sizing_mode="stretch_width",
+            **options,
+        )
+
+    def set_design(self, d: windpump.Design) -> None:
+        """The drawing's fixed parts, for a new design (nothing is sent when they are unchanged)."""
+        theta, x = windpump.piston_table(d)
+        refill(self.sources["piston_table"], {"theta": theta, "x": x})
+        blade = d.L + d.R
+        c0 = (-(d.R1 + 1.15 * blade), 0.55 * blade)
+        tank_w = tank_h = 0.45 * d.L
+        tank_x, tank_y = 1.5 * d.bore + 0.2 * d.L, d.L + d.R + 1.2 * d.bore
+        top = d.L + d.R + d.bore  # the cylinder's head
+        static = [
+            *tangents(c0, d.R0, (0.0, 0.0), d.R1),  # chain
+            ([-d.bore / 2] * 2, [d.L - d.R - 0.3 * d.bore, top]),  # cylinder walls
+            ([d.bore / 2] * 2, [d.L - d.R - 0.3 * d.bore, top]),
+            ([-d.bore / 2, d.bore / 2], [top, top]),
+            (
+                [0.0, 0.0, tank_x + 0.3 * tank_w, tank_x + 0.3 * tank_w],
+                [top, top + 0.6 * d.bore, top + 0.6 * d.bore, tank_y + tank_h],
+            ),  # riser
+            (
+                [tank_x, tank_x, tank_x + tank_w, tank_x + tank_w],
+                [tank_y + tank_h, tank_y, tank_y, tank_y + tank_h],
+            ),  # tank
+        ]
+        refill(
+            self.sources["machine_static"],
+            {"xs": [a for a, _ in static], "ys": [b for _, b in static]},
+        )
+        refill(
+            self.sources["machine_circles"],
+            {"x": [c0[0], 0.0], "y": [c0[1], 0.0], "radius": [d.R0, d.R1]},
+        )
+        self.geometry = dict(
+            R=d.R,
+            L=d.L,
+            R0=d.R0,
+            R_dagger=d.R_dagger,
+            bore=d.bore,
+            blade=blade,
+            c0x=c0[0],
+            c0y=c0[1],
+            tank_x=tank_x,
+            tank_y=tank_y,
+            tank_w=tank_w,
+            tank_h=tank_h,
+        )
+        left, right = c0[0] - blade * 1.05, tank_x + tank_w + 0.1 * blade
+        bottom, high = (
+            min(-d.R1, c0[1] - blade) - 0.05 * blade,
+            max(c0[1] + blade, tank_y + tank_h) + 0.2 * blade,
+        )
+        refill(self.sources["machine_bounds"], {"x": [left, right], "y": [bottom, high]})
+        self.label_at = (left, high)
+
+    def update(self, seen, bins) -> None:
+        """A new run: its frames, and the tank's scale (full at the run's volume). The player stops."""
+        run = seen.run
+        frames = windpump.playback_frames(run, max_frames=MAX_FRAMES)
+        geometry = {**self.geometry, "v_full": max(float(run.volume[-1]), 1e-12)}
+        self.sources["machine_geometry"].data = {k: [float(v)] for k, v in geometry.items()}
+        self.sources["machine_label"].data = {
+            "x": [self.label_at[0]],
+            "y": [self.label_at[1]],
+            "text": [""],
+        }
+        self.scrubber.update(end=max(float(run.t[-1]), 1e-6), value=0.0)
+        self.sources["frames"].data = {
+            name: np.asarray(getattr(frames, name), dtype=np.float32)
+            for name in ("t", "theta", "theta_dot", "volume")
+        }

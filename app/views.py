@@ -1,0 +1,416 @@
+"""The explorer's views: each owns its figure, its named data sources and ``update(seen)``.
+
+Sources are refilled in place, and only when their data changed, so a slider move sends what it
+changed and nothing else. Every number drawn comes from ``windpump``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
+from envelope import band, bin_means
+from figures import COLORS, HEIGHT, draw_band, empty, legend, line, new_figure
+
+import windpump
+
+BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
+CLOSEUP_REVOLUTIONS = 3
+GHOST = "#9a9a9a"
+CAPTION_CSS = [":host { font-size: 15px; margin: 0 8px; } p { margin: 2px 0; }"]
+
+
+def same(old, new) -> bool:
+    """True when two column dicts hold the same columns and values."""
+    if old.keys() != new.keys():
+        return False
+    for key, value in new.items():
+        try:
+            a, b = np.asarray(old[key]), np.asarray(value)
+        except ValueError:  # ragged (lists of lists of several lengths): compare as lists
+            return list(old[key]) == list(value)
+        if a.shape != b.shape or a.dtype.kind != b.dtype.kind:
+            return False
+        if a.dtype.kind == "f" and not np.array_equal(a, b, equal_nan=True):
+            return False
+        if a.dtype.kind != "f" and not np.array_equal(a, b):
+            return False
+    return True
+
+
+def refill(source: ColumnDataSource, data: dict) -> None:
+    """Replace a source's data, unless it already holds exactly that (then nothing is sent)."""
+    if not same(source.data, data):
+        source.data = data
+
+
+def band_data(t, values, bins) -> dict:
+    return dict(zip(("t", "lower", "upper"), band(t, values, bins), strict=True))
+
+
+def level(value: float | None, t_end: float) -> dict:
+    return (
+        {"t": [0.0, t_end], "speed": [value, value]}
+        if value is not None
+        else {"t": [], "speed": []}
+    )
+
+
+class View:
+    """A figure with a one-line caption naming its equation; subclasses fill ``sources``."""
+
+    caption = ""
+
+    def __init__(self):
+        self.sources: dict[str, ColumnDataSource] = {}
+
+    def panel(self, **options) -> pn.Column:
+        return pn.Column(
+            pn.pane.Bokeh(self.figure, sizing_mode="stretch_width"),
+            pn.pane.HTML(f"<p>{self.caption}</p>", stylesheets=CAPTION_CSS),
+            sizing_mode="stretch_width",
+            **options,
+        )
+
+    def update(self, seen: windpump.Exploration, bins: int | None) -> None:
+        raise NotImplementedError
+
+
+class TimeView(View):
+    """A view against the run's time, on the axis shared by every time view, with the player's
+    time cursor."""
+
+    def __init__(self, time_range: Range1d, cursor: ColumnDataSource):
+        super().__init__()
+        self.time_range, self.cursor = time_range, cursor
+
+    def time_figure(self, title: str, y_label: str, tooltips: list, **options):
+        fig = new_figure(title, "time t [s]", y_label, x_range=self.time_range, **options)
+        fig.vspan(x="t", source=self.cursor, line_color="#444444", line_width=2, alpha=0.6)
+        fig.add_tools(HoverTool(tooltips=tooltips, mode="vline", renderers=[]))
+        return fig
+
+    def hover_on(self, *renderers) -> None:
+        hover = self.figure.select_one(HoverTool)
+        hover.renderers = list(renderers)
+
+
+class SpeedView(TimeView):
+    caption = (
+        "Crank speed θ̇: the full Eq. (12) as a min–max band, its mean per revolution, the "
+        "averaged spin-up of Eq. (24) and the steady speeds α± of Eq. (21)."
+    )
+
+    def __init__(self, time_range, cursor):
+        super().__init__(time_range, cursor)
+        s = self.sources
+        s.update({name: empty("t", "speed") for name in ("spinup", "cycle_mean", "alpha_plus")})
+        s["alpha_minus"] = empty("t", "speed")
+        s["speed"] = empty("t", "lower", "upper")
+        s["speed_ghost"] = empty("t", "lower", "upper")
+        self.figure = fig = self.time_figure(
+            "Crank speed",
+            "crank speed θ̇ [rad/s]",
+            [("t", "@t{0.00} s"), ("θ̇", "@lower{0.000} to @upper{0.000} rad/s")],
+        )
+        ghost = draw_band(fig, s["speed_ghost"], GHOST)
+        band_area = draw_band(fig, s["speed"], COLORS["integrated"])
+        averaged = line(fig, "t", "speed", s["spinup"], COLORS["averaged"], 3, "dashed")
+        mean = line(fig, "t", "speed", s["cycle_mean"], COLORS["mean"])
+        self.items = legend(
+            fig,
+            {
+                "integrated, Eq. (12)": band_area,
+                "averaged, Eq. (24)": averaged,
+                "cycle mean": mean,
+                "α₊, Eq. (21)": line(
+                    fig, "t", "speed", s["alpha_plus"], COLORS["alpha_plus"], 2, "dotted"
+                ),
+                "α₋, Eq. (21)": line(
+                    fig, "t", "speed", s["alpha_minus"], COLORS["alpha_minus"], 2, "dotted"
+                ),
+                "pinned run": ghost,
+            },
+        )
+        self.hover_on(band_area)
+
+    def update(self, seen, bins):
+        run, s = seen.run, self.sources
+        t_end = float(run.t[-1])
+        refill(s["speed"], band_data(run.t, run.theta_dot, bins))
+        refill(s["spinup"], {"t": seen.spinup_t, "speed": seen.spinup_speed})
+        cycle_t, lower, upper = band(seen.cycle_t, seen.cycle_speed, bins)
+        refill(s["cycle_mean"], {"t": cycle_t, "speed": 0.5 * (lower + upper)})
+        refill(s["alpha_plus"], level(seen.alpha_plus, t_end))
+        near = seen.alpha_minus is not None and run.theta_dot.min() < 2 * seen.alpha_minus
+        refill(s["alpha_minus"], level(seen.alpha_minus if near else None, t_end))
+        for label, name in (("α₊, Eq. (21)", "alpha_plus"), ("α₋, Eq. (21)", "alpha_minus")):
+            self.items[label].visible = len(s[name].data["t"]) > 0
+        self.items["cycle mean"].visible = len(cycle_t) > 0
+        self.items["pinned run"].visible = len(s["speed_ghost"].data["t"]) > 0
+
+    def pin(self) -> None:
+        self.sources["speed_ghost"].data = dict(self.sources["speed"].data)
+        self.items["pinned run"].visible = True
+
+    def clear(self) -> None:
+        self.sources["speed_ghost"].data = {"t": [], "lower": [], "upper": []}
+        self.items["pinned run"].visible = False
+
+
+class FlowView(TimeView):
+    caption = (
+        "Flow Q = A ẋ (Eq. 16) over the whole run as a min–max band (the pulses are too fast to "
+        "draw one by one) and its mean."
+    )
+
+    def __init__(self, time_range, cursor):
+        super().__init__(time_range, cursor)
+        s = self.sources
+        s["flow"] = empty("t", "lower", "upper")
+        s["flow_ghost"] = empty("t", "lower", "upper")
+        s["mean_flow"] = empty("t", "flow")
+        self.figure = fig = self.time_figure(
+            "Flow rate over the run",
+            "flow Q [L/s]",
+            [("t", "@t{0.00} s"), ("Q", "@lower{0.0000} to @upper{0.0000} L/s")],
+        )
+        ghost = draw_band(fig, s["flow_ghost"], GHOST)
+        band_area = draw_band(fig, s["flow"], COLORS["flow"])
+        self.items = legend(
+            fig,
+            {
+                "instantaneous (min to max)": band_area,
+                "mean over the run": line(
+                    fig, "t", "flow", s["mean_flow"], COLORS["mean"], 3, "dashed"
+                ),
+                "pinned run": ghost,
+            },
+        )
+        self.hover_on(band_area)
+
+    def update(self, seen, bins):
+        run, s = seen.run, self.sources
+        refill(s["flow"], band_data(run.t, 1e3 * run.flow, bins))
+        refill(s["mean_flow"], {"t": [0.0, float(run.t[-1])], "flow": [1e3 * seen.mean_flow] * 2})
+        self.items["pinned run"].visible = len(s["flow_ghost"].data["t"]) > 0
+
+    def pin(self) -> None:
+        self.sources["flow_ghost"].data = dict(self.sources["flow"].data)
+        self.items["pinned run"].visible = True
+
+    def clear(self) -> None:
+        self.sources["flow_ghost"].data = {"t": [], "lower": [], "upper": []}
+        self.items["pinned run"].visible = False
+
+
+class CloseupView(View):
+    caption = (
+        "The last revolutions (or the last turns before a stall), every sample: one delivery "
+        "pulse per revolution while the piston exhausts, none while it takes water in."
+    )
+
+    def __init__(self):
+        super().__init__()
+        self.sources["closeup"] = empty("t", "flow")
+        self.figure = fig = new_figure(
+            "Close-up: the last revolutions",
+            "time t [s]",
+            "flow Q [L/s]",
+            tools="pan,box_zoom,reset,save",
+        )
+        drawn = line(fig, "t", "flow", self.sources["closeup"], COLORS["flow"])
+        fig.scatter("t", "flow", source=self.sources["closeup"], color=COLORS["flow"], size=4)
+        fig.add_tools(
+            HoverTool(
+                tooltips=[("t", "@t{0.000} s"), ("Q", "@flow{0.0000} L/s")],
+                mode="vline",
+                renderers=[drawn],
+            )
+        )
+
+    def update(self, seen, bins):
+        run = seen.run
+        window = run.last_revolutions(CLOSEUP_REVOLUTIONS)
+        refill(self.sources["closeup"], {"t": run.t[window], "flow": 1e3 * run.flow[window]})
+
+
+class EnergyView(TimeView):
+    caption = (
+        "Per revolution: the windmill's power T ω (Eq. 11) goes into lifting water ρ_w g h Q and "
+        "into spinning the rotor up, d(½ I_eff θ̇²)/dt; below zero the slowing rotor gives power back."
+    )
+
+    def __init__(self, time_range, cursor):
+        super().__init__(time_range, cursor)
+        source = self.sources["power_split"] = empty(
+            "t", "hydraulic", "shaft", "kinetic", "kinetic_low", "kinetic_high"
+        )
+        self.figure = fig = self.time_figure(
+            "Where the windmill's power goes",
+            "power [W]",
+            [
+                ("t", "@t{0.0} s"),
+                ("T ω", "@shaft{0.00} W"),
+                ("lifting water", "@hydraulic{0.00} W"),
+                ("spinning up", "@kinetic{0.00} W"),
+            ],
+        )
+        water = fig.varea("t", 0.0, "hydraulic", source=source, color=COLORS["flow"], alpha=0.5)
+        spin = fig.varea(
+            "t", "kinetic_low", "kinetic_high", source=source, color=COLORS["averaged"], alpha=0.5
+        )
+        shaft = line(fig, "t", "shaft", source, "black", 2, "dashed")
+        legend(
+            fig,
+            {
+                "lifting water": water,
+                "spinning up (+) / given back (−)": spin,
+                "windmill T ω": shaft,
+            },
+        )
+        self.hover_on(shaft)
+
+    def update(self, seen, bins):
+        means = windpump.power_budget(seen.design, seen.run).cycle_means()
+        kinetic = means.kinetic
+        # Spinning up stacks on the water; power given back by a slowing rotor shows below zero.
+        low = np.where(kinetic >= 0, means.hydraulic, kinetic)
+        high = np.where(kinetic >= 0, means.hydraulic + kinetic, 0.0)
+        refill(
+            self.sources["power_split"],
+            bin_means(
+                means.t,
+                {
+                    "hydraulic": means.hydraulic,
+                    "shaft": means.shaft,
+                    "kinetic": kinetic,
+                    "kinetic_low": low,
+                    "kinetic_high": high,
+                },
+                bins,
+            ),
+        )
+
+
+class StallView(View):
+    caption = (
+        "Eq. (22): it can run while the windmill's characteristic torque Tₘ† (Eq. 14) exceeds the "
+        "mean load R† L†/π (Eq. 15)."
+    )
+    NAMES = ("windmill: Tₘ†", "load: R† L†/π")
+
+    def __init__(self):
+        super().__init__()
+        self.sources["stall"] = ColumnDataSource(
+            {
+                "name": list(self.NAMES),
+                "value": [0.0, 0.0],
+                "color": [COLORS["windmill"], COLORS["load"]],
+            }
+        )
+        self.figure = fig = new_figure(
+            "Stall criterion, Eq. (22)",
+            "dimensionless torque",
+            "",
+            height=HEIGHT * 2 // 3,
+            tools="save",
+            y_range=FactorRange(*self.NAMES),
+        )
+        fig.hbar(y="name", right="value", height=0.6, color="color", source=self.sources["stall"])
+        fig.x_range.start = 0
+        fig.xaxis.ticker.desired_num_ticks = 5
+
+    def update(self, seen, bins):
+        sides = np.array(windpump.stall_sides(seen.design))
+        power = math.floor(math.log10(sides.max()))
+        data = {**self.sources["stall"].data, "value": sides / 10.0**power}
+        refill(self.sources["stall"], data)
+        self.figure.xaxis.axis_label = f"dimensionless torque, Eqs. (14, 15) [× 10^{power}]"
+        verdict = "runs" if seen.margin > 1 else "stalls"
+        self.figure.title.text = (
+            f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
+        )
+
+
+class OperatingView(View):
+    caption = (
+        "Eq. (5): the windmill's power T(ω) ω (Eq. 11) against the pump's load line; they meet at "
+        "the operating point (filled: stable) and an unstable one (open)."
+    )
+
+    def __init__(self):
+        super().__init__()
+        s = self.sources
+        s.update(
+            {
+                name: empty("omega", "power")
+                for name in ("curve", "load_line", "stable", "unstable", "data")
+            }
+        )
+        self.figure = fig = new_figure(
+            "Operating point, Eq. (5)",
+            "windmill speed ω [rad/s]",
+            "power [W]",
+            tools="pan,box_zoom,reset,save",
+        )
+        point = dict(x="omega", y="power", size=14)
+        curve = line(fig, "omega", "power", s["curve"], COLORS["windmill"], 3)
+        self.items = legend(
+            fig,
+            {
+                "windmill, Eq. (11)": curve,
+                "pump load, Eq. (5)": line(
+                    fig, "omega", "power", s["load_line"], COLORS["load"], 3
+                ),
+                "operating point": fig.scatter(source=s["stable"], color="black", **point),
+                "unstable": fig.scatter(
+                    source=s["unstable"],
+                    fill_color="white",
+                    line_color="black",
+                    line_width=2,
+                    **point,
+                ),
+                "lab data": fig.scatter(
+                    "omega",
+                    "power",
+                    source=s["data"],
+                    size=8,
+                    marker="triangle",
+                    color=COLORS["data"],
+                ),
+            },
+        )
+        fig.add_tools(
+            HoverTool(
+                tooltips=[("ω", "@omega{0.0} rad/s"), ("power", "@power{0.00} W")],
+                renderers=[curve],
+                mode="vline",
+            )
+        )
+
+    def update(self, seen, bins):
+        d, s, op = seen.design, self.sources, seen.operating_point
+        omega = np.linspace(0.0, 2.1 * d.omega_m, 211)
+        refill(s["curve"], {"omega": omega, "power": windpump.windmill_power(d, omega)})
+        refill(s["load_line"], {"omega": omega, "power": windpump.load_power(d, omega)})
+        refill(s["stable"], {"omega": [op.omega] if op else [], "power": [op.power] if op else []})
+        refill(
+            s["unstable"],
+            {
+                "omega": [op.omega_unstable] if op else [],
+                "power": [op.power_unstable] if op else [],
+            },
+        )
+        for label in ("operating point", "unstable"):
+            self.items[label].visible = op is not None
+        self.items["lab data"].visible = len(s["data"].data["omega"]) > 0
+
+    def show_lab_data(self, omega, torque) -> None:
+        self.sources["data"].data = {
+            "omega": np.asarray(omega),
+            "power": np.asarray(omega) * torque,
+        }
+        self.items["lab data"].visible = len(omega) > 0

@@ -1,0 +1,160 @@
+"""Reading a measured torque curve (windmill speed, torque) from a CSV file, for Eq. (11)'s fit.
+
+Lab files come from spreadsheets in several locales: comma, semicolon or tab separated, decimal
+points or commas, with or without a header row. Every problem is reported with the line and
+column at fault, in words a student can act on; nothing is guessed silently.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+
+import numpy as np
+
+MAX_BYTES = 1_000_000
+"""Largest lab file read [bytes]; a larger one is refused before it is parsed."""
+
+COLUMNS = "two columns: windmill speed [rad/s], then torque [N·m]"
+
+
+class LabDataError(ValueError):
+    """A lab file that cannot be used, with where: ``line`` and ``column`` (1-based) or None."""
+
+    def __init__(self, message: str, line: int | None = None, column: int | None = None):
+        self.line, self.column = line, column
+        where = f"line {line}" + (f", column {column}" if column else "") if line else ""
+        super().__init__(f"{where}: {message}" if where else message)
+
+
+@dataclasses.dataclass(frozen=True)
+class TorqueTable:
+    """Measured windmill speeds [rad/s] and torques [N m], and the header's names if there was one."""
+
+    omega: np.ndarray
+    torque: np.ndarray
+    header: tuple[str, ...] | None
+
+
+def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTES) -> TorqueTable:
+    """Read a CSV of windmill speed [rad/s] and torque [N m], one measurement per line.
+
+    Separators ``,``, ``;`` or tab; with ``;`` or tab a decimal comma is read as a point. One
+    header row of names may come first; lines starting with ``#`` and blank lines are skipped.
+
+    Parameters
+    ----------
+    source : bytes, str or path
+        The file's content (bytes, or text) or its path.
+    max_bytes : int, default MAX_BYTES
+        A longer file is refused before it is parsed.
+
+    Raises
+    ------
+    LabDataError
+        (a ValueError) saying what is wrong and where: an empty or over-long file, text that is
+        not UTF-8, a line with other than two columns, a cell that is not a finite number, a
+        negative speed, a header that names torque before speed, fewer than three measurements.
+
+    Examples
+    --------
+    >>> table = read_torque_csv(b"speed;torque\\n10;0,216\\n50;0,6\\n90;0,216\\n")
+    >>> table.omega.tolist(), table.torque.tolist(), table.header
+    ([10.0, 50.0, 90.0], [0.216, 0.6, 0.216], ('speed', 'torque'))
+    """
+    data = _read_bytes(source, max_bytes)
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise LabDataError(
+            f"the file is not text (byte {error.start + 1} is not UTF-8); save it as CSV"
+        ) from None
+    lines = [
+        (number, line.strip())
+        for number, line in enumerate(text.splitlines(), start=1)
+        if line.strip() and not line.lstrip().startswith("#")
+    ]
+    if not lines:
+        raise LabDataError(f"the file is empty; it needs {COLUMNS}")
+    separator = _separator(line for _, line in lines)
+    rows = [(number, _cells(line, separator)) for number, line in lines]
+    header = None
+    if not all(_is_number(cell) for cell in rows[0][1]):
+        header = tuple(rows[0][1])
+        _check_header(rows[0][0], header)
+        rows = rows[1:]
+    values = np.array([_row(number, cells) for number, cells in rows]).reshape(-1, 2)
+    if len(values) < 3:
+        raise LabDataError(f"the file has {len(values)} measurement(s); the fit needs at least 3")
+    return TorqueTable(omega=values[:, 0], torque=values[:, 1], header=header)
+
+
+def _read_bytes(source, max_bytes: int) -> bytes:
+    if isinstance(source, bytes | bytearray):
+        data = bytes(source)
+    elif isinstance(source, str) and ("\n" in source or not os.path.exists(source)):
+        data = source.encode("utf-8")
+    else:
+        size = os.path.getsize(source)
+        if size > max_bytes:
+            raise LabDataError(_too_long(size, max_bytes))
+        with open(source, "rb") as f:
+            data = f.read()
+    if len(data) > max_bytes:
+        raise LabDataError(_too_long(len(data), max_bytes))
+    return data
+
+
+def _too_long(size: int, max_bytes: int) -> str:
+    return f"the file has {size:,} bytes; at most {max_bytes:,} are read (a torque curve needs far fewer)"
+
+
+def _separator(lines) -> str:
+    """Tab, then semicolon, then comma: the first one any line uses."""
+    text = "\n".join(lines)
+    return next((s for s in ("\t", ";") if s in text), ",")
+
+
+def _cells(line: str, separator: str) -> list[str]:
+    cells = [cell.strip().strip('"').strip() for cell in line.split(separator)]
+    if separator != ",":
+        cells = [cell.replace(",", ".") for cell in cells]  # decimal commas
+    while len(cells) > 2 and cells[-1] == "":
+        cells.pop()  # a trailing separator
+    return cells
+
+
+def _is_number(cell: str) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def _check_header(line: int, names: tuple[str, ...]) -> None:
+    lowered = [name.lower() for name in names]
+    if len(lowered) >= 2 and "torque" in lowered[0] and "torque" not in lowered[1]:
+        raise LabDataError(
+            f"the header names torque first ({', '.join(names)}); the file needs {COLUMNS}",
+            line,
+        )
+
+
+def _row(line: int, cells: list[str]) -> tuple[float, float]:
+    if len(cells) != 2:
+        raise LabDataError(f"{len(cells)} columns where the file needs {COLUMNS}", line)
+    numbers = []
+    for column, cell in enumerate(cells, start=1):
+        try:
+            value = float(cell)
+        except ValueError:
+            shown = cell if len(cell) <= 20 else cell[:20] + "…"
+            raise LabDataError(f"'{shown}' is not a number", line, column) from None
+        if not math.isfinite(value):
+            raise LabDataError(f"'{cell}' is not a finite number", line, column)
+        numbers.append(value)
+    if numbers[0] < 0:
+        raise LabDataError(f"the speed {numbers[0]:g} rad/s is negative", line, 1)
+    return numbers[0], numbers[1]

@@ -34,7 +34,11 @@ STATUS_STYLE = {
     Status.STALLED: "danger",
     Status.NEVER_STARTED: "warning",
 }
-TEXT = [":host { font-size: 16px; }", ".bk-slider-title { font-size: 15px; }"]
+TEXT = [
+    ":host { font-size: 16px; }",
+    ".bk-slider-title { font-size: 15px; }",
+    ".bk-btn, .bk-input, select, input { font-size: 15px; }",
+]
 COMPACT = [
     ":host { font-size: 16px; }",
     ".alert { padding: 8px 14px; margin: 4px 0; }",
@@ -151,7 +155,7 @@ class Explorer(pn.viewable.Viewer):
         }
         button = dict(stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width")
         self.reset_button = pn.widgets.Button(
-            label="Reset everything to the paper's example", color="primary", **button
+            label="Reset to the paper's example", color="primary", **button
         )
         self.preset = pn.widgets.Select(name="Presets", options=[PRESET_PROMPT, *PRESETS], **button)
         self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
@@ -527,7 +531,7 @@ class Explorer(pn.viewable.Viewer):
         )
 
     def template(self) -> pn.template.BootstrapTemplate:
-        return pn.template.BootstrapTemplate(
+        page = pn.template.BootstrapTemplate(
             title="Wind pump explorer — M. Louge, A simple wind-pump analysis (2010)",
             sidebar=[self.controls()],
             main=[self.main()],
@@ -536,6 +540,8 @@ class Explorer(pn.viewable.Viewer):
             theme="dark" if self.dark else "default",
             meta_viewport="width=device-width, initial-scale=1",
         )
+        page.config.raw_css.append(NARROW_CSS)
+        return page
 
 
 VIEW_FLEX_ROW = {"gap": "8px"}
@@ -565,6 +571,17 @@ if (navigator.clipboard && window.isSecureContext) {
   const area = document.createElement('textarea'); area.value = url; document.body.appendChild(area)
   area.select(); const ok = document.execCommand('copy'); area.remove()
   if (ok) done(); else window.prompt('Copy this link:', url)
+}
+"""
+
+# Below 700 px the sidebar stacks above the views and the page scrolls as one column.
+NARROW_CSS = """
+#header .title { white-space: normal; }
+@media (max-width: 700px) {
+  #header .title { font-size: 1.05rem; }
+  #content { flex-direction: column; flex-wrap: nowrap; overflow-y: auto !important; }
+  #sidebar { max-width: 100% !important; width: 100% !important; }
+  #main { max-height: none !important; overflow: visible !important; width: 100%; }
 }
 """
 

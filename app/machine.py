@@ -30,7 +30,7 @@ SPEEDS = [
     ("20", "20× fast"),
 ]
 ASPECT = 16 / 10  # the drawing's width / height
-WIDGET_CSS = InlineStyleSheet(css=":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }")
+WIDGET_CSS = ":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }"
 LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]  # three blades, sprocket mark, crank, rod
 
 
@@ -138,11 +138,12 @@ class MachineView(View):
 
     def _controls(self, cursor) -> None:
         s = self.sources
+        css = InlineStyleSheet(css=WIDGET_CSS)  # a model: one per document, never shared
         self.button = Button(
-            label="▶ Play", button_type="primary", width=120, stylesheets=[WIDGET_CSS], name="play"
+            label="▶ Play", button_type="primary", width=120, stylesheets=[css], name="play"
         )
         self.speed = Select(
-            value="1", options=SPEEDS, width=170, stylesheets=[WIDGET_CSS], name="playback_speed"
+            value="1", options=SPEEDS, width=170, stylesheets=[css], name="playback_speed"
         )
         self.scrubber = Slider(
             start=0.0,
@@ -151,7 +152,7 @@ class MachineView(View):
             step=0.01,
             title="time t [s]",
             sizing_mode="stretch_width",
-            stylesheets=[WIDGET_CSS],
+            stylesheets=[css],
             name="scrubber",
         )
         args = dict(

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import math
 import os
+import time
 from pathlib import Path
+from urllib.parse import parse_qs, urlparse
 
+import numpy as np
 import pytest
 
 import windpump
@@ -17,13 +20,34 @@ pytestmark = pytest.mark.browser
 ARTIFACTS = Path(
     os.environ.get("WINDPUMP_ARTIFACTS", Path(__file__).resolve().parents[1] / "artifacts")
 )
+SEED = windpump.Design.seed_example()
 MAIN_SLIDERS = [
     "L/R, rod / crank",
     "R₁/R₀, sprocket ratio",
     "Head h [m]",
     "Windmill torque Tₘ [N·m]",
 ]
+SIZES = [(1280, 720), (1366, 768), (1920, 1080), (390, 844)]
 SPEED_DATA = "() => Array.from(window.Bokeh.documents[0].get_model_by_name('speed').data.upper)"
+PLAYER = "() => window.Bokeh.documents[0].get_model_by_name('frames')._player || null"
+
+# Every element that shows text of its own, through open shadow roots, with its font size and
+# whether it is visible: nothing a student must read may be below 14 px.
+TEXT_SIZES = """() => {
+  const found = [];
+  const walk = (root) => {
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) walk(el.shadowRoot);
+      const own = Array.from(el.childNodes).some(n => n.nodeType === 3 && n.textContent.trim());
+      if (!own) continue;
+      const box = el.getBoundingClientRect(), style = getComputedStyle(el);
+      if (box.width === 0 || box.height === 0 || style.visibility === 'hidden') continue;
+      found.push([el.textContent.trim().slice(0, 40), parseFloat(style.fontSize)]);
+    }
+  };
+  walk(document);
+  return found;
+}"""
 
 
 @pytest.fixture(scope="module")
@@ -44,16 +68,36 @@ def browser():
         chromium.close()
 
 
+def open_page(browser, url, width=1400, height=1000, query=""):
+    page = browser.new_page(viewport={"width": width, "height": height})
+    problems, elsewhere = [], []
+    page.on(
+        "console", lambda m: problems.append(m.text) if m.type in ("error", "warning") else None
+    )
+    page.on("pageerror", lambda error: problems.append(str(error)))
+    host = urlparse(url).netloc
+    page.on(
+        "request",
+        lambda r: (
+            elsewhere.append(r.url)
+            if urlparse(r.url).scheme in ("http", "https", "ws", "wss")
+            and urlparse(r.url).netloc != host
+            else None
+        ),
+    )
+    page.goto(url + query, timeout=120_000)
+    page.wait_for_function(
+        f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
+    )
+    page.problems, page.elsewhere = problems, elsewhere
+    return page
+
+
 @pytest.fixture
 def page(browser, url):
-    page = browser.new_page(viewport={"width": 1400, "height": 1000})
-    problems = []
-    page.on("console", lambda m: problems.append(m.text) if m.type == "error" else None)
-    page.on("pageerror", lambda error: problems.append(str(error)))
-    page.goto(url)
-    page.wait_for_function(f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=60_000)
-    page.problems = problems
+    page = open_page(browser, url)
     yield page
+    assert page.elsewhere == []  # every resource from the app's own server
     page.close()
 
 
@@ -64,54 +108,6 @@ def handle(page, label):
 
 def text(page, name):
     return page.evaluate(DEEP_TEXT, f"[data-name={name}]")
-
-
-def wait_for_change(page, name, before):
-    page.wait_for_function(
-        f"(b) => ({DEEP_TEXT})('[data-name={name}]') !== b", arg=before, timeout=30_000
-    )
-    return text(page, name)
-
-
-def test_a_keyboard_move_redraws_what_the_core_computes(page):
-    assert page.problems == []
-    for label in MAIN_SLIDERS:
-        assert page.locator(".bk-slider-title", has_text=label).count() == 1, label
-    assert "Running" in page.get_by_text("Running.").first.inner_text()
-    flow_before, speed_before = text(page, "mean_flow"), page.evaluate(SPEED_DATA)
-
-    head = handle(page, "Head h [m]")
-    head.focus()
-    for _ in range(5):
-        page.keyboard.press("ArrowRight")
-    page.locator(".bk-slider-title", has_text="Head h [m]: 3.5").wait_for(timeout=30_000)
-    seen = windpump.explore(windpump.Design.seed_example().replace(h=3.5), 600.0, math.pi / 2, 3.0)
-    expected = f"{1e3 * seen.mean_flow:.4f} L/s"
-    page.wait_for_function(
-        f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e", arg=expected, timeout=30_000
-    )
-    assert text(page, "mean_flow") != flow_before
-    speed_after = page.evaluate(SPEED_DATA)
-    assert speed_after != speed_before
-    assert max(speed_after) == pytest.approx(seen.run.theta_dot.max(), rel=1e-9)
-
-    ARTIFACTS.mkdir(parents=True, exist_ok=True)
-    page.screenshot(path=str(ARTIFACTS / "explorer.png"))
-    assert page.problems == []
-
-
-def test_a_rejected_value_is_shown_and_the_next_move_recovers(page):
-    rod = handle(page, "L/R, rod / crank")
-    rod.focus()
-    page.keyboard.press("Home")  # L/R = 1: the rod cannot reach the crank
-    page.get_by_text("the rod cannot reach the crank").first.wait_for(timeout=30_000)
-    assert page.get_by_text("L/R, rod / crank = 1 cannot be run").first.is_visible()
-    page.keyboard.press("ArrowRight")  # L/R = 1.05: a valid, very short rod
-    page.get_by_text("the rod cannot reach the crank").first.wait_for(
-        state="hidden", timeout=30_000
-    )
-    assert "Running" in page.get_by_text("Running.").first.inner_text()
-    assert page.problems == []
 
 
 def model_data(page, name, column):
@@ -126,9 +122,55 @@ def press(page, label, key, times):
         page.keyboard.press(key)
 
 
+def wait_for_readout(page, name, expected):
+    page.wait_for_function(
+        f"(e) => ({DEEP_TEXT})('[data-name={name}]') === e", arg=expected, timeout=60_000
+    )
+
+
+def flow_readout(design, t_end=600.0, theta0=math.pi / 2, theta_dot0=3.0) -> str:
+    return f"{1e3 * windpump.explore(design, t_end, theta0, theta_dot0).mean_flow:.4f} L/s"
+
+
+def test_a_keyboard_move_redraws_what_the_core_computes(page):
+    assert page.problems == []
+    for label in MAIN_SLIDERS:
+        assert page.locator(".bk-slider-title", has_text=label).count() == 1, label
+    assert "Running" in page.get_by_text("Running.").first.inner_text()
+    flow_before, speed_before = text(page, "mean_flow"), page.evaluate(SPEED_DATA)
+
+    press(page, "Head h [m]", "ArrowRight", 5)
+    page.locator(".bk-slider-title", has_text="Head h [m]: 3.5").wait_for(timeout=30_000)
+    seen = windpump.explore(SEED.replace(h=3.5), 600.0, math.pi / 2, 3.0)
+    wait_for_readout(page, "mean_flow", f"{1e3 * seen.mean_flow:.4f} L/s")
+    assert text(page, "mean_flow") != flow_before
+    speed_after = page.evaluate(SPEED_DATA)
+    assert speed_after != speed_before
+    assert max(speed_after) == pytest.approx(seen.run.theta_dot.max(), rel=1e-6)
+    # ... and the link follows the slider
+    page.wait_for_function(
+        "() => new URLSearchParams(location.search).get('h') === '3.5'", timeout=30_000
+    )
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / "explorer.png"))
+    assert page.problems == []
+
+
+def test_a_rejected_value_is_shown_marked_stale_and_the_next_move_recovers(page):
+    press(page, "L/R, rod / crank", "Home", 1)  # L/R = 1: the rod cannot reach the crank
+    page.get_by_text("the rod cannot reach the crank").first.wait_for(timeout=30_000)
+    assert page.get_by_text("L/R, rod / crank = 1 cannot be run").first.is_visible()
+    page.keyboard.press("ArrowRight")  # L/R = 1.05: a valid, very short rod
+    page.get_by_text("the rod cannot reach the crank").first.wait_for(
+        state="hidden", timeout=30_000
+    )
+    assert "Running" in page.get_by_text("Running.").first.inner_text()
+    assert page.problems == []
+
+
 def test_the_energy_view_is_on_the_main_page(page):
-    run = windpump.simulate(windpump.Design.seed_example(), 600.0)
-    work = windpump.power_budget(run.design, run).shaft_work[-1]
+    run = windpump.simulate(SEED, 600.0)
+    work = windpump.power_budget(SEED, run).shaft_work[-1]
     assert f"{work:,.0f} J = " in text(page, "energy")
     shaft = model_data(page, "power_split", "shaft")
     assert 0 < len(shaft) and max(shaft) > 0
@@ -143,9 +185,8 @@ def test_the_mechanisms_tab_draws_what_the_loops_close_to(page):
 
     press(page, "Crank angle θ [°]", "ArrowRight", 5)  # 90° -> 95°
     theta = math.radians(95.0)
-    design = windpump.Design.seed_example()
-    x = float(windpump.piston_position(theta, design.R, design.L))
-    theta_c = math.degrees(float(windpump.rod_angle(theta, design.L_over_R)))
+    x = float(windpump.piston_position(theta, SEED.R, SEED.L))
+    theta_c = math.degrees(float(windpump.rod_angle(theta, SEED.L_over_R)))
     expected = f"x = {1e3 * x:.2f} mm from TDC, θc = {theta_c:.1f}°"
     page.wait_for_function(
         f"(e) => ({DEEP_TEXT})('[data-name=slider_crank]') === e", arg=expected, timeout=30_000
@@ -163,6 +204,125 @@ def test_the_mechanisms_tab_draws_what_the_loops_close_to(page):
 
     press(page, "Coupler r₂ [m]", "Home", 1)  # r2 = 0.2: r2 + r3 cannot span |AD| = 2.82
     page.get_by_text("Cannot close at θ₁ = 70.0°").first.wait_for(timeout=30_000)
+    assert page.get_by_text("Coupler r₂ = 0.2 and Output link r₃ = 2.5").first.is_visible()
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(ARTIFACTS / "mechanisms.png"))
+    assert page.problems == []
+
+
+# -- the page a class sees ------------------------------------------------------------------------
+
+
+def box(page, selector_text):
+    """The bounding box of the first visible element with this text."""
+    return page.get_by_text(selector_text).first.bounding_box()
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_page_fits_the_screen(browser, url, width, height):
+    page = open_page(browser, url, width, height)
+    try:
+        time.sleep(1.0)  # let the layout settle
+        scroll, client = page.evaluate(
+            "() => [document.documentElement.scrollWidth, document.documentElement.clientWidth]"
+        )
+        assert scroll <= client, f"{scroll - client} px of horizontal scrolling at {width}×{height}"
+        viewport = page.evaluate(
+            "() => document.querySelector('meta[name=viewport]')?.getAttribute('content')"
+        )
+        assert viewport and "width=device-width" in viewport
+        small = [(t, size) for t, size in page.evaluate(TEXT_SIZES) if size < 14]
+        assert small == [], f"text below 14 px: {small[:8]}"
+        speed, flow = box(page, "Crank speed θ̇: the full"), box(page, "Flow Q = A ẋ")
+        if width >= 1600:
+            assert abs(speed["y"] - flow["y"]) < 2 and flow["x"] > speed["x"]  # side by side
+        if width < 700:
+            assert flow["y"] > speed["y"] + speed["height"] - 1  # one column
+        if (width, height) == (1280, 720):
+            for shown in ("Mean flow", "Stall margin, Eq. (22)", "Running."):
+                assert box(page, shown)["y"] + box(page, shown)["height"] <= height, shown
+            for caption in ("Crank speed θ̇: the full", "Flow Q = A ẋ"):  # under its plot
+                assert box(page, caption)["y"] <= height, caption
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"explorer-{width}x{height}.png"))
+        assert page.problems == [] and page.elsewhere == []
+    finally:
+        page.close()
+
+
+# -- state in the link ----------------------------------------------------------------------------
+
+
+def test_a_link_reproduces_the_design(browser, url):
+    page = open_page(browser, url, query="?h=5&T_m=0.8&theta_dot0=4.5")
+    try:
+        expected = flow_readout(SEED.replace(h=5.0, T_m=0.8), theta_dot0=4.5)
+        wait_for_readout(page, "mean_flow", expected)
+        assert page.locator(".bk-slider-title", has_text="Head h [m]: 5.0").count() == 1
+        query = parse_qs(urlparse(page.url).query)
+        assert float(query["h"][0]) == 5.0 and float(query["T_m"][0]) == 0.8
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_tampered_link_is_ignored_with_a_notice(browser, url):
+    page = open_page(browser, url, query="?h=banana&T_m=0.8&L_over_R=1e9")
+    try:
+        page.get_by_text("Some values in the link were ignored").first.wait_for(timeout=30_000)
+        assert page.get_by_text("Head h [m] (h) = “banana” ignored").first.is_visible()
+        assert page.get_by_text("L/R, rod / crank (L_over_R) = “1e9” ignored").first.is_visible()
+        wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(T_m=0.8)))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+# -- the machine in motion ------------------------------------------------------------------------
+
+
+def drawn_crank(page):
+    """The drawn crank pin's angle from TDC [rad] and the drawn piston pin's height [m]."""
+    xs, ys = model_data(page, "machine_links", "xs"), model_data(page, "machine_links", "ys")
+    pin = (xs[4][1], ys[4][1])  # the crank: centre -> pin
+    piston = ys[5][1]  # the rod: pin -> piston pin
+    return math.atan2(-pin[0], pin[1]) % (2 * math.pi), piston
+
+
+def test_the_machine_plays_the_run_in_the_browser(page):
+    run = windpump.simulate(SEED, 600.0)
+    page.get_by_role("button", name="▶ Play").click()
+    page.wait_for_function(f"() => ({PLAYER})() && ({PLAYER})().t > 1.0", timeout=30_000)
+    first = page.evaluate(PLAYER)
+    time.sleep(1.0)
+    later = page.evaluate(PLAYER)
+    assert later["drawn"] > first["drawn"] and later["t"] > first["t"]  # frames advance
+    page.get_by_role("button", name="⏸ Pause").click()
+    paused = page.evaluate(PLAYER)["t"]
+    time.sleep(0.5)
+    assert page.evaluate(PLAYER)["t"] == paused and not page.evaluate(PLAYER)["playing"]
+
+    for t in (100.0, 377.7):
+        page.evaluate(
+            f"() => {{ window.Bokeh.documents[0].get_model_by_name('scrubber').value = {t} }}"
+        )
+        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=10_000)
+        theta, piston = drawn_crank(page)
+        run_theta = float(np.interp(t, run.t, run.theta)) % (2 * math.pi)
+        assert abs(math.remainder(theta - run_theta, 2 * math.pi)) < 0.01
+        x = float(windpump.piston_position(theta, SEED.R, SEED.L))
+        assert piston == pytest.approx(SEED.L + SEED.R - x, abs=2e-6)  # where Eq. (1) puts it
+        assert model_data(page, "cursor", "t") == [t]  # the time plots' cursor follows
+
+    press(page, "Head h [m]", "ArrowRight", 1)  # a new run: the player stops and starts over
+    page.wait_for_function(f"() => ({PLAYER})().t === 0", timeout=30_000)
+    assert not page.evaluate(PLAYER)["playing"]
+    assert page.problems == []
+
+
+def test_a_preset_sets_the_design_and_says_what_to_look_at(page):
+    page.locator("select").filter(has_text="Choose a preset").select_option("A stalled pump")
+    page.get_by_text("At h = 21 m the stall margin is below 1").first.wait_for(timeout=30_000)
+    page.get_by_text("Stalled at t =").first.wait_for(timeout=30_000)
+    wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=21.0)))
     assert page.problems == []

@@ -75,14 +75,42 @@ def test_intermittency_needs_a_whole_revolution():
 
 def test_csv_round_trip(run, tmp_path):
     text = run.to_csv()
-    header = text.splitlines()[0]
+    lines = text.splitlines()
+    comments = [line for line in lines if line.startswith("#")]
+    header = lines[len(comments)]
     assert header == "t [s],theta [rad],theta_dot [rad/s],volume [m^3],flow [m^3/s],shaft_work [J]"
-    table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)
+    table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=len(comments) + 1)
     np.testing.assert_allclose(table[:, 2], run.theta_dot, rtol=1e-11)
     np.testing.assert_allclose(table[:, 3], run.volume, rtol=1e-11, atol=1e-300)
     path = tmp_path / "run.csv"
     assert run.to_csv(path) is None
     assert path.read_text(encoding="utf-8") == text
+
+
+def test_the_csv_header_records_every_parameter_and_litres_on_request(run):
+    text = run.to_csv(litres=True)
+    recorded = {}
+    for line in text.splitlines():
+        if line.startswith("# ") and " = " in line and "," not in line:
+            name, value = line[2:].split(" = ")
+            recorded[name] = float(value.split()[0])
+    assert recorded == pytest.approx(run.design.as_dict(), rel=1e-11)
+    comments = sum(line.startswith("#") for line in text.splitlines())
+    table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=comments + 1)
+    np.testing.assert_allclose(table[:, 3], 1e3 * run.volume, rtol=1e-11, atol=1e-300)
+    np.testing.assert_allclose(table[:, 4], 1e3 * run.flow, rtol=1e-11, atol=1e-300)
+    assert "volume [L],flow [L/s]" in text and "t_end = 600 s, ran to its end" in text
+
+
+@pytest.mark.parametrize("h", [3.0, 21.0])
+def test_last_revolutions_run_to_the_end_of_the_run(h):
+    run = windpump.simulate(SEED.replace(h=h), 600.0)
+    window = run.last_revolutions(3)
+    theta = run.theta[window]
+    assert window.stop == len(run.t)  # to the end: the last turns before a stall included
+    start, _ = run.revolutions()
+    assert run.t[window][0] >= start[-3] and run.t[window.start - 1] < start[-3]
+    assert 3.0 <= (theta[-1] - theta[0]) / (2 * math.pi) < 4.0 + 1e-9
 
 
 def test_importing_the_core_does_not_import_the_app_libraries():

@@ -62,8 +62,9 @@ def playback_frames(
     max_turn = positive("max_turn", max_turn, "rad")
     if max_frames < 2:
         max_frames = 2
-    turned = float(run.theta[-1] - run.theta[0])
-    count = min(max_frames, max(2, math.ceil(turned / max_turn) + 1))
+    # Frames dt apart turn at most max(theta_dot) dt: enough of them keep every gap <= max_turn.
+    fastest_turn = float(np.max(run.theta_dot)) * float(run.t[-1])
+    count = min(max_frames, max(2, math.ceil(fastest_turn / max_turn) + 1))
     t = np.linspace(0.0, float(run.t[-1]), count)
     return Playback(
         t=t,

@@ -1,0 +1,113 @@
+"""The frames the explorer plays, and the design helpers the app relies on, against the run and
+against geometry."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+import windpump
+from windpump import Design, ParameterError
+
+SEED = Design.seed_example()
+
+
+@pytest.fixture(scope="module")
+def run():
+    return windpump.simulate(SEED, 600.0)
+
+
+def test_frames_are_the_run_on_a_uniform_grid(run):
+    frames = windpump.playback_frames(run, max_frames=3000)
+    assert len(frames.t) == 3000 and frames.t[0] == 0 and frames.t[-1] == run.t[-1]
+    np.testing.assert_allclose(np.diff(frames.t), frames.t[1] - frames.t[0], rtol=1e-9)
+    # A frame's angle is the run's: compare with a cubic Hermite of the run's own samples.
+    from scipy.interpolate import CubicHermiteSpline
+
+    exact = CubicHermiteSpline(run.t, run.theta, run.theta_dot)(frames.t)
+    np.testing.assert_allclose(frames.theta, exact, atol=1e-4)
+    np.testing.assert_allclose(frames.volume, np.interp(frames.t, run.t, run.volume))
+
+
+def test_hermite_between_frames_stays_on_the_run(run):
+    """What player.js does between frames, done here in numpy: within a hundredth of a radian."""
+    frames = windpump.playback_frames(run, max_frames=3000)
+    t = np.linspace(0, 600, 10_007)
+    k = np.clip(np.searchsorted(frames.t, t) - 1, 0, len(frames.t) - 2)
+    h = frames.t[k + 1] - frames.t[k]
+    s = (t - frames.t[k]) / h
+    between = (
+        (2 * s**3 - 3 * s**2 + 1) * frames.theta[k]
+        + (s**3 - 2 * s**2 + s) * h * frames.theta_dot[k]
+        + (-2 * s**3 + 3 * s**2) * frames.theta[k + 1]
+        + (s**3 - s**2) * h * frames.theta_dot[k + 1]
+    )
+    assert np.max(np.abs(between - np.interp(t, run.t, run.theta))) < 0.01
+
+
+def test_a_short_run_gets_frames_a_quarter_turn_apart():
+    short = windpump.simulate(SEED, 10.0)
+    frames = windpump.playback_frames(short)
+    assert np.max(np.diff(frames.theta)) <= math.pi / 2 + 1e-9
+    stalled_at_once = windpump.simulate(SEED, 10.0, theta_dot0=0.0)
+    assert len(windpump.playback_frames(stalled_at_once).t) == 2
+
+
+def test_the_piston_table_is_eq_1(run):
+    theta, x = windpump.piston_table(SEED, 361)
+    geometric = (
+        SEED.L
+        + SEED.R
+        - (np.sqrt(SEED.L**2 - (SEED.R * np.sin(theta)) ** 2) + SEED.R * np.cos(theta))
+    )
+    np.testing.assert_allclose(x, geometric, atol=1e-15)
+    with pytest.raises(ParameterError, match="max_frames"):
+        windpump.playback_frames(run, max_frames=0)
+
+
+@given(st.floats(1.0001, 50.0), st.floats(0.01, 50.0))
+def test_ratios_set_the_rod_and_sprocket(L_over_R, R_dagger):
+    d = SEED.with_ratios(L_over_R=L_over_R, R_dagger=R_dagger)
+    assert d.L_over_R == pytest.approx(L_over_R, rel=1e-14)
+    assert d.R_dagger == pytest.approx(R_dagger, rel=1e-14)
+    assert (d.R, d.R0) == (SEED.R, SEED.R0)
+
+
+@pytest.mark.parametrize(
+    "name, value", [("L_over_R", 1.0), ("L_over_R", 0.5), ("R_dagger", 0.0), ("L_over_R", math.nan)]
+)
+def test_bad_ratios_name_the_ratio(name, value):
+    with pytest.raises(ParameterError, match=name):
+        SEED.with_ratios(**{name: value})
+
+
+def test_the_stall_sides_are_eq_22():
+    for h in (0.5, 3.0, 21.0):
+        d = SEED.replace(h=h)
+        windmill, load = windpump.stall_sides(d)
+        assert windmill == pytest.approx(d.R_dagger**2 * d.T_m / (d.omega_m**2 * d.I_eff))
+        assert load == pytest.approx(
+            d.R_dagger * d.rho_w * d.g * h * d.A * d.R / (d.omega_m**2 * d.I_eff * math.pi)
+        )
+        assert windmill / load == pytest.approx(windpump.stall_margin(d), rel=1e-12)
+
+
+def test_the_bore_gives_back_the_area():
+    assert math.pi * SEED.bore**2 / 4 == pytest.approx(SEED.A, rel=1e-15)
+
+
+def test_the_slider_crank_pose_is_closed_once_and_matches_eq_1():
+    for theta in np.linspace(0, 2 * math.pi, 25):
+        pose = windpump.linkage.slider_crank_pose(theta, SEED.R, SEED.L)
+        assert pose.x == pytest.approx(
+            float(windpump.piston_position(theta, SEED.R, SEED.L)), abs=1e-12
+        )
+        centre, pin, piston = pose.joints
+        assert math.dist(centre, pin) == pytest.approx(SEED.R) and math.dist(
+            pin, piston
+        ) == pytest.approx(SEED.L)
+        assert piston[1] == pytest.approx(0.0, abs=1e-12)

@@ -10,7 +10,7 @@ import logging
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
-from inputs import FORMATS, PRESETS, PumpInputs
+from inputs import FORMATS, PRESETS, SEED, PumpInputs
 from machine import MachineView
 from mechanisms import Mechanisms
 from views import (
@@ -106,7 +106,7 @@ class Explorer(pn.viewable.Viewer):
     # -- building ----------------------------------------------------------------------------
 
     def _build_views(self) -> None:
-        self.time_range = Range1d(0.0, 600.0)
+        self.time_range = Range1d(0.0, 600.0, name="speed_range")
         self.cursor = ColumnDataSource({"t": [0.0]}, name="cursor")
         self.speed = SpeedView(self.time_range, self.cursor)
         self.flow = FlowView(self.time_range, self.cursor)
@@ -124,12 +124,27 @@ class Explorer(pn.viewable.Viewer):
             self.stall,
             self.operating,
         ]
-        self.mechanisms = Mechanisms(self._slider)
-        self.sources = {"cursor": self.cursor, **self.mechanisms.sources}
+        self._mechanisms: Mechanisms | None = None  # built when first opened: most pages never do
+        self._drawn_linkage: tuple | None = None
+        self.sources = {"cursor": self.cursor}
         for view in self.views:
             self.sources.update(view.sources)
+        self._name_sources()
+
+    def _name_sources(self) -> None:
         for name, source in self.sources.items():
             source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
+
+    @property
+    def mechanisms(self) -> Mechanisms:
+        """The Mechanisms tab's content, built on first use and following the pump's design."""
+        if self._mechanisms is None:
+            self._mechanisms = Mechanisms(self._slider)
+            self.sources.update(self._mechanisms.sources)
+            self._name_sources()
+            if self.seen is not None:
+                self._mechanisms.set_design(self.seen.design)
+        return self._mechanisms
 
     def _slider(self, label, start, end, step, value, fmt):
         return pn.widgets.FloatSlider(
@@ -157,7 +172,9 @@ class Explorer(pn.viewable.Viewer):
         self.reset_button = pn.widgets.Button(
             label="Reset to the paper's example", color="primary", **button
         )
-        self.preset = pn.widgets.Select(name="Presets", options=[PRESET_PROMPT, *PRESETS], **button)
+        self.preset = pn.widgets.Select(
+            label="Presets", options=[PRESET_PROMPT, *PRESETS], **button
+        )
         self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
         self.pin_button = pn.widgets.Button(label="Pin this run", **button)
         self.clear_button = pn.widgets.Button(label="Clear pinned", disabled=True, **button)
@@ -242,8 +259,12 @@ class Explorer(pn.viewable.Viewer):
     def _show_error(self, message: str) -> None:
         self.error.object = message
         self.error.visible = True
-        self.stale = self.seen is not None
-        self._mark_stale(self.stale)
+        if self.seen is None:  # nothing drawn yet (a link's design was rejected): show the paper's
+            self.seen = windpump.explore(SEED, 600.0)  # example behind it, marked not current
+            with pn.io.hold():
+                self._draw(self.seen)
+        self.stale = True
+        self._mark_stale(True)
 
     def _mark_stale(self, stale: bool) -> None:
         styles = STALE if stale else {"opacity": "1", "filter": "none"}
@@ -255,11 +276,11 @@ class Explorer(pn.viewable.Viewer):
         run = seen.run
         span = float(run.t[-1]) if run.t[-1] > 0 else float(self.inputs.t_end)
         self.time_range.update(start=0.0, end=span)
-        if self.mechanisms.design is None or _linkage_of(self.mechanisms.design) != _linkage_of(
-            seen.design
-        ):
-            self.mechanisms.set_design(seen.design)
+        if self._drawn_linkage != _linkage_of(seen.design):  # R, L, A or the sprockets moved
+            self._drawn_linkage = _linkage_of(seen.design)
             self.machine.set_design(seen.design)
+            if self._mechanisms is not None:
+                self._mechanisms.set_design(seen.design)
         for view in self.views:
             view.update(seen, self.bins)
         self._readouts(seen)
@@ -347,7 +368,8 @@ class Explorer(pn.viewable.Viewer):
         for pane in (self.lab_note, self.lab_message, self.apply_fit, self.preset_note):
             pane.visible = False
         self.preset.value = PRESET_PROMPT
-        self.mechanisms.reset()
+        if self._mechanisms is not None:
+            self._mechanisms.reset()
         self.set_values(**self.inputs.defaults())
 
     def _on_preset(self, event) -> None:
@@ -517,13 +539,20 @@ class Explorer(pn.viewable.Viewer):
         )
 
     def main(self) -> pn.Tabs:
-        return pn.Tabs(
+        tabs = pn.Tabs(
             ("Wind pump", self.pump()),
-            ("Mechanisms", self.mechanisms.layout()),
+            ("Mechanisms", pn.pane.Markdown("Loading the mechanisms…", stylesheets=TEXT)),
             dynamic=False,
             sizing_mode="stretch_width",
             stylesheets=[":host { font-size: 16px; }", ".bk-tab { font-size: 16px; }"],
         )
+
+        def open_mechanisms(event) -> None:
+            if event.new == 1 and not isinstance(tabs[1], pn.Column):
+                tabs[1] = ("Mechanisms", self.mechanisms.layout())
+
+        tabs.param.watch(open_mechanisms, "active")
+        return tabs
 
     def __panel__(self) -> pn.Row:
         return pn.Row(

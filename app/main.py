@@ -8,9 +8,10 @@ import logging
 
 import panel as pn
 from explorer import BINS, Explorer
-from serving import release_memory
+from serving import release_memory, without_mathjax
 
 pn.extension(notifications=False)
+without_mathjax()
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)

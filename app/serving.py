@@ -20,3 +20,11 @@ def release_memory(session_context) -> None:  # Bokeh requires exactly this sign
     gc.collect()
     if _LIBC is not None and hasattr(_LIBC, "malloc_trim"):
         _LIBC.malloc_trim(0)
+
+
+def without_mathjax() -> None:
+    """No page here writes LaTeX, but Panel ships MathJax (1.8 MB, a third of the page) to every
+    page that has an HTML pane. Tell Panel's resource bundler this app needs none."""
+    from panel.io import resources
+
+    resources._panel_use_mathjax = lambda roots: False

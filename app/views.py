@@ -275,6 +275,9 @@ class EnergyView(TimeView):
 
     def update(self, seen, bins):
         means = windpump.power_budget(seen.design, seen.run).cycle_means()
+        if len(means.t) == 0:  # not one revolution: no power per revolution to draw but zero
+            zero = np.zeros(2)
+            means = type(means)(np.array([0.0, float(seen.run.t[-1])]), zero, zero, zero)
         kinetic = means.kinetic
         # Spinning up stacks on the water; power given back by a slowing rotor shows below zero.
         low = np.where(kinetic >= 0, means.hydraulic, kinetic)

@@ -1,17 +1,23 @@
-"""The explorer in a real browser: slider move to new readout, and bytes sent per update.
+"""The explorer in a real browser: first page after a fresh start, slider move to new readout, bytes
+on the wire, and a class of 30 pages opening at once.
 
 Run: python benchmarks/bench_app.py   (needs Debian's chromium at /usr/bin/chromium)
 
-Serves `panel serve app/` on loopback, opens the seed example in headless chromium, and moves the
-head slider with the keyboard 30 times (alternately up and down). For each move it times the
-key press to the mean-flow readout showing the value the core computes for the new head, and adds
-up the websocket frames the server sent meanwhile. The baseline, timed in the same run, is the
-same page with the display decimation switched off (every sample of every trace sent), so the
-ratio shows what the min/max bands buy. Both sides' readouts are checked against windpump.
+1. First page: a fresh `panel serve app/`, then the time from opening the page to the mean-flow
+   readout showing, for the first page and for a second one (the goal: the same).
+2. Page weight: the bytes the first page transfers (compressed as sent) against the same files
+   uncompressed.
+3. Slider to readout: the head slider moved with the keyboard 30 times; each move is timed from the
+   key press to the readout showing the value windpump computes for the new head, and the websocket
+   bytes the server sent meanwhile are added up. The baseline, timed in the same run, is the same
+   page with display decimation off (`?resolution=full`: every sample of every trace sent).
+4. A class: 30 pages opened at once on one server; each page's time to its readout.
+Every readout is checked against windpump, so a fast wrong page cannot pass.
 """
 
 from __future__ import annotations
 
+import asyncio
 import math
 import statistics
 import sys
@@ -24,7 +30,9 @@ import windpump  # noqa: E402
 from served import CHROMIUM, CHROMIUM_FLAGS, DEEP_TEXT, served_app  # noqa: E402
 
 MOVES = 30
+CLASS = 30
 SEED = windpump.Design.seed_example()
+READOUT = f"() => ({DEEP_TEXT})('[data-name=mean_flow]')"
 
 
 def expected_readout(head: float) -> str:
@@ -33,14 +41,36 @@ def expected_readout(head: float) -> str:
     )
 
 
-def measure(browser, url):
+def open_timed(browser, url):
+    """Open the page; return (seconds to the right readout, bytes on the wire, bytes unpacked)."""
+    page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    finished = []
+    page.on("requestfinished", finished.append)
+    start = time.perf_counter()
+    page.goto(url)
+    page.wait_for_function(
+        f"(e) => ({READOUT})() === e", arg=expected_readout(SEED.h), timeout=300_000
+    )
+    seconds = time.perf_counter() - start
+    wire = sum(r.sizes()["responseBodySize"] + r.sizes()["responseHeadersSize"] for r in finished)
+    unpacked = 0
+    for request in finished:
+        try:
+            unpacked += len(request.response().body())
+        except Exception:  # a body already released: count what went over the wire
+            unpacked += request.sizes()["responseBodySize"]
+    page.close()
+    return seconds, wire, unpacked
+
+
+def slider_moves(browser, url):
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     received = []
     page.on(
         "websocket", lambda ws: ws.on("framereceived", lambda frame: received.append(len(frame)))
     )
     page.goto(url)
-    page.wait_for_function(f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=60_000)
+    page.wait_for_function(f"() => ({READOUT})() !== null", timeout=300_000)
     title = page.locator(".bk-slider-title", has_text="Head h [m]")
     page.locator(".bk-input-group", has=title).locator(".noUi-handle").focus()
     time.sleep(1)
@@ -51,9 +81,7 @@ def measure(browser, url):
         received.clear()
         start = time.perf_counter()
         page.keyboard.press(key)
-        page.wait_for_function(
-            f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e", arg=target, timeout=60_000
-        )
+        page.wait_for_function(f"(e) => ({READOUT})() === e", arg=target, timeout=60_000)
         latencies.append(time.perf_counter() - start)
         time.sleep(0.3)  # let the rest of the update arrive before counting its bytes
         sizes.append(sum(received))
@@ -61,33 +89,75 @@ def measure(browser, url):
     return latencies, sizes
 
 
+async def a_class(url):
+    """CLASS pages opened at once: each one's seconds from opening to its correct readout."""
+    from playwright.async_api import async_playwright
+
+    target = expected_readout(SEED.h)
+
+    async def student(browser):
+        page = await browser.new_page()
+        start = time.perf_counter()
+        await page.goto(url, timeout=600_000)
+        await page.wait_for_function(f"(e) => ({READOUT})() === e", arg=target, timeout=600_000)
+        seconds = time.perf_counter() - start
+        await page.close()
+        return seconds
+
+    async with async_playwright() as playwright:
+        browser = await playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+        try:
+            return await asyncio.gather(*(student(browser) for _ in range(CLASS)))
+        finally:
+            await browser.close()
+
+
 def main():
     from playwright.sync_api import sync_playwright
 
-    rows = {}
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+        with served_app() as (url, _server):
+            first, wire, unpacked = open_timed(browser, url)
+            second, *_ = open_timed(browser, url)
+            print("1. after a fresh `panel serve app/` (readout checked against windpump)")
+            print(
+                f"   first page {first:6.2f} s, second page {second:6.2f} s, ratio {first / second:.2f}"
+            )
+            print("2. first page's weight")
+            print(
+                f"   {wire / 1e6:.2f} MB on the wire, {unpacked / 1e6:.2f} MB unpacked ({unpacked / wire:.1f}x)"
+            )
+        rows = {}
         for name, query in [
             ("explorer (min/max bands)", ""),
             ("baseline: every sample sent", "?resolution=full"),
         ]:
             with served_app() as (url, _server):
-                measure(browser, url + query)  # warm-up: compiled kernels, caches
-                rows[name] = measure(browser, url + query)
+                slider_moves(browser, url + query)  # warm-up
+                rows[name] = slider_moves(browser, url + query)
         browser.close()
 
-    print(f"seed example, {MOVES} moves of the head slider; readouts checked against windpump")
-    print(f"{'':32s}{'median':>10s}{'90th pct':>10s}{'bytes/update':>14s}")
+    print(f"3. seed example, {MOVES} moves of the head slider; readouts checked against windpump")
+    print(f"   {'':32s}{'median':>10s}{'90th pct':>10s}{'bytes/update':>14s}")
     for name, (latencies, sizes) in rows.items():
         p90 = statistics.quantiles(latencies, n=10)[-1]
         print(
-            f"{name:32s}{statistics.median(latencies) * 1e3:8.0f} ms{p90 * 1e3:8.0f} ms"
+            f"   {name:32s}{statistics.median(latencies) * 1e3:8.0f} ms{p90 * 1e3:8.0f} ms"
             f"{statistics.median(sizes) / 1e3:11.1f} KB"
         )
     (fast, fast_bytes), (slow, slow_bytes) = rows.values()
     print(
-        f"ratios: latency {statistics.median(slow) / statistics.median(fast):.1f}x, "
+        f"   ratios: latency {statistics.median(slow) / statistics.median(fast):.1f}x, "
         f"bytes {statistics.median(slow_bytes) / statistics.median(fast_bytes):.0f}x"
+    )
+
+    with served_app() as (url, _server):
+        seconds = sorted(asyncio.run(a_class(url)))
+    print(f"4. {CLASS} pages opened at once on one server, each to its checked readout")
+    print(
+        f"   median {statistics.median(seconds):.1f} s, slowest {seconds[-1]:.1f} s "
+        f"(goal: every page within 30 s)"
     )
 
 

@@ -69,7 +69,8 @@ def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, 
     with tempfile.TemporaryFile("w+") as log:
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, text=True)
         try:
-            wait_until_up(url, process, log, timeout)
+            # A static file, not the page: asking for the page would open the server's first session
+            wait_until_up(f"http://127.0.0.1:{port}/static/js/bokeh.min.js", process, log, timeout)
             yield url, process
         finally:
             process.terminate()

@@ -69,7 +69,7 @@ def test_only_what_changed_is_sent(app):
     """The windmill's curve does not depend on h: a head move must not re-send it, nor the
     Mechanisms tab (R, L, A unchanged)."""
     curve = app.sources["curve"].data
-    crank = app.sources["crank_links"].data
+    crank = app.mechanisms.sources["crank_links"].data  # (the tab is built when first opened)
     travel = app.sources["piston_table"].data
     app.inputs.h = 4.0
     assert app.sources["curve"].data is curve
@@ -373,3 +373,36 @@ def test_band_keeps_each_bins_extremes():
         inside = (x >= edges[k]) & (x < edges[k + 1])
         assert lower[k] == y[inside].min() and upper[k] == y[inside].max()
         assert edges[k] <= mid[k] <= edges[k + 1]
+
+
+# -- presentation and theme ---------------------------------------------------------------------
+
+
+def test_presentation_mode_enlarges_text_and_lines(app):
+    title = app.speed.figure.title.text_font_size
+    widths = [
+        r.glyph.line_width for r in app.speed.figure.renderers if hasattr(r.glyph, "line_width")
+    ]
+    app.present_toggle.value = True
+    assert app.presentation
+    assert float(app.speed.figure.title.text_font_size[:-2]) > float(title[:-2])
+    larger = [
+        r.glyph.line_width for r in app.speed.figure.renderers if hasattr(r.glyph, "line_width")
+    ]
+    assert all(b > a for a, b in zip(widths, larger, strict=True))
+    app.present_toggle.value = False
+    assert app.speed.figure.title.text_font_size == title
+
+
+def test_the_dark_theme_comes_from_the_link():
+    assert Explorer(query={"theme": [b"dark"]}).template().theme.__name__.startswith("Dark")
+    assert not Explorer().template().theme.__name__.startswith("Dark")
+
+
+def test_a_link_to_a_design_that_cannot_run_shows_why_over_the_papers_example():
+    app = Explorer(query={"L_over_R": [b"1"]})
+    assert app.error.visible and "the rod cannot reach the crank" in app.error.object
+    assert app.stale and app.results.styles["opacity"] == "0.35"
+    assert max(app.sources["speed"].data["upper"]) == pytest.approx(expected().run.theta_dot.max())
+    app.inputs.L_over_R = 2.0
+    assert not app.stale and not app.error.visible

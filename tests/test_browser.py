@@ -326,3 +326,24 @@ def test_a_preset_sets_the_design_and_says_what_to_look_at(page):
     page.get_by_text("Stalled at t =").first.wait_for(timeout=30_000)
     wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=21.0)))
     assert page.problems == []
+
+
+@pytest.mark.parametrize(
+    "query, shown",
+    [
+        ("?theta_dot0=0", "Never started."),  # no kick: an axis from 0, no range warnings
+        ("?h=21", "Stalled at t ="),
+        ("?L_over_R=1", "the rod cannot reach the crank"),
+    ],
+)
+def test_corner_cases_open_cleanly(browser, url, query, shown):
+    page = open_page(browser, url, query=query)
+    try:
+        page.get_by_text(shown).first.wait_for(timeout=30_000)
+        start, end = page.evaluate(
+            "() => { const r = window.Bokeh.documents[0].get_model_by_name('speed_range'); return [r.start, r.end] }"
+        )
+        assert start == 0.0 and end > 0
+        assert page.problems == [] and page.elsewhere == []
+    finally:
+        page.close()

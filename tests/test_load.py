@@ -1,13 +1,16 @@
-"""A classroom at once: 20 headless pages on one `panel serve` process, each moving its own slider.
+"""A classroom at once: 30 headless pages on one `panel serve` process, each moving its own slider.
 
-Every session must get its own update with no error, and the server's memory must come back near
-where it started once the pages close. Bounded: 20 sessions, loopback only, a few minutes at most.
+Every session must get its own update with no error and ask no other host for anything, and the
+server's memory must come back near where it started once the pages close. Bounded: 30 sessions,
+loopback only, generous timeouts (a busy shared machine), a few minutes at most. How fast the
+pages show their readouts is measured in benchmarks/bench_app.py, not asserted here.
 """
 
 from __future__ import annotations
 
 import asyncio
 import time
+from urllib.parse import urlparse
 
 import pytest
 
@@ -24,7 +27,8 @@ from served import (
 
 pytestmark = pytest.mark.browser
 
-SESSIONS = 20
+SESSIONS = 30
+SECOND_CLASS = 10  # enough to see whether memory grows from one class to the next
 # What the core computes for the head each session ends on (3 m + 0.1 m per key press).
 EXPECTED_READOUT = {
     steps: f"{1e3 * windpump.explore(windpump.Design.seed_example().replace(h=3 + steps / 10), 600.0).mean_flow:.4f} L/s"
@@ -37,6 +41,16 @@ async def one_student(browser, url, k):
     """Open the page, move the head slider k % 4 + 1 steps, and see this session's readout follow."""
     page = await browser.new_page()
     problems = []
+    host = urlparse(url).netloc
+    page.on(
+        "request",
+        lambda r: (
+            problems.append(f"asked another host: {r.url}")
+            if urlparse(r.url).scheme in ("http", "https", "ws", "wss")
+            and urlparse(r.url).netloc != host
+            else None
+        ),
+    )
     page.on(
         "console",
         lambda m: (
@@ -45,9 +59,9 @@ async def one_student(browser, url, k):
     )  # noqa: E501
     page.on("pageerror", lambda error: problems.append(str(error)))
     try:
-        await page.goto(url, timeout=120_000)
+        await page.goto(url, timeout=300_000)
         await page.wait_for_function(
-            f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
+            f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=300_000
         )
         before = await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]")
         title = page.locator(".bk-slider-title", has_text="Head h [m]")
@@ -57,10 +71,10 @@ async def one_student(browser, url, k):
             await page.keyboard.press("ArrowRight")
         await page.locator(
             ".bk-slider-title", has_text=f"Head h [m]: {3 + steps / 10:.1f}"
-        ).wait_for(timeout=120_000)
+        ).wait_for(timeout=300_000)
         expected = EXPECTED_READOUT[steps]
         await page.wait_for_function(
-            f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e", arg=expected, timeout=120_000
+            f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e", arg=expected, timeout=300_000
         )
         assert expected != before
         return await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]"), problems
@@ -68,9 +82,9 @@ async def one_student(browser, url, k):
         await page.close()
 
 
-async def classroom(browser, url):
+async def classroom(browser, url, sessions=SESSIONS):
     return await asyncio.wait_for(
-        asyncio.gather(*(one_student(browser, url, k) for k in range(SESSIONS))), timeout=600
+        asyncio.gather(*(one_student(browser, url, k) for k in range(sessions))), timeout=1200
     )
 
 
@@ -83,7 +97,8 @@ def settled_memory(pid, target):
     return memory
 
 
-def test_twenty_concurrent_sessions():
+@pytest.mark.timeout(1800)
+def test_a_class_of_thirty_concurrent_sessions():
     require_chromium()
     lifetime = ["--unused-session-lifetime", "1000", "--check-unused-sessions", "1000"]
     with served_app(*lifetime) as (url, server):
@@ -103,7 +118,7 @@ def test_twenty_concurrent_sessions():
                     seen["first"] = await classroom(browser, url)
                     seen["busy"] = resident_memory(server.pid)
                     seen["after first"] = settled_memory(server.pid, seen["start"] * 1.1)
-                    seen["second"] = await classroom(browser, url)
+                    seen["second"] = await classroom(browser, url, SECOND_CLASS)
                 finally:
                     await browser.close()
 
@@ -112,15 +127,14 @@ def test_twenty_concurrent_sessions():
 
     for results in (seen["first"], seen["second"]):
         readouts = [readout for readout, _ in results]
-        assert readouts == [EXPECTED_READOUT[k % 4 + 1] for k in range(SESSIONS)]
+        assert readouts == [EXPECTED_READOUT[k % 4 + 1] for k in range(len(results))]
         problems = [p for _, session in results for p in session]
-        # Known, not ours to fix here: when many sessions start at once, Panel 1.9.4 sometimes
-        # resolves a page's component stylesheets to cdn.holoviz.org (a race on its process-wide
-        # resource mode), which this offline machine cannot reach. Those pages work, less some
-        # styling. Anything else in the console fails the test.
+        # Known, open (README "Known issue"): when many sessions start at once, Panel 1.9.4
+        # sometimes leaves a page's component stylesheets at cdn.holoviz.org. Those pages work,
+        # less some styling, and are counted here; any other host or console error fails.
         cdn_css = [p for p in problems if "cdn.holoviz.org" in p and ".css" in p]
         assert [p for p in problems if p not in cdn_css] == []
-        print(f"stylesheets requested from the CDN: {len(cdn_css)} across {SESSIONS} sessions")
+        print(f"stylesheet requests to the CDN: {len(cdn_css)} across {len(results)} sessions")
 
     start, busy, first, second = (seen[k] for k in ("start", "busy", "after first", "after second"))
     print(

@@ -5,6 +5,7 @@ Every number comes from ``windpump``; this module only decides what to show and 
 
 from __future__ import annotations
 
+import io
 import logging
 
 import panel as pn
@@ -58,6 +59,7 @@ PRESENTATION_CSS = """
 .readout .label {font-size: 17px; opacity: 1}
 """
 VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
+VIEW_FLEX_ROW = {"gap": "8px"}
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
@@ -415,9 +417,7 @@ class Explorer(pn.viewable.Viewer):
 
     # -- files -------------------------------------------------------------------------------
 
-    def _csv(self):
-        import io
-
+    def _csv(self) -> io.StringIO:
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
     def load_lab_data(self, data: bytes | None) -> None:
@@ -572,8 +572,6 @@ class Explorer(pn.viewable.Viewer):
         page.config.raw_css.append(NARROW_CSS)
         return page
 
-
-VIEW_FLEX_ROW = {"gap": "8px"}
 
 
 def _linkage_of(design: windpump.Design) -> tuple[float, ...]:

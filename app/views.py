@@ -96,8 +96,24 @@ class TimeView(View):
         hover = self.figure.select_one(HoverTool)
         hover.renderers = list(renderers)
 
+    # A view with a band named ``traced`` keeps a pinned run as ``<traced>_ghost``.
+    traced = ""
+
+    def pin(self) -> None:
+        """Keep the current band as a faint ghost to compare the next run with."""
+        self.sources[f"{self.traced}_ghost"].data = dict(self.sources[self.traced].data)
+        self.items["pinned run"].visible = True
+
+    def clear(self) -> None:
+        self.sources[f"{self.traced}_ghost"].data = {"t": [], "lower": [], "upper": []}
+        self.items["pinned run"].visible = False
+
+    def show_ghost(self) -> None:
+        self.items["pinned run"].visible = len(self.sources[f"{self.traced}_ghost"].data["t"]) > 0
+
 
 class SpeedView(TimeView):
+    traced = "speed"
     caption = (
         "Crank speed θ̇: the full Eq. (12) as a min–max band, its mean per revolution, the "
         "averaged spin-up of Eq. (24) and the steady speeds α± of Eq. (21)."
@@ -149,18 +165,11 @@ class SpeedView(TimeView):
         for label, name in (("α₊, Eq. (21)", "alpha_plus"), ("α₋, Eq. (21)", "alpha_minus")):
             self.items[label].visible = len(s[name].data["t"]) > 0
         self.items["cycle mean"].visible = len(cycle_t) > 0
-        self.items["pinned run"].visible = len(s["speed_ghost"].data["t"]) > 0
-
-    def pin(self) -> None:
-        self.sources["speed_ghost"].data = dict(self.sources["speed"].data)
-        self.items["pinned run"].visible = True
-
-    def clear(self) -> None:
-        self.sources["speed_ghost"].data = {"t": [], "lower": [], "upper": []}
-        self.items["pinned run"].visible = False
+        self.show_ghost()
 
 
 class FlowView(TimeView):
+    traced = "flow"
     caption = (
         "Flow Q = A ẋ (Eq. 16) over the whole run as a min–max band (the pulses are too fast to "
         "draw one by one) and its mean."
@@ -195,15 +204,7 @@ class FlowView(TimeView):
         run, s = seen.run, self.sources
         refill(s["flow"], band_data(run.t, 1e3 * run.flow, bins))
         refill(s["mean_flow"], {"t": [0.0, float(run.t[-1])], "flow": [1e3 * seen.mean_flow] * 2})
-        self.items["pinned run"].visible = len(s["flow_ghost"].data["t"]) > 0
-
-    def pin(self) -> None:
-        self.sources["flow_ghost"].data = dict(self.sources["flow"].data)
-        self.items["pinned run"].visible = True
-
-    def clear(self) -> None:
-        self.sources["flow_ghost"].data = {"t": [], "lower": [], "upper": []}
-        self.items["pinned run"].visible = False
+        self.show_ghost()
 
 
 class CloseupView(View):

@@ -45,7 +45,7 @@ def open_timed(browser, url):
     """Open the page; return (seconds to the right readout, bytes on the wire, bytes unpacked)."""
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
     finished = []
-    page.on("requestfinished", finished.append)
+    page.on("requestfinished", lambda request: finished.append(request))
     start = time.perf_counter()
     page.goto(url)
     page.wait_for_function(

@@ -8,10 +8,11 @@ import logging
 
 import panel as pn
 from explorer import BINS, Explorer
-from serving import release_memory, without_mathjax
+from serving import release_memory, stylesheets_from_this_server, without_mathjax
 
 pn.extension(notifications=False)
 without_mathjax()
+stylesheets_from_this_server(pn.state.curdoc)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)

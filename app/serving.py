@@ -28,3 +28,19 @@ def without_mathjax() -> None:
     from panel.io import resources
 
     resources._panel_use_mathjax = lambda roots: False
+
+
+def stylesheets_from_this_server(document) -> None:
+    """Make every stylesheet Panel creates in ``document`` point at this server, not the HoloViz CDN.
+
+    Panel (1.9.4) gives a component the CDN's stylesheet URL until the page's HTML is rendered and
+    rewrites them then. A session Bokeh creates when a websocket connects (the page's own session
+    expired first, e.g. while a class of 30 loads at once) never has its HTML rendered, so its
+    stylesheets stayed on a host a classroom without internet cannot reach. Naming this server's
+    address before any component is built fixes both paths.
+    """
+    from panel.io.resources import LOCAL_DIST
+    from panel.io.state import state
+
+    local = f"{state.rel_path}/{LOCAL_DIST}" if state.rel_path else LOCAL_DIST
+    document._template_variables.setdefault("dist_url", local)

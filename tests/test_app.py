@@ -406,3 +406,20 @@ def test_a_link_to_a_design_that_cannot_run_shows_why_over_the_papers_example():
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(expected().run.theta_dot.max())
     app.inputs.L_over_R = 2.0
     assert not app.stale and not app.error.visible
+
+
+def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
+    """Bokeh builds a second session when a page connects after its own expired (a class loading
+    at once); Panel rewrites CDN stylesheet URLs only while rendering the HTML, which that session
+    never gets. The app names this server's address before building anything."""
+    from bokeh.document import Document
+    from bokeh.models import ImportedStyleSheet
+    from panel.io.state import set_curdoc
+    from serving import stylesheets_from_this_server
+
+    document = Document()
+    with set_curdoc(document):
+        stylesheets_from_this_server(document)
+        Explorer().template().server_doc(document)
+    urls = [m.url for m in document.models if isinstance(m, ImportedStyleSheet)]
+    assert urls and all(url.startswith("static/extensions/panel/") for url in urls), urls

@@ -14,6 +14,7 @@ from bokeh.models import ColumnDataSource, Range1d
 from inputs import FORMATS, PRESETS, SEED, PumpInputs
 from machine import MachineView
 from mechanisms import Mechanisms
+from readouts import Readout, StatusAlert
 from views import (
     BINS,
     CloseupView,
@@ -48,16 +49,6 @@ COMPACT = [
 FOCUS = (
     ":host(:focus-within) { outline: 3px solid #f0ad4e; outline-offset: 2px; border-radius: 4px; }"
 )
-READOUT_CSS = """
-.readout {border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}
-.readout .label {font-size: 14px; color: inherit; opacity: 0.85}
-.readout .value {font-size: 20px; font-weight: bold}
-"""
-PRESENTATION_CSS = """
-:host { font-size: 20px; }
-.readout .value {font-size: 30px}
-.readout .label {font-size: 17px; opacity: 1}
-"""
 VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
 VIEW_FLEX_ROW = {"gap": "8px"}
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
@@ -65,11 +56,13 @@ READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "e
 PRESET_PROMPT = "Choose a preset…"
 
 
-def readout(label: str, value: str, name: str) -> str:
-    return (
-        f'<div class="readout"><div class="label">{label}</div>'
-        f'<div class="value" data-name="{name}">{value}</div></div>'
-    )
+class PromptSlider(pn.widgets.FloatSlider):
+    """Panel's float slider without its 50 ms wait for further moves before the server reacts
+    (``Syncable._debounce``): a key press or a drag's first move starts the run at once, a third
+    of the way to a readout within 100 ms. Moves that arrive while a run is under way are still
+    gathered by Panel and the latest applied, so a drag never queues runs."""
+
+    _debounce = 0
 
 
 def design_filename(design: windpump.Design) -> str:
@@ -93,6 +86,7 @@ class Explorer(pn.viewable.Viewer):
         super().__init__(inputs=PumpInputs(), **params)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self.seen: windpump.Exploration | None = None
+        self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self._build_views()
         self._build_widgets()
         self._build_results()
@@ -149,7 +143,7 @@ class Explorer(pn.viewable.Viewer):
         return self._mechanisms
 
     def _slider(self, label, start, end, step, value, fmt):
-        return pn.widgets.FloatSlider(
+        return PromptSlider(
             label=label,
             start=start,
             end=end,
@@ -162,7 +156,7 @@ class Explorer(pn.viewable.Viewer):
 
     def _build_widgets(self) -> None:
         self.sliders = {
-            name: pn.widgets.FloatSlider.from_param(
+            name: PromptSlider.from_param(
                 self.inputs.param[name],
                 format=fmt,
                 stylesheets=[*TEXT, FOCUS],
@@ -202,8 +196,8 @@ class Explorer(pn.viewable.Viewer):
             color="light",
             **button,
         )
-        self.readouts = {name: pn.pane.HTML("", stylesheets=[READOUT_CSS]) for name in READOUTS}
-        self.status = pn.pane.Alert(
+        self.readouts = {name: Readout(name) for name in READOUTS}
+        self.status = StatusAlert(
             "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
         )
         self.error = pn.pane.Alert(
@@ -275,6 +269,35 @@ class Explorer(pn.viewable.Viewer):
         self.status.styles = styles
 
     def _draw(self, seen: windpump.Exploration) -> None:
+        """Readouts and status first, in a message of their own, then the plots and the machine:
+        the numbers a class reads arrive without waiting for ~100 KB of traces to be drawn."""
+        self._readouts(seen)
+        self.status.object, self.status.alert_type = (
+            self._status_text(seen),
+            STATUS_STYLE[seen.status],
+        )
+        self.download.filename = design_filename(seen.design)
+        self._to_plot = seen
+        document = pn.state.curdoc
+        if document is not None and document.session_context is not None:
+            document.add_next_tick_callback(self._plot_latest)
+        else:  # in-process (a notebook, the tests): at once
+            self._plot(seen)
+
+    def _plot_latest(self) -> None:
+        seen, self._to_plot = self._to_plot, None
+        if seen is None:  # a later move's callback has drawn it already
+            return
+        try:
+            with pn.io.hold():
+                self._plot(seen)
+        except Exception as error:
+            log.exception("drawing failed")
+            self._show_error(
+                f"Something went wrong ({type(error).__name__}: {error}); it has been logged."
+            )
+
+    def _plot(self, seen: windpump.Exploration) -> None:
         run = seen.run
         span = float(run.t[-1]) if run.t[-1] > 0 else float(self.inputs.t_end)
         self.time_range.update(start=0.0, end=span)
@@ -285,12 +308,6 @@ class Explorer(pn.viewable.Viewer):
                 self._mechanisms.set_design(seen.design)
         for view in self.views:
             view.update(seen, self.bins)
-        self._readouts(seen)
-        self.status.object, self.status.alert_type = (
-            self._status_text(seen),
-            STATUS_STYLE[seen.status],
-        )
-        self.download.filename = design_filename(seen.design)
 
     def _readouts(self, seen: windpump.Exploration) -> None:
         figures = seen.intermittency
@@ -308,7 +325,7 @@ class Explorer(pn.viewable.Viewer):
             "energy": self._energy_readout(seen),
         }
         for name, (label, value) in values.items():
-            self.readouts[name].object = readout(label, value, name)
+            self.readouts[name].show(label, value)
 
     @staticmethod
     def _energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
@@ -395,9 +412,8 @@ class Explorer(pn.viewable.Viewer):
         self.clear_button.disabled = True
 
     def _restyle(self, event) -> None:
-        css = [READOUT_CSS, PRESENTATION_CSS] if event.new else [READOUT_CSS]
-        for pane in self.readouts.values():
-            pane.stylesheets = css
+        for readout in self.readouts.values():
+            readout.present(event.new)
         for view in self.views:
             fig = view.figure
             fig.title.text_font_size = "22px" if event.new else "16px"
@@ -571,7 +587,6 @@ class Explorer(pn.viewable.Viewer):
         )
         page.config.raw_css.append(NARROW_CSS)
         return page
-
 
 
 def _linkage_of(design: windpump.Design) -> tuple[float, ...]:

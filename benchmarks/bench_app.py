@@ -1,15 +1,17 @@
 """The explorer in a real browser: first page after a fresh start, slider move to new readout, bytes
 on the wire, and a class of 30 pages opening at once.
 
-Run: python benchmarks/bench_app.py   (needs Debian's chromium at /usr/bin/chromium)
+Run: python benchmarks/bench_app.py [first] [slider] [class]   (all three by default; needs
+Debian's chromium at /usr/bin/chromium)
 
 1. First page: a fresh `panel serve app/`, then the time from opening the page to the mean-flow
    readout showing, for the first page and for a second one (the goal: the same).
 2. Page weight: the bytes the first page transfers (compressed as sent) against the same files
    uncompressed.
-3. Slider to readout: the head slider moved with the keyboard 30 times; each move is timed from the
-   key press to the readout showing the value windpump computes for the new head, and the websocket
-   bytes the server sent meanwhile are added up. The baseline, timed in the same run, is the same
+3. Slider to readout: the head slider moved with the keyboard 30 times; each move is timed in the
+   page from the key's keydown event to the readout showing the value windpump computes for the
+   new head, and to the plots holding windpump's values; the websocket bytes the server sent
+   meanwhile are added up. The baseline, timed in the same run, is the same
    page with display decimation off (`?resolution=full`: every sample of every trace sent).
 4. A class: 30 pages opened at once on one server; each page's time to its readout.
 Every readout is checked against windpump, so a fast wrong page cannot pass.
@@ -35,10 +37,12 @@ SEED = windpump.Design.seed_example()
 READOUT = f"() => ({DEEP_TEXT})('[data-name=mean_flow]')"
 
 
+def readout_text(seen: windpump.Exploration) -> str:
+    return f"{1e3 * seen.mean_flow:.4f} L/s"
+
+
 def expected_readout(head: float) -> str:
-    return (
-        f"{1e3 * windpump.explore(SEED.replace(h=head), 600.0, math.pi / 2, 3.0).mean_flow:.4f} L/s"
-    )
+    return readout_text(windpump.explore(SEED.replace(h=head), 600.0, math.pi / 2, 3.0))
 
 
 def open_timed(browser, url):
@@ -63,8 +67,27 @@ def open_timed(browser, url):
     return seconds, wire, unpacked
 
 
+# Timed inside the page, from the key's keydown event: the readout when its text first shows the
+# value windpump computes, the plots when the flow view's mean-flow source holds windpump's value
+# (Bokeh draws a changed source in the next animation frame). Both checked on each frame.
+KEY_TIMES = (
+    "window.addEventListener('keydown', () => { window.__keyAt = performance.now(); }, true);"
+)
+ARRIVED = f"""([text, flow]) => {{
+  const now = performance.now();
+  if (window.__readoutAt === undefined && ({READOUT})() === text) window.__readoutAt = now;
+  const mean = Bokeh.documents[0].get_model_by_name('mean_flow').data.flow[0];
+  if (window.__plotsAt === undefined && Math.abs(mean - flow) <= 1e-9 * flow) window.__plotsAt = now;
+  return window.__readoutAt !== undefined && window.__plotsAt !== undefined;
+}}"""
+ELAPSED = "() => [window.__readoutAt - window.__keyAt, window.__plotsAt - window.__keyAt]"
+RESET = "() => { window.__keyAt = window.__readoutAt = window.__plotsAt = undefined; }"
+
+
 def slider_moves(browser, url):
+    """MOVES key presses on the head slider: (key-to-readout [s], key-to-plots [s], bytes) each."""
     page = browser.new_page(viewport={"width": 1400, "height": 1000})
+    page.add_init_script(KEY_TIMES)
     received = []
     page.on(
         "websocket", lambda ws: ws.on("framereceived", lambda frame: received.append(len(frame)))
@@ -74,19 +97,23 @@ def slider_moves(browser, url):
     title = page.locator(".bk-slider-title", has_text="Head h [m]")
     page.locator(".bk-input-group", has=title).locator(".noUi-handle").focus()
     time.sleep(1)
-    latencies, sizes, head = [], [], SEED.h
+    readouts, plots, sizes, head = [], [], [], SEED.h
     for move in range(MOVES):
         key, head = ("ArrowRight", head + 0.1) if move % 2 == 0 else ("ArrowLeft", head - 0.1)
-        target = expected_readout(round(head, 1))
+        seen = windpump.explore(SEED.replace(h=round(head, 1)), 600.0, math.pi / 2, 3.0)
+        page.evaluate(RESET)
         received.clear()
-        start = time.perf_counter()
         page.keyboard.press(key)
-        page.wait_for_function(f"(e) => ({READOUT})() === e", arg=target, timeout=60_000)
-        latencies.append(time.perf_counter() - start)
+        page.wait_for_function(
+            ARRIVED, arg=[readout_text(seen), 1e3 * seen.mean_flow], polling="raf", timeout=60_000
+        )
+        to_readout, to_plots = page.evaluate(ELAPSED)
+        readouts.append(to_readout / 1e3)
+        plots.append(to_plots / 1e3)
         time.sleep(0.3)  # let the rest of the update arrive before counting its bytes
         sizes.append(sum(received))
     page.close()
-    return latencies, sizes
+    return readouts, plots, sizes
 
 
 async def a_class(url):
@@ -112,46 +139,46 @@ async def a_class(url):
             await browser.close()
 
 
-def main():
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
-        with served_app() as (url, _server):
-            first, wire, unpacked = open_timed(browser, url)
-            second, *_ = open_timed(browser, url)
-            print("1. after a fresh `panel serve app/` (readout checked against windpump)")
-            print(
-                f"   first page {first:6.2f} s, second page {second:6.2f} s, ratio {first / second:.2f}"
-            )
-            print("2. first page's weight")
-            print(
-                f"   {wire / 1e6:.2f} MB on the wire, {unpacked / 1e6:.2f} MB unpacked ({unpacked / wire:.1f}x)"
-            )
-        rows = {}
-        for name, query in [
-            ("explorer (min/max bands)", ""),
-            ("baseline: every sample sent", "?resolution=full"),
-        ]:
-            with served_app() as (url, _server):
-                slider_moves(browser, url + query)  # warm-up
-                rows[name] = slider_moves(browser, url + query)
-        browser.close()
-
-    print(f"3. seed example, {MOVES} moves of the head slider; readouts checked against windpump")
-    print(f"   {'':32s}{'median':>10s}{'90th pct':>10s}{'bytes/update':>14s}")
-    for name, (latencies, sizes) in rows.items():
-        p90 = statistics.quantiles(latencies, n=10)[-1]
-        print(
-            f"   {name:32s}{statistics.median(latencies) * 1e3:8.0f} ms{p90 * 1e3:8.0f} ms"
-            f"{statistics.median(sizes) / 1e3:11.1f} KB"
-        )
-    (fast, fast_bytes), (slow, slow_bytes) = rows.values()
+def first_pages(browser):
+    with served_app() as (url, _server):
+        first, wire, unpacked = open_timed(browser, url)
+        second, *_ = open_timed(browser, url)
+    print("1. after a fresh `panel serve app/` (readout checked against windpump)")
+    print(f"   first page {first:6.2f} s, second page {second:6.2f} s, ratio {first / second:.2f}")
+    print("2. first page's weight")
     print(
-        f"   ratios: latency {statistics.median(slow) / statistics.median(fast):.1f}x, "
-        f"bytes {statistics.median(slow_bytes) / statistics.median(fast_bytes):.0f}x"
+        f"   {wire / 1e6:.2f} MB on the wire, {unpacked / 1e6:.2f} MB unpacked "
+        f"({unpacked / wire:.1f}x)"
     )
 
+
+def slider(browser):
+    rows = {}
+    for name, query in [
+        ("explorer (min/max bands)", ""),
+        ("baseline: every sample sent", "?resolution=full"),
+    ]:
+        with served_app() as (url, _server):
+            slider_moves(browser, url + query)  # warm-up
+            rows[name] = slider_moves(browser, url + query)
+    print(f"3. seed example, {MOVES} moves of the head slider, timed in the page from the key's")
+    print("   keydown; readout and plotted mean flow both checked against windpump")
+    print(f"   {'':30s}{'readout median':>15s}{'90th pct':>10s}{'plots median':>14s}{'bytes':>12s}")
+    for name, (readouts, plots, sizes) in rows.items():
+        p90 = statistics.quantiles(readouts, n=10)[-1]
+        print(
+            f"   {name:30s}{statistics.median(readouts) * 1e3:12.0f} ms{p90 * 1e3:7.0f} ms"
+            f"{statistics.median(plots) * 1e3:11.0f} ms{statistics.median(sizes) / 1e3:9.1f} KB"
+        )
+    (fast, fast_plots, fast_bytes), (slow, slow_plots, slow_bytes) = rows.values()
+    ratio = lambda a, b: statistics.median(a) / statistics.median(b)  # noqa: E731
+    print(
+        f"   baseline / explorer: readout {ratio(slow, fast):.1f}x, plots "
+        f"{ratio(slow_plots, fast_plots):.1f}x, bytes {ratio(slow_bytes, fast_bytes):.0f}x"
+    )
+
+
+def classroom(_browser):
     with served_app() as (url, _server):
         seconds = sorted(asyncio.run(a_class(url)))
     print(f"4. {CLASS} pages opened at once on one server, each to its checked readout")
@@ -161,5 +188,20 @@ def main():
     )
 
 
+PARTS = {"first": first_pages, "slider": slider, "class": classroom}
+
+
+def main(parts=tuple(PARTS)):
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+        try:
+            for part in parts:
+                PARTS[part](browser)
+        finally:
+            browser.close()
+
+
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:] or tuple(PARTS))

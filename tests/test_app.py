@@ -17,6 +17,7 @@ from envelope import band  # noqa: E402
 from explorer import Explorer, design_filename  # noqa: E402
 from figures import WIDTH  # noqa: E402
 from inputs import PRESETS, PumpInputs  # noqa: E402
+from readouts import PRESENTATION_CSS  # noqa: E402
 from views import BINS  # noqa: E402
 
 SEED = windpump.Design.seed_example()
@@ -390,7 +391,9 @@ def test_presentation_mode_enlarges_text_and_lines(app):
         r.glyph.line_width for r in app.speed.figure.renderers if hasattr(r.glyph, "line_width")
     ]
     assert all(b > a for a, b in zip(widths, larger, strict=True))
+    assert PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets
     app.present_toggle.value = False
+    assert PRESENTATION_CSS not in app.readouts["mean_flow"].stylesheets
     assert app.speed.figure.title.text_font_size == title
 
 

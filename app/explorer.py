@@ -12,6 +12,7 @@ import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
 from inputs import FORMATS, PRESETS, SEED, PumpInputs
+from keyboard import TAB_FOCUS_CSS
 from machine import MachineView
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
@@ -560,7 +561,11 @@ class Explorer(pn.viewable.Viewer):
             ("Mechanisms", pn.pane.Markdown("Loading the mechanisms…", stylesheets=TEXT)),
             dynamic=False,
             sizing_mode="stretch_width",
-            stylesheets=[":host { font-size: 16px; }", ".bk-tab { font-size: 16px; }"],
+            stylesheets=[
+                ":host { font-size: 16px; }",
+                ".bk-tab { font-size: 16px; }",
+                TAB_FOCUS_CSS,
+            ],
         )
 
         def open_mechanisms(event) -> None:

@@ -8,11 +8,13 @@ import logging
 
 import panel as pn
 from explorer import BINS, Explorer
+from keyboard import keyboard_and_screen_readers
 from serving import release_memory, stylesheets_from_this_server, without_mathjax
 
 pn.extension(notifications=False)
 without_mathjax()
 stylesheets_from_this_server(pn.state.curdoc)
+keyboard_and_screen_readers(pn.state.curdoc)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)

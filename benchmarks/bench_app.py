@@ -20,6 +20,7 @@ Every readout is checked against windpump, so a fast wrong page cannot pass.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import math
 import statistics
 import sys
@@ -139,8 +140,21 @@ async def a_class(url):
             await browser.close()
 
 
-def first_pages(browser):
-    with served_app() as (url, _server):
+@contextlib.contextmanager
+def a_browser():
+    """Chromium driven by playwright's sync API (the class uses its async API instead)."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+        try:
+            yield browser
+        finally:
+            browser.close()
+
+
+def first_pages():
+    with a_browser() as browser, served_app() as (url, _server):
         first, wire, unpacked = open_timed(browser, url)
         second, *_ = open_timed(browser, url)
     print("1. after a fresh `panel serve app/` (readout checked against windpump)")
@@ -152,13 +166,13 @@ def first_pages(browser):
     )
 
 
-def slider(browser):
+def slider():
     rows = {}
     for name, query in [
         ("explorer (min/max bands)", ""),
         ("baseline: every sample sent", "?resolution=full"),
     ]:
-        with served_app() as (url, _server):
+        with a_browser() as browser, served_app() as (url, _server):
             slider_moves(browser, url + query)  # warm-up
             rows[name] = slider_moves(browser, url + query)
     print(f"3. seed example, {MOVES} moves of the head slider, timed in the page from the key's")
@@ -178,7 +192,7 @@ def slider(browser):
     )
 
 
-def classroom(_browser):
+def classroom():
     with served_app() as (url, _server):
         seconds = sorted(asyncio.run(a_class(url)))
     print(f"4. {CLASS} pages opened at once on one server, each to its checked readout")
@@ -192,15 +206,8 @@ PARTS = {"first": first_pages, "slider": slider, "class": classroom}
 
 
 def main(parts=tuple(PARTS)):
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
-        try:
-            for part in parts:
-                PARTS[part](browser)
-        finally:
-            browser.close()
+    for part in parts:
+        PARTS[part]()
 
 
 if __name__ == "__main__":

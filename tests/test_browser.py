@@ -210,6 +210,31 @@ def test_the_mechanisms_tab_draws_what_the_loops_close_to(page):
     assert page.problems == []
 
 
+FOCUSED = """() => {
+  let el = document.activeElement;
+  while (el && el.shadowRoot && el.shadowRoot.activeElement) el = el.shadowRoot.activeElement;
+  return el ? [el.className, el.textContent.trim().slice(0, 40), getComputedStyle(el).outlineStyle] : null;
+}"""
+
+
+def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
+    for label in MAIN_SLIDERS:
+        assert page.get_by_role("slider", name=label, exact=True).count() == 1
+    page.get_by_role("tab", name="Wind pump").focus()
+    page.keyboard.press("ArrowRight")  # builds the Mechanisms tab on the server: headers redrawn
+    page.get_by_role("tab", name="Mechanisms", selected=True).wait_for(timeout=60_000)
+    page.get_by_role("slider", name="Crank angle θ [°]", exact=True).wait_for(timeout=60_000)
+    page.wait_for_function(f"() => ({FOCUSED})()[1] === 'Mechanisms'", timeout=30_000)
+    classes, _, outline = page.evaluate(FOCUSED)
+    assert "bk-tab" in classes and outline == "solid"  # focus visible on the header
+    page.keyboard.press("Home")
+    page.get_by_role("tab", name="Wind pump", selected=True).wait_for(timeout=30_000)
+    page.keyboard.press("End")
+    page.keyboard.press("Enter")
+    page.get_by_role("tab", name="Mechanisms", selected=True).wait_for(timeout=30_000)
+    assert page.problems == []
+
+
 # -- the page a class sees ------------------------------------------------------------------------
 
 

@@ -5,6 +5,7 @@ Every number comes from ``windpump``; this module only decides what to show and 
 
 from __future__ import annotations
 
+import contextlib
 import io
 import logging
 
@@ -16,6 +17,7 @@ from keyboard import TAB_FOCUS_CSS
 from machine import MachineView
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
+from uploads import RefusedUploads
 from views import (
     BINS,
     CloseupView,
@@ -83,14 +85,25 @@ class Explorer(pn.viewable.Viewer):
     )
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
 
-    def __init__(self, bins: int | None = BINS, query: dict | None = None, **params):
+    def __init__(
+        self,
+        bins: int | None = BINS,
+        query: dict | None = None,
+        defer_views: bool = False,
+        **params,
+    ):
         super().__init__(inputs=PumpInputs(), **params)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self.seen: windpump.Exploration | None = None
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
-        self._build_views()
+        self.views: list = []  # built by show_views()
+        self.sources: dict[str, ColumnDataSource] = {}
+        self._mechanisms: Mechanisms | None = None  # built when first opened: most pages never do
+        self._drawn_linkage: tuple | None = None
         self._build_widgets()
         self._build_results()
+        if not defer_views:
+            self.show_views()
         query = query or {}
         self.dark = _text(query.get("theme", [b""])) == "dark"
         values, notices = self.inputs.parse_query(query)
@@ -101,6 +114,25 @@ class Explorer(pn.viewable.Viewer):
         self.update()
 
     # -- building ----------------------------------------------------------------------------
+
+    def show_views(self) -> None:
+        """Build the plots and the machine, draw the current run in them and put them on the page.
+
+        A served page calls this once it has loaded (``pn.state.onload``): the page a student
+        opens carries the controls and readouts alone and is quick to build, which matters when
+        a class of 30 opens it at once; the ~450 models of the views follow in one message.
+        """
+        if self.views:
+            return
+        document = pn.state.curdoc
+        frozen = document.models.freeze() if document is not None else contextlib.nullcontext()
+        with pn.io.hold(), frozen:  # one message, one walk of the page's models
+            self._build_views()
+            self.results.objects = self._view_panels()
+            if self.presentation:
+                self._restyle_views(True)
+            if self.seen is not None:
+                self._plot(self.seen)
 
     def _build_views(self) -> None:
         self.time_range = Range1d(0.0, 600.0, name="speed_range")
@@ -121,9 +153,7 @@ class Explorer(pn.viewable.Viewer):
             self.stall,
             self.operating,
         ]
-        self._mechanisms: Mechanisms | None = None  # built when first opened: most pages never do
-        self._drawn_linkage: tuple | None = None
-        self.sources = {"cursor": self.cursor}
+        self.sources.update(cursor=self.cursor)
         for view in self.views:
             self.sources.update(view.sources)
         self._name_sources()
@@ -185,6 +215,7 @@ class Explorer(pn.viewable.Viewer):
         self.lab_data = pn.widgets.FileInput(
             accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width"
         )
+        self.refused_upload = RefusedUploads()  # the page's word that it refused a large file
         self.lab_message = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.lab_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
         self.apply_fit = pn.widgets.Button(
@@ -215,6 +246,7 @@ class Explorer(pn.viewable.Viewer):
         self.clear_button.on_click(lambda _e: self.clear_pinned())
         self.present_toggle.link(self, value="presentation", bidirectional=True)
         self.lab_data.param.watch(lambda e: self.load_lab_data(e.new), "value")
+        self.refused_upload.param.watch(self._on_refused_upload, "value")
         self.apply_fit.on_click(lambda _e: self._apply_fit(self._pending_fit))
 
     # -- the one path from inputs to screen --------------------------------------------------
@@ -299,6 +331,8 @@ class Explorer(pn.viewable.Viewer):
             )
 
     def _plot(self, seen: windpump.Exploration) -> None:
+        if not self.views:  # not on the page yet: show_views() draws the latest run
+            return
         run = seen.run
         span = float(run.t[-1]) if run.t[-1] > 0 else float(self.inputs.t_end)
         self.time_range.update(start=0.0, end=span)
@@ -384,7 +418,8 @@ class Explorer(pn.viewable.Viewer):
     def reset(self) -> None:
         """Everything back to the paper's example: inputs, pinned run, lab data, Mechanisms tab."""
         self.clear_pinned()
-        self.operating.show_lab_data([], [])
+        if self.views:
+            self.operating.show_lab_data([], [])
         for pane in (self.lab_note, self.lab_message, self.apply_fit, self.preset_note):
             pane.visible = False
         self.preset.value = PRESET_PROMPT
@@ -403,28 +438,34 @@ class Explorer(pn.viewable.Viewer):
 
     def pin(self) -> None:
         """Keep the current traces as a faint ghost to compare the next change with."""
+        self.show_views()
         self.speed.pin()
         self.flow.pin()
         self.clear_button.disabled = False
 
     def clear_pinned(self) -> None:
-        self.speed.clear()
-        self.flow.clear()
+        if self.views:
+            self.speed.clear()
+            self.flow.clear()
         self.clear_button.disabled = True
 
     def _restyle(self, event) -> None:
         for readout in self.readouts.values():
             readout.present(event.new)
+        self._restyle_views(event.new)
+
+    def _restyle_views(self, large: bool) -> None:
+        """Presentation mode on (``large``) or back off: titles, axes and line widths."""
         for view in self.views:
             fig = view.figure
-            fig.title.text_font_size = "22px" if event.new else "16px"
+            fig.title.text_font_size = "22px" if large else "16px"
             for axis in (*fig.xaxis, *fig.yaxis):
-                axis.axis_label_text_font_size = "20px" if event.new else "15px"
-                axis.major_label_text_font_size = "18px" if event.new else "14px"
+                axis.axis_label_text_font_size = "20px" if large else "15px"
+                axis.major_label_text_font_size = "18px" if large else "14px"
             for renderer in fig.renderers:
                 glyph = renderer.glyph
                 if hasattr(glyph, "line_width") and isinstance(glyph.line_width, int | float):
-                    glyph.line_width = glyph.line_width * (1.5 if event.new else 1 / 1.5)
+                    glyph.line_width = glyph.line_width * (1.5 if large else 1 / 1.5)
 
     def _show_notices(self, notices: list[str]) -> None:
         self.notices.object = "**Some values in the link were ignored:**\n\n" + "\n".join(
@@ -448,12 +489,9 @@ class Explorer(pn.viewable.Viewer):
             table = windpump.read_torque_csv(data)
             fit = windpump.fit_torque_curve(table.omega, table.torque)
         except ValueError as error:
-            self.lab_message.object = (
-                f"**Could not use that file.** {_sentence(error)} Nothing was changed."
-            )
-            self.lab_message.alert_type = "danger"
-            self.lab_message.visible = True
+            self._refuse_lab_file(error)
             return
+        self.show_views()
         self.operating.show_lab_data(table.omega, table.torque)
         summary = (
             f"Fitted Eq. (11) to {len(table.omega)} points: Tₘ = {fit.T_m:.3f} N·m, "
@@ -472,6 +510,26 @@ class Explorer(pn.viewable.Viewer):
             return
         self.lab_message.visible = False
         self._apply_fit(fit, summary)
+
+    def _on_refused_upload(self, _event) -> None:
+        """The page stopped a file over the size limit before sending it: say so, in the core's
+        words; a value that is not a size over the limit (tampered) is ignored."""
+        size = self.refused_upload.size
+        if size is None:
+            return
+        try:
+            windpump.labdata.check_file_size(size)
+        except ValueError as error:
+            self.apply_fit.visible = False
+            self._pending_fit = None
+            self._refuse_lab_file(error)
+
+    def _refuse_lab_file(self, error: ValueError) -> None:
+        self.lab_message.object = (
+            f"**Could not use that file.** {_sentence(error)} Nothing was changed."
+        )
+        self.lab_message.alert_type = "danger"
+        self.lab_message.visible = True
 
     def _apply_fit(self, fit: windpump.TorqueFit | None, summary: str = "") -> None:
         if fit is None:
@@ -520,6 +578,7 @@ class Explorer(pn.viewable.Viewer):
                 "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
             ),
             self.lab_data,
+            self.refused_upload,
             self.lab_message,
             self.apply_fit,
             self.lab_note,
@@ -531,6 +590,14 @@ class Explorer(pn.viewable.Viewer):
         self.readout_row = pn.FlexBox(
             *(self.readouts[name] for name in READOUTS), sizing_mode="stretch_width"
         )
+        self.results = pn.FlexBox(
+            pn.pane.Markdown("Drawing the plots and the machine…", stylesheets=TEXT),
+            flex_wrap="wrap",
+            sizing_mode="stretch_width",
+            styles=VIEW_FLEX_ROW,
+        )
+
+    def _view_panels(self) -> list:
         panels = [view.panel(styles=VIEW_FLEX) for view in self.views]
         panels[self.views.index(self.machine)].append(
             pn.Card(
@@ -541,9 +608,7 @@ class Explorer(pn.viewable.Viewer):
                 stylesheets=TEXT,
             )
         )
-        self.results = pn.FlexBox(
-            *panels, flex_wrap="wrap", sizing_mode="stretch_width", styles=VIEW_FLEX_ROW
-        )
+        return panels
 
     def pump(self) -> pn.Column:
         return pn.Column(

@@ -10,17 +10,23 @@ import panel as pn
 from explorer import BINS, Explorer
 from keyboard import keyboard_and_screen_readers
 from serving import release_memory, stylesheets_from_this_server, without_mathjax
+from uploads import guard_uploads
 
 pn.extension(notifications=False)
 without_mathjax()
 stylesheets_from_this_server(pn.state.curdoc)
 keyboard_and_screen_readers(pn.state.curdoc)
+guard_uploads(pn.state.curdoc)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(release_memory)
 query = pn.state.session_args
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"
-explorer = Explorer(bins=None if full else BINS, query=query)
+explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True)
 pn.state.location.sync(explorer.inputs, explorer.inputs.names())
-explorer.template().servable()
+with pn.state.curdoc.models.freeze():  # one walk of the models for the page, not one per root
+    explorer.template().servable()
+# The plots and the machine follow once the page has loaded: a class opening it at once gets
+# its readouts sooner (Explorer.show_views).
+pn.state.onload(explorer.show_views)

@@ -318,6 +318,19 @@ def test_lab_data_that_cannot_be_used_is_explained_and_changes_nothing(app, cont
     assert app.inputs.values() == before
 
 
+def test_a_file_the_page_refused_for_its_size_is_explained_and_changes_nothing(app):
+    """The page stops a file over the limit before sending it and reports its size."""
+    before = app.inputs.values()
+    app.refused_upload.value = "52428800\t1700000000000\tbig.csv"
+    assert app.lab_message.visible and "Nothing was changed" in app.lab_message.object
+    assert "The file has 52,428,800 bytes; at most 1,000,000 are read" in app.lab_message.object
+    assert app.inputs.values() == before
+    app.lab_message.visible = False
+    for tampered in ("abc", "999\t1\tsmall.csv", ""):  # not a refusal the page would send
+        app.refused_upload.value = tampered
+        assert not app.lab_message.visible
+
+
 def test_a_poor_fit_is_shown_and_applied_only_on_request(app):
     omega = np.linspace(5, 95, 10)
     torque = 0.6 * (omega / 50) * (2 - omega / 50)
@@ -426,3 +439,29 @@ def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
         Explorer().template().server_doc(document)
     urls = [m.url for m in document.models if isinstance(m, ImportedStyleSheet)]
     assert urls and all(url.startswith("static/extensions/panel/") for url in urls), urls
+
+
+def test_a_served_page_gets_its_readouts_first_and_its_views_when_loaded():
+    """What `panel serve` builds for a page: controls and readouts (quick, for a class opening it at
+    once), then on load the views, drawn from the latest run, in presentation mode if it is on."""
+    app = Explorer(defer_views=True, query={"h": [b"5"]})
+    seen = expected(SEED.replace(h=5.0))
+    assert f"{1e3 * seen.mean_flow:.4f} L/s" in readout_text(app, "mean_flow")
+    assert app.views == [] and "speed" not in app.sources
+    app.inputs.T_m = 0.8  # moves before the views exist still reach them
+    app.present_toggle.value = True
+    app.show_views()
+    seen = expected(SEED.replace(h=5.0, T_m=0.8))
+    assert max(app.sources["speed"].data["upper"]) == pytest.approx(seen.run.theta_dot.max())
+    assert float(app.speed.figure.title.text_font_size[:-2]) > 16
+    assert len(app.results.objects) == len(app.views)
+    app.show_views()  # once only
+    assert len(app.results.objects) == len(app.views)
+
+
+def test_pinning_before_the_views_exist_builds_them():
+    app = Explorer(defer_views=True)
+    app.pin()
+    assert app.views and not app.clear_button.disabled
+    app.clear_pinned()
+    assert app.clear_button.disabled

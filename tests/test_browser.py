@@ -29,6 +29,10 @@ MAIN_SLIDERS = [
 ]
 SIZES = [(1280, 720), (1366, 768), (1920, 1080), (390, 844)]
 SPEED_DATA = "() => Array.from(window.Bokeh.documents[0].get_model_by_name('speed').data.upper)"
+VIEWS_DRAWN = (
+    "() => { const s = window.Bokeh.documents[0].get_model_by_name('speed');"
+    " return s !== null && s.data.upper.length > 0 }"
+)
 PLAYER = "() => window.Bokeh.documents[0].get_model_by_name('frames')._player || null"
 
 # Every element that shows text of its own, through open shadow roots, with its font size and
@@ -89,6 +93,7 @@ def open_page(browser, url, width=1400, height=1000, query=""):
     page.wait_for_function(
         f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
     )
+    page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
     page.problems, page.elsewhere = problems, elsewhere
     return page
 
@@ -232,6 +237,16 @@ def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
     page.keyboard.press("End")
     page.keyboard.press("Enter")
     page.get_by_role("tab", name="Mechanisms", selected=True).wait_for(timeout=30_000)
+    assert page.problems == []
+
+
+def test_a_lab_file_over_the_limit_is_refused_in_the_page_and_the_session_lives(page):
+    """Bokeh would send a 20 MB file whole and the page's connection would close (over ~15 MB)."""
+    big = {"name": "big.csv", "mimeType": "text/csv", "buffer": b"1,2\n" * 5_000_000}
+    page.locator("input[type=file]").set_input_files(files=[big])
+    page.get_by_text("The file has 20,000,000 bytes").wait_for(timeout=60_000)
+    press(page, "Head h [m]", "ArrowRight", 1)  # the session is alive and keeps its design
+    wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=3.1)))
     assert page.problems == []
 
 

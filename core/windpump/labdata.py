@@ -90,24 +90,50 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     return TorqueTable(omega=values[:, 0], torque=values[:, 1], header=header)
 
 
+def check_file_size(size: int, max_bytes: int = MAX_BYTES) -> None:
+    """Refuse a lab file of ``size`` bytes before reading it, if it is larger than ``max_bytes``.
+
+    A page checks the size of a chosen file before sending it (a 50 MB file would otherwise
+    close the page's connection) and reports a refusal in these same words.
+
+    Parameters
+    ----------
+    size : int
+        The file's size [bytes].
+    max_bytes : int, default MAX_BYTES
+        The largest file read [bytes].
+
+    Raises
+    ------
+    LabDataError
+        If ``size > max_bytes``, saying both.
+
+    Examples
+    --------
+    >>> check_file_size(2_000)
+    >>> check_file_size(52_428_800)
+    Traceback (most recent call last):
+    ...
+    windpump.labdata.LabDataError: the file has 52,428,800 bytes; at most 1,000,000 are read (a torque curve needs far fewer)
+    """
+    if size > max_bytes:
+        raise LabDataError(
+            f"the file has {size:,} bytes; at most {max_bytes:,} are read "
+            "(a torque curve needs far fewer)"
+        )
+
+
 def _read_bytes(source, max_bytes: int) -> bytes:
     if isinstance(source, bytes | bytearray):
         data = bytes(source)
     elif isinstance(source, str) and ("\n" in source or not os.path.exists(source)):
         data = source.encode("utf-8")
     else:
-        size = os.path.getsize(source)
-        if size > max_bytes:
-            raise LabDataError(_too_long(size, max_bytes))
+        check_file_size(os.path.getsize(source), max_bytes)
         with open(source, "rb") as f:
             data = f.read()
-    if len(data) > max_bytes:
-        raise LabDataError(_too_long(len(data), max_bytes))
+    check_file_size(len(data), max_bytes)
     return data
-
-
-def _too_long(size: int, max_bytes: int) -> str:
-    return f"the file has {size:,} bytes; at most {max_bytes:,} are read (a torque curve needs far fewer)"
 
 
 def _separator(lines) -> str:

@@ -1,0 +1,41 @@
+"""Lab files too large to send: refused in the browser, reported by the server.
+
+Bokeh sends a chosen file whole over the page's websocket; over ~15 MB the connection closes and
+the session (the design on the screen) is lost. ``uploads.js`` checks the file's size before
+Bokeh reads it and tells the server through a hidden text input, which ``RefusedUploads`` turns
+into the size in bytes for the explorer to report in the core's words.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import panel as pn
+from bokeh.document import Document
+from bokeh.models import CustomJS
+
+from windpump.labdata import MAX_BYTES
+
+UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
+CHANNEL_CLASS = "upload-refused"
+
+
+class RefusedUploads(pn.widgets.TextInput):
+    """Hidden; the page writes ``"<bytes>\\t<time>\\t<name>"`` into it when it refuses a file."""
+
+    def __init__(self, **params):
+        super().__init__(visible=False, css_classes=[CHANNEL_CLASS], **params)
+
+    @property
+    def size(self) -> int | None:
+        """The refused file's size [bytes], or None if the value is not one the page wrote."""
+        head = self.value.split("\t", 1)[0]
+        return int(head) if head.isdigit() else None
+
+
+def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
+    """Run ``uploads.js`` in the page once Bokeh has drawn it."""
+    document.js_on_event(
+        "document_ready",
+        CustomJS(args=dict(max_bytes=max_bytes, channel_class=CHANNEL_CLASS), code=UPLOADS_JS),
+    )

@@ -13,7 +13,7 @@ import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
 from inputs import FORMATS, PRESETS, SEED, PumpInputs
-from keyboard import TAB_FOCUS_CSS
+from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
@@ -49,9 +49,6 @@ COMPACT = [
     ".alert { padding: 8px 14px; margin: 4px 0; }",
     "p { margin: 0; }",
 ]
-FOCUS = (
-    ":host(:focus-within) { outline: 3px solid #f0ad4e; outline-offset: 2px; border-radius: 4px; }"
-)
 VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
 VIEW_FLEX_ROW = {"gap": "8px"}
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
@@ -181,7 +178,7 @@ class Explorer(pn.viewable.Viewer):
             step=step,
             value=value,
             format=fmt,
-            stylesheets=[*TEXT, FOCUS],
+            stylesheets=[*TEXT, FOCUS_CSS],
             sizing_mode="stretch_width",
         )
 
@@ -190,12 +187,12 @@ class Explorer(pn.viewable.Viewer):
             name: PromptSlider.from_param(
                 self.inputs.param[name],
                 format=fmt,
-                stylesheets=[*TEXT, FOCUS],
+                stylesheets=[*TEXT, FOCUS_CSS],
                 sizing_mode="stretch_width",
             )
             for name, (fmt, _main) in FORMATS.items()
         }
-        button = dict(stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width")
+        button = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
         self.reset_button = pn.widgets.Button(
             label="Reset to the paper's example", color="primary", **button
         )
@@ -213,7 +210,7 @@ class Explorer(pn.viewable.Viewer):
         )
         self.dark_toggle.js_on_click(code=DARK_JS)
         self.lab_data = pn.widgets.FileInput(
-            accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS], sizing_mode="stretch_width"
+            accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
         )
         self.refused_upload = RefusedUploads()  # the page's word that it refused a large file
         self.lab_message = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
@@ -655,7 +652,7 @@ class Explorer(pn.viewable.Viewer):
             theme="dark" if self.dark else "default",
             meta_viewport="width=device-width, initial-scale=1",
         )
-        page.config.raw_css.append(NARROW_CSS)
+        page.config.raw_css.extend([NARROW_CSS, PAGE_FOCUS_CSS])
         return page
 
 

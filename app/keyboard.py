@@ -12,8 +12,17 @@ from bokeh.document import Document
 from bokeh.models import CustomJS
 
 KEYBOARD_JS = (Path(__file__).parent / "keyboard.js").read_text(encoding="utf-8")
-# Visible focus on a tab header (Bokeh draws none); for the tabs' stylesheets.
+# Visible focus: around a control holding it, and on a tab header (Bokeh draws neither).
+FOCUS_CSS = (
+    ":host(:focus-within) { outline: 3px solid #f0ad4e; outline-offset: 2px; border-radius: 4px; }"
+)
 TAB_FOCUS_CSS = ".bk-tab:focus-visible { outline: 3px solid #f0ad4e; outline-offset: -3px; }"
+# The template's own controls, outside any shadow root; its sidebar toggle, which Bootstrap marks
+# with a faint shadow only, by id to outrank Bootstrap's rule.
+PAGE_FOCUS_CSS = (
+    ":focus-visible, #sidebar-toggle:focus-visible "
+    "{ outline: 3px solid #f0ad4e; outline-offset: 2px; }"
+)
 
 
 def keyboard_and_screen_readers(document: Document) -> None:

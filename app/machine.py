@@ -16,6 +16,7 @@ from bokeh.layouts import column, row
 from bokeh.models import Button, ColumnDataSource, CustomJS, InlineStyleSheet, Select, Slider
 from bokeh.plotting import figure
 from figures import COLORS, empty
+from keyboard import FOCUS_CSS
 from views import View, refill
 
 import windpump
@@ -138,7 +139,9 @@ class MachineView(View):
 
     def _controls(self, cursor) -> None:
         s = self.sources
-        css = InlineStyleSheet(css=WIDGET_CSS)  # a model: one per document, never shared
+        css = InlineStyleSheet(
+            css=f"{WIDGET_CSS} {FOCUS_CSS}"
+        )  # a model: one per document, not shared
         self.button = Button(
             label="▶ Play", button_type="primary", width=120, stylesheets=[css], name="play"
         )

@@ -240,6 +240,30 @@ def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
     assert page.problems == []
 
 
+# The focused control, through shadow roots, and whether it or a host around it (Panel's
+# :host(:focus-within) rule) draws an outline.
+FOCUS_SHOWN = """() => {
+  let el = document.activeElement;
+  while (el && el.shadowRoot && el.shadowRoot.activeElement) el = el.shadowRoot.activeElement;
+  const name = el ? (el.getAttribute('aria-label') || el.textContent.trim().slice(0, 30) || el.tagName) : null;
+  for (let node = el; node; node = node.parentNode || node.host) {
+    if (node.nodeType === 1 && getComputedStyle(node).outlineStyle !== 'none') return [name, true];
+  }
+  return [name, false];
+}"""
+
+
+def test_every_control_shows_its_focus(page):
+    page.locator(".bk-slider-title", has_text="L/R, rod / crank").click()  # start in the controls
+    seen = {}
+    for _ in range(30):
+        page.keyboard.press("Tab")
+        name, shown = page.evaluate(FOCUS_SHOWN)
+        seen[name] = shown
+    hidden = [name for name, shown in seen.items() if not shown]
+    assert len(seen) > 10 and hidden == [], hidden
+
+
 def test_a_lab_file_over_the_limit_is_refused_in_the_page_and_the_session_lives(page):
     """Bokeh would send a 20 MB file whole and the page's connection would close (over ~15 MB)."""
     big = {"name": "big.csv", "mimeType": "text/csv", "buffer": b"1,2\n" * 5_000_000}

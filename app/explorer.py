@@ -689,7 +689,7 @@ NARROW_CSS = """
 @media (max-width: 700px) {
   #header .title { font-size: 1.05rem; }
   #content { flex-direction: column; flex-wrap: nowrap; overflow-y: auto !important; }
-  #sidebar { max-width: 100% !important; width: 100% !important; }
+  #content > #sidebar { max-width: 100% !important; width: 100% !important; }  /* outranks the template's */
   #main { max-height: none !important; overflow: visible !important; width: 100%; }
 }
 """

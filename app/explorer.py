@@ -64,15 +64,6 @@ class PromptSlider(pn.widgets.FloatSlider):
 
     _debounce = 0
 
-    def _process_property_change(self, msg: dict) -> dict:
-        # The browser adds steps in binary floats (3.2 + 0.1 = 3.3000000000000003): keep 12
-        # significant digits, so the link reads h=3.3 and the run is the one the label shows.
-        msg = super()._process_property_change(msg)
-        for key in ("value", "value_throttled"):
-            if isinstance(msg.get(key), float):
-                msg[key] = float(f"{msg[key]:.12g}")
-        return msg
-
 
 def design_filename(design: windpump.Design) -> str:
     return (

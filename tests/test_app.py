@@ -465,9 +465,3 @@ def test_pinning_before_the_views_exist_builds_them():
     assert app.views and not app.clear_button.disabled
     app.clear_pinned()
     assert app.clear_button.disabled
-
-
-def test_a_slider_value_from_the_browser_loses_its_float_noise(app):
-    """3.2 + 0.1 in the browser is 3.3000000000000003; the inputs and the link get 3.3."""
-    received = app.sliders["h"]._process_property_change({"value": 3.2 + 0.1})
-    assert received["value"] == 3.3

@@ -103,11 +103,12 @@ class Explorer(pn.viewable.Viewer):
             self.show_views()
         query = query or {}
         self.dark = _text(query.get("theme", [b""])) == "dark"
+        self.param.watch(self._restyle, "presentation")
         values, notices = self.inputs.parse_query(query)
+        self._presentation_from(query, notices)
         self.inputs.param.update(**values)
         self._show_notices(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
-        self.param.watch(self._restyle, "presentation")
         self.update()
 
     # -- building ----------------------------------------------------------------------------
@@ -463,6 +464,17 @@ class Explorer(pn.viewable.Viewer):
                 glyph = renderer.glyph
                 if hasattr(glyph, "line_width") and isinstance(glyph.line_width, int | float):
                     glyph.line_width = glyph.line_width * (1.5 if large else 1 / 1.5)
+
+    def _presentation_from(self, query: dict, notices: list[str]) -> None:
+        """``?presentation=true`` opens the page in presentation mode (kept in the link, so the
+        theme switch, which reloads the page, keeps it too)."""
+        raw = _text(query.get("presentation", [b""]))
+        if raw in ("true", "false"):
+            self.presentation = raw == "true"
+        elif raw:
+            notices.append(
+                f"Presentation mode (presentation) = “{raw[:24]}” ignored: true or false."
+            )
 
     def _show_notices(self, notices: list[str]) -> None:
         self.notices.object = "**Some values in the link were ignored:**\n\n" + "\n".join(

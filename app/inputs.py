@@ -103,7 +103,7 @@ class PumpInputs(param.Parameterized):
 
 
 # Keys the page itself uses, not inputs.
-IGNORED_QUERY_KEYS = {"theme", "resolution", "preset"}
+IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation"}
 
 # name: (values, one sentence saying what to look at)
 PRESETS = {

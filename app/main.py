@@ -25,6 +25,7 @@ query = pn.state.session_args
 full = query.get("resolution", [b""])[0] == b"full"
 explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True)
 pn.state.location.sync(explorer.inputs, explorer.inputs.names())
+pn.state.location.sync(explorer, {"presentation": "presentation"})
 with pn.state.curdoc.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
 # The plots and the machine follow once the page has loaded: a class opening it at once gets

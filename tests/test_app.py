@@ -465,3 +465,17 @@ def test_pinning_before_the_views_exist_builds_them():
     assert app.views and not app.clear_button.disabled
     app.clear_pinned()
     assert app.clear_button.disabled
+
+
+@pytest.mark.parametrize(
+    "raw, presentation, notice",
+    [(b"true", True, False), (b"false", False, False), (b"maybe", False, True)],
+)
+def test_presentation_mode_comes_from_the_link(raw, presentation, notice):
+    app = Explorer(query={"presentation": [raw]})
+    assert app.presentation is presentation and app.present_toggle.value is presentation
+    assert (PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets) is presentation
+    assert (float(app.speed.figure.title.text_font_size[:-2]) > 16) is presentation
+    assert app.notices.visible is notice
+    if notice:
+        assert "Presentation mode (presentation) = “maybe” ignored" in app.notices.object

@@ -330,6 +330,20 @@ def test_a_link_reproduces_the_design(browser, url):
         page.close()
 
 
+def test_presentation_mode_is_in_the_link_and_survives_the_theme_switch(browser, url):
+    page = open_page(browser, url, query="?presentation=true")
+    value = page.locator("[data-name=mean_flow]")
+    try:
+        assert value.evaluate("e => getComputedStyle(e).fontSize") == "30px"  # 20 px without
+        page.get_by_role("button", name="Dark theme").click()  # reloads the page with theme=dark
+        page.wait_for_url("**theme=dark**", timeout=120_000)
+        value.wait_for(timeout=120_000)
+        assert "presentation=true" in page.url
+        assert value.evaluate("e => getComputedStyle(e).fontSize") == "30px"
+    finally:
+        page.close()
+
+
 def test_a_tampered_link_is_ignored_with_a_notice(browser, url):
     page = open_page(browser, url, query="?h=banana&T_m=0.8&L_over_R=1e9")
     try:

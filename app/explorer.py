@@ -529,11 +529,11 @@ class Explorer(pn.viewable.Viewer):
         try:
             windpump.labdata.check_file_size(size)
         except ValueError as error:
-            self.apply_fit.visible = False
-            self._pending_fit = None
             self._refuse_lab_file(error)
 
     def _refuse_lab_file(self, error: ValueError) -> None:
+        self.apply_fit.visible = False
+        self._pending_fit = None
         self.lab_message.object = (
             f"**Could not use that file.** {_sentence(error)} Nothing was changed."
         )

@@ -139,9 +139,8 @@ class MachineView(View):
 
     def _controls(self, cursor) -> None:
         s = self.sources
-        css = InlineStyleSheet(
-            css=f"{WIDGET_CSS} {FOCUS_CSS}"
-        )  # a model: one per document, not shared
+        # A model: one per document, never shared.
+        css = InlineStyleSheet(css=f"{WIDGET_CSS} {FOCUS_CSS}")
         self.button = Button(
             label="▶ Play", button_type="primary", width=120, stylesheets=[css], name="play"
         )

@@ -30,16 +30,19 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import windpump  # noqa: E402
 
-from served import CHROMIUM, CHROMIUM_FLAGS, DEEP_TEXT, cpu_seconds, served_app  # noqa: E402
+from served import (  # noqa: E402
+    CHROMIUM,
+    CHROMIUM_FLAGS,
+    DEEP_TEXT,
+    VIEWS_DRAWN,
+    cpu_seconds,
+    served_app,
+)
 
 MOVES = 30
 CLASS = 30
 SEED = windpump.Design.seed_example()
 READOUT = f"() => ({DEEP_TEXT})('[data-name=mean_flow]')"
-VIEWS_DRAWN = (
-    "() => { const s = window.Bokeh.documents[0].get_model_by_name('speed');"
-    " return s !== null && s.data.upper.length > 0 }"
-)
 
 
 def readout_text(seen: windpump.Exploration) -> str:

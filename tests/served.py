@@ -35,6 +35,13 @@ DEEP_TEXT = """(selector) => {
   return el ? el.textContent : null;
 }"""
 
+# True once a page's views are drawn: the crank-speed band holds data (a served page gets its views
+# after its readouts, Explorer.show_views).
+VIEWS_DRAWN = (
+    "() => { const s = window.Bokeh.documents[0].get_model_by_name('speed');"
+    " return s !== null && s.data.upper.length > 0 }"
+)
+
 
 def free_port() -> int:
     with socket.socket() as s:

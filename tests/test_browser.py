@@ -13,7 +13,14 @@ import pytest
 
 import windpump
 
-from served import CHROMIUM, CHROMIUM_FLAGS, DEEP_TEXT, require_chromium, served_app
+from served import (
+    CHROMIUM,
+    CHROMIUM_FLAGS,
+    DEEP_TEXT,
+    VIEWS_DRAWN,
+    require_chromium,
+    served_app,
+)
 
 pytestmark = pytest.mark.browser
 
@@ -29,10 +36,6 @@ MAIN_SLIDERS = [
 ]
 SIZES = [(1280, 720), (1366, 768), (1920, 1080), (390, 844)]
 SPEED_DATA = "() => Array.from(window.Bokeh.documents[0].get_model_by_name('speed').data.upper)"
-VIEWS_DRAWN = (
-    "() => { const s = window.Bokeh.documents[0].get_model_by_name('speed');"
-    " return s !== null && s.data.upper.length > 0 }"
-)
 PLAYER = "() => window.Bokeh.documents[0].get_model_by_name('frames')._player || null"
 
 # Every element that shows text of its own, through open shadow roots, with its font size and

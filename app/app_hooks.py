@@ -28,7 +28,7 @@ def on_server_loaded(_server_context) -> None:
     session until its browser connects, however busy the server."""
     seed = windpump.Design.seed_example()
     seen = windpump.explore(seed, 600.0)
-    windpump.power_budget(seed, seen.run).cycle_means()
+    windpump.power_budget(seen.run).cycle_means()
     windpump.playback_frames(seen.run)
     servers = bokeh_servers()
     if not servers:

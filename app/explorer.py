@@ -363,7 +363,7 @@ class Explorer(pn.viewable.Viewer):
     @staticmethod
     def _energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
         """The run's energy balance in words that keep the sign: a slowing rotor gives energy back."""
-        budget = windpump.power_budget(seen.design, seen.run)
+        budget = windpump.power_budget(seen.run)
         work, kinetic, lift = (
             float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
         )

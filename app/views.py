@@ -275,7 +275,7 @@ class EnergyView(TimeView):
         self.hover_on(shaft)
 
     def update(self, seen, bins):
-        means = windpump.power_budget(seen.design, seen.run).cycle_means()
+        means = windpump.power_budget(seen.run).cycle_means()
         if len(means.t) == 0:  # not one revolution: no power per revolution to draw but zero
             zero = np.zeros(2)
             means = type(means)(np.array([0.0, float(seen.run.t[-1])]), zero, zero, zero)

@@ -23,7 +23,7 @@ from scipy.integrate import solve_ivp
 import windpump
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from reference import reference_run  # noqa: E402
+from reference import general_reference_run, reference_run  # noqa: E402
 
 T_END, THETA0, THETA_DOT0 = 600.0, math.pi / 2, 3.0
 
@@ -87,6 +87,36 @@ def main():
         errors = np.abs(np.array(result) - truth) / np.abs(truth)
         print(f"{name:28s}{seconds * 1e3:11.2f} ms" + "".join(f"{e:11.1e}" for e in errors))
     print(f"speed-up: {slow / fast:.0f}x")
+    print()
+    configurations(design, fast)
+
+
+def configurations(seed: windpump.Design, seed_time: float):
+    """Past the paper, each against the seed example's time in this process and its own
+    reference (tests/reference.py, written from the issue's conventions)."""
+    cases = [
+        # Six double-acting cylinders carry 12 times the load: the head is cut to keep the margin.
+        ("6 double-acting cylinders", seed.replace(cylinders=6, double_acting=True, h=0.25), 3.0),
+        ("2 cylinders, from rest (T_0)", seed.replace(cylinders=2, T_0=0.4), 0.0),
+    ]
+    print(
+        f"{'600 s runs':32s}{'median time':>14s}{'x seed':>8s}{'steps':>8s}"
+        f"{'theta':>10s}{'speed':>10s}{'volume':>10s}"
+    )
+    for name, design, kick in cases:
+        args = (design, T_END, THETA0, kick)
+        windpump.simulate(*args)
+        seconds, run = median_time(lambda args=args: windpump.simulate(*args), 51)
+        ref = general_reference_run(*args)
+        errors = [
+            abs(run.theta[-1] - ref.theta) / ref.theta,
+            abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
+            abs(run.volume[-1] - ref.volume) / ref.volume,
+        ]
+        print(
+            f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / seed_time:8.2f}{run.steps:8d}"
+            + "".join(f"{e:10.1e}" for e in errors)
+        )
 
 
 if __name__ == "__main__":

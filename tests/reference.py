@@ -106,3 +106,93 @@ def averaged_rhs(design: Design):
         return (drive - mean_load) / I_eff
 
     return rhs
+
+
+def summed_load(design: Design, segment_mid: float):
+    """The load term of Eq. (12) summed over the faces delivering in the segment around
+    ``segment_mid``, as the issue states it: cylinder k at theta - 2 pi k / n, top face while
+    sin(phi) < 0 (pi < phi < 2 pi), bottom face (double-acting) the other half, each braking the
+    crank by rho_w g h A R |sin(phi + theta_c)/cos(theta_c)|."""
+    n, ratio = design.cylinders, design.L / design.R
+    scale = design.rho_w * design.g * design.h * design.A * design.R
+    lags = [2 * math.pi * k / n for k in range(n)]
+    delivering = [
+        lag
+        for lag in lags
+        if math.sin(segment_mid - lag) < 0
+        or (design.double_acting and math.sin(segment_mid - lag) > 0)
+    ]
+
+    def load(theta):
+        total = 0.0
+        for lag in delivering:
+            phi = theta - lag
+            theta_c = math.asin(math.sin(phi) / ratio)
+            total += abs(math.sin(phi + theta_c) / math.cos(theta_c))
+        return -scale * total
+
+    return load
+
+
+def general_rhs(design: Design, load):
+    """d(theta, theta_dot, V, W)/dt with the torque curve T_0 + (T_m - T_0) x (2 - x)."""
+    Rd = design.R1 / design.R0
+    I_eff = design.I1 + design.I0 * Rd**2
+    pressure = design.rho_w * design.g * design.h
+
+    def rhs(_t, y):
+        theta, theta_dot = y[0], y[1]
+        x = Rd * theta_dot / design.omega_m
+        torque = design.T_0 + (design.T_m - design.T_0) * x * (2 - x)
+        braking = load(theta)
+        return [
+            theta_dot,
+            (Rd * torque + braking) / I_eff,
+            -braking / pressure * theta_dot if pressure else 0.0,
+            torque * Rd * theta_dot,
+        ]
+
+    return rhs
+
+
+def general_reference_run(design: Design, t_end: float, theta0: float, theta_dot0: float):
+    """Like :func:`reference_run` for several cylinders, double-acting faces and T_0: one
+    solve_ivp call per segment between switches (every pi / n), a stop located as an event and
+    resumed from rest when R+ T_0 exceeds the load there."""
+    Rd = design.R1 / design.R0
+    width = math.pi / design.cylinders
+    t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
+    atol = [1e-12, 1e-13 * min(1.0, max(theta_dot0, 1e-3)), 1e-18, 1e-12]
+    while True:
+        segment = math.floor(y[0] / width)
+        if (segment + 1) * width - y[0] < 1e-13:
+            segment += 1
+        end = (segment + 1) * width
+        load = summed_load(design, (segment + 0.5) * width)
+        if y[1] == 0.0 and Rd * design.T_0 + load(y[0]) <= 0.0:
+            return Reference(t, y[0], 0.0, y[2], y[3], True, t)
+
+        def reaches_switch(_t, state, end=end):
+            return state[0] - end
+
+        def stops(_t, state):
+            return state[1]
+
+        reaches_switch.terminal, reaches_switch.direction = True, 1
+        stops.terminal, stops.direction = True, -1
+        sol = solve_ivp(
+            general_rhs(design, load),
+            (t, t_end),
+            y,
+            method="DOP853",
+            rtol=RTOL,
+            atol=atol,
+            events=(reaches_switch, stops),
+        )
+        t, y = sol.t[-1], sol.y[:, -1].copy()
+        if sol.t_events[1].size:
+            y[1] = 0.0  # at rest: the loop decides whether it moves on
+            continue
+        if not sol.t_events[0].size:
+            return Reference(t, y[0], y[1], y[2], y[3], False, None)
+        y[0] = end

@@ -48,7 +48,7 @@ def test_the_energy_view_splits_the_windmills_power(app):
         split["shaft"], np.add(split["hydraulic"], split["kinetic"]), rtol=1e-9
     )
     run = windpump.simulate(SEED, 600.0)
-    budget = windpump.power_budget(SEED, run)
+    budget = windpump.power_budget(run)
     means = budget.cycle_means()
     # Smooth curves averaged over 2-pixel bins: each point is the curve near the bin's middle
     for name, curve in (("hydraulic", means.hydraulic), ("shaft", means.shaft)):
@@ -64,7 +64,7 @@ def test_the_energy_view_follows_the_sliders(app):
     before = list(app.sources["power_split"].data["hydraulic"])
     app.sliders["h"].value = 6.0
     run = windpump.simulate(SEED.replace(h=6.0), 600.0)
-    lift = windpump.power_budget(run.design, run).lift_work[-1]
+    lift = windpump.power_budget(run).lift_work[-1]
     assert list(app.sources["power_split"].data["hydraulic"]) != before
     assert f"{lift:,.0f} J" in app.readouts["energy"].object
     app.reset()

@@ -178,7 +178,7 @@ def test_a_rejected_value_is_shown_marked_stale_and_the_next_move_recovers(page)
 
 def test_the_energy_view_is_on_the_main_page(page):
     run = windpump.simulate(SEED, 600.0)
-    work = windpump.power_budget(SEED, run).shaft_work[-1]
+    work = windpump.power_budget(run).shaft_work[-1]
     assert f"{work:,.0f} J = " in text(page, "energy")
     shaft = model_data(page, "power_split", "shaft")
     assert 0 < len(shaft) and max(shaft) > 0

@@ -93,7 +93,10 @@ def test_the_csv_header_records_every_parameter_and_litres_on_request(run):
     for line in text.splitlines():
         if line.startswith("# ") and " = " in line and "," not in line:
             name, value = line[2:].split(" = ")
-            recorded[name] = float(value.split()[0])
+            word = value.split()[0]
+            recorded[name] = {"True": True, "False": False}.get(word, None)
+            if recorded[name] is None:
+                recorded[name] = float(word)
     assert recorded == pytest.approx(run.design.as_dict(), rel=1e-11)
     comments = sum(line.startswith("#") for line in text.splitlines())
     table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=comments + 1)

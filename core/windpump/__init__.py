@@ -1,8 +1,10 @@
-"""windpump: dynamics of a wind-driven single-acting piston pump.
+"""windpump: dynamics of a wind-driven piston pump.
 
 The model is M. Louge, *A simple wind-pump analysis* (2010): a windmill drives, through a chain and
 two sprockets, a slider-crank and a single-acting piston lifting water by a head h. Equation numbers
-in the docstrings are that paper's.
+in the docstrings are that paper's. Beyond it: several cylinders with their phase lags,
+double-acting pistons and a windmill with torque at rest (``Design.cylinders``, ``double_acting``,
+``T_0``).
 
 >>> import windpump
 >>> design = windpump.Design.seed_example()
@@ -13,7 +15,6 @@ in the docstrings are that paper's.
 
 from . import energy, labdata, linkage, playback
 from .averaged import (
-    StallError,
     averaged_stall_time,
     mean_lever_arm,
     spinup,
@@ -23,13 +24,22 @@ from .averaged import (
     time_constant,
 )
 from .design import Design
-from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, simulate
+from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
 from .energy import PowerBudget, StartupPower, power_budget, startup_power
+from .errors import NoClosure, ParameterError, StallError
 from .exploration import Exploration, Status, explore
-from .kinematics import f2, lever_arm, piston_position, rod_angle, swept_strokes
+from .kinematics import (
+    delivering_faces,
+    f2,
+    face_flows,
+    lever_arm,
+    piston_position,
+    rod_angle,
+    swept_strokes,
+)
 from .labdata import LabDataError, TorqueTable, read_torque_csv
+from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .playback import Playback, piston_table, playback_frames
-from .validation import ParameterError
 from .windmill import (
     OperatingPoint,
     TorqueFit,
@@ -46,6 +56,7 @@ __all__ = [
     "Exploration",
     "Intermittency",
     "LabDataError",
+    "NoClosure",
     "OperatingPoint",
     "ParameterError",
     "Playback",
@@ -57,26 +68,32 @@ __all__ = [
     "TorqueFit",
     "TorqueTable",
     "averaged_stall_time",
+    "delivering_faces",
     "energy",
     "explore",
     "f2",
+    "face_flows",
     "fit_torque_curve",
     "labdata",
     "lever_arm",
     "linkage",
     "load_power",
+    "load_torque_on_crank",
     "mean_lever_arm",
     "operating_point",
+    "peak_load_torque",
     "piston_position",
     "piston_table",
     "playback",
     "playback_frames",
     "power_budget",
     "read_torque_csv",
+    "revolution_marks",
     "rod_angle",
     "simulate",
     "spinup",
     "startup_power",
+    "starts_from_rest",
     "stall_margin",
     "stall_sides",
     "steady_speeds",

@@ -1,12 +1,15 @@
 """The averaged theory: cycle-mean spin-up, stall criterion and time constant (paper Eqs. 18-25).
 
 Averaging the load over a revolution (Eq. 18) turns Eq. (12) into the Riccati equation (19) for the
-cycle-mean crank speed. In crank speed [rad/s] it reads
+cycle-mean crank speed. Generalised to m = cylinders x (2 if double-acting else 1) deliveries per
+revolution (mean load torque ``M = m rho_w g h A R / pi``) and a windmill torque at rest T_0, in
+crank speed [rad/s] it reads
 
-    d theta_dot / dt = -k [(theta_dot - p)^2 - delta^2],   k = R+^3 T_m / (I_eff omega_m^2),
+    d theta_dot / dt = -k [(theta_dot - p)^2 - delta^2],   k = R+^3 (T_m - T_0) / (I_eff omega_m^2),
 
 with ``p = omega_m / R+`` (the crank speed at the windmill's peak torque) and
-``delta^2 = p^2 (1 - 1/margin)``: the roots ``p +- delta`` are alpha+- omega_m of Eq. (21).
+``delta^2 = p^2 (R+ T_m - M) / (R+ (T_m - T_0))``: the roots ``p +- delta`` are alpha+- omega_m of
+Eq. (21), which these reduce to when m = 1 and T_0 = 0. Every function below uses this one form.
 """
 
 from __future__ import annotations
@@ -17,19 +20,9 @@ import numpy as np
 from scipy import integrate
 
 from .design import Design
+from .errors import StallError
 from .kinematics import lever_arm
 from .validation import non_negative, rod_ratio
-
-
-class StallError(ValueError):
-    """The windmill cannot carry the load: the margin of Eq. (22) is 1 or less."""
-
-    def __init__(self, margin: float, what: str):
-        self.margin = margin
-        super().__init__(
-            f"{what} does not exist: the stall margin T_m+ pi / (R+ L+) = {margin:.6g} "
-            f"must exceed 1 (Eq. 22); the windmill cannot carry this load"
-        )
 
 
 def mean_lever_arm(L_over_R: float) -> float:
@@ -62,29 +55,34 @@ def mean_lever_arm(L_over_R: float) -> float:
 
 
 def stall_margin(design: Design) -> float:
-    """Stall margin T_m+ pi / (R+ L+) [-] of Eq. (22): above 1 the windmill can carry the load.
+    """Stall margin R+ T_m / M [-]: above 1 the windmill can carry the load (Eq. 22 when m = 1).
 
-    Equivalently the windmill's peak torque reflected to the crank, R+ T_m, over the mean load
-    torque rho_w g h A R / pi. Infinite when h = 0.
+    The windmill's peak torque reflected to the crank over the mean load torque
+    ``M = m rho_w g h A R / pi`` of m deliveries per revolution (``Design.mean_load_torque``); for
+    the paper's one single-acting cylinder it is Eq. (22)'s ``T_m+ pi / (R+ L+)``. Infinite when
+    h = 0.
 
     Examples
     --------
     >>> from windpump import Design
     >>> round(stall_margin(Design.seed_example()), 2)
     5.1
+    >>> round(stall_margin(Design.seed_example().replace(cylinders=2, double_acting=True)), 2)
+    1.27
     """
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
     if design.load_torque == 0.0:
         return math.inf
-    return math.pi * design.R_dagger * design.T_m / design.load_torque
+    return design.R_dagger * design.T_m / design.mean_load_torque
 
 
 def stall_sides(design: Design) -> tuple[float, float]:
-    """The two sides of the stall criterion, Eq. (22): (T_m+, R+ L+ / pi) [-].
+    """The two sides of the stall criterion, Eq. (22): (T_m+, m R+ L+ / pi) [-].
 
     The windmill's characteristic torque (Eq. 14) and the mean load it must carry (Eq. 15 times
-    R+ / pi); it can run when the first exceeds the second. Their ratio is :func:`stall_margin`.
+    m R+ / pi, m deliveries per revolution); it can run when the first exceeds the second. Their
+    ratio is :func:`stall_margin`.
 
     Examples
     --------
@@ -93,19 +91,31 @@ def stall_sides(design: Design) -> tuple[float, float]:
     >>> round(windmill / load, 2)
     5.1
     """
-    return design.Tm_dagger, design.R_dagger * design.L_dagger / math.pi
+    return design.Tm_dagger, design.deliveries * design.R_dagger * design.L_dagger / math.pi
+
+
+def _riccati(design: Design) -> tuple[float, float, float]:
+    """(k [1/rad], p [rad/s], delta^2 [rad^2/s^2]) of the averaged equation in crank speed."""
+    k = design.R_dagger**3 * (design.T_m - design.T_0) / (design.I_eff * design.omega_m**2)
+    p = design.omega_m / design.R_dagger
+    peak = design.R_dagger * design.T_m  # the windmill's peak torque on the crank [N m]
+    spare = (peak - design.mean_load_torque) / (design.R_dagger * (design.T_m - design.T_0))
+    return k, p, p * p * spare
 
 
 def steady_speeds(design: Design) -> tuple[float, float]:
-    """Steady cycle-mean crank speeds (alpha+, alpha-) x omega_m [rad/s] (Eq. 21).
+    """Steady cycle-mean crank speeds (alpha+, alpha-) x omega_m [rad/s] (Eq. 21, generalised).
 
-    ``alpha+- = (pi T+ +- sqrt(pi^2 T+^2 - pi R+ T+ L+)) / (pi R+ T+)``. alpha+ is the stable running
-    speed; a pump below alpha- decays and stalls (in the averaged model).
+    ``p +- delta`` of the averaged equation (module docstring); with m = 1 and T_0 = 0 this is
+    Eq. (21), ``alpha+- = (pi T+ +- sqrt(pi^2 T+^2 - pi R+ T+ L+)) / (pi R+ T+)``. alpha+ is the
+    stable running speed; a pump below alpha- decays and stalls (in the averaged model). With
+    torque at rest alpha- may be <= 0: when ``R+ T_0`` exceeds the mean load every kick (and a
+    start from rest) spins up.
 
     Raises
     ------
     StallError
-        When the stall margin (Eq. 22) is 1 or less: there is no steady speed.
+        When the stall margin is 1 or less: there is no steady speed.
 
     Examples
     --------
@@ -117,20 +127,21 @@ def steady_speeds(design: Design) -> tuple[float, float]:
     margin = stall_margin(design)
     if margin <= 1.0:
         raise StallError(margin, "a steady speed")
-    T, Rd, Ld = design.Tm_dagger, design.R_dagger, design.L_dagger
-    root = math.sqrt(math.pi**2 * T**2 - math.pi * Rd * T * Ld)
-    alpha_plus = (math.pi * T + root) / (math.pi * Rd * T)
-    # alpha- from the product of the roots of Eq. (20), alpha+ alpha- = L+ / (pi R+ T+): the
-    # difference in Eq. (21) cancels when the load is light.
-    alpha_minus = Ld / (math.pi * Rd * T * alpha_plus)
-    return alpha_plus * design.omega_m, alpha_minus * design.omega_m
+    k, p, delta2 = _riccati(design)
+    plus = p + math.sqrt(delta2)
+    # minus from the product of the roots, p^2 - delta^2: the difference cancels when the load
+    # is light.
+    product = p * p * (design.mean_load_torque - design.R_dagger * design.T_0)
+    minus = product / (design.R_dagger * (design.T_m - design.T_0)) / plus
+    return plus, minus
 
 
 def time_constant(design: Design) -> float:
-    """Spin-up time constant tau = tau+ / omega_m [s] of Eq. (25).
+    """Spin-up time constant tau = 1 / (2 k delta) [s] (Eq. 25, generalised).
 
-    ``tau+ = pi / (2 sqrt(pi^2 T+^2 - pi R+ T+ L+))``; it grows without bound as the margin
-    of Eq. (22) falls to 1.
+    The rate at which the averaged equation relaxes to alpha+; with m = 1 and T_0 = 0 it is
+    Eq. (25)'s ``tau+ / omega_m``, ``tau+ = pi / (2 sqrt(pi^2 T+^2 - pi R+ T+ L+))``. It grows
+    without bound as the stall margin falls to 1.
 
     Raises
     ------
@@ -146,17 +157,8 @@ def time_constant(design: Design) -> float:
     margin = stall_margin(design)
     if margin <= 1.0:
         raise StallError(margin, "a spin-up time constant")
-    T, Rd, Ld = design.Tm_dagger, design.R_dagger, design.L_dagger
-    tau_dagger = math.pi / (2 * math.sqrt(math.pi**2 * T**2 - math.pi * Rd * T * Ld))
-    return tau_dagger / design.omega_m
-
-
-def _riccati(design: Design) -> tuple[float, float, float]:
-    """(k [1/rad], p [rad/s], delta^2 [rad^2/s^2]) of the averaged equation (19) in crank speed."""
-    k = design.R_dagger**3 * design.T_m / (design.I_eff * design.omega_m**2)
-    p = design.omega_m / design.R_dagger
-    inverse_margin = design.load_torque / (math.pi * design.R_dagger * design.T_m)
-    return k, p, p * p * (1.0 - inverse_margin)
+    k, _, delta2 = _riccati(design)
+    return 1.0 / (2.0 * k * math.sqrt(delta2))
 
 
 def _g(t, k: float, delta2: float):
@@ -173,7 +175,8 @@ def _g(t, k: float, delta2: float):
 def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     """When the averaged model (Eq. 19) started at theta_dot0 stalls [s], or None if it never does.
 
-    It stalls when the margin of Eq. (22) is 1 or less, or when kicked below alpha- (Eq. 21).
+    It stalls when the margin of Eq. (22) is 1 or less, or when kicked below alpha- (Eq. 21); a
+    start from rest (theta_dot0 = 0) stalls at once unless R+ T_0 exceeds the mean load.
 
     Examples
     --------
@@ -184,8 +187,6 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     113.3
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    if theta_dot0 == 0.0:
-        return 0.0
     k, p, delta2 = _riccati(design)
     bend = delta2 + p * (theta_dot0 - p)
     if bend >= 0.0:

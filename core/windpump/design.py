@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import typing
 
-from .validation import ParameterError, non_negative, positive, rod_ratio
+from .errors import ParameterError
+from .validation import flag, non_negative, positive, rod_ratio, whole
 
 # Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
 UNITS = {
@@ -21,12 +23,20 @@ UNITS = {
     "h": "m",
     "rho_w": "kg/m^3",
     "g": "m/s^2",
+    "cylinders": "",
+    "double_acting": "",
+    "T_0": "N m",
 }
+
+MAX_CYLINDERS = 6
 
 
 @dataclasses.dataclass(frozen=True)
 class Design:
-    """A wind pump: windmill, chain drive, slider-crank and single-acting piston (SI units).
+    """A wind pump: windmill, chain drive, slider-cranks and pistons (SI units).
+
+    The defaults of the last three fields are the paper's machine: one single-acting cylinder and a
+    windmill with no torque at rest.
 
     Every field is checked on construction; a bad value raises
     :class:`~windpump.ParameterError` (a ``ValueError``) naming the field, its value and the
@@ -58,6 +68,18 @@ class Design:
         Water density [kg/m^3].
     g : float, default 9.81
         Gravity [m/s^2].
+    cylinders : int, default 1
+        Number of cylinders n, 1 to 6, each with its own slider-crank of the same R, L and A on
+        the one crank: cylinder k sees the crank angle ``theta - 2 pi k / n`` (beyond the paper,
+        which names the phase lag but models one cylinder).
+    double_acting : bool, default False
+        Whether both faces of every piston deliver: the top face while
+        ``pi < (theta - 2 pi k/n) mod 2 pi < 2 pi`` as the paper's one cylinder, the bottom face
+        during the other half. The rod's area is neglected (both faces have area A).
+    T_0 : float, default 0.0
+        Windmill torque at rest [N m], 0 <= T_0 < T_m: the torque curve becomes
+        ``T = T_0 + (T_m - T_0) x (2 - x)`` (Eq. 11 when T_0 = 0; the paper's footnote 7 notes a
+        real windmill has torque at rest, which decides whether it starts on its own).
 
     Examples
     --------
@@ -81,15 +103,34 @@ class Design:
     h: float
     rho_w: float = 1000.0
     g: float = 9.81
+    cylinders: int = 1
+    double_acting: bool = False
+    T_0: float = 0.0
 
     def __post_init__(self) -> None:
         for field in dataclasses.fields(self):
-            check = non_negative if field.name == "h" else positive
-            value = check(field.name, getattr(self, field.name), UNITS[field.name])
-            object.__setattr__(self, field.name, value)
+            name = field.name
+            value = getattr(self, name)
+            if name == "cylinders":
+                value = whole(name, value, 1, MAX_CYLINDERS)
+            elif name == "double_acting":
+                value = flag(name, value)
+            elif name in ("h", "T_0"):
+                value = non_negative(name, value, UNITS[name])
+            else:
+                value = positive(name, value, UNITS[name])
+            object.__setattr__(self, name, value)
         if self.L <= self.R:
             raise ParameterError(
                 "L", self.L, f"> R = {self.R!r} m", "m", why="the rod cannot reach the crank"
+            )
+        if self.T_0 >= self.T_m:
+            raise ParameterError(
+                "T_0",
+                self.T_0,
+                f"< T_m = {self.T_m!r} N m",
+                "N m",
+                why="the torque at rest must lie below the peak torque",
             )
 
     @classmethod
@@ -116,7 +157,7 @@ class Design:
             g=9.81,
         )
 
-    def replace(self, **changes: float) -> Design:
+    def replace(self, **changes: typing.Any) -> Design:
         """Return a new, validated Design with ``changes`` applied.
 
         Raises ``TypeError`` for a name that is not a field, and
@@ -128,7 +169,10 @@ class Design:
         return dataclasses.replace(self, **changes)
 
     def with_ratios(
-        self, L_over_R: float | None = None, R_dagger: float | None = None, **changes: float
+        self,
+        L_over_R: float | None = None,
+        R_dagger: float | None = None,
+        **changes: typing.Any,
     ) -> Design:
         """A new, validated Design with the rod and sprocket set by their ratios to R and R0.
 
@@ -154,7 +198,7 @@ class Design:
             changes["R1"] = self.R0 * positive("R_dagger", R_dagger)
         return self.replace(**changes)
 
-    def as_dict(self) -> dict[str, float]:
+    def as_dict(self) -> dict[str, float | int | bool]:
         """The fields as a plain dict [SI units]."""
         return dataclasses.asdict(self)
 
@@ -190,8 +234,29 @@ class Design:
 
     @property
     def stroke_volume(self) -> float:
-        """Volume delivered per crank revolution, 2 R A [m^3] (Eq. 16)."""
+        """Volume one face delivers per crank revolution, 2 R A [m^3] (Eq. 16)."""
         return 2.0 * self.R * self.A
+
+    @property
+    def deliveries(self) -> int:
+        """Deliveries per crank revolution, m = cylinders x (2 if double-acting else 1) [-]."""
+        return self.cylinders * (2 if self.double_acting else 1)
+
+    @property
+    def volume_per_revolution(self) -> float:
+        """Volume delivered per crank revolution, m 2 R A [m^3] (Eq. 16 for every face)."""
+        return self.deliveries * self.stroke_volume
+
+    @property
+    def mean_load_torque(self) -> float:
+        """Cycle-mean load torque on the crank, m rho_w g h A R / pi [N m] (Eq. 18 for m faces)."""
+        return self.deliveries * self.load_torque / math.pi
+
+    @property
+    def runaway_speed(self) -> float:
+        """Windmill speed where its torque falls to zero, omega_m (1 + sqrt(T_m/(T_m - T_0)))
+        [rad/s]: 2 omega_m when T_0 = 0 (Eq. 11)."""
+        return self.omega_m * (1.0 + math.sqrt(self.T_m / (self.T_m - self.T_0)))
 
     @property
     def bore(self) -> float:

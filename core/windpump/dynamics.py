@@ -1,4 +1,8 @@
-"""The full equation of motion, Eq. (12), integrated without averaging: :func:`simulate`."""
+"""The full equation of motion, Eq. (12), integrated without averaging: :func:`simulate`.
+
+Beyond the paper it integrates the summed load of several cylinders, single- or double-acting,
+and a windmill with torque at rest (``Design.cylinders``, ``double_acting``, ``T_0``).
+"""
 
 from __future__ import annotations
 
@@ -10,8 +14,11 @@ import os
 import numpy as np
 
 from . import _kernels
+from .averaged import steady_speeds
 from .design import UNITS, Design
-from .validation import ParameterError, non_negative, positive, real
+from .errors import ParameterError, StallError
+from .kinematics import delivering_faces, face_flows
+from .validation import non_negative, positive, real
 
 SAMPLES_PER_STROKE = 16
 """Output samples per half revolution (per stroke) of the crank."""
@@ -53,9 +60,11 @@ class SimulationResult:
     shaft_work : ndarray
         Work done by the windmill on its shaft since t = 0 [J] (the integral of T omega).
     stalled : bool
-        True when the crank speed reached zero (or started at zero): the run ends there.
+        True when the crank came to rest for good (or could not start): the run ends there.
     t_stall : float or None
         When it stalled [s]; None when it ran to ``t_end``.
+    steps : int
+        Dormand-Prince steps the integration took, rejected ones included.
     """
 
     design: Design
@@ -67,6 +76,7 @@ class SimulationResult:
     shaft_work: np.ndarray
     stalled: bool
     t_stall: float | None
+    steps: int = 0
 
     @property
     def omega(self) -> np.ndarray:
@@ -88,13 +98,15 @@ class SimulationResult:
         """Start and end times [s] of each complete crank revolution from theta0.
 
         Revolutions are counted from the initial angle: the k-th ends where
-        ``theta = theta0 + 2 pi k``, found by interpolating the unwrapped angle in time.
+        ``theta = theta0 + 2 pi k`` (:func:`revolution_marks`).
         """
-        theta0 = self.theta[0]
-        full = int(math.floor((self.theta[-1] - theta0) / (2 * math.pi)))
-        marks = theta0 + 2 * math.pi * np.arange(full + 1)
-        times = np.interp(marks, self.theta, self.t)
+        _, times = revolution_marks(self.t, self.theta)
         return times[:-1], times[1:]
+
+    def face_flows(self) -> np.ndarray:
+        """Every face's flow [m^3/s], shape ``(2 cylinders, samples)``: row 2k is cylinder k's top
+        face, row 2k + 1 its bottom face (zero unless double-acting). They sum to ``flow``."""
+        return face_flows(self.theta, self.theta_dot, self.design)
 
     def cycle_mean_speed(self) -> tuple[np.ndarray, np.ndarray]:
         """Cycle-mean crank speed of each complete revolution: (mid-times [s], speeds [rad/s]).
@@ -111,15 +123,17 @@ class SimulationResult:
         Raises ``ValueError`` when the run has no complete revolution.
         """
         revolutions = int(positive("revolutions", revolutions))
-        start, end = self.revolutions()
-        if len(start) == 0:
+        marks, times = revolution_marks(self.t, self.theta)
+        if len(marks) < 2:
             raise ValueError("the run has no complete crank revolution to measure")
-        start, end = start[-revolutions:], end[-revolutions:]
+        marks, times = marks[-revolutions - 1 :], times[-revolutions - 1 :]
+        start, end = times[:-1], times[1:]
         volume = np.interp([start[0], end[-1]], self.t, self.volume)
         mean_flow = (volume[1] - volume[0]) / (end[-1] - start[0])
         mean_speed = 2 * math.pi * len(start) / (end[-1] - start[0])
         window = (self.t >= start[0]) & (self.t <= end[-1])
         peak_flow = float(self.flow[window].max())
+        idle = self._time_without_delivery(marks[0], marks[-1])
         ripple = 0.0
         for t0, t1 in zip(start, end, strict=True):
             speed = self.theta_dot[(self.t >= t0) & (self.t <= t1)]
@@ -130,7 +144,19 @@ class SimulationResult:
             peak_to_mean=float(peak_flow / mean_flow) if mean_flow > 0 else math.inf,
             mean_speed=float(mean_speed),
             speed_ripple=ripple,
+            no_delivery_fraction=idle / (end[-1] - start[0]),
         )
+
+    def _time_without_delivery(self, theta_from: float, theta_to: float) -> float:
+        """Time [s] the crank spends between two angles in segments (between switches) where no
+        face delivers."""
+        d = self.design
+        width = math.pi / d.cylinders
+        segments = np.arange(math.floor(theta_from / width), math.ceil(theta_to / width))
+        edges = np.clip(np.append(segments, segments[-1] + 1) * width, theta_from, theta_to)
+        durations = np.diff(np.interp(edges, self.theta, self.t))
+        idle = ~delivering_faces(segments, d.cylinders, d.double_acting).any(axis=-1)
+        return float(durations[idle].sum())
 
     def last_revolutions(self, revolutions: int = 3) -> slice:
         """The samples from the start of the last ``revolutions`` complete revolutions to the run's
@@ -183,7 +209,8 @@ class SimulationResult:
         buffer = io.StringIO()
         buffer.write("# windpump run of the design (Louge 2010, Eq. 12)\n")
         for name, value in self.design.as_dict().items():
-            buffer.write(f"# {name} = {value:.12g} {UNITS[name]}\n")
+            shown = value if isinstance(value, (bool, int)) else f"{value:.12g}"
+            buffer.write(f"# {name} = {shown} {UNITS[name]}".rstrip() + "\n")
         ending = f"stalled at t = {self.t_stall:.12g} s" if self.stalled else "ran to its end"
         buffer.write(
             f"# theta0 = {self.theta[0]:.12g} rad, theta_dot0 = {self.theta_dot[0]:.12g} rad/s, "
@@ -217,6 +244,9 @@ class Intermittency:
         Cycle-mean crank speed [rad/s].
     speed_ripple : float
         Largest (max - min) / mean of the crank speed within one revolution [-].
+    no_delivery_fraction : float
+        Fraction of the time no face delivers [-]: the intake half for one single-acting
+        cylinder (about 1/2), none for two or more, or for a double-acting pump.
     """
 
     mean_flow: float
@@ -224,25 +254,49 @@ class Intermittency:
     peak_to_mean: float
     mean_speed: float
     speed_ripple: float
+    no_delivery_fraction: float
+
+
+def revolution_marks(t: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Angles [rad] and times [s] where each complete crank revolution from ``theta[0]`` ends.
+
+    The marks are ``theta[0] + 2 pi k`` for k = 0 ... (whole turns), their times found by
+    interpolating the unwrapped angle in time. The one helper for counting revolutions.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> marks, times = revolution_marks(np.array([0.0, 1.0, 2.0]), np.array([1.0, 5.0, 9.0]))
+    >>> len(marks), [round(float(x), 3) for x in times]
+    (2, [0.0, 1.571])
+    """
+    full = int(math.floor((theta[-1] - theta[0]) / (2 * math.pi)))
+    marks = theta[0] + 2 * math.pi * np.arange(full + 1)
+    return marks, np.interp(marks, theta, t)
 
 
 def sample_bound(design: Design, t_end: float, theta_dot0: float) -> float:
     """Most samples :func:`simulate` can produce for this run (the crank speed never exceeds
-    max(theta_dot0, 2 omega_m / R+), where the windmill torque turns negative). A float: it may be
-    too large for an integer."""
-    fastest = max(theta_dot0, 2 * design.omega_m / design.R_dagger)
+    theta_dot0 or the runaway speed over R+, where the windmill torque turns negative). A float: it
+    may be too large for an integer."""
+    fastest = max(theta_dot0, design.runaway_speed / design.R_dagger)
     return fastest * t_end / (math.pi / SAMPLES_PER_STROKE) + 3
 
 
 def simulate(
     design: Design, t_end: float, theta0: float = math.pi / 2, theta_dot0: float = 3.0
 ) -> SimulationResult:
-    """Integrate the wind pump's equation of motion, Eq. (12), in full, from rest angle and kick.
+    """Integrate the wind pump's equation of motion, Eq. (12), in full, from a start angle and kick.
 
-    ``I_eff theta_ddot = R+^2 T_m (theta_dot/omega_m)(2 - R+ theta_dot/omega_m)
-    + rho_w g h A R sin(theta + theta_c)/cos(theta_c)`` while exhausting (the last term is negative
-    there), with no load while taking water in; ``V`` from Eq. (16). No averaging: finite L/R, the
-    windmill torque of Eq. (11) and the load switched at every dead centre.
+    ``I_eff theta_ddot = R+ T(R+ theta_dot) + sum of rho_w g h A R lever arm`` over the delivering
+    faces, each ``sin(phi + theta_c)/cos(theta_c)`` at its cylinder's own angle
+    ``phi = theta - 2 pi k / n`` and braking the crank; ``V`` from Eq. (16) for every face. The
+    windmill torque is ``T = T_0 + (T_m - T_0) x (2 - x)``, Eq. (11) when T_0 = 0. No averaging:
+    finite L/R, and every step ends on a switch (every pi / n of crank angle).
+
+    With T_0 > 0 a run may start from rest: it moves when R+ T_0 exceeds the load torque at theta0
+    and is otherwise stalled at t = 0. A crank that slows to rest stops there when the load at
+    that angle is at least R+ T_0 (it cannot turn backwards), and goes on otherwise.
 
     Parameters
     ----------
@@ -251,16 +305,17 @@ def simulate(
     t_end : float
         Duration [s], > 0; bounded so the run makes at most ``MAX_SAMPLES`` samples.
     theta0 : float, default pi/2
-        Initial crank angle from TDC [rad].
+        Initial crank angle from TDC [rad], any finite value: it is reduced modulo 2 pi to
+        [0, 2 pi), where the run's ``theta`` starts.
     theta_dot0 : float, default 3.0
-        Initial crank speed [rad/s]: 0 (the windmill has no torque at rest, so the pump never
-        starts) or at least ``SMALLEST_KICK``.
+        Initial crank speed [rad/s]: 0 (a start from rest, which moves only with torque at rest,
+        see :func:`windpump.starts_from_rest`) or at least ``SMALLEST_KICK``.
 
     Returns
     -------
     SimulationResult
-        ``t, theta, theta_dot, volume, flow, shaft_work`` and ``stalled, t_stall``. When the crank
-        speed reaches 0 the run ends there: ``stalled=True`` and ``t_stall`` [s].
+        ``t, theta, theta_dot, volume, flow, shaft_work``, ``stalled, t_stall`` and ``steps``.
+        When the crank stops for good the run ends there: ``stalled=True`` and ``t_stall`` [s].
 
     Raises
     ------
@@ -274,11 +329,19 @@ def simulate(
     >>> run = simulate(Design.seed_example(), 600.0, theta0=math.pi / 2, theta_dot0=3.0)
     >>> run.stalled, round(float(run.theta_dot[-1]), 1)
     (False, 23.6)
+
+    Two cylinders half a turn apart and a windmill with torque at rest start on their own:
+
+    >>> d = Design.seed_example().replace(cylinders=2, T_0=0.4)
+    >>> run = simulate(d, 600.0, theta_dot0=0.0)
+    >>> run.stalled, round(float(run.volume[-1]) * 1e3)  # litres
+    (False, 230)
     """
     if not isinstance(design, Design):
         raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")
     t_end = positive("t_end", t_end, "s")
-    theta0 = real("theta0", theta0, "rad")
+    # Reduced first: a huge angle leaves no digits for the steps (1e15 rad has an ulp of 0.125).
+    theta0 = real("theta0", theta0, "rad") % (2 * math.pi)
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     if 0.0 < theta_dot0 < SMALLEST_KICK:
         raise ParameterError(
@@ -298,38 +361,57 @@ def simulate(
             "s",
             why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}",
         )
-    capacity = math.ceil(bound)
-    params = _kernels.pack_params(
-        design.R_dagger,
-        design.T_m,
-        design.omega_m,
-        design.I_eff,
-        design.load_torque,
-        design.L_over_R,
+    machine = _kernels.Machine(
+        R_dagger=design.R_dagger,
+        T_m=design.T_m,
+        T_0=design.T_0,
+        omega_m=design.omega_m,
+        inv_I_eff=1.0 / design.I_eff,
+        load_torque=design.load_torque,
+        L_over_R=design.L_over_R,
+        cylinders=design.cylinders,
+        double_acting=design.double_acting,
     )
-    out = np.empty((capacity, 6))
-    n, outcome, _ = _kernels.integrate(
-        params, theta0, theta_dot0, t_end, SAMPLES_PER_STROKE, RTOL, MAX_STEPS, out
+    run = _kernels.run(
+        machine,
+        theta0,
+        theta_dot0,
+        t_end,
+        SAMPLES_PER_STROKE,
+        RTOL,
+        MAX_STEPS,
+        capacity=first_capacity(design, t_end, theta_dot0, bound),
     )
-    if outcome == _kernels.OVER_BUDGET:
+    if run.outcome == _kernels.OVER_BUDGET:
         raise ValueError(
             f"the integration needed more than {MAX_STEPS} steps: the design is too stiff "
             f"(its spin-up takes less than a crank revolution); increase I0 or I1"
         )
-    samples = out[:n]
-    strokes = samples[:, _kernels.OUT_STROKES]
-    theta_dot = samples[:, _kernels.OUT_THETA_DOT].copy()
-    arrays = [
-        samples[:, _kernels.OUT_T].copy(),
-        samples[:, _kernels.OUT_THETA].copy(),
-        theta_dot,
-        design.stroke_volume * (strokes - strokes[0]),
-        design.stroke_volume * samples[:, _kernels.OUT_F2] * theta_dot,  # Eq. (16)
-        samples[:, _kernels.OUT_WORK].copy(),
-    ]
-    for array in arrays:
+    volume = design.stroke_volume * (run.strokes - run.strokes[0])
+    flow = design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16), every face
+    for array in (run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work):
         array.flags.writeable = False
-    stalled = outcome == _kernels.STALLED
+    stalled = run.outcome == _kernels.STALLED
     return SimulationResult(
-        design, *arrays, stalled=stalled, t_stall=float(arrays[0][-1]) if stalled else None
+        design,
+        t=run.t,
+        theta=run.theta,
+        theta_dot=run.theta_dot,
+        volume=volume,
+        flow=flow,
+        shaft_work=run.shaft_work,
+        stalled=stalled,
+        t_stall=float(run.t[-1]) if stalled else None,
+        steps=run.steps,
     )
+
+
+def first_capacity(design: Design, t_end: float, theta_dot0: float, bound: float) -> int:
+    """A first guess of the sample count, from the averaged theory's running speed (the output
+    grows past it if needed), never above ``bound``."""
+    try:
+        speed = max(theta_dot0, steady_speeds(design)[0])
+    except StallError:
+        speed = theta_dot0
+    expected = 1.05 * speed * t_end / (math.pi / SAMPLES_PER_STROKE) + 64
+    return int(min(math.ceil(bound), expected))

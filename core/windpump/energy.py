@@ -9,14 +9,13 @@ splits its windmill's power the same way, between the rotor's kinetic energy and
 from __future__ import annotations
 
 import dataclasses
-import math
 import typing
 
 import numpy as np
 
-from .design import Design
-from .dynamics import SimulationResult
-from .validation import ParameterError, non_negative, positive, real
+from .dynamics import SimulationResult, revolution_marks
+from .errors import ParameterError
+from .validation import non_negative, positive, real
 from .windmill import windmill_power
 
 
@@ -137,9 +136,7 @@ class PowerBudget:
         The energies at the revolutions' ends (every ``2 pi`` of crank angle) divided by their
         durations: the pulses of one revolution are smoothed out, the spin-up trend stays.
         """
-        full = int(math.floor((self.theta[-1] - self.theta[0]) / (2 * math.pi)))
-        marks = self.theta[0] + 2 * math.pi * np.arange(full + 1)
-        times = np.interp(marks, self.theta, self.t)
+        marks, times = revolution_marks(self.t, self.theta)
         duration = np.diff(times)
 
         def mean(energy):
@@ -153,19 +150,18 @@ class PowerBudget:
         )
 
 
-def power_budget(design: Design, result: SimulationResult) -> PowerBudget:
+def power_budget(result: SimulationResult) -> PowerBudget:
     """The wind pump's power split during a run: spinning up, and lifting water.
 
     ``T(omega) omega = d(I_eff theta_dot^2 / 2)/dt + rho_w g h Q`` at every sample (Eq. 12 times
-    theta_dot, Eqs. 11 and 16), and integrated: the windmill's work since t = 0 equals the kinetic
-    energy gained plus the water's potential energy ``rho_w g h V``.
+    theta_dot, Eqs. 11 and 16, Q summed over every delivering face), and integrated: the windmill's
+    work since t = 0 equals the kinetic energy gained plus the water's potential energy
+    ``rho_w g h V``.
 
     Parameters
     ----------
-    design : Design
-        The wind pump; it must be the one the run used.
     result : SimulationResult
-        A run of :func:`windpump.simulate`.
+        A run of :func:`windpump.simulate`; it carries its design.
 
     Returns
     -------
@@ -174,16 +170,14 @@ def power_budget(design: Design, result: SimulationResult) -> PowerBudget:
     Examples
     --------
     >>> from windpump import Design, simulate
-    >>> design = Design.seed_example()
-    >>> budget = power_budget(design, simulate(design, 600.0))
+    >>> budget = power_budget(simulate(Design.seed_example(), 600.0))
     >>> W, K, E = budget.shaft_work[-1], budget.kinetic_energy[-1], budget.lift_work[-1]
     >>> round(W), round(K), round(E), budget.imbalance < 1e-6  # J: to spin up, to lift water
     (11967, 7402, 4565, True)
     """
     if not isinstance(result, SimulationResult):
         raise TypeError(f"result must be a windpump.SimulationResult, not {type(result).__name__}")
-    if result.design != design:
-        raise ValueError("result was run with another design than the one given")
+    design = result.design
     shaft_power = windmill_power(design, result.omega)
     hydraulic_power = design.rho_w * design.g * design.h * result.flow
     return PowerBudget(

@@ -2,15 +2,35 @@
 
 The crank angle ``theta`` is measured from top dead centre (TDC). The cylinder takes water in on
 0 < theta mod 2 pi < pi and exhausts it on pi < theta mod 2 pi < 2 pi. All functions accept numpy
-arrays and broadcast.
+arrays and broadcast. (Plain numpy: the compiled kernels have their own scalar copies.)
+
+With several cylinders (``Design.cylinders = n``) cylinder k sees ``theta - 2 pi k / n``;
+:func:`face_flows` gives every delivering face's flow.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from . import _kernels
 from .validation import finite_array, positive, rod_ratio
+
+
+def _x_over_R(theta, ratio):
+    s = np.sin(theta)
+    return ratio + 1.0 - (np.sqrt(ratio * ratio - s * s) + np.cos(theta))
+
+
+def _lever(theta, ratio):
+    s = np.sin(theta)
+    return s * (1.0 + np.cos(theta) / np.sqrt(ratio * ratio - s * s))
+
+
+def _exhaust_strokes(theta, ratio):
+    revolutions = np.floor(theta / (2 * np.pi))
+    phi = theta - 2 * np.pi * revolutions
+    return revolutions + np.where(phi <= np.pi, 0.0, 0.5 * (2.0 - _x_over_R(phi, ratio)))
 
 
 def piston_position(theta, R: float, L: float):
@@ -33,7 +53,7 @@ def piston_position(theta, R: float, L: float):
     """
     R = positive("R", R, "m")
     ratio = rod_ratio(positive("L", L, "m") / R)
-    return R * _kernels.piston_over_R_ufunc(finite_array("theta", theta, "rad"), ratio)
+    return R * _x_over_R(finite_array("theta", theta, "rad"), ratio)
 
 
 def rod_angle(theta, L_over_R: float):
@@ -60,7 +80,7 @@ def lever_arm(theta, L_over_R: float):
     >>> float(lever_arm(3 * math.pi / 2, 3.75))
     -1.0
     """
-    return _kernels.lever_arm_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
+    return _lever(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
 
 
 def f2(theta, L_over_R: float):
@@ -76,7 +96,9 @@ def f2(theta, L_over_R: float):
     >>> float(f2(3 * math.pi / 2, 3.75)), float(f2(math.pi / 2, 3.75))
     (0.5, 0.0)
     """
-    return _kernels.f2_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
+    theta = finite_array("theta", theta, "rad")
+    exhaust = np.mod(theta, 2 * np.pi) > np.pi
+    return np.where(exhaust, -0.5 * _lever(theta, rod_ratio(L_over_R)), 0.0)
 
 
 def swept_strokes(theta, L_over_R: float):
@@ -92,4 +114,53 @@ def swept_strokes(theta, L_over_R: float):
     >>> float(swept_strokes(2 * math.pi, 3.75)), float(swept_strokes(3 * math.pi, 3.75))
     (1.0, 1.0)
     """
-    return _kernels.swept_strokes_ufunc(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
+    return _exhaust_strokes(finite_array("theta", theta, "rad"), rod_ratio(L_over_R))
+
+
+def delivering_faces(segment, cylinders: int, double_acting: bool):
+    """Which face of each cylinder delivers in a segment of crank angle, by sign [-].
+
+    Segment j is ``j pi/n <= theta <= (j + 1) pi/n`` (n = cylinders; the switches lie between
+    segments). Returns an int array of shape ``segment.shape + (n,)``: +1 where cylinder k's top
+    face delivers (``pi < theta - 2 pi k/n < 2 pi`` modulo 2 pi), -1 where its bottom face does
+    (double-acting only, the other half), 0 where neither.
+
+    Examples
+    --------
+    >>> delivering_faces([0, 1], 1, False).tolist()  # intake, then exhaust
+    [[0], [1]]
+    >>> delivering_faces(0, 2, True).tolist()  # cylinder 1 is half a turn behind
+    [-1, 1]
+    """
+    segment = np.asarray(segment)[..., None]
+    behind = np.mod(segment - 2 * np.arange(cylinders), 2 * cylinders)
+    return np.where(behind >= cylinders, 1, -1 if double_acting else 0)
+
+
+def face_flows(theta, theta_dot, design):
+    """Flow of every face of every cylinder [m^3/s], shape ``(faces, samples)``.
+
+    Row ``2k`` is cylinder k's top face (``A |dx/dt|`` while ``pi < theta - 2 pi k/n < 2 pi``
+    modulo 2 pi), row ``2k + 1`` its bottom face (double-acting only: the other half, zero
+    otherwise); Eq. (16) face by face. Their sum is the pump's flow.
+
+    Examples
+    --------
+    >>> import math
+    >>> from windpump import Design
+    >>> d = Design.seed_example().replace(cylinders=2)
+    >>> flows = face_flows([3 * math.pi / 2], [1.0], d)  # cylinder 0 exhausts at mid-stroke
+    >>> [round(float(q / (d.A * d.R)), 6) for q in flows[:, 0]]
+    [1.0, 0.0, 0.0, 0.0]
+    """
+    theta = finite_array("theta", theta, "rad")
+    theta_dot = finite_array("theta_dot", theta_dot, "rad/s")
+    n = design.cylinders
+    flows = np.zeros((2 * n,) + theta.shape)
+    for k in range(n):
+        phi = np.mod(theta - 2 * math.pi * k / n, 2 * math.pi)
+        rate = design.A * design.R * np.abs(_lever(phi, design.L_over_R)) * theta_dot
+        flows[2 * k] = np.where(phi > math.pi, rate, 0.0)
+        if design.double_acting:
+            flows[2 * k + 1] = np.where(phi <= math.pi, rate, 0.0)
+    return flows

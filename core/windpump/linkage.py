@@ -22,7 +22,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from .validation import ParameterError, positive, real
+from .errors import NoClosure, ParameterError
+from .validation import positive, real
 
 TOL = 1e-13
 """Newton-Raphson stops once a step is smaller than this [rad; lengths relative to the loop's size]."""
@@ -44,29 +45,6 @@ BLOCKED_HALVINGS = 30
 
 MAX_HALVINGS = 12
 """A sweep halves a step up to this many times to stay on its branch."""
-
-
-class NoClosure(ValueError):
-    """The loop does not close: it cannot, it is at a dead centre, or Newton-Raphson failed.
-
-    Attributes
-    ----------
-    reason : str
-        ``NoClosure.CANNOT_CLOSE``, ``NoClosure.SINGULAR`` or ``NoClosure.NO_CONVERGENCE``.
-    where : dict
-        The loop's named inputs when it failed [rad or m], e.g. ``{"theta1": 2.1}``.
-    iteration : int or None
-        The Newton iterate where it failed; None when the geometry decided before iterating.
-    """
-
-    CANNOT_CLOSE = "cannot close"
-    SINGULAR = "has a singular Jacobian (a dead centre)"
-    NO_CONVERGENCE = "did not converge"
-
-    def __init__(self, reason: str, where: Mapping[str, float], detail: str, iteration=None):
-        self.reason, self.where, self.iteration = reason, dict(where), iteration
-        at = ", ".join(f"{name} = {value:.6g}" for name, value in self.where.items())
-        super().__init__(f"the loop {reason} at {at or 'these inputs'}: {detail}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -471,12 +449,12 @@ def four_bar(
     >>> round(theta2, 6), round(theta3, 6)
     (5.038298, 4.069294)
     """
-    lengths = _lengths(r1=r1, r2=r2, r3=r3, r6=r6)
+    r1, r2, r3, r6 = _lengths(r1=r1, r2=r2, r3=r3, r6=r6)
     theta1, phi6 = real("theta1", theta1, "rad"), real("phi6", phi6, "rad")
     if guess is None:
-        guess = branch_guess(*lengths, theta1, phi6, branch=1)
+        guess = branch_guess(r1, r2, r3, r6, theta1, phi6, branch=1)
     closed = solve_loop(
-        four_bar_loop(*lengths, phi6),
+        four_bar_loop(r1, r2, r3, r6, phi6),
         {"theta1": theta1},
         {"theta2": guess[0], "theta3": guess[1]},
         tol,
@@ -557,10 +535,17 @@ def watt_six_bar_loops(
     output link 5 turns about the fixed pivot E = D + r6p e(phi6p). Loop 2's known angle comes from
     loop 1's solution; draw it from D (``joints(loop2, values, origin=D)``).
     """
-    second = _lengths(r3p=r3p, r4=r4, r5=r5, r6p=r6p)
-    first = four_bar_loop(*_lengths(r1=r1, r2=r2, r3=r3, r6=r6), real("phi6", phi6, "rad"))
+    r3p, r4, r5, r6p = _lengths(r3p=r3p, r4=r4, r5=r5, r6p=r6p)
+    r1, r2, r3, r6 = _lengths(r1=r1, r2=r2, r3=r3, r6=r6)
+    first = four_bar_loop(r1, r2, r3, r6, real("phi6", phi6, "rad"))
     second = _four_bar_vectors(
-        *second, real("phi6p", phi6p, "rad"), ("theta3", "theta4", "theta5"), real("beta", beta)
+        r3p,
+        r4,
+        r5,
+        r6p,
+        real("phi6p", phi6p, "rad"),
+        ("theta3", "theta4", "theta5"),
+        real("beta", beta),
     )
     return [first, second]
 
@@ -636,7 +621,7 @@ def slider_crank_pose(
     """
     theta = real("theta", theta, "rad")
     loop = slider_crank_loop(R, L)
-    R, L = loop[0].length, loop[1].length
+    R, L = float(loop[0].length), float(loop[1].length)
     phi, s = guess if guess is not None else (0.0, L + R)
     closed = solve_loop(loop, {"theta": theta}, {"phi": phi, "s": s})
     return SliderCrankPose(
@@ -661,7 +646,8 @@ def _four_bar_vectors(r_in, r_coupler, r_out, r_ground, phi_ground, names, offse
     )
 
 
-def _lengths(**lengths: float) -> tuple[float, ...]:
+def _lengths(**lengths: float) -> typing.Any:
+    """The lengths, checked, in order (a tuple of as many floats as given)."""
     return tuple(positive(name, value, "m") for name, value in lengths.items())
 
 
@@ -690,7 +676,7 @@ def _in_line(J: np.ndarray) -> bool:
     return abs(np.linalg.det(J)) <= DEAD_CENTRE * np.prod(np.linalg.norm(J, axis=0))
 
 
-def _step_on_branch(loop, known, unknowns, q, step, branch) -> tuple[np.ndarray, bool]:
+def _step_on_branch(loop, known, unknowns, q, step, branch) -> tuple[np.ndarray | None, bool]:
     """q + step, halved while it would cross a dead centre (flip the sign of det J) onto the other
     branch, so Newton-Raphson keeps its guess's branch; also says whether it was halved. None
     when the step stays blocked: Newton-Raphson is heading for the other branch."""

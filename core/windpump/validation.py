@@ -7,25 +7,18 @@ import numbers
 
 import numpy as np
 
+from .errors import ParameterError
 
-class ParameterError(ValueError):
-    """A parameter is outside its allowed range.
-
-    Attributes
-    ----------
-    name : str
-        The parameter's name, as the caller spelled it (``"L"``, ``"t_end"``).
-    value : object
-        The value that was rejected.
-    allowed : str
-        The allowed range, in words (``"> 0"``, ``"> R = 0.04 m"``).
-    """
-
-    def __init__(self, name: str, value: object, allowed: str, unit: str = "", why: str = ""):
-        self.name, self.value, self.allowed = name, value, allowed
-        shown = f"{value!r} {unit}".rstrip()
-        message = f"{name} = {shown} is not allowed: {name} must be {allowed}"
-        super().__init__(f"{message} ({why})" if why else message)
+__all__ = [
+    "ParameterError",
+    "finite_array",
+    "flag",
+    "non_negative",
+    "positive",
+    "real",
+    "rod_ratio",
+    "whole",
+]
 
 
 def real(name: str, value: object, unit: str = "") -> float:
@@ -73,3 +66,23 @@ def finite_array(name: str, value, unit: str = "", minimum: float | None = None)
     if minimum is not None and array.size and array.min() < minimum:
         raise ParameterError(name, float(array.min()), f">= {minimum:g} everywhere", unit)
     return array
+
+
+def whole(name: str, value: object, lowest: int, highest: int) -> int:
+    """Return ``value`` as an int if it is a whole number in [lowest, highest]."""
+    allowed = f"a whole number from {lowest} to {highest}"
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(name, value, allowed)
+    as_float = float(value)
+    if not (
+        math.isfinite(as_float) and as_float == int(as_float) and lowest <= as_float <= highest
+    ):
+        raise ParameterError(name, value, allowed)
+    return int(as_float)
+
+
+def flag(name: str, value: object) -> bool:
+    """Return ``value`` as a bool if it is one (Python's or numpy's)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ParameterError(name, value, "True or False")
+    return bool(value)

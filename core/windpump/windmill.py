@@ -1,4 +1,5 @@
-"""The windmill's torque and power curves (paper Eq. 11) and the pump's load line (Eq. 5)."""
+"""The windmill's torque and power curves (paper Eq. 11, with a torque at rest T_0) and the pump's
+load line (Eq. 5, for m deliveries per revolution)."""
 
 from __future__ import annotations
 
@@ -7,16 +8,19 @@ import math
 
 import numpy as np
 
-from .averaged import StallError, stall_margin
+from .averaged import steady_speeds
 from .design import Design
-from .validation import ParameterError, finite_array
+from .errors import ParameterError
+from .validation import finite_array
 
 
 def windmill_torque(design: Design, omega):
-    """Windmill torque T [N m] at windmill speed omega [rad/s] (Eq. 11).
+    """Windmill torque T [N m] at windmill speed omega [rad/s] (Eq. 11, with torque at rest).
 
-    ``T = T_m x (2 - x)`` with ``x = omega/omega_m``: zero at rest and at ``2 omega_m``, peak
-    ``T_m`` at ``omega_m``, negative (a brake) beyond ``2 omega_m``.
+    ``T = T_0 + (T_m - T_0) x (2 - x)`` with ``x = omega/omega_m``: Eq. (11) when T_0 = 0; T_0 at
+    rest, peak ``T_m`` at ``omega_m``, zero at the runaway speed
+    ``omega_m (1 + sqrt(T_m / (T_m - T_0)))`` (``2 omega_m`` when T_0 = 0), negative (a brake)
+    beyond it.
 
     Examples
     --------
@@ -24,20 +28,30 @@ def windmill_torque(design: Design, omega):
     >>> d = Design.seed_example()
     >>> float(windmill_torque(d, 50.0)), float(windmill_torque(d, 100.0))
     (0.6, 0.0)
+    >>> float(windmill_torque(d.replace(T_0=0.2), 0.0))
+    0.2
     """
     x = finite_array("omega", omega, "rad/s", minimum=0.0) / design.omega_m
-    return design.T_m * x * (2.0 - x)
+    return design.T_0 + (design.T_m - design.T_0) * x * (2.0 - x)
 
 
 def windmill_power(design: Design, omega):
-    """Windmill shaft power T(omega) omega [W] (Eq. 11 times omega)."""
+    """Windmill shaft power T(omega) omega [W] (Eq. 11, with T_0, times omega).
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> round(float(windmill_power(Design.seed_example(), 50.0)), 6)
+    30.0
+    """
     return windmill_torque(design, omega) * finite_array("omega", omega, "rad/s", minimum=0.0)
 
 
 def load_power(design: Design, omega):
-    """Mean power the pump draws at steady windmill speed omega [W] (Eq. 5).
+    """Mean power the pump draws at steady windmill speed omega [W] (Eq. 5, m deliveries).
 
-    ``P = rho_w g h (A R / pi) (R0 / R1) omega``: a straight line through the origin.
+    ``P = m rho_w g h (A R / pi) (R0 / R1) omega``: a straight line through the origin; m =
+    cylinders x (2 if double-acting else 1) (Eq. 5 has m = 1).
 
     Examples
     --------
@@ -46,7 +60,7 @@ def load_power(design: Design, omega):
     4.709
     """
     omega = finite_array("omega", omega, "rad/s", minimum=0.0)
-    return design.load_torque / (np.pi * design.R_dagger) * omega
+    return design.mean_load_torque / design.R_dagger * omega
 
 
 @dataclasses.dataclass(frozen=True)
@@ -62,9 +76,10 @@ class OperatingPoint:
     crank_speed : float
         Crank speed omega / R+ [rad/s].
     flow : float
-        Mean pumped flow A R theta_dot / pi [m^3/s] (Eq. 2).
+        Mean pumped flow m A R theta_dot / pi [m^3/s] (Eq. 2, m deliveries per revolution).
     omega_unstable : float
-        The other intersection [rad/s] (R+ alpha- omega_m): below it the pump decelerates.
+        The other intersection [rad/s] (R+ alpha- omega_m): below it the pump decelerates. With
+        torque at rest it may be <= 0 (no unstable speed: every kick spins up).
     power_unstable : float
         Shaft power at omega_unstable [W].
     """
@@ -80,13 +95,14 @@ class OperatingPoint:
 def operating_point(design: Design) -> OperatingPoint:
     """The stable intersection of the load line, Eq. (5), with the windmill's power curve.
 
-    Solves ``T_m x (2 - x) = rho_w g h A R / (pi R+)`` for ``x = omega/omega_m`` and takes the
-    larger root, where the windmill torque falls with speed (stable).
+    Solves ``T_0 + (T_m - T_0) x (2 - x) = M / R+`` (M the mean load torque of m deliveries) for
+    ``x = omega/omega_m``, the roots of :func:`windpump.steady_speeds` times R+, and takes the
+    larger, where the windmill torque falls with speed (stable).
 
     Raises
     ------
     StallError
-        When the line misses the curve: the stall margin of Eq. (22) is 1 or less.
+        When the line misses the curve: the stall margin is 1 or less.
 
     Examples
     --------
@@ -95,28 +111,22 @@ def operating_point(design: Design) -> OperatingPoint:
     >>> round(op.omega, 2), round(op.power, 2)
     (94.83, 11.16)
     """
-    load = design.load_torque / (math.pi * design.R_dagger)  # torque of the load line [N m]
-    discriminant = 1.0 - load / design.T_m
-    if discriminant <= 0.0:
-        raise StallError(stall_margin(design), "an operating point")
-    x_stable = 1.0 + math.sqrt(discriminant)
-    x_unstable = 1.0 - math.sqrt(discriminant)
-    omega = x_stable * design.omega_m
-    omega_unstable = x_unstable * design.omega_m
-    crank_speed = omega / design.R_dagger
+    crank_speed, crank_unstable = steady_speeds(design)
+    omega = design.R_dagger * crank_speed
+    omega_unstable = design.R_dagger * crank_unstable
     return OperatingPoint(
         omega=omega,
         power=float(windmill_power(design, omega)),
         crank_speed=crank_speed,
-        flow=design.A * design.R * crank_speed / math.pi,
+        flow=design.volume_per_revolution * crank_speed / (2 * math.pi),
         omega_unstable=omega_unstable,
-        power_unstable=float(windmill_power(design, omega_unstable)),
+        power_unstable=float(windmill_power(design, max(omega_unstable, 0.0))),
     )
 
 
 @dataclasses.dataclass(frozen=True)
 class TorqueFit:
-    """A least-squares fit of Eq. (11) to measured windmill torques (the paper's Fig. 2).
+    """A least-squares fit of Eq. (11), optionally with a torque at rest, to measured torques.
 
     Attributes
     ----------
@@ -126,11 +136,19 @@ class TorqueFit:
         Speed of the peak [rad/s].
     rms_residual : float
         Root-mean-square of measured minus fitted torque [N m].
+    T_0 : float
+        Torque at rest [N m]: fitted with ``at_rest=True``, else 0.
+    standard_errors : dict
+        One standard error for each fitted parameter (``"T_m"``, ``"omega_m"`` and, fitted at
+        rest, ``"T_0"``) [their units]: from the residual variance and the linear least-squares
+        covariance, carried to these parameters to first order (the delta method).
     """
 
     T_m: float
     omega_m: float
     rms_residual: float
+    T_0: float = 0.0
+    standard_errors: dict = dataclasses.field(default_factory=dict)
 
     POOR = 0.1
     """A fit whose rms residual exceeds this fraction of T_m describes the data poorly."""
@@ -147,19 +165,41 @@ class TorqueFit:
         return self.relative_residual > self.POOR
 
 
-def fit_torque_curve(omega, torque) -> TorqueFit:
-    """Fit ``T = T_m x (2 - x)``, ``x = omega/omega_m`` (Eq. 11), to measured (omega, T) pairs.
+def _checked_samples(omega, torque) -> tuple[np.ndarray, np.ndarray]:
+    omega = np.asarray(omega, dtype=float).ravel()
+    torque = np.asarray(torque, dtype=float).ravel()
+    if omega.shape != torque.shape:
+        raise ParameterError("torque", f"{torque.size} values", f"as many as omega ({omega.size})")
+    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(torque))):
+        raise ParameterError("omega, torque", "non-finite values", "finite numbers")
+    if np.any(omega < 0):
+        raise ParameterError("omega", float(omega.min()), ">= 0 everywhere", "rad/s")
+    return omega, torque
 
-    The curve is linear in ``a = 2 T_m/omega_m`` and ``b = -T_m/omega_m^2`` (``T = a omega + b
-    omega^2``), so the fit is a linear least-squares problem; then ``omega_m = -a/(2b)`` and
-    ``T_m = a omega_m / 2``.
+
+def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
+    """Fit ``T = T_0 + (T_m - T_0) x (2 - x)``, ``x = omega/omega_m`` (Eq. 11 when T_0 = 0), to
+    measured (omega, T) pairs.
+
+    The curve is linear in ``c = T_0``, ``a = 2 (T_m - T_0)/omega_m`` and
+    ``b = -(T_m - T_0)/omega_m^2`` (``T = c + a omega + b omega^2``), so the fit is a linear
+    least-squares problem; then ``omega_m = -a/(2b)`` and ``T_m = c + a omega_m / 2``. Without
+    ``at_rest`` the curve passes through the origin (c = 0, the paper's Eq. 11).
 
     Parameters
     ----------
     omega : array_like
-        Windmill speeds [rad/s], finite and >= 0, at least two distinct values > 0.
+        Windmill speeds [rad/s], finite and >= 0, at least two (three with ``at_rest``) distinct
+        values, and more samples than fitted parameters.
     torque : array_like
         Measured torques [N m], finite, the same length.
+    at_rest : bool, default False
+        Also fit the torque at rest T_0 (footnote 7: a real windmill has one).
+
+    Returns
+    -------
+    TorqueFit
+        The parameters, the rms residual and each parameter's standard error.
 
     Raises
     ------
@@ -171,29 +211,31 @@ def fit_torque_curve(omega, torque) -> TorqueFit:
     >>> fit = fit_torque_curve([10, 25, 50, 75, 90], [0.216, 0.45, 0.6, 0.45, 0.216])
     >>> round(fit.T_m, 3), round(fit.omega_m, 2)
     (0.6, 50.0)
+    >>> fit = fit_torque_curve([0, 20, 40, 60, 80], [0.2, 0.456, 0.584, 0.584, 0.456], at_rest=True)
+    >>> round(fit.T_0, 3), round(fit.T_m, 3), round(fit.omega_m, 1)
+    (0.2, 0.6, 50.0)
     """
-    omega = np.asarray(omega, dtype=float).ravel()
-    torque = np.asarray(torque, dtype=float).ravel()
-    if omega.shape != torque.shape:
-        raise ParameterError("torque", f"{torque.size} values", f"as many as omega ({omega.size})")
-    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(torque))):
-        raise ParameterError("omega, torque", "non-finite values", "finite numbers")
-    if np.any(omega < 0):
-        raise ParameterError("omega", float(omega.min()), ">= 0 everywhere", "rad/s")
-    if np.unique(omega[omega > 0]).size < 2:
+    omega, torque = _checked_samples(omega, torque)
+    fitted = 3 if at_rest else 2
+    distinct = np.unique(omega if at_rest else omega[omega > 0]).size
+    if distinct < fitted:
         raise ParameterError(
             "omega",
-            f"{np.unique(omega).size} distinct speeds",
-            "at least two distinct speeds > 0",
+            f"{distinct} distinct speeds",
+            f"at least {fitted} distinct speeds" + ("" if at_rest else " > 0"),
             "rad/s",
         )
-    (a, b), *_ = np.linalg.lstsq(np.column_stack([omega, omega**2]), torque, rcond=None)
+    columns = [omega, omega**2] + ([np.ones_like(omega)] if at_rest else [])
+    design_matrix = np.column_stack(columns)
+    coefficients, *_ = np.linalg.lstsq(design_matrix, torque, rcond=None)
+    a, b = coefficients[:2]
+    c = coefficients[2] if at_rest else 0.0
     if not (a > 0 and b < 0):
         raise ParameterError(
             "torque",
             "a curve that does not rise then fall",
-            "an inverted parabola through 0 (Eq. 11)",
-            why=f"the best fit has T = {a:.4g} omega + {b:.4g} omega^2",
+            "an inverted parabola (Eq. 11)",
+            why=f"the best fit has T = {c:.4g} + {a:.4g} omega + {b:.4g} omega^2",
         )
     omega_m = -a / (2 * b)
     if omega_m > 10 * omega.max():
@@ -203,8 +245,39 @@ def fit_torque_curve(omega, torque) -> TorqueFit:
             "a torque that peaks near the measured speeds",
             why=f"the fit puts the peak at {omega_m:.4g} rad/s, over 10 x the fastest measured speed",
         )
-    T_m = a * omega_m / 2
-    residual = torque - T_m * (omega / omega_m) * (2 - omega / omega_m)
+    T_m = c + a * omega_m / 2
+    if at_rest and not 0.0 <= c < T_m:
+        raise ParameterError(
+            "torque",
+            f"a torque at rest of {c:.4g} N m",
+            f"a torque at rest from 0 to below the peak ({T_m:.4g} N m)",
+        )
+    residual = torque - design_matrix @ coefficients
     return TorqueFit(
-        T_m=float(T_m), omega_m=float(omega_m), rms_residual=float(np.sqrt(np.mean(residual**2)))
+        T_m=float(T_m),
+        omega_m=float(omega_m),
+        rms_residual=float(np.sqrt(np.mean(residual**2))),
+        T_0=float(c),
+        standard_errors=_standard_errors(design_matrix, residual, a, b, at_rest),
     )
+
+
+def _standard_errors(design_matrix, residual, a, b, at_rest) -> dict[str, float]:
+    """Standard errors of (T_m, omega_m[, T_0]) from those of (a, b[, c]), by the delta method."""
+    samples, fitted = design_matrix.shape
+    if samples <= fitted:
+        return {name: math.nan for name in ("T_m", "omega_m", "T_0")[:fitted]}
+    variance = float(residual @ residual) / (samples - fitted)
+    covariance = variance * np.linalg.pinv(design_matrix.T @ design_matrix)
+    # omega_m = -a/(2b); T_m = c + a omega_m / 2 = c - a^2/(4b); T_0 = c.
+    gradients = {
+        "T_m": [-a / (2 * b), a * a / (4 * b * b)],
+        "omega_m": [-1 / (2 * b), a / (2 * b * b)],
+    }
+    if at_rest:
+        gradients = {name: g + [1.0] for name, g in gradients.items()}
+        gradients["T_0"] = [0.0, 0.0, 1.0]
+    return {
+        name: float(math.sqrt(max(0.0, np.asarray(g) @ covariance @ np.asarray(g))))
+        for name, g in gradients.items()
+    }

@@ -1,0 +1,71 @@
+"""Compiled kernels for the equation of motion, Eq. (12). Private: call :func:`windpump.simulate`.
+
+The package keeps apart what poliastro keeps apart in its ``core``: the model (:mod:`.model`:
+Eq. 1, the loads of every delivering face, the windmill curve with T_0), the Dormand-Prince 5(4)
+tableau (:mod:`.dopri5`), the steps in angle or time (:mod:`.stepping`) and the driver
+(:mod:`.driver`). This module is their typed front: :func:`run` takes a :class:`Machine` and returns
+a :class:`KernelRun`.
+
+Method (model-notes.md, "Dynamics")
+-----------------------------------
+The load switches on and off at the switches theta = k pi / n, where the right-hand side has a
+kink. Between switches the crank angle is the independent variable, with ``u = theta_dot^2/2``
+and the quadratures ``t`` and ``W`` (shaft work)::
+
+    du/dtheta = (R+ T(R+ theta_dot) + load(theta)) / I_eff,  dt/dtheta = 1/theta_dot,  dW/dtheta = R+ T
+
+so every segment between switches is integrated on its own and no step straddles a switch. The
+load's work over a segment is known in closed form from Eq. (1), so the angle domain integrates
+``u - Lambda(theta)``: only the windmill torque is left to integrate, and it is also the integrand
+of W. A Runge-Kutta method keeps such a linear relation exactly, so the energy balance closes to
+round-off, sub-step by sub-step. Samples on the uniform output grid come from the method's order-4
+continuous extension. Near rest and for the stretch that ends at ``t_end`` the same tableau
+integrates in time, with state ``(theta, theta_dot)``; a stop is located by Newton's method on the
+step length.
+"""
+
+from __future__ import annotations
+
+import typing
+
+import numpy as np
+
+from . import driver
+from .model import Machine
+from .stepping import OVER_BUDGET, REACHED_T_END, STALLED
+
+__all__ = ["OVER_BUDGET", "REACHED_T_END", "STALLED", "KernelRun", "Machine", "run"]
+
+
+class KernelRun(typing.NamedTuple):
+    """What the driver produced: samples (contiguous arrays) and how it ended."""
+
+    t: np.ndarray  # [s]
+    theta: np.ndarray  # [rad]
+    theta_dot: np.ndarray  # [rad/s]
+    shaft_work: np.ndarray  # [J]
+    strokes: np.ndarray  # stroke volumes 2 R A delivered since theta = 0 [-]
+    flow_factor: np.ndarray  # sum of f2 (Eq. 16) over the delivering faces [-]
+    outcome: int  # REACHED_T_END, STALLED or OVER_BUDGET
+    steps: int  # Dormand-Prince steps taken, rejected ones included
+
+
+def run(
+    machine: Machine,
+    theta0: float,
+    theta_dot0: float,
+    t_end: float,
+    samples_per_stroke: int,
+    rtol: float,
+    max_steps: int,
+    capacity: int,
+) -> KernelRun:
+    """Integrate from (theta0 [rad], theta_dot0 [rad/s]) at t = 0 up to t_end [s] or a stop.
+
+    ``capacity`` is a first guess of the sample count; the output grows (doubling) past it.
+    """
+    out, n, outcome, steps = driver.integrate(
+        machine, theta0, theta_dot0, t_end, samples_per_stroke, rtol, max_steps, capacity
+    )
+    t, theta, theta_dot, work, strokes, flow = (out[row, :n].copy() for row in range(driver.ROWS))
+    return KernelRun(t, theta, theta_dot, work, strokes, flow, int(outcome), int(steps))

@@ -1,0 +1,291 @@
+"""The driver: Eq. (12) from a start to t_end or a stop, segment by segment, sampled on a grid.
+
+Between switches (every pi / n of crank angle, see :mod:`.model`) the crank angle is the
+independent variable (:mod:`.stepping`), and a segment is split into m equal sub-steps, m chosen
+from the error estimates of the previous segment. Every segment of the same parity loads the crank
+the same way (a shift of 2 pi / n turns cylinder k into k - 1), so what a split needs at its stage
+nodes is tabulated once per run. Where theta is a poor variable (the crank near rest) or a step
+would pass t_end, the run goes on in time as far as the next grid angle or switch.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .dopri5 import NODES, dense_value, step_factor
+from .jit import kernel
+from .model import (
+    delivered_strokes,
+    flow_factor,
+    load_on_crank,
+    load_work,
+    segment_at,
+    segment_start,
+)
+from .stepping import (
+    ANGLE,
+    LANDED,
+    OVER_BUDGET,
+    REACHED_T_END,
+    STALLED,
+    advance_in_time,
+    dp5_step,
+    moves_from_rest,
+    rates,
+)
+
+# Rows of the output array, one per sampled quantity.
+T, THETA, THETA_DOT, WORK, STROKES, FLOW_FACTOR = range(6)
+ROWS = 6
+
+# The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's
+# duration. At 10 rtol it leaves running designs to the u test and still guards slow starts.
+TIME_RTOL_FACTOR = 10.0
+MAX_TABLED_SUBSTEPS = 64  # segments split into more equal sub-steps compute their loads
+MAX_SUBSTEPS = 2**20  # a segment that needs more is finished in time
+FIRST_SUBSTEPS = 4
+
+
+@kernel
+def faces(machine):
+    """Delivering faces: stroke volumes 2 R A delivered per revolution."""
+    return machine.cylinders * (2 if machine.double_acting else 1)
+
+
+@kernel
+def grid_tables(n_per_stroke, machine):
+    """At the grid angles g pi / n_per_stroke of one revolution: strokes delivered since theta = 0,
+    the flow factor, and the load work since the segment began."""
+    rows = 2 * n_per_stroke
+    delta = math.pi / n_per_stroke
+    strokes, flows, works = np.empty(rows), np.empty(rows), np.empty(rows)
+    for row in range(rows):
+        theta = row * delta
+        segment = (row * machine.cylinders) // n_per_stroke
+        strokes[row] = delivered_strokes(theta, machine)
+        flows[row] = flow_factor(theta, segment, machine)
+        if (row * machine.cylinders) % n_per_stroke == 0:
+            # On a switch the faces that start or stop sit at a dead centre and deliver nothing;
+            # the side without them keeps round-off (sin pi = 1.2e-16) out of the flow.
+            flows[row] = min(flows[row], flow_factor(theta, segment - 1, machine))
+        works[row] = load_work(theta, segment, machine)
+    return strokes, flows, works
+
+
+@kernel
+def tabulate_segment(parity, m, machine, tables, built):
+    """For each of m equal sub-steps of a segment of this parity: the load work at its 7 stage
+    nodes and (column 7) the load at its start [N m]."""
+    start = segment_start(parity, machine)
+    h = (segment_start(parity + 1, machine) - start) / m
+    for i in range(m):
+        for stage in range(7):
+            tables[parity, m, i, stage] = load_work(start + (i + NODES[stage]) * h, parity, machine)
+        tables[parity, m, i, 7] = load_on_crank(start + i * h, parity, machine)
+    built[parity, m] = True
+
+
+@kernel
+def with_room(out, n, more):
+    """``out``, or a copy with twice the room, so that ``more`` samples fit after the first n."""
+    if n + more <= out.shape[1]:
+        return out
+    bigger = np.empty((ROWS, max(2 * out.shape[1], n + more)))
+    bigger[:, :n] = out[:, :n]
+    return bigger
+
+
+@kernel
+def record(out, n, t, theta, theta_dot, W, strokes, flow, final=False):
+    """Write sample n (``out`` has room for it); return the sample count. A sample no later than
+    the last one (the crank moved less than time can resolve) replaces it, but the initial state
+    stays as given."""
+    if n > 0 and t <= out[T, n - 1]:
+        if n > 1:
+            n -= 1
+        elif not final:
+            return n
+    out[T, n] = t
+    out[THETA, n] = theta
+    out[THETA_DOT, n] = theta_dot
+    out[WORK, n] = W
+    out[STROKES, n] = strokes
+    out[FLOW_FACTOR, n] = flow
+    return n + 1
+
+
+@kernel
+def record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, final):
+    """Write a sample off the grid (the start or the end of the run); ``out`` has room."""
+    strokes = delivered_strokes(theta, machine)
+    flow = flow_factor(theta, segment, machine)
+    return record(out, n, t, theta, theta_dot, W, strokes, flow, final)
+
+
+@kernel
+def first_segment(theta, machine):
+    """The segment holding theta, robust to round-off at a switch."""
+    segment = segment_at(theta, machine)
+    if segment_start(segment + 1, machine) <= theta:
+        segment += 1
+    return segment
+
+
+@kernel
+def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps, capacity):
+    """Integrate Eq. (12) from (theta0, theta_dot0) at t = 0 up to t_end or a stop.
+
+    Returns (out, samples, outcome, steps): ``out[:, :samples]`` holds, by rows T ... FLOW_FACTOR,
+    the start, every grid angle g pi / n_per_stroke passed, and the end.
+    """
+    width = math.pi / machine.cylinders
+    period = 2 * n_per_stroke
+    delta = math.pi / n_per_stroke
+    per_revolution = faces(machine)
+    strokes_table, flow_table, work_table = grid_tables(n_per_stroke, machine)
+    tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 8))
+    built = np.zeros((2, MAX_TABLED_SUBSTEPS + 1), dtype=np.bool_)
+    end_work = (  # Lambda at the end of a segment of each parity
+        load_work(segment_start(1, machine), 0, machine),
+        load_work(segment_start(2, machine), 1, machine),
+    )
+
+    scratch = np.empty(8)  # the stage loads of a sub-step off the tables
+    out = np.empty((ROWS, max(capacity, 2)))
+    t, theta, W = 0.0, theta0, 0.0
+    theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
+    u = 0.5 * theta_dot * theta_dot
+    segment = first_segment(theta0, machine)
+    n = record_anywhere(out, 0, t, theta, theta_dot0, W, segment, machine, False)
+    if theta_dot0 <= 0.0 and not moves_from_rest(theta0, segment, machine):
+        return out, n, STALLED, 0
+
+    g = int(math.floor(theta0 / delta)) + 1  # the next grid angle to sample is g * delta
+    if g * delta <= theta0:  # theta0 sits on a grid angle, up to round-off
+        g += 1
+    steps = 0
+    m = FIRST_SUBSTEPS  # sub-steps per segment
+    # Whether theta is where the segment starts: tracked, not compared (fastmath may round
+    # (j + 1) pi/n and j pi/n differently).
+    full = theta == segment_start(segment, machine)
+    while True:
+        end = segment_start(segment + 1, machine)
+        parity = segment % 2
+        # The grid index of the segment's end, when the end is a grid angle (else -1).
+        ends = (segment + 1) * n_per_stroke
+        end_grid = ends // machine.cylinders if ends % machine.cylinders == 0 else -1
+        m_seg = m if full else max(1, int(math.ceil(m * (end - theta) / width)))
+        use_table = full and m_seg <= MAX_TABLED_SUBSTEPS
+        if use_table and not built[parity, m_seg]:
+            tabulate_segment(parity, m_seg, machine, tables, built)
+        first = theta
+        h = (end - theta) / m_seg
+        work = 0.0 if full else load_work(theta, segment, machine)
+        u_free = u - work  # u less the load's work: only the windmill changes it
+        k1 = rates(ANGLE, theta, u_free, 0.0, work, machine, segment)
+        worst = 0.0
+        failed = False
+        i = 0
+        while i < m_seg:
+            if steps >= max_steps:
+                return out, n, OVER_BUDGET, steps
+            theta_i = first + i * h
+            if use_table:
+                aux = tables[parity, m_seg, i]
+            else:
+                aux = scratch
+                for stage in range(7):
+                    scratch[stage] = load_work(theta_i + NODES[stage] * h, segment, machine)
+                scratch[7] = load_on_crank(theta_i, segment, machine)
+            load = aux[7]
+            if abs(k1[0] + load * machine.inv_I_eff) * max(h, g * delta - theta_i) >= u:
+                # u may change by more than itself before the next grid angle: theta_dot is near 0,
+                # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
+                break
+            ok, y, k7, err, dense = dp5_step(
+                ANGLE, theta_i, u_free, 0.0, t, W, h, k1, aux, segment, machine
+            )
+            steps += 1
+            scaled = max(
+                abs(err[0]) / (rtol * u),
+                abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
+            )
+            if not (ok and scaled <= 1.0):
+                needed = width / (h * (step_factor(scaled) if ok else 0.25))
+                if needed > MAX_SUBSTEPS:
+                    break  # sub-steps this fine no longer suit theta: go on in time
+                m = max(m + 1, int(math.ceil(needed)))
+                failed = True
+                break
+            if y[2] > t_end:
+                break  # the sub-step would pass t_end: go on in time
+            last = i == m_seg - 1
+            if last:
+                theta_new, work = end, end_work[parity]
+            else:
+                theta_new = theta_i + h
+                work = aux[6] if use_table else load_work(theta_new, segment, machine)
+            u_new = y[0] + work
+            if n + int(h / delta) + 2 > out.shape[1]:  # (a call per sample would cost 20 %)
+                out = with_room(out, n, int(h / delta) + 2)
+            # Samples at the grid angles this sub-step passed, from the continuous extension; the
+            # segment's end is a grid angle by index, whatever the round-off in g * delta.
+            while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
+                row = g % period
+                if g == end_grid:
+                    u_g, t_g, W_g = u_new, y[2], y[3]
+                else:
+                    sigma = (g * delta - theta_i) / h
+                    u_g = work_table[row] + dense_value(
+                        sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+                    )
+                    t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h)
+                    W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+                strokes = (g // period) * per_revolution + strokes_table[row]
+                n = record(
+                    out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g, strokes, flow_table[row]
+                )
+                g += 1
+            u_free, t, W, theta = y[0], y[2], y[3], theta_new
+            u = u_new
+            theta_dot = math.sqrt(2.0 * u)
+            k1 = k7
+            worst = max(worst, scaled)
+            i += 1
+        if i == m_seg:  # the segment is done: size the next one's sub-steps
+            segment += 1
+            was_full, full = full, True
+            if t >= t_end:
+                out = with_room(out, n, 1)
+                if out[T, n - 1] < t:
+                    n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
+                return out, n, REACHED_T_END, steps
+            if was_full or m_seg > 1:  # a single sub-step of a segment's tail is short by position
+                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+            continue
+        if i > 0:
+            full = False  # part of the segment is done
+        if failed:
+            continue
+        # On in time, as far as the next grid angle or switch.
+        target = end if g == end_grid else min(g * delta, end)
+        outcome, t, theta, theta_dot, W, used = advance_in_time(
+            t, theta, theta_dot, W, target, t_end, segment, machine, rtol, max_steps - steps
+        )
+        steps += used
+        out = with_room(out, n, 1)
+        if outcome != LANDED:
+            if outcome != OVER_BUDGET:
+                n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
+            return out, n, outcome, steps
+        u = 0.5 * theta_dot * theta_dot
+        full = target == end
+        if full:
+            segment += 1
+        if g == end_grid or target != end:
+            row = g % period
+            strokes = (g // period) * per_revolution + strokes_table[row]
+            n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row])
+            g += 1

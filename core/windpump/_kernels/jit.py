@@ -1,0 +1,23 @@
+"""The decorator every kernel is compiled with."""
+
+from __future__ import annotations
+
+from numba import njit
+
+# NumPy's error model drops the zero-division checks; fastmath allows contraction and
+# reassociation only: no-NaN/no-inf assumptions would break step rejection, and approximate
+# library functions would cost accuracy.
+OPTIONS = {"error_model": "numpy", "fastmath": {"contract", "reassoc", "nsz", "arcp"}}
+
+
+def kernel(function):
+    """Compile ``function`` lazily (on its first call) and cache it on disk when it can.
+
+    An install without a writable ``__pycache__`` (read-only site-packages, no
+    ``NUMBA_CACHE_DIR``) has no cache locator: numba refuses ``cache=True`` there, so compile
+    without caching rather than fail the import.
+    """
+    try:
+        return njit(cache=True, **OPTIONS)(function)
+    except RuntimeError:  # "cannot cache function ...: no locator available"
+        return njit(cache=False, **OPTIONS)(function)

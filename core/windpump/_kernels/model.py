@@ -1,0 +1,161 @@
+"""The model the kernels integrate: Eq. (1), the loads of every delivering face, Eq. (11) with T_0.
+
+Crank angles are split into *segments* of width ``pi / cylinders`` between consecutive switches:
+cylinder k sees ``phi = theta - 2 pi k / n`` (2k segments behind cylinder 0), its top face delivers
+while ``pi < phi mod 2 pi < 2 pi`` and, double-acting, its bottom face delivers during the other
+half. Inside a segment the set of delivering faces is fixed, so the load is smooth there.
+"""
+
+from __future__ import annotations
+
+import math
+import typing
+
+from .jit import kernel
+
+
+class Machine(typing.NamedTuple):
+    """The design as the kernels see it, every parameter by name (SI units)."""
+
+    R_dagger: float  # sprocket ratio R1/R0 [-]
+    T_m: float  # peak windmill torque [N m]
+    T_0: float  # windmill torque at rest [N m]
+    omega_m: float  # windmill speed of the peak [rad/s]
+    inv_I_eff: float  # 1 / inertia reflected to the crank [1/(kg m^2)]
+    load_torque: float  # rho_w g h A R [N m]
+    L_over_R: float  # rod / crank [-]
+    cylinders: int  # n, 1 to 6
+    double_acting: bool  # both faces of every piston deliver
+
+
+TOP, BOTTOM, NEITHER = 1, -1, 0  # which face of a cylinder delivers in a segment
+
+
+@kernel
+def piston_over_R(phi, L_over_R):
+    """Piston position from top dead centre over the crank radius, x/R, Eq. (1) [-]."""
+    s = math.sin(phi)
+    return L_over_R + 1.0 - (math.sqrt(L_over_R * L_over_R - s * s) + math.cos(phi))
+
+
+@kernel
+def lever_arm(phi, L_over_R):
+    """sin(phi + theta_c)/cos(theta_c) = (dx/dphi)/R, from Eq. (1) [-]."""
+    s = math.sin(phi)
+    return s * (1.0 + math.cos(phi) / math.sqrt(L_over_R * L_over_R - s * s))
+
+
+@kernel
+def delivering_face(segment, k, machine):
+    """TOP, BOTTOM or NEITHER: the face of cylinder k that delivers in segment ``segment``.
+
+    Cylinder k is 2k segments behind cylinder 0; it exhausts (top face) in the second half of
+    its own revolution of 2n segments.
+    """
+    n = machine.cylinders
+    if (segment - 2 * k) % (2 * n) >= n:
+        return TOP
+    return BOTTOM if machine.double_acting else NEITHER
+
+
+@kernel
+def phase(k, machine):
+    """Cylinder k's lag behind cylinder 0, 2 pi k / n [rad]."""
+    return 2.0 * math.pi * k / machine.cylinders
+
+
+@kernel
+def load_on_crank(theta, segment, machine):
+    """Load torque on the crank, the sum over delivering faces of the load term of Eq. (12) [N m].
+
+    A top face pushes water up while x falls (lever arm < 0); a bottom face while x rises (> 0):
+    either way it brakes the crank by rho_w g h A R |lever arm| (the absolute value also keeps the
+    sign at a dead centre, where the lever arm is a round-off away from 0).
+    """
+    total = 0.0
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) != NEITHER:
+            total += abs(lever_arm(theta - phase(k, machine), machine.L_over_R))
+    return -machine.load_torque * total
+
+
+@kernel
+def segment_start(segment, machine):
+    """The crank angle where a segment begins, segment pi / n [rad] (one formula everywhere)."""
+    return segment * (math.pi / machine.cylinders)
+
+
+@kernel
+def load_work(theta, segment, machine):
+    """Work of the load since the segment began, per unit inertia, Lambda [J/(kg m^2)].
+
+    The integral of :func:`load_on_crank` over theta, in closed form from Eq. (1): each delivering
+    face adds ``+-rho_w g h A R (x/R - x_start/R) / I_eff``, i.e. ``-rho_w g h`` times the volume
+    it delivered, over I_eff.
+    """
+    start = segment_start(segment, machine)
+    total = 0.0
+    for k in range(machine.cylinders):
+        face = delivering_face(segment, k, machine)
+        if face != NEITHER:
+            lag = phase(k, machine)
+            total += face * (
+                piston_over_R(theta - lag, machine.L_over_R)
+                - piston_over_R(start - lag, machine.L_over_R)
+            )
+    return machine.load_torque * machine.inv_I_eff * total
+
+
+@kernel
+def windmill_torque_on_crank(theta_dot, machine):
+    """R+ T(R+ theta_dot) [N m]: T = T_0 + (T_m - T_0) x (2 - x), x = omega/omega_m (Eq. 11 at
+    T_0 = 0), reflected to the crank."""
+    x = machine.R_dagger * theta_dot / machine.omega_m
+    return machine.R_dagger * (machine.T_0 + (machine.T_m - machine.T_0) * x * (2.0 - x))
+
+
+@kernel
+def face_strokes(phi, face, L_over_R):
+    """Strokes one face has delivered at its own angle phi, counted from phi = 0 [-].
+
+    Continuous and never decreasing: the top face adds ``(2R - x)/(2R)`` over pi < phi < 2 pi,
+    the bottom face ``x/(2R)`` over 0 < phi < pi (Eq. 1); one stroke volume 2 R A per revolution.
+    """
+    revolutions = math.floor(phi / (2.0 * math.pi))
+    within = phi - 2.0 * math.pi * revolutions
+    x = piston_over_R(within, L_over_R)
+    if face == TOP:
+        return revolutions + (0.0 if within <= math.pi else 0.5 * (2.0 - x))
+    return revolutions + (0.5 * x if within <= math.pi else 1.0)
+
+
+@kernel
+def delivered_strokes(theta, machine):
+    """Stroke volumes 2 R A delivered by every face at crank angle theta, counted from 0 [-]."""
+    total = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        total += face_strokes(theta - lag, TOP, machine.L_over_R) - face_strokes(
+            -lag, TOP, machine.L_over_R
+        )
+        if machine.double_acting:
+            total += face_strokes(theta - lag, BOTTOM, machine.L_over_R) - face_strokes(
+                -lag, BOTTOM, machine.L_over_R
+            )
+    return total
+
+
+@kernel
+def flow_factor(theta, segment, machine):
+    """The sum of f2 (Eq. 16) over the delivering faces: flow = 2 R A (this) theta_dot [-]."""
+    total = 0.0
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) != NEITHER:
+            total += 0.5 * abs(lever_arm(theta - phase(k, machine), machine.L_over_R))
+    return total
+
+
+@kernel
+def segment_at(theta, machine):
+    """The segment holding theta (a switch belongs to the segment it starts)."""
+    return int(math.floor(theta * machine.cylinders / math.pi))

@@ -12,7 +12,7 @@ import logging
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
-from inputs import FORMATS, PRESETS, SEED, PumpInputs
+from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from mechanisms import Mechanisms
@@ -193,6 +193,14 @@ class Explorer(pn.viewable.Viewer):
             )
             for name, (fmt, _main) in FORMATS.items()
         }
+        self.switches = {
+            name: pn.widgets.Checkbox.from_param(
+                self.inputs.param[name],
+                stylesheets=[*TEXT, FOCUS_CSS],
+                sizing_mode="stretch_width",
+            )
+            for name in SWITCHES
+        }
         button = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
         self.reset_button = pn.widgets.Button(
             label="Reset to the paper's example", color="primary", **button
@@ -304,7 +312,7 @@ class Explorer(pn.viewable.Viewer):
         the numbers a class reads arrive without waiting for ~100 KB of traces to be drawn."""
         self._readouts(seen)
         self.status.object, self.status.alert_type = (
-            self._status_text(seen),
+            f"{self._status_text(seen)} {self._start_text(seen)}",
             STATUS_STYLE[seen.status],
         )
         self.download.filename = design_filename(seen.design)
@@ -378,6 +386,18 @@ class Explorer(pn.viewable.Viewer):
         )
 
     @staticmethod
+    def _start_text(seen: windpump.Exploration) -> str:
+        """Whether the rotor starts on its own: R+ T_0 against the largest load on the crank."""
+        d = seen.design
+        if d.T_0 == 0.0:
+            return "From rest it needs a kick (no torque at rest, T₀ = 0)."
+        at_rest = d.R_dagger * d.T_0
+        peak = windpump.peak_load_torque(d)
+        if seen.starts_from_rest:
+            return f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m > peak load {peak:.2f} N·m)."
+        return f"It does not start on its own from every angle (R†T₀ = {at_rest:.2f} N·m ≤ peak load {peak:.2f} N·m)."
+
+    @staticmethod
     def _status_text(seen: windpump.Exploration) -> str:
         run = seen.run
         if seen.status is Status.RUNNING:
@@ -395,8 +415,10 @@ class Explorer(pn.viewable.Viewer):
             )
         if seen.status is Status.STALLED:
             return f"**Stalled** at t = {run.t_stall:.2f} s (stall margin {seen.margin:.3f})."
-        if seen.theta_dot0 == 0.0:
+        if seen.theta_dot0 == 0.0 and seen.design.T_0 == 0.0:
             return "**Never started.** With no kick (θ̇₀ = 0) this windmill has no torque at rest: give it a kick."
+        if run.t_stall == 0.0:
+            return "**Never started.** From rest, the torque at rest cannot beat the load at θ₀: give it a kick or raise T₀."
         need = (
             f"α₋ = {seen.alpha_minus:.2f} rad/s"
             if seen.alpha_minus is not None
@@ -409,7 +431,7 @@ class Explorer(pn.viewable.Viewer):
 
     # -- actions -----------------------------------------------------------------------------
 
-    def set_values(self, **values: float) -> None:
+    def set_values(self, **values: float | bool) -> None:
         """Set several inputs and update once."""
         self.inputs.param.update(**values)
 
@@ -578,6 +600,7 @@ class Explorer(pn.viewable.Viewer):
             self.preset,
             self.preset_note,
             *main,
+            *self.switches.values(),
             more,
             pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),
             self.reset_button,

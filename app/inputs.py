@@ -28,7 +28,12 @@ FORMATS = {
     "theta0": ("0.00", False),
     "I0": ("0.00", False),
     "I1": ("0.0000", False),
+    "cylinders": ("0", True),
+    "T_0": ("0.00", False),
 }
+
+# Switches (check boxes), by name; in the link as true/false.
+SWITCHES = ("double_acting",)
 
 
 class PumpInputs(param.Parameterized):
@@ -50,12 +55,15 @@ class PumpInputs(param.Parameterized):
     )
     I0 = param.Number(SEED.I0, bounds=(0.01, 10.0), step=0.01, label="Rotor inertia I₀ [kg·m²]")
     I1 = param.Number(SEED.I1, bounds=(0.0005, 1.0), step=0.0005, label="Crank inertia I₁ [kg·m²]")
+    cylinders = param.Number(1, bounds=(1, 6), step=1, label="Cylinders n (phase lag 2π/n)")
+    T_0 = param.Number(0.0, bounds=(0.0, 4.95), step=0.05, label="Torque at rest T₀ [N·m]")
+    double_acting = param.Boolean(False, label="Double-acting pistons (both faces deliver)")
 
     def names(self) -> list[str]:
-        return list(FORMATS)
+        return [*FORMATS, *SWITCHES]
 
-    def values(self) -> dict[str, float]:
-        return {name: getattr(self, name) for name in FORMATS}
+    def values(self) -> dict[str, float | bool]:
+        return {name: getattr(self, name) for name in self.names()}
 
     def design(self) -> windpump.Design:
         """The design these inputs describe: the paper's example with its radii R and R0 kept."""
@@ -67,14 +75,17 @@ class PumpInputs(param.Parameterized):
             omega_m=self.omega_m,
             I0=self.I0,
             I1=self.I1,
+            cylinders=round(self.cylinders),
+            double_acting=self.double_acting,
+            T_0=self.T_0,
         )
 
-    def defaults(self) -> dict[str, float]:
-        return {name: self.param[name].default for name in FORMATS}
+    def defaults(self) -> dict[str, float | bool]:
+        return {name: self.param[name].default for name in self.names()}
 
     def query(self) -> str:
-        """The URL query of the current inputs (shortest repr of each float)."""
-        return urlencode({name: repr(float(value)) for name, value in self.values().items()})
+        """The URL query of the current inputs (shortest repr of each float, true/false)."""
+        return urlencode({name: _shown(value) for name, value in self.values().items()})
 
     def parse_query(self, query: dict) -> tuple[dict[str, float], list[str]]:
         """Values to apply from a URL query (str or bytes values, lists as Tornado gives them),
@@ -84,6 +95,15 @@ class PumpInputs(param.Parameterized):
             raw = raw[-1] if isinstance(raw, list | tuple) else raw
             text = raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
             shown = text if len(text) <= 24 else text[:24] + "…"
+            if key in SWITCHES:
+                if text.lower() in ("true", "false"):
+                    values[key] = text.lower() == "true"
+                else:
+                    label = self.param[key].label
+                    notices.append(
+                        f"{label} ({key}) = “{shown}” ignored: it must be true or false."
+                    )
+                continue
             if key not in FORMATS:
                 if key not in IGNORED_QUERY_KEYS:
                     notices.append(f"“{key}” is not a parameter of this page; ignored.")
@@ -100,6 +120,10 @@ class PumpInputs(param.Parameterized):
                 continue
             values[key] = value
         return values, notices
+
+
+def _shown(value: float | bool) -> str:
+    return str(value).lower() if isinstance(value, bool) else repr(float(value))
 
 
 # Keys the page itself uses, not inputs.
@@ -133,6 +157,16 @@ PRESETS = {
         },
         "With a hundredth of the inertia the crank speed swings within every revolution: the "
         "averaged theory (Eq. 24) smooths over what the full Eq. (12) shows.",
+    ),
+    "Two cylinders, torque at rest": (
+        {"cylinders": 2.0, "T_0": 0.4, "theta_dot0": 0.0},
+        "Two cylinders half a turn apart and a windmill with torque at rest: R†T₀ beats the load "
+        "at every angle, so it starts from rest with no kick, and the flow pulses twice a turn.",
+    ),
+    "A double-acting pump": (
+        {"double_acting": True, "h": 1.5},
+        "Both faces of the piston deliver: the flow pulses twice per revolution, never stops, and "
+        "the load doubles (the margin halves at the same head).",
     ),
     "A stalled pump": (
         {"h": 21.0},

@@ -207,22 +207,30 @@ class FlowView(TimeView):
         self.show_ghost()
 
 
+FACE_COLORS = ("#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf")
+
+
 class CloseupView(View):
     caption = (
         "The last revolutions (or the last turns before a stall), every sample: one delivery "
-        "pulse per revolution while the piston exhausts, none while it takes water in."
+        "pulse per revolution and face while it delivers, none while it takes water in; with "
+        "several faces, each face's pulses (thin) and their sum (thick)."
     )
 
     def __init__(self):
         super().__init__()
         self.sources["closeup"] = empty("t", "flow")
+        self.sources["closeup_faces"] = empty("xs", "ys", "color")
         self.figure = fig = new_figure(
             "Close-up: the last revolutions",
             "time t [s]",
             "flow Q [L/s]",
             tools="pan,box_zoom,reset,save",
         )
-        drawn = line(fig, "t", "flow", self.sources["closeup"], COLORS["flow"])
+        fig.multi_line(
+            "xs", "ys", source=self.sources["closeup_faces"], line_color="color", line_width=1.5
+        )
+        drawn = line(fig, "t", "flow", self.sources["closeup"], COLORS["flow"], width=3)
         fig.scatter("t", "flow", source=self.sources["closeup"], color=COLORS["flow"], size=4)
         fig.add_tools(
             HoverTool(
@@ -235,7 +243,18 @@ class CloseupView(View):
     def update(self, seen, bins):
         run = seen.run
         window = run.last_revolutions(CLOSEUP_REVOLUTIONS)
-        refill(self.sources["closeup"], {"t": run.t[window], "flow": 1e3 * run.flow[window]})
+        t = run.t[window]
+        refill(self.sources["closeup"], {"t": t, "flow": 1e3 * run.flow[window]})
+        faces = run.face_flows()[:, window] if run.design.deliveries > 1 else np.empty((0, 0))
+        delivering = [k for k in range(len(faces)) if faces[k].any()]
+        refill(
+            self.sources["closeup_faces"],
+            {
+                "xs": [t] * len(delivering),
+                "ys": [1e3 * faces[k] for k in delivering],
+                "color": [FACE_COLORS[(k // 2) % len(FACE_COLORS)] for k in delivering],
+            },
+        )
 
 
 class EnergyView(TimeView):

@@ -479,3 +479,51 @@ def test_presentation_mode_comes_from_the_link(raw, presentation, notice):
     assert app.notices.visible is notice
     if notice:
         assert "Presentation mode (presentation) = “maybe” ignored" in app.notices.object
+
+
+# -- several cylinders, double-acting, torque at rest ---------------------------------------------
+
+
+def test_cylinders_double_acting_and_torque_at_rest_reach_every_view(app):
+    app.show_views()
+    app.set_values(cylinders=2.0, double_acting=True, T_0=0.3, h=1.0)
+    design = SEED.replace(cylinders=2, double_acting=True, T_0=0.3, h=1.0)
+    assert app.inputs.design() == design
+    seen = expected(design)
+    assert f"{1e3 * seen.mean_flow:.4f} L/s" in readout_text(app, "mean_flow")
+    assert f"{seen.margin:.3f}" in readout_text(app, "margin")
+    faces = app.sources["closeup_faces"].data
+    assert len(faces["ys"]) == 4  # both faces of both cylinders deliver
+    total = np.sum(faces["ys"], axis=0)
+    flow = np.asarray(app.sources["closeup"].data["flow"])
+    np.testing.assert_allclose(total, flow, rtol=1e-9, atol=1e-9 * flow.max())
+    peak = windpump.peak_load_torque(design)
+    assert f"peak load {peak:.2f} N·m" in app.status.object
+
+
+def test_a_start_from_rest_needs_torque_at_rest(app):
+    app.set_values(theta_dot0=0.0)
+    assert "Never started" in app.status.object and "needs a kick" in app.status.object
+    app.set_values(cylinders=2.0, T_0=0.4)
+    assert "Running" in app.status.object and "starts on its own" in app.status.object
+    seen = expected(SEED.replace(cylinders=2, T_0=0.4), theta_dot0=0.0)
+    assert f"{1e3 * seen.pumped_volume:.1f} L" in readout_text(app, "volume")
+
+
+def test_torque_at_rest_above_the_peak_is_refused_and_named(app):
+    app.set_values(T_0=0.8)  # above T_m = 0.6
+    assert app.error.visible and "T_0 = 0.8" in app.error.object and "< T_m" in app.error.object
+    app.set_values(T_0=0.2)
+    assert not app.error.visible
+
+
+def test_the_new_inputs_travel_in_the_link():
+    app = Explorer(query={"cylinders": [b"3"], "double_acting": [b"true"], "T_0": [b"0.25"]})
+    assert app.inputs.design() == SEED.replace(cylinders=3, double_acting=True, T_0=0.25)
+    query = dict(_query_pairs(app.inputs.query()))
+    assert query["double_acting"] == "true" and query["cylinders"] == "3.0"
+    again = Explorer(query={k: [v.encode()] for k, v in query.items()})
+    assert again.inputs.values() == app.inputs.values()
+    bad = Explorer(query={"double_acting": [b"maybe"], "cylinders": [b"9"]})
+    assert "it must be true or false" in bad.notices.object
+    assert "from 1 to 6" in bad.notices.object and bad.inputs.design() == SEED

@@ -428,3 +428,26 @@ def test_corner_cases_open_cleanly(browser, url, query, shown):
         assert page.problems == [] and page.elsewhere == []
     finally:
         page.close()
+
+
+def test_cylinders_and_torque_at_rest_from_the_link_and_the_double_acting_box(browser, url):
+    design = SEED.replace(cylinders=2, T_0=0.4)
+    page = open_page(browser, url, query="?cylinders=2&T_0=0.4&theta_dot0=0")
+    try:
+        wait_for_readout(page, "mean_flow", flow_readout(design, theta_dot0=0.0))
+        page.get_by_text("It starts on its own from any angle").first.wait_for(timeout=30_000)
+        faces = "() => window.Bokeh.documents[0].get_model_by_name('closeup_faces').data.ys.length"
+        page.wait_for_function(f"{faces} === 2", timeout=60_000)  # each cylinder's pulses
+        box = page.get_by_role("checkbox")  # the page's one check box
+        assert box.count() == 1 and page.get_by_text("Double-acting pistons").count() == 1
+        box.check(timeout=30_000)
+        double = design.replace(double_acting=True)  # 4 faces: too heavy to start from rest
+        page.get_by_text("cannot beat the load at θ₀").first.wait_for(timeout=60_000)
+        wait_for_readout(page, "mean_flow", flow_readout(double, theta_dot0=0.0))
+        page.wait_for_function(
+            "() => new URLSearchParams(location.search).get('double_acting') === 'true'",
+            timeout=30_000,
+        )
+        assert page.problems == []
+    finally:
+        page.close()

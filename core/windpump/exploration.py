@@ -17,6 +17,8 @@ from .averaged import (
 )
 from .design import Design
 from .dynamics import Intermittency, SimulationResult, simulate
+from .loads import starts_from_rest
+from .validation import whole
 from .windmill import OperatingPoint, operating_point
 
 
@@ -30,7 +32,7 @@ class Status(enum.Enum):
     STALLED = "stalled"
     """It was turning and came to rest: the load won (the margin is 1 or less, or ripple)."""
     NEVER_STARTED = "never started"
-    """The kick was too small: 0, or below alpha- (Eq. 21), so it came to rest."""
+    """It could not get going: stuck at rest from the start, or kicked below alpha- (Eq. 21)."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -60,6 +62,9 @@ class Exploration:
     operating_point : OperatingPoint or None
         Eq. (5) against Eq. (11); None when the margin is 1 or less.
     status : Status
+    starts_from_rest : bool
+        Whether the windmill's torque at rest turns the crank from any angle
+        (:func:`windpump.starts_from_rest`).
     """
 
     run: SimulationResult
@@ -76,6 +81,7 @@ class Exploration:
     intermittency: Intermittency | None
     operating_point: OperatingPoint | None
     status: Status
+    starts_from_rest: bool = False
 
     @property
     def design(self) -> Design:
@@ -108,7 +114,8 @@ def explore(
     t_end, theta0, theta_dot0 : float
         As for :func:`windpump.simulate` [s], [rad], [rad/s].
     points : int, default 400
-        Times at which the averaged spin-up (Eq. 24) is evaluated, evenly over the run.
+        Times at which the averaged spin-up (Eq. 24) is evaluated, evenly over the run: a whole
+        number from 2 to 100,000.
 
     Raises
     ------
@@ -122,6 +129,7 @@ def explore(
     >>> seen.status.value, round(seen.alpha_plus, 2), round(seen.tau, 1)
     ('running', 23.71, 78.6)
     """
+    points = whole("points", points, 2, 100_000)
     run = simulate(design, t_end, theta0, theta_dot0)
     margin = stall_margin(design)
     alpha_plus = alpha_minus = tau = point = None
@@ -129,7 +137,7 @@ def explore(
         alpha_plus, alpha_minus = steady_speeds(design)
         tau = time_constant(design)
         point = operating_point(design)
-    spinup_t = np.linspace(0.0, float(run.t[-1]), max(2, int(points)))
+    spinup_t = np.linspace(0.0, float(run.t[-1]), points)
     cycle_t, cycle_speed = run.cycle_mean_speed()
     whole_revolutions = len(cycle_t) > 0
     return Exploration(
@@ -147,12 +155,13 @@ def explore(
         intermittency=run.intermittency() if whole_revolutions else None,
         operating_point=point,
         status=_status(run, margin, alpha_minus, theta_dot0),
+        starts_from_rest=starts_from_rest(design),
     )
 
 
 def _status(run: SimulationResult, margin: float, alpha_minus, theta_dot0: float) -> Status:
     if not run.stalled:
         return Status.RUNNING if margin > 1.0 else Status.SLOWING
-    if theta_dot0 == 0.0 or (alpha_minus is not None and theta_dot0 < alpha_minus):
+    if run.t_stall == 0.0 or (alpha_minus is not None and 0.0 < theta_dot0 < alpha_minus):
         return Status.NEVER_STARTED
     return Status.STALLED

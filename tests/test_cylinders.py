@@ -348,3 +348,34 @@ def test_every_configuration_closes_its_energy_and_never_unpumps(changes, theta0
         gap = np.max(np.abs(run.shaft_work - kinetic - lift))
         energies = np.max(np.abs(run.shaft_work)) + 0.5 * design.I_eff * kick**2
         assert gap <= 1e-8 * energies + 1e-12
+
+
+FIELDS = ["R0", "R1", "R", "L", "A", "I0", "I1", "T_m", "omega_m", "h", "rho_w", "g", "T_0"]
+
+
+@settings(deadline=None, max_examples=150)
+@given(st.sampled_from(FIELDS), st.floats(-330.0, 330.0), st.sampled_from([-1.0, 1.0]))
+def test_extreme_magnitudes_are_refused_by_name_or_give_finite_answers(field, exponent, sign):
+    with np.errstate(over="ignore"):
+        value = sign * float(np.power(10.0, exponent))  # inf past 1e308, subnormal or 0 below
+    try:
+        design = SEED.replace(**{field: value})
+    except ParameterError as error:
+        assert error.name in (field, "L", "R1", "T_0")  # a ratio names the field it sets
+        return
+    try:
+        run = windpump.simulate(design, 1.0)
+    except ParameterError as error:
+        assert error.name in ("t_end", "design")
+        return
+    for array in (run.t, run.theta, run.theta_dot, run.volume, run.flow, run.shaft_work):
+        assert np.all(np.isfinite(array))
+    if windpump.stall_margin(design) > 1:
+        assert all(math.isfinite(speed) for speed in windpump.steady_speeds(design))
+        assert math.isfinite(windpump.time_constant(design))
+
+
+@pytest.mark.parametrize("points", [0, 1, 2.5, -3, math.nan, 10**9, True])
+def test_explore_points_are_checked(points):
+    with pytest.raises(ParameterError, match="^points = "):
+        windpump.explore(SEED, 10.0, points=points)

@@ -317,3 +317,11 @@ def test_a_rod_shorter_than_the_crank_closes_only_near_the_axis():
     with pytest.raises(NoClosure, match="cannot reach") as caught:
         linkage.slider_crank(math.pi / 2, R, L)
     assert caught.value.where == {"theta": math.pi / 2}
+
+
+@pytest.mark.parametrize("tol", [0.0, -1e-9, math.nan, math.inf, "small"])
+def test_a_bad_tolerance_is_named(tol):
+    from windpump.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="^tol = "):
+        linkage.four_bar(1.0, 3.0, 2.5, 3.0, theta1=1.0, tol=tol)

@@ -7,7 +7,7 @@ import math
 import typing
 
 from .errors import ParameterError
-from .validation import flag, non_negative, positive, rod_ratio, whole
+from .validation import LARGEST, flag, magnitude, non_negative, positive, rod_ratio, whole
 
 # Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
 UNITS = {
@@ -30,6 +30,9 @@ UNITS = {
 
 MAX_CYLINDERS = 6
 
+WIDEST_RATIO = 1e50
+"""Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
+
 
 @dataclasses.dataclass(frozen=True)
 class Design:
@@ -38,7 +41,8 @@ class Design:
     The defaults of the last three fields are the paper's machine: one single-acting cylinder and a
     windmill with no torque at rest.
 
-    Every field is checked on construction; a bad value raises
+    Every field is checked on construction (numbers from ``SMALLEST`` to ``LARGEST`` in SI units;
+    h and T_0 from 0); a bad value raises
     :class:`~windpump.ParameterError` (a ``ValueError``) naming the field, its value and the
     allowed range.
 
@@ -115,14 +119,22 @@ class Design:
                 value = whole(name, value, 1, MAX_CYLINDERS)
             elif name == "double_acting":
                 value = flag(name, value)
-            elif name in ("h", "T_0"):
+            elif name in ("h", "T_0"):  # any size down to 0 (T_0 is held below T_m below)
                 value = non_negative(name, value, UNITS[name])
+                if value > LARGEST:
+                    raise ParameterError(name, value, f"<= {LARGEST:g}", UNITS[name])
             else:
-                value = positive(name, value, UNITS[name])
+                value = magnitude(name, value, UNITS[name])
             object.__setattr__(self, name, value)
         if self.L <= self.R:
             raise ParameterError(
                 "L", self.L, f"> R = {self.R!r} m", "m", why="the rod cannot reach the crank"
+            )
+        if self.L / self.R > WIDEST_RATIO:
+            raise ParameterError("L", self.L, f"<= {WIDEST_RATIO:g} R", "m", why="L/R is too large")
+        if not 1 / WIDEST_RATIO <= self.R1 / self.R0 <= WIDEST_RATIO:
+            raise ParameterError(
+                "R1", self.R1, f"from {1 / WIDEST_RATIO:g} to {WIDEST_RATIO:g} R0", "m"
             )
         if self.T_0 >= self.T_m:
             raise ParameterError(

@@ -383,9 +383,11 @@ def simulate(
         capacity=first_capacity(design, t_end, theta_dot0, bound),
     )
     if run.outcome == _kernels.OVER_BUDGET:
-        raise ValueError(
-            f"the integration needed more than {MAX_STEPS} steps: the design is too stiff "
-            f"(its spin-up takes less than a crank revolution); increase I0 or I1"
+        raise ParameterError(
+            "design",
+            f"I_eff = {design.I_eff:.3g} kg m^2",
+            "a rotor heavy enough to spin up over more than a crank revolution (increase I0 or I1)",
+            why=f"the integration needed more than {MAX_STEPS} steps: the design is too stiff",
         )
     volume = design.stroke_volume * (run.strokes - run.strokes[0])
     flow = design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16), every face

@@ -215,6 +215,7 @@ def solve_loop(
     (0.585642, 1.554646, 4)
     """
     loop = tuple(loop)
+    tol = positive("tol", tol, "rad")
     known = {name: real(name, value) for name, value in known.items()}
     unknowns = tuple(name for name in names_in(loop) if name not in known)
     if len(unknowns) != 2:

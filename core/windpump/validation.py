@@ -86,3 +86,17 @@ def flag(name: str, value: object) -> bool:
     if not isinstance(value, (bool, np.bool_)):
         raise ParameterError(name, value, "True or False")
     return bool(value)
+
+
+SMALLEST, LARGEST = 1e-100, 1e100
+"""The magnitudes a design's numbers may take [their SI units]: far past any machine, and where the
+model's groups (R+^3, L^2, I0 R+^2 ...) stay within double precision."""
+
+
+def magnitude(name: str, value: object, unit: str = "") -> float:
+    """Return ``value`` as a float if it lies in [SMALLEST, LARGEST]."""
+    as_float = real(name, value, unit)
+    if not SMALLEST <= as_float <= LARGEST:
+        allowed = f"a finite number from {SMALLEST:g} to {LARGEST:g}"
+        raise ParameterError(name, value, allowed, unit)
+    return as_float

@@ -32,7 +32,9 @@ SPEEDS = [
 ]
 ASPECT = 16 / 10  # the drawing's width / height
 WIDGET_CSS = ":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }"
-LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]  # three blades, sprocket mark, crank, rod
+# Three blades and the sprocket's mark, then each cylinder's crank and rod (the player draws
+# as many as the design has cylinders).
+LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]
 
 
 def tangents(c0, r0, c1, r1):
@@ -56,8 +58,9 @@ def tangents(c0, r0, c1, r1):
 class MachineView(View):
     caption = (
         "The machine playing the computed run: the windmill turns the small sprocket R₁/R₀ times "
-        "faster than the crank (Eq. 4); the piston follows Eq. (1); the tank fills with the "
-        "volume pumped (Eq. 16). Rotor blades not to scale."
+        "faster than the crank (Eq. 4); each piston follows Eq. (1), cylinder k on its own throw "
+        "2πk/n behind the first; the tank fills with the volume pumped (Eq. 16). Rotor blades "
+        "not to scale."
     )
 
     def __init__(self, cursor: ColumnDataSource):
@@ -199,22 +202,32 @@ class MachineView(View):
         refill(self.sources["piston_table"], {"theta": theta, "x": x})
         blade = d.L + d.R
         c0 = (-(d.R1 + 1.15 * blade), 0.55 * blade)
+        # Cylinder k stands pitch * k to the right, on its own throw of the one crankshaft.
+        pitch = max(2.6 * d.R, 1.6 * d.bore)
+        last = pitch * (d.cylinders - 1)
         tank_w = tank_h = 0.45 * d.L
-        tank_x, tank_y = 1.5 * d.bore + 0.2 * d.L, d.L + d.R + 1.2 * d.bore
-        top = d.L + d.R + d.bore  # the cylinder's head
+        tank_x, tank_y = last + 1.5 * d.bore + 0.2 * d.L, d.L + d.R + 1.2 * d.bore
+        top = d.L + d.R + d.bore  # the cylinders' heads
+        walls = [
+            ([x + side * d.bore / 2] * 2, [d.L - d.R - 0.3 * d.bore, top])
+            for x in np.arange(d.cylinders) * pitch
+            for side in (-1, 1)
+        ]
         static = [
             *tangents(c0, d.R0, (0.0, 0.0), d.R1),  # chain
-            ([-d.bore / 2] * 2, [d.L - d.R - 0.3 * d.bore, top]),  # cylinder walls
-            ([d.bore / 2] * 2, [d.L - d.R - 0.3 * d.bore, top]),
-            ([-d.bore / 2, d.bore / 2], [top, top]),
+            *walls,
+            ([-d.bore / 2, last + d.bore / 2], [top, top]),  # heads, and the manifold above them
+            ([0.0, last], [top + 0.6 * d.bore] * 2),
+            *[([x, x], [top, top + 0.6 * d.bore]) for x in np.arange(d.cylinders) * pitch],
             (
-                [0.0, 0.0, tank_x + 0.3 * tank_w, tank_x + 0.3 * tank_w],
-                [top, top + 0.6 * d.bore, top + 0.6 * d.bore, tank_y + tank_h],
+                [last, tank_x + 0.3 * tank_w, tank_x + 0.3 * tank_w],
+                [top + 0.6 * d.bore, top + 0.6 * d.bore, tank_y + tank_h],
             ),  # riser
             (
                 [tank_x, tank_x, tank_x + tank_w, tank_x + tank_w],
                 [tank_y + tank_h, tank_y, tank_y, tank_y + tank_h],
             ),  # tank
+            ([0.0, last], [0.0, 0.0]),  # the crankshaft (a point for one cylinder)
         ]
         refill(
             self.sources["machine_static"],
@@ -237,6 +250,8 @@ class MachineView(View):
             tank_y=tank_y,
             tank_w=tank_w,
             tank_h=tank_h,
+            cylinders=d.cylinders,
+            pitch=pitch,
         )
         left, right = c0[0] - blade * 1.05, tank_x + tank_w + 0.1 * blade
         bottom, high = (

@@ -36,19 +36,29 @@ function draw(t) {
   if (here == null) return
   const g = Object.fromEntries(Object.entries(geometry.data).map(([k, v]) => [k, v[0]]))
   const th = here.theta, rotor = g.R_dagger * th
-  const pin = [-g.R * Math.sin(th), g.R * Math.cos(th)]
-  const top = g.L + g.R - piston_x(th)  // piston pin height above the crank centre
-  const xs = [], ys = []
+  const xs = [], ys = [], colors = []
   for (let k = 0; k < 3; k++) {  // blades on the small sprocket's shaft, turning R+ times faster
     const a = rotor + 2 * Math.PI * k / 3
     xs.push([g.c0x, g.c0x - g.blade * Math.sin(a)]); ys.push([g.c0y, g.c0y + g.blade * Math.cos(a)])
   }
   xs.push([g.c0x, g.c0x - 0.8 * g.R0 * Math.sin(rotor)]); ys.push([g.c0y, g.c0y + 0.8 * g.R0 * Math.cos(rotor)])
-  xs.push([0, pin[0]]); ys.push([0, pin[1]])  // crank
-  xs.push([pin[0], 0]); ys.push([pin[1], top])  // rod
-  links.setv({data: {xs, ys, color: col(links, "color")}}, {sync: false})
-  joints.setv({data: {x: [pin[0], 0], y: [pin[1], top]}}, {sync: false})
-  piston.setv({data: {x: [0], y: [top + 0.4 * g.bore], width: [g.bore], height: [0.8 * g.bore]}}, {sync: false})
+  colors.push(...Array(4).fill("#6b6b6b"))
+  // Cylinder k on its own throw, pitch * k to the right, sees the crank angle theta - 2 pi k / n.
+  const n = g.cylinders || 1, joint = {x: [], y: []}, body = {x: [], y: [], width: [], height: []}
+  let top0 = 0
+  for (let k = 0; k < n; k++) {
+    const phi = th - 2 * Math.PI * k / n, cx = k * (g.pitch || 0)
+    const pin = [cx - g.R * Math.sin(phi), g.R * Math.cos(phi)]
+    const top = g.L + g.R - piston_x(phi)  // piston pin height above the crank centre
+    if (k == 0) top0 = top
+    xs.push([cx, pin[0]]); ys.push([0, pin[1]]); colors.push("#d62728")  // crank
+    xs.push([pin[0], cx]); ys.push([pin[1], top]); colors.push("#1f77b4")  // rod
+    joint.x.push(pin[0], cx); joint.y.push(pin[1], top)
+    body.x.push(cx); body.y.push(top + 0.4 * g.bore); body.width.push(g.bore); body.height.push(0.8 * g.bore)
+  }
+  links.setv({data: {xs, ys, color: colors}}, {sync: false})
+  joints.setv({data: joint}, {sync: false})
+  piston.setv({data: body}, {sync: false})
   const full = g.v_full > 0 ? Math.min(1, here.volume / g.v_full) : 0
   const depth = Math.max(full * g.tank_h, 1e-9)
   water.setv({data: {x: [g.tank_x + g.tank_w / 2], y: [g.tank_y + depth / 2], width: [g.tank_w], height: [depth]}}, {sync: false})
@@ -56,7 +66,7 @@ function draw(t) {
     text: [`t = ${t.toFixed(1)} s   V = ${(1e3 * here.volume).toFixed(1)} L`]}}, {sync: false})
   cursor.setv({data: {t: [t]}}, {sync: false})
   if (Math.abs(scrubber.value - t) > 1e-9) { P.from_player = true; scrubber.setv({value: t}, {sync: false}); P.from_player = false }
-  P.t = t; P.drawn += 1; P.theta = th; P.top = top
+  P.t = t; P.drawn += 1; P.theta = th; P.top = top0
 }
 
 function end_time() { const T = col(frames, "t"); return T.length ? T[T.length - 1] : 0 }

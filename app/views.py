@@ -321,9 +321,10 @@ class EnergyView(TimeView):
 class StallView(View):
     caption = (
         "Eq. (22): it can run while the windmill's characteristic torque Tₘ† (Eq. 14) exceeds the "
-        "mean load R† L†/π (Eq. 15)."
+        "mean load m R† L†/π (Eq. 15; m deliveries per revolution: 1 in the paper, cylinders × 2 "
+        "when double-acting)."
     )
-    NAMES = ("windmill: Tₘ†", "load: R† L†/π")
+    NAMES = ("windmill: Tₘ†", "load: m R† L†/π")
 
     def __init__(self):
         super().__init__()

@@ -451,3 +451,28 @@ def test_cylinders_and_torque_at_rest_from_the_link_and_the_double_acting_box(br
         assert page.problems == []
     finally:
         page.close()
+
+
+def test_the_machine_draws_every_cylinder_on_its_own_throw(browser, url):
+    design = SEED.replace(cylinders=3, h=2.0)
+    run = windpump.simulate(design, 600.0)
+    page = open_page(browser, url, query="?cylinders=3&h=2")
+    try:
+        t = 123.4
+        page.evaluate(
+            f"() => {{ window.Bokeh.documents[0].get_model_by_name('scrubber').value = {t} }}"
+        )
+        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=30_000)
+        xs, ys = model_data(page, "machine_links", "xs"), model_data(page, "machine_links", "ys")
+        assert len(xs) == 4 + 2 * 3  # blades and mark, then a crank and a rod per cylinder
+        theta = float(np.interp(t, run.t, run.theta))
+        for k in range(3):
+            (cx, pin_x), (cy, pin_y) = xs[4 + 2 * k], ys[4 + 2 * k]
+            drawn = math.atan2(-(pin_x - cx), pin_y - cy)
+            lag = theta - 2 * math.pi * k / 3  # cylinder k sees theta - 2 pi k / n
+            assert abs(math.remainder(drawn - lag, 2 * math.pi)) < 0.01, k
+            x = float(windpump.piston_position(drawn, design.R, design.L))
+            assert ys[5 + 2 * k][1] == pytest.approx(design.L + design.R - x, abs=2e-6)
+        assert page.problems == []
+    finally:
+        page.close()

@@ -325,3 +325,13 @@ def test_a_bad_tolerance_is_named(tol):
 
     with pytest.raises(ParameterError, match="^tol = "):
         linkage.four_bar(1.0, 3.0, 2.5, 3.0, theta1=1.0, tol=tol)
+
+
+@pytest.mark.parametrize("guess", [(0.5, 1.5), (5.5, 4.0)])
+def test_a_closure_labels_its_assembly_as_four_bar_branch_does(guess):
+    closed = linkage.solve_loop(
+        linkage.four_bar_loop(1.0, 3.0, 2.5, 3.0),
+        {"theta1": 1.0},
+        dict(zip(("theta2", "theta3"), guess)),
+    )
+    assert closed.branch == linkage.four_bar_branch(closed["theta2"], closed["theta3"]) != 0

@@ -105,8 +105,10 @@ class Closure:
     residuals : ndarray
         ``|F|`` relative to the loop's size at each iterate [-]: it falls quadratically near the root.
     branch : int
-        The sign of the Jacobian's determinant at the solution: the assembly found. A sweep that
-        follows one branch keeps it; it changes only through a dead centre.
+        The assembly found: minus the sign of the Jacobian's determinant at the solution, the
+        convention under which a four-bar's branch is :func:`four_bar_branch` (+1 with B left of
+        the line from A to D, as the Mechanisms tab labels it). A sweep that follows one branch
+        keeps it; it changes only through a dead centre.
     """
 
     values: dict
@@ -232,7 +234,7 @@ def solve_loop(
         F, J = residual(loop, values), jacobian(loop, values, unknowns)
         residuals.append(math.hypot(*F) / scale)
         if residuals[-1] <= ROUND_OFF or last_step <= tol:
-            branch = _sign(np.linalg.det(J))
+            branch = _branch(J)
             return Closure(values, unknowns, np.array(iterates), np.array(residuals), branch)
         if iteration == max_iterations:
             break
@@ -244,7 +246,7 @@ def solve_loop(
                 "start from another guess",
                 iteration,
             )
-        branch = branch or _sign(np.linalg.det(J))  # set at the guess, kept after
+        branch = branch or _branch(J)  # set at the guess, kept after
         dq = np.linalg.solve(J, -F)
         size = float(np.max(np.abs(dq) / units))
         shrink = min(1.0, MAX_STEP / size) if size > 0 else 1.0
@@ -307,7 +309,7 @@ class Sweep:
     values : dict of ndarray
         Every name over the positions that closed [rad or m]. Angles are continuous (not wrapped).
     branches : tuple of int
-        The branch of each loop (sign of its Jacobian), kept along the sweep.
+        The branch of each loop (``Closure.branch``), kept along the sweep.
     stop : NoClosure or None
         Why the sweep ended before the last input value; None when every position closed.
     """
@@ -677,6 +679,12 @@ def _in_line(J: np.ndarray) -> bool:
     return abs(np.linalg.det(J)) <= DEAD_CENTRE * np.prod(np.linalg.norm(J, axis=0))
 
 
+def _branch(J: np.ndarray) -> int:
+    """The branch of a loop at a Jacobian J: -sign(det J). For the four-bar,
+    det J = -r2 r3 sin(theta3 - theta2), so this is :func:`four_bar_branch`: one convention."""
+    return -_sign(np.linalg.det(J))
+
+
 def _step_on_branch(loop, known, unknowns, q, step, branch) -> tuple[np.ndarray | None, bool]:
     """q + step, halved while it would cross a dead centre (flip the sign of det J) onto the other
     branch, so Newton-Raphson keeps its guess's branch; also says whether it was halved. None
@@ -684,7 +692,7 @@ def _step_on_branch(loop, known, unknowns, q, step, branch) -> tuple[np.ndarray 
     for halvings in range(BLOCKED_HALVINGS):
         trial = q + step
         values = {**known, **dict(zip(unknowns, map(float, trial), strict=True))}
-        if _sign(np.linalg.det(jacobian(loop, values, unknowns))) == branch:
+        if _branch(jacobian(loop, values, unknowns)) == branch:
             return trial, halvings > 0
         step = 0.5 * step
     return None, True

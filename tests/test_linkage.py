@@ -332,6 +332,6 @@ def test_a_closure_labels_its_assembly_as_four_bar_branch_does(guess):
     closed = linkage.solve_loop(
         linkage.four_bar_loop(1.0, 3.0, 2.5, 3.0),
         {"theta1": 1.0},
-        dict(zip(("theta2", "theta3"), guess)),
+        dict(zip(("theta2", "theta3"), guess, strict=True)),
     )
     assert closed.branch == linkage.four_bar_branch(closed["theta2"], closed["theta3"]) != 0

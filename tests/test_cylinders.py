@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import pickle
+import sys
 from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
@@ -379,3 +380,14 @@ def test_extreme_magnitudes_are_refused_by_name_or_give_finite_answers(field, ex
 def test_explore_points_are_checked(points):
     with pytest.raises(ParameterError, match="^points = "):
         windpump.explore(SEED, 10.0, points=points)
+
+
+def test_import_loads_neither_numba_nor_scipy_integrate_until_needed():
+    import subprocess
+
+    probe = (
+        "import sys, windpump; print('numba' in sys.modules, 'scipy.integrate' in sys.modules); "
+        "windpump.simulate(windpump.Design.seed_example(), 1.0); print('numba' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "False", "True"]

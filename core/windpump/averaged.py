@@ -17,7 +17,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import integrate
 
 from .design import Design
 from .errors import StallError
@@ -43,6 +42,8 @@ def mean_lever_arm(L_over_R: float) -> float:
     -1.0
     """
     ratio = rod_ratio(L_over_R)
+    from scipy import integrate  # here, not at import: scipy.integrate takes ~0.5 s to load
+
     value, _ = integrate.quad(
         lambda theta: float(lever_arm(theta, ratio)),
         math.pi,

@@ -13,7 +13,6 @@ import os
 
 import numpy as np
 
-from . import _kernels
 from .averaged import steady_speeds
 from .design import UNITS, Design
 from .errors import ParameterError, StallError
@@ -361,6 +360,8 @@ def simulate(
             "s",
             why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}",
         )
+    from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
+
     machine = _kernels.Machine(
         R_dagger=design.R_dagger,
         T_m=design.T_m,

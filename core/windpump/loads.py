@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize
 
 from .design import Design
 from .kinematics import face_flows
@@ -61,6 +60,8 @@ def peak_load_torque(design: Design, samples_per_segment: int = 512) -> float:
     theta = np.arange(2 * samples_per_segment + 1) * spacing
     load = load_torque_on_crank(design, theta)
     best = theta[int(np.argmax(load))]
+    from scipy import optimize  # here, not at import: scipy.optimize takes ~0.5 s to load
+
     refined = optimize.minimize_scalar(
         lambda angle: -float(load_torque_on_crank(design, angle)),
         bounds=(best - spacing, best + spacing),

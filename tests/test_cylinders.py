@@ -99,7 +99,7 @@ def test_faces_add_up_to_the_flow(runs, name):
         assert np.all(faces[1::2] == 0.0)
 
 
-def test_the_samples_land_on_every_dead_centre_and_the_flow_is_continuous(runs):
+def test_the_samples_keep_the_pi_over_16_grid_and_the_run_counts_its_steps(runs):
     run, _ = runs["three cylinders, short rod"]
     grid = run.theta[1:-1] / (math.pi / 16)
     np.testing.assert_allclose(grid, np.round(grid), atol=1e-9)

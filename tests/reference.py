@@ -56,6 +56,23 @@ def equation_12(design: Design, exhaust: bool):
     return rhs
 
 
+def solve_to_switch(rhs, t, t_end, y, end, atol):
+    """One DOP853 solve from (t, y) that ends at t_end, where theta reaches ``end`` (a switch of
+    the load; event 0) or where theta_dot falls to 0 (event 1), whichever comes first."""
+
+    def reaches_switch(_t, state):
+        return state[0] - end
+
+    def stops(_t, state):
+        return state[1]
+
+    reaches_switch.terminal, reaches_switch.direction = True, 1
+    stops.terminal, stops.direction = True, -1
+    return solve_ivp(
+        rhs, (t, t_end), y, method="DOP853", rtol=RTOL, atol=atol, events=(reaches_switch, stops)
+    )
+
+
 def reference_run(design: Design, t_end: float, theta0: float, theta_dot0: float) -> Reference:
     """The state at t_end, or at the stall if theta_dot reaches 0 first."""
     t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
@@ -70,23 +87,7 @@ def reference_run(design: Design, t_end: float, theta0: float, theta_dot0: float
             stroke += 1
         dead_centre = (stroke + 1) * math.pi
 
-        def reaches_dead_centre(_t, state, end=dead_centre):
-            return state[0] - end
-
-        def stalls(_t, state):
-            return state[1]
-
-        reaches_dead_centre.terminal, reaches_dead_centre.direction = True, 1
-        stalls.terminal, stalls.direction = True, -1
-        sol = solve_ivp(
-            equation_12(design, stroke % 2 == 1),
-            (t, t_end),
-            y,
-            method="DOP853",
-            rtol=RTOL,
-            atol=atol,
-            events=(reaches_dead_centre, stalls),
-        )
+        sol = solve_to_switch(equation_12(design, stroke % 2 == 1), t, t_end, y, dead_centre, atol)
         t, y = sol.t[-1], sol.y[:, -1].copy()
         if sol.t_events[1].size:
             return Reference(t, y[0], 0.0, y[2], y[3], True, t)
@@ -172,23 +173,7 @@ def general_reference_run(design: Design, t_end: float, theta0: float, theta_dot
         if y[1] == 0.0 and Rd * design.T_0 + load(y[0]) <= 0.0:
             return Reference(t, y[0], 0.0, y[2], y[3], True, t)
 
-        def reaches_switch(_t, state, end=end):
-            return state[0] - end
-
-        def stops(_t, state):
-            return state[1]
-
-        reaches_switch.terminal, reaches_switch.direction = True, 1
-        stops.terminal, stops.direction = True, -1
-        sol = solve_ivp(
-            general_rhs(design, load),
-            (t, t_end),
-            y,
-            method="DOP853",
-            rtol=RTOL,
-            atol=atol,
-            events=(reaches_switch, stops),
-        )
+        sol = solve_to_switch(general_rhs(design, load), t, t_end, y, end, atol)
         t, y = sol.t[-1], sol.y[:, -1].copy()
         if sol.t_events[1].size:
             y[1] = 0.0  # at rest: the loop decides whether it moves on

@@ -181,3 +181,94 @@ def general_reference_run(design: Design, t_end: float, theta0: float, theta_dot
         if not sol.t_events[0].size:
             return Reference(t, y[0], y[1], y[2], y[3], False, None)
         y[0] = end
+
+
+def wind_rhs(design: Design, load, wind_t, wind_V):
+    """:func:`general_rhs` in a wind record: the curve at V(t) by similarity, written out as the
+    issue states it (T_m, T_0 scaled by (V/V_ref)^2, omega_m by V/V_ref)."""
+    Rd = design.R1 / design.R0
+    I_eff = design.I1 + design.I0 * Rd**2
+    pressure = design.rho_w * design.g * design.h
+
+    def rhs(t, y):
+        theta, theta_dot = y[0], y[1]
+        ratio = float(np.interp(t, wind_t, wind_V)) / design.V_ref
+        T_m, T_0 = design.T_m * ratio**2, design.T_0 * ratio**2
+        omega_m = design.omega_m * ratio
+        omega = Rd * theta_dot
+        torque = (
+            T_0 + (T_m - T_0) * (omega / omega_m) * (2 - omega / omega_m)
+            if ratio
+            else (-(design.T_m - design.T_0) * (omega / design.omega_m) ** 2)
+        )
+        braking = load(theta)
+        return [
+            theta_dot,
+            (Rd * torque + braking) / I_eff,
+            -braking / pressure * theta_dot if pressure else 0.0,
+            torque * omega,
+        ]
+
+    return rhs
+
+
+def restart_time(design: Design, load_at_rest: float, t: float, wind_t, wind_V) -> float:
+    """The first time >= t when R+ T_0 (V/V_ref)^2 exceeds the load torque, by brentq on each
+    interval of the record (V linear there), or inf."""
+    from scipy.optimize import brentq
+
+    Rd = design.R1 / design.R0
+
+    def excess(time):
+        ratio = float(np.interp(time, wind_t, wind_V)) / design.V_ref
+        return Rd * design.T_0 * ratio**2 - load_at_rest
+
+    if excess(t) > 0:
+        return t
+    for a, b in zip(wind_t[:-1], wind_t[1:], strict=True):
+        if b <= t or excess(b) <= 0:
+            continue
+        return brentq(excess, max(a, t), b, xtol=1e-14, rtol=1e-15)
+    return math.inf
+
+
+def wind_reference_run(design: Design, t_end, theta0, theta_dot0, wind_t, wind_V):
+    """:func:`general_reference_run` in a wind record: each solve also ends at the record's next
+    sample (where V(t) has a kink); a crank at rest waits for :func:`restart_time`. Returns the
+    final Reference and the lists of stop and start times."""
+    wind_t, wind_V = np.asarray(wind_t, float), np.asarray(wind_V, float)
+    width = math.pi / design.cylinders
+    t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
+    atol = [1e-12, 1e-13 * min(1.0, max(theta_dot0, 1e-3)), 1e-18, 1e-12]
+    stops, starts = [], []
+    moving = theta_dot0 > 0
+    while True:
+        segment = math.floor(y[0] / width)
+        if (segment + 1) * width - y[0] < 1e-13:
+            segment += 1
+        end = (segment + 1) * width
+        load = summed_load(design, (segment + 0.5) * width)
+        if y[1] == 0.0:
+            restart = restart_time(design, -load(y[0]), t, wind_t, wind_V)
+            if moving and restart > t:
+                stops.append(t)
+            if restart >= t_end:
+                return (
+                    Reference(t_end, y[0], 0.0, y[2], y[3], True, stops[-1] if stops else 0.0),
+                    stops,
+                    starts,
+                )
+            if restart > t or not moving:
+                starts.append(restart)
+            t, moving = restart, True
+        later = wind_t[wind_t > t + 1e-12]
+        until = min(t_end, later[0]) if later.size else t_end
+        sol = solve_to_switch(wind_rhs(design, load, wind_t, wind_V), t, until, y, end, atol)
+        t, y = sol.t[-1], sol.y[:, -1].copy()
+        if sol.t_events[1].size:
+            y[1] = 0.0
+            continue
+        if sol.t_events[0].size:
+            y[0] = end
+        elif t >= t_end:
+            return Reference(t, y[0], y[1], y[2], y[3], False, None), stops, starts

@@ -26,6 +26,7 @@ UNITS = {
     "cylinders": "",
     "double_acting": "",
     "T_0": "N m",
+    "V_ref": "m/s",
 }
 
 MAX_CYLINDERS = 6
@@ -110,6 +111,7 @@ class Design:
     cylinders: int = 1
     double_acting: bool = False
     T_0: float = 0.0
+    V_ref: float = 5.0
 
     def __post_init__(self) -> None:
         for field in dataclasses.fields(self):
@@ -209,6 +211,32 @@ class Design:
         if R_dagger is not None:
             changes["R1"] = self.R0 * positive("R_dagger", R_dagger)
         return self.replace(**changes)
+
+    def in_wind(self, V: float) -> Design:
+        """The same rotor in a steady wind V [m/s], by similarity.
+
+        A rotor's torque coefficient depends only on its tip-speed ratio, so its torque curve
+        scales with the wind speed: torques as V^2, speeds as V. Returns the design with
+        ``T_m (V/V_ref)^2``, ``omega_m V/V_ref``, ``T_0 (V/V_ref)^2`` and ``V_ref = V``; the pump
+        is unchanged.
+
+        Raises
+        ------
+        ParameterError
+            Naming ``V`` unless it is a finite number > 0 (in calm air the rotor has no curve;
+            :func:`windpump.simulate` takes V = 0 inside a wind record).
+
+        Examples
+        --------
+        >>> d = Design.seed_example().in_wind(10.0)
+        >>> round(d.T_m, 3), round(d.omega_m, 3), d.V_ref
+        (2.4, 100.0, 10.0)
+        """
+        V = positive("V", V, "m/s")
+        s = V / self.V_ref
+        return self.replace(
+            T_m=self.T_m * s**2, omega_m=self.omega_m * s, T_0=self.T_0 * s**2, V_ref=V
+        )
 
     def as_dict(self) -> dict[str, float | int | bool]:
         """The fields as a plain dict [SI units]."""

@@ -17,7 +17,8 @@ from .averaged import steady_speeds
 from .design import UNITS, Design
 from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
-from .validation import non_negative, positive, real
+from .validation import non_negative, positive, real, whole
+from .wind import WindRecord, as_record
 
 SAMPLES_PER_STROKE = 16
 """Output samples per half revolution (per stroke) of the crank."""
@@ -59,11 +60,18 @@ class SimulationResult:
     shaft_work : ndarray
         Work done by the windmill on its shaft since t = 0 [J] (the integral of T omega).
     stalled : bool
-        True when the crank came to rest for good (or could not start): the run ends there.
+        True when the crank came to rest for good (or could not start). Without a wind record
+        the run ends there; in a record it runs to ``t_end`` and rests from its last stop.
     t_stall : float or None
-        When it stalled [s]; None when it ran to ``t_end``.
+        When it came to rest for good [s]; None when it was turning at the end.
     steps : int
         Dormand-Prince steps the integration took, rejected ones included.
+    stops : ndarray
+        Times the turning crank came to rest [s] (in a wind record, it waits there for the wind).
+    starts : ndarray
+        Times a resting crank began to turn [s] (a start from rest at t = 0 included).
+    wind : WindRecord or None
+        The wind record the run was given (times [s], speeds [m/s]), or None: V_ref throughout.
     """
 
     design: Design
@@ -76,6 +84,17 @@ class SimulationResult:
     stalled: bool
     t_stall: float | None
     steps: int = 0
+    stops: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    starts: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    wind: WindRecord | None = None
+
+    @property
+    def wind_speed(self) -> np.ndarray:
+        """Wind speed at the samples [m/s]: the record's, linear between its samples and held past
+        its ends, or the design's V_ref throughout."""
+        if self.wind is None:
+            return np.full(self.t.shape, self.design.V_ref)
+        return np.interp(self.t, self.wind.t, self.wind.V)
 
     @property
     def omega(self) -> np.ndarray:
@@ -274,16 +293,33 @@ def revolution_marks(t: np.ndarray, theta: np.ndarray) -> tuple[np.ndarray, np.n
     return marks, np.interp(marks, theta, t)
 
 
-def sample_bound(design: Design, t_end: float, theta_dot0: float) -> float:
-    """Most samples :func:`simulate` can produce for this run (the crank speed never exceeds
-    theta_dot0 or the runaway speed over R+, where the windmill torque turns negative). A float: it
-    may be too large for an integer."""
-    fastest = max(theta_dot0, design.runaway_speed / design.R_dagger)
-    return fastest * t_end / (math.pi / SAMPLES_PER_STROKE) + 3
+def sample_bound(
+    design: Design,
+    t_end: float,
+    theta_dot0: float,
+    samples_per_stroke: int = SAMPLES_PER_STROKE,
+    sample_dt: float | None = None,
+    wind: WindRecord | None = None,
+) -> float:
+    """Most samples :func:`simulate` can produce for this run, besides two at each stop (the
+    crank speed never exceeds theta_dot0 or the runaway speed over R+ in the strongest wind, where
+    the windmill torque turns negative). A float: it may be too large for an integer."""
+    if sample_dt is not None:
+        return t_end / sample_dt + 3
+    strongest = 1.0 if wind is None else float(np.max(wind.V)) / design.V_ref
+    fastest = max(theta_dot0, strongest * design.runaway_speed / design.R_dagger)
+    return fastest * t_end / (math.pi / samples_per_stroke) + 3
 
 
 def simulate(
-    design: Design, t_end: float, theta0: float = math.pi / 2, theta_dot0: float = 3.0
+    design: Design,
+    t_end: float,
+    theta0: float = math.pi / 2,
+    theta_dot0: float = 3.0,
+    *,
+    wind=None,
+    samples_per_stroke: int = SAMPLES_PER_STROKE,
+    sample_dt: float | None = None,
 ) -> SimulationResult:
     """Integrate the wind pump's equation of motion, Eq. (12), in full, from a start angle and kick.
 
@@ -297,6 +333,12 @@ def simulate(
     and is otherwise stalled at t = 0. A crank that slows to rest stops there when the load at
     that angle is at least R+ T_0 (it cannot turn backwards), and goes on otherwise.
 
+    In a wind record V(t) the rotor's curve follows the wind by similarity (``Design.in_wind``:
+    ``T = s^2 T_0 + (T_m - T_0) x (2 s - x)``, s = V/V_ref) inside the compiled integrator. A crank
+    that comes to rest then waits (theta_dot = 0, no flow) until ``R+ T_0 s(t)^2`` exceeds the load
+    at its angle, and moves again; the run goes on to t_end and lists its ``stops`` and
+    ``starts``. The energy balance closes as without wind.
+
     Parameters
     ----------
     design : Design
@@ -309,12 +351,23 @@ def simulate(
     theta_dot0 : float, default 3.0
         Initial crank speed [rad/s]: 0 (a start from rest, which moves only with torque at rest,
         see :func:`windpump.starts_from_rest`) or at least ``SMALLEST_KICK``.
+    wind : (t, V) pair, callable or None, keyword-only
+        Wind speeds V [m/s] (0 to 150) at times t [s] (increasing), linear between samples
+        and held past the ends, e.g. a :class:`windpump.wind.WindRecord`; or a function of t [s]
+        (called with an array), sampled evenly over the run (:func:`windpump.wind.as_record`).
+        None: the design's own curve (at V_ref) throughout.
+    samples_per_stroke : int, default 16, keyword-only
+        Output samples every ``pi / samples_per_stroke`` of crank angle (1 to 1024).
+    sample_dt : float or None, keyword-only
+        Instead, one sample every ``sample_dt`` seconds [s], > 0 (and each stop and start): a day
+        at 1 s is 86,401 samples.
 
     Returns
     -------
     SimulationResult
-        ``t, theta, theta_dot, volume, flow, shaft_work``, ``stalled, t_stall`` and ``steps``.
-        When the crank stops for good the run ends there: ``stalled=True`` and ``t_stall`` [s].
+        ``t, theta, theta_dot, volume, flow, shaft_work``, ``stalled, t_stall``, ``steps``,
+        ``stops``, ``starts`` and ``wind``. Without a wind record, when the crank stops for good
+        the run ends there: ``stalled=True`` and ``t_stall`` [s].
 
     Raises
     ------
@@ -335,6 +388,14 @@ def simulate(
     >>> run = simulate(d, 600.0, theta_dot0=0.0)
     >>> run.stalled, round(float(run.volume[-1]) * 1e3)  # litres
     (False, 230)
+
+    The same pump through a lull: the wind drops to 1 m/s for half an hour, then comes back. The
+    heavy rotor coasts for eight minutes, rests, and starts again when the wind returns:
+
+    >>> lull = ([0.0, 600.0, 610.0, 2400.0, 2410.0], [5.0, 5.0, 1.0, 1.0, 5.0])
+    >>> run = simulate(d, 3600.0, theta_dot0=0.0, wind=lull, sample_dt=1.0)
+    >>> [round(float(t)) for t in run.stops], [round(float(t)) for t in run.starts], run.stalled
+    ([1115], [0, 2409], False)
     """
     if not isinstance(design, Design):
         raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")
@@ -350,15 +411,20 @@ def simulate(
             "rad/s",
             why="a smaller kick is below double precision's normal range",
         )
-    bound = sample_bound(design, t_end, theta_dot0)
+    samples_per_stroke = whole("samples_per_stroke", samples_per_stroke, 1, 1024)
+    if sample_dt is not None:
+        sample_dt = positive("sample_dt", sample_dt, "s")
+    record = None if wind is None else as_record(wind, t_end)
+    bound = sample_bound(design, t_end, theta_dot0, samples_per_stroke, sample_dt, record)
     if bound > MAX_SAMPLES:
         longest = t_end * (MAX_SAMPLES - 3) / (bound - 3)
         raise ParameterError(
             "t_end",
             t_end,
-            f"<= {longest:.6g} s for this design and theta_dot0",
+            f"<= {longest:.6g} s for this design, theta_dot0 and output grid",
             "s",
-            why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}",
+            why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}"
+            " (fewer samples_per_stroke, or a sample_dt, make room)",
         )
     from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
 
@@ -372,16 +438,18 @@ def simulate(
         L_over_R=design.L_over_R,
         cylinders=design.cylinders,
         double_acting=design.double_acting,
+        wind=None if record is None else kernel_wind(record, design.V_ref),
     )
     run = _kernels.run(
         machine,
         theta0,
         theta_dot0,
         t_end,
-        SAMPLES_PER_STROKE,
+        samples_per_stroke,
+        sample_dt,
         RTOL,
         MAX_STEPS,
-        capacity=first_capacity(design, t_end, theta_dot0, bound),
+        capacity=first_capacity(design, t_end, theta_dot0, bound, samples_per_stroke, sample_dt),
     )
     if run.outcome == _kernels.OVER_BUDGET:
         raise ParameterError(
@@ -392,9 +460,21 @@ def simulate(
         )
     volume = design.stroke_volume * (run.strokes - run.strokes[0])
     flow = design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16), every face
-    for array in (run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work):
+    for array in (
+        run.t,
+        run.theta,
+        run.theta_dot,
+        volume,
+        flow,
+        run.shaft_work,
+        run.stops,
+        run.starts,
+    ):
         array.flags.writeable = False
-    stalled = run.outcome == _kernels.STALLED
+    stalled = run.outcome in (_kernels.STALLED, _kernels.RESTING)
+    t_stall = None
+    if stalled:
+        t_stall = float(run.stops[-1]) if len(run.stops) else 0.0
     return SimulationResult(
         design,
         t=run.t,
@@ -404,17 +484,39 @@ def simulate(
         flow=flow,
         shaft_work=run.shaft_work,
         stalled=stalled,
-        t_stall=float(run.t[-1]) if stalled else None,
+        t_stall=t_stall,
         steps=run.steps,
+        stops=run.stops,
+        starts=run.starts,
+        wind=record,
     )
 
 
-def first_capacity(design: Design, t_end: float, theta_dot0: float, bound: float) -> int:
+def kernel_wind(record: WindRecord, V_ref: float):
+    """The record as the kernels take it: V/V_ref, and the spacing when the samples are even."""
+    from ._kernels import Wind
+
+    t = np.ascontiguousarray(record.t, dtype=float)
+    steps = np.diff(t)
+    even = len(t) > 1 and np.all(t == t[0] + steps[0] * np.arange(len(t)))
+    return Wind(t, np.ascontiguousarray(record.V / V_ref), float(steps[0]) if even else 0.0)
+
+
+def first_capacity(
+    design: Design,
+    t_end: float,
+    theta_dot0: float,
+    bound: float,
+    samples_per_stroke: int = SAMPLES_PER_STROKE,
+    sample_dt: float | None = None,
+) -> int:
     """A first guess of the sample count, from the averaged theory's running speed (the output
     grows past it if needed), never above ``bound``."""
+    if sample_dt is not None:
+        return int(min(math.ceil(bound), t_end / sample_dt + 64))
     try:
         speed = max(theta_dot0, steady_speeds(design)[0])
     except StallError:
         speed = theta_dot0
-    expected = 1.05 * speed * t_end / (math.pi / SAMPLES_PER_STROKE) + 64
+    expected = 1.05 * speed * t_end / (math.pi / samples_per_stroke) + 64
     return int(min(math.ceil(bound), expected))

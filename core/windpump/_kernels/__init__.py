@@ -32,9 +32,19 @@ import numpy as np
 
 from . import driver
 from .model import Machine
-from .stepping import OVER_BUDGET, REACHED_T_END, STALLED
+from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED, START, STOP
+from .wind import Wind
 
-__all__ = ["OVER_BUDGET", "REACHED_T_END", "STALLED", "KernelRun", "Machine", "run"]
+__all__ = [
+    "OVER_BUDGET",
+    "REACHED_T_END",
+    "RESTING",
+    "STALLED",
+    "KernelRun",
+    "Machine",
+    "Wind",
+    "run",
+]
 
 
 class KernelRun(typing.NamedTuple):
@@ -46,8 +56,10 @@ class KernelRun(typing.NamedTuple):
     shaft_work: np.ndarray  # [J]
     strokes: np.ndarray  # stroke volumes 2 R A delivered since theta = 0 [-]
     flow_factor: np.ndarray  # sum of f2 (Eq. 16) over the delivering faces [-]
-    outcome: int  # REACHED_T_END, STALLED or OVER_BUDGET
+    outcome: int  # REACHED_T_END, STALLED, RESTING or OVER_BUDGET
     steps: int  # Dormand-Prince steps taken, rejected ones included
+    stops: np.ndarray  # times the crank came to rest and waited for the wind [s]
+    starts: np.ndarray  # times a resting crank began to turn [s]
 
 
 def run(
@@ -56,16 +68,39 @@ def run(
     theta_dot0: float,
     t_end: float,
     samples_per_stroke: int,
+    sample_dt: float | None,
     rtol: float,
     max_steps: int,
     capacity: int,
 ) -> KernelRun:
     """Integrate from (theta0 [rad], theta_dot0 [rad/s]) at t = 0 up to t_end [s] or a stop.
 
-    ``capacity`` is a first guess of the sample count; the output grows (doubling) past it.
+    Samples every pi / samples_per_stroke of crank angle or, when sample_dt is not None, every
+    sample_dt [s]. ``capacity`` is a first guess of the sample count; the output grows
+    (doubling) past it.
     """
-    out, n, outcome, steps = driver.integrate(
-        machine, theta0, theta_dot0, t_end, samples_per_stroke, rtol, max_steps, capacity
+    out, n, outcome, steps, events, count = driver.integrate(
+        machine,
+        theta0,
+        theta_dot0,
+        t_end,
+        samples_per_stroke,
+        sample_dt,
+        rtol,
+        max_steps,
+        capacity,
     )
     t, theta, theta_dot, work, strokes, flow = (out[row, :n].copy() for row in range(driver.ROWS))
-    return KernelRun(t, theta, theta_dot, work, strokes, flow, int(outcome), int(steps))
+    times, kinds = events[0, :count], events[1, :count]
+    return KernelRun(
+        t,
+        theta,
+        theta_dot,
+        work,
+        strokes,
+        flow,
+        int(outcome),
+        int(steps),
+        stops=times[kinds == STOP].copy(),
+        starts=times[kinds == START].copy(),
+    )

@@ -29,12 +29,17 @@ from .stepping import (
     LANDED,
     OVER_BUDGET,
     REACHED_T_END,
+    RESTING,
     STALLED,
+    START,
+    STOP,
     advance_in_time,
     dp5_step,
     moves_from_rest,
+    next_start,
     rates,
 )
+from .wind import has_record
 
 # Rows of the output array, one per sampled quantity.
 T, THETA, THETA_DOT, WORK, STROKES, FLOW_FACTOR = range(6)
@@ -134,15 +139,104 @@ def first_segment(theta, machine):
 
 
 @kernel
-def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps, capacity):
+def time_of_sample(target, t, t_end_step, rate_start, rate_end, dense, h):
+    """The fraction sigma of a step at which its continuous extension of t reaches ``target``.
+
+    t(sigma) rises through the step (dt/dtheta = 1/theta_dot > 0): Newton's method on the
+    extension's polynomial (:func:`~.dopri5.dense_value`), inside a shrinking bracket.
+    """
+    lo, hi = 0.0, 1.0
+    rise = t_end_step - t
+    back = h * rate_start - rise
+    c = rise - h * rate_end - back
+    sigma = (target - t) / rise
+    for _ in range(60):
+        p = back + sigma * (c + (1.0 - sigma) * dense)
+        q = rise + (1.0 - sigma) * p
+        residual = t + sigma * q - target
+        if residual == 0.0:
+            break
+        if residual < 0.0:
+            lo = sigma
+        else:
+            hi = sigma
+        slope = q + sigma * ((1.0 - sigma) * (c + dense - 2.0 * dense * sigma) - p)
+        step = sigma - residual / slope if slope > 0.0 else -1.0
+        if not lo < step < hi:
+            step = 0.5 * (lo + hi)
+        if hi - lo <= 1e-15 or step == sigma:
+            return step
+        sigma = step
+    return sigma
+
+
+@kernel
+def record_in_step(
+    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, segment, machine
+):
+    """Samples at the times j sample_dt that an ANGLE sub-step from (theta_i, t, W) to y passed,
+    from its continuous extension; returns (out, n, the next j)."""
+    more = int(y[2] / sample_dt) - j + 2
+    if more > 0 and n + more > out.shape[1]:
+        out = with_room(out, n, more)
+    while j * sample_dt <= y[2]:
+        target = j * sample_dt
+        sigma = time_of_sample(target, t, y[2], k1[2], k7[2], dense[1], h)
+        theta = theta_i + sigma * h
+        u = load_work(theta, segment, machine) + dense_value(
+            sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+        )
+        W_j = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+        theta_dot = math.sqrt(2.0 * max(u, 0.0))
+        n = record_anywhere(out, n, target, theta, theta_dot, W_j, segment, machine, False)
+        j += 1
+    return out, n, j
+
+
+@kernel
+def record_rest(out, n, j, sample_dt, t_from, t_to, theta, W, segment, machine):
+    """Samples of a crank resting at theta from t_from to t_to: at both ends, and at the times
+    j sample_dt between them on a time grid; returns (out, n, the next j)."""
+    more = 2 + (int(t_to / sample_dt) - j + 1 if sample_dt is not None else 0)
+    out = with_room(out, n, max(more, 2))
+    n = record_anywhere(out, n, t_from, theta, 0.0, W, segment, machine, False)
+    if sample_dt is not None:
+        while j * sample_dt <= t_to:
+            if j * sample_dt > t_from:
+                n = record_anywhere(out, n, j * sample_dt, theta, 0.0, W, segment, machine, False)
+            j += 1
+    n = record_anywhere(out, n, t_to, theta, 0.0, W, segment, machine, False)
+    return out, n, j
+
+
+@kernel
+def note_event(events, count, t, kind):
+    """Append (t, kind) to the events (STOP or START), growing them; returns (events, count)."""
+    if count == events.shape[1]:
+        bigger = np.empty((2, 2 * count))
+        bigger[:, :count] = events
+        events = bigger
+    events[0, count] = t
+    events[1, count] = kind
+    return events, count + 1
+
+
+@kernel
+def integrate(
+    machine, theta0, theta_dot0, t_end, n_per_stroke, sample_dt, rtol, max_steps, capacity
+):
     """Integrate Eq. (12) from (theta0, theta_dot0) at t = 0 up to t_end or a stop.
 
-    Returns (out, samples, outcome, steps): ``out[:, :samples]`` holds, by rows T ... FLOW_FACTOR,
-    the start, every grid angle g pi / n_per_stroke passed, and the end.
+    Samples go on the grid of angles g pi / n_per_stroke or, when sample_dt is a number (not
+    None: each grid compiles its own specialisation), of times j sample_dt. In a wind record a crank that comes to rest waits (:func:`~.stepping.next_start`)
+    and the run goes on to t_end. Returns (out, samples, outcome, steps, events, event count):
+    ``out[:, :samples]`` holds, by rows T ... FLOW_FACTOR, the start, the grid samples and the
+    end; ``events[:, :count]`` the times (row 0) of every STOP and START (row 1).
     """
     width = math.pi / machine.cylinders
     period = 2 * n_per_stroke
     delta = math.pi / n_per_stroke
+    waits = has_record(machine.wind)  # a resting crank waits for the wind, to t_end
     per_revolution = faces(machine)
     strokes_table, flow_table, work_table = grid_tables(n_per_stroke, machine)
     tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 8))
@@ -154,18 +248,30 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
 
     scratch = np.empty(8)  # the stage loads of a sub-step off the tables
     out = np.empty((ROWS, max(capacity, 2)))
+    events = np.empty((2, 8))
+    count = 0
     t, theta, W = 0.0, theta0, 0.0
     theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
     u = 0.5 * theta_dot * theta_dot
     segment = first_segment(theta0, machine)
     n = record_anywhere(out, 0, t, theta, theta_dot0, W, segment, machine, False)
-    if theta_dot0 <= 0.0 and not moves_from_rest(theta0, segment, machine):
-        return out, n, STALLED, 0
+    j = 1  # the next time sample is j * sample_dt
+    steps = 0
+    if theta_dot0 <= 0.0:
+        start = next_start(0.0, theta0, segment, machine) if waits else 0.0
+        if not moves_from_rest(start, theta0, segment, machine) or start >= t_end:
+            if not waits:
+                return out, n, STALLED, 0, events, count
+            out, n, j = record_rest(out, n, j, sample_dt, 0.0, t_end, theta, W, segment, machine)
+            return out, n, RESTING, 0, events, count
+        if start > 0.0:
+            out, n, j = record_rest(out, n, j, sample_dt, 0.0, start, theta, W, segment, machine)
+        t = start
+        events, count = note_event(events, count, t, START)
 
     g = int(math.floor(theta0 / delta)) + 1  # the next grid angle to sample is g * delta
     if g * delta <= theta0:  # theta0 sits on a grid angle, up to round-off
         g += 1
-    steps = 0
     m = FIRST_SUBSTEPS  # sub-steps per segment
     # Whether theta is where the segment starts: tracked, not compared (fastmath may round
     # (j + 1) pi/n and j pi/n differently).
@@ -176,6 +282,8 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
         # The grid index of the segment's end, when the end is a grid angle (else -1).
         ends = (segment + 1) * n_per_stroke
         end_grid = ends // machine.cylinders if ends % machine.cylinders == 0 else -1
+        if sample_dt is not None:
+            end_grid = -1  # no grid angles on a time grid
         m_seg = m if full else max(1, int(math.ceil(m * (end - theta) / width)))
         use_table = full and m_seg <= MAX_TABLED_SUBSTEPS
         if use_table and not built[parity, m_seg]:
@@ -184,13 +292,13 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
         h = (end - theta) / m_seg
         work = 0.0 if full else load_work(theta, segment, machine)
         u_free = u - work  # u less the load's work: only the windmill changes it
-        k1 = rates(ANGLE, theta, u_free, 0.0, work, machine, segment)
+        k1 = rates(ANGLE, theta, u_free, t, work, machine, segment)
         worst = 0.0
         failed = False
         i = 0
         while i < m_seg:
             if steps >= max_steps:
-                return out, n, OVER_BUDGET, steps
+                return out, n, OVER_BUDGET, steps, events, count
             theta_i = first + i * h
             if use_table:
                 aux = tables[parity, m_seg, i]
@@ -200,12 +308,13 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
                     scratch[stage] = load_work(theta_i + NODES[stage] * h, segment, machine)
                 scratch[7] = load_on_crank(theta_i, segment, machine)
             load = aux[7]
-            if abs(k1[0] + load * machine.inv_I_eff) * max(h, g * delta - theta_i) >= u:
+            reach = h if sample_dt is not None else max(h, g * delta - theta_i)
+            if abs(k1[0] + load * machine.inv_I_eff) * reach >= u:
                 # u may change by more than itself before the next grid angle: theta_dot is near 0,
                 # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
                 break
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, 0.0, t, W, h, k1, aux, segment, machine
+                ANGLE, theta_i, u_free, t, t, W, h, k1, aux, segment, machine
             )
             steps += 1
             scaled = max(
@@ -228,26 +337,32 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
                 theta_new = theta_i + h
                 work = aux[6] if use_table else load_work(theta_new, segment, machine)
             u_new = y[0] + work
-            if n + int(h / delta) + 2 > out.shape[1]:  # (a call per sample would cost 20 %)
-                out = with_room(out, n, int(h / delta) + 2)
-            # Samples at the grid angles this sub-step passed, from the continuous extension; the
-            # segment's end is a grid angle by index, whatever the round-off in g * delta.
-            while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
-                row = g % period
-                if g == end_grid:
-                    u_g, t_g, W_g = u_new, y[2], y[3]
-                else:
-                    sigma = (g * delta - theta_i) / h
-                    u_g = work_table[row] + dense_value(
-                        sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+            if sample_dt is not None:
+                out, n, j = record_in_step(
+                    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, segment,
+                    machine,
+                )  # fmt: skip
+            else:
+                if n + int(h / delta) + 2 > out.shape[1]:  # (a call per sample would cost 20 %)
+                    out = with_room(out, n, int(h / delta) + 2)
+                # Samples at the grid angles this sub-step passed, from the continuous extension;
+                # the segment's end is a grid angle by index, whatever the round-off in g * delta.
+                while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
+                    row = g % period
+                    if g == end_grid:
+                        u_g, t_g, W_g = u_new, y[2], y[3]
+                    else:
+                        sigma = (g * delta - theta_i) / h
+                        u_g = work_table[row] + dense_value(
+                            sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+                        )
+                        t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h)
+                        W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+                    strokes = (g // period) * per_revolution + strokes_table[row]
+                    n = record(
+                        out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g, strokes, flow_table[row]
                     )
-                    t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h)
-                    W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
-                strokes = (g // period) * per_revolution + strokes_table[row]
-                n = record(
-                    out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g, strokes, flow_table[row]
-                )
-                g += 1
+                    g += 1
             u_free, t, W, theta = y[0], y[2], y[3], theta_new
             u = u_new
             theta_dot = math.sqrt(2.0 * u)
@@ -261,7 +376,7 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
                 out = with_room(out, n, 1)
                 if out[T, n - 1] < t:
                     n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
-                return out, n, REACHED_T_END, steps
+                return out, n, REACHED_T_END, steps, events, count
             if was_full or m_seg > 1:  # a single sub-step of a segment's tail is short by position
                 m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
             continue
@@ -269,22 +384,42 @@ def integrate(machine, theta0, theta_dot0, t_end, n_per_stroke, rtol, max_steps,
             full = False  # part of the segment is done
         if failed:
             continue
-        # On in time, as far as the next grid angle or switch.
-        target = end if g == end_grid else min(g * delta, end)
+        # On in time, as far as the next grid angle or switch (or sample time).
+        target = end if g == end_grid or sample_dt is not None else min(g * delta, end)
+        until = min(t_end, j * sample_dt) if sample_dt is not None else t_end
         outcome, t, theta, theta_dot, W, used = advance_in_time(
-            t, theta, theta_dot, W, target, t_end, segment, machine, rtol, max_steps - steps
+            t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps
         )
         steps += used
         out = with_room(out, n, 1)
+        if outcome == REACHED_T_END and t < t_end:  # a sample time, on a time grid
+            n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, False)
+            j += 1
+            u = 0.5 * theta_dot * theta_dot
+            full = False
+            continue
+        if outcome == STALLED and waits:  # rest until the wind can turn the crank again
+            events, count = note_event(events, count, t, STOP)
+            start = next_start(t, theta, segment, machine)
+            rest_end = min(start, t_end)
+            out, n, j = record_rest(out, n, j, sample_dt, t, rest_end, theta, W, segment, machine)
+            if start >= t_end:
+                return out, n, RESTING, steps, events, count
+            events, count = note_event(events, count, start, START)
+            t, theta_dot, u = start, 0.0, 0.0
+            full = theta == segment_start(segment, machine)
+            continue
         if outcome != LANDED:
+            if outcome == STALLED:
+                events, count = note_event(events, count, t, STOP)
             if outcome != OVER_BUDGET:
                 n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
-            return out, n, outcome, steps
+            return out, n, outcome, steps, events, count
         u = 0.5 * theta_dot * theta_dot
         full = target == end
         if full:
             segment += 1
-        if g == end_grid or target != end:
+        if g == end_grid or (target != end and sample_dt is None):
             row = g % period
             strokes = (g // period) * per_revolution + strokes_table[row]
             n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row])

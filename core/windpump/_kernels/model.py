@@ -12,6 +12,7 @@ import math
 import typing
 
 from .jit import kernel
+from .wind import Wind
 
 
 class Machine(typing.NamedTuple):
@@ -26,6 +27,7 @@ class Machine(typing.NamedTuple):
     L_over_R: float  # rod / crank [-]
     cylinders: int  # n, 1 to 6
     double_acting: bool  # both faces of every piston deliver
+    wind: Wind | None  # a wind record, or None: V = V_ref throughout
 
 
 TOP, BOTTOM, NEITHER = 1, -1, 0  # which face of a cylinder delivers in a segment
@@ -107,11 +109,17 @@ def load_work(theta, segment, machine):
 
 
 @kernel
-def windmill_torque_on_crank(theta_dot, machine):
-    """R+ T(R+ theta_dot) [N m]: T = T_0 + (T_m - T_0) x (2 - x), x = omega/omega_m (Eq. 11 at
-    T_0 = 0), reflected to the crank."""
+def windmill_torque_on_crank(theta_dot, s, machine):
+    """R+ T(R+ theta_dot) [N m] in a wind s = V/V_ref: T = s^2 T_0 + (T_m - T_0) x (2 s - x),
+    x = omega/omega_m.
+
+    The curve T_0 + (T_m - T_0) x (2 - x) (Eq. 11 at T_0 = 0) scaled by similarity, torques by
+    s^2 and speeds by s; at s = 1 it is that curve to the last bit. Reflected to the crank.
+    """
     x = machine.R_dagger * theta_dot / machine.omega_m
-    return machine.R_dagger * (machine.T_0 + (machine.T_m - machine.T_0) * x * (2.0 - x))
+    return machine.R_dagger * (
+        s * s * machine.T_0 + (machine.T_m - machine.T_0) * x * (2.0 * s - x)
+    )
 
 
 @kernel

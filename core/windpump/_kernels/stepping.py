@@ -53,6 +53,7 @@ from .dopri5 import (
 )  # fmt: skip
 from .jit import kernel
 from .model import load_on_crank, windmill_torque_on_crank
+from .wind import rise_above, wind_scale
 
 ANGLE = 0
 TIME = 1
@@ -62,6 +63,10 @@ REACHED_T_END = 0
 STALLED = 1
 OVER_BUDGET = 2
 LANDED = 3
+RESTING = 4  # ran to t_end in a wind record, and rests there
+
+# Kinds of events: the crank came to rest and waits for the wind, or began to turn from rest.
+STOP, START = -1.0, 1.0
 
 NO_TABLE = np.full(8, np.nan)  # the TIME domain has no stage loads
 
@@ -70,15 +75,17 @@ NO_TABLE = np.full(8, np.nan)  # the TIME domain has no stage loads
 def rates(domain, s, x0, x1, aux, machine, segment):
     """Derivatives (dx0, dx1, dq0, dq1) with respect to the independent variable s.
 
-    In the ANGLE domain ``aux`` is the load work Lambda at s, always given (tabulated or computed
-    by the driver): computing it here would keep this function from being inlined into the step,
-    which costs the seed example a third of its time.
+    In the ANGLE domain ``x1`` is the time (the wind's clock; it integrates 1/theta_dot as q0
+    does) and ``aux`` the load work Lambda at s, always given (tabulated or computed by the
+    driver): computing it here would keep this function from being inlined into the step, which
+    costs the seed example a third of its time.
     """
     if domain == ANGLE:
         theta_dot = math.sqrt(2.0 * (x0 + aux))
-        drive = windmill_torque_on_crank(theta_dot, machine)
-        return drive * machine.inv_I_eff, 0.0, 1.0 / theta_dot, drive
-    drive = windmill_torque_on_crank(x1, machine)
+        per_radian = 1.0 / theta_dot
+        drive = windmill_torque_on_crank(theta_dot, wind_scale(x1, machine.wind), machine)
+        return drive * machine.inv_I_eff, per_radian, per_radian, drive
+    drive = windmill_torque_on_crank(x1, wind_scale(s, machine.wind), machine)
     load = load_on_crank(x0, segment, machine)
     return x1, (drive + load) * machine.inv_I_eff, drive * x1, 0.0
 
@@ -166,10 +173,35 @@ def locate_in_time_step(t, x0, x1, q0, h_hi, k1, segment, machine, component, ta
 
 
 @kernel
-def moves_from_rest(theta, segment, machine):
-    """At theta_dot = 0 the crank turns on when R+ T_0 exceeds the load there (it cannot turn
-    backwards, so otherwise it stays stopped)."""
-    return windmill_torque_on_crank(0.0, machine) + load_on_crank(theta, segment, machine) > 0.0
+def moves_from_rest(t, theta, segment, machine):
+    """At theta_dot = 0 the crank turns on when R+ T_0 (V(t)/V_ref)^2 exceeds the load there (it
+    cannot turn backwards, so otherwise it stays stopped)."""
+    s = wind_scale(t, machine.wind)
+    return windmill_torque_on_crank(0.0, s, machine) + load_on_crank(theta, segment, machine) > 0.0
+
+
+@kernel
+def next_start(t, theta, segment, machine):
+    """The first time >= t [s] at which a crank resting at theta moves (:func:`moves_from_rest`),
+    or inf: where the wind first rises past the threshold R+ T_0 s^2 = load, nudged past it by
+    round-off."""
+    if moves_from_rest(t, theta, segment, machine):
+        return t
+    if machine.T_0 == 0.0:
+        return math.inf
+    load = -load_on_crank(theta, segment, machine)
+    threshold = math.sqrt(load / (machine.R_dagger * machine.T_0))  # V/V_ref to exceed
+    while True:
+        crossing = rise_above(t, threshold, machine.wind)
+        if crossing == math.inf:
+            return crossing
+        nudge = 4e-16 * max(abs(crossing), 1.0)
+        for _ in range(64):
+            if moves_from_rest(crossing, theta, segment, machine):
+                return crossing
+            crossing += nudge
+            nudge *= 2.0
+        t = crossing
 
 
 @kernel
@@ -227,7 +259,7 @@ def advance_in_time(t, theta, theta_dot, W, theta_target, t_target, segment, mac
         if outcome == LANDED:
             return outcome, t + h, theta_target, y[1], y[2], used
         if outcome == STALLED:
-            if not moves_from_rest(y[0], segment, machine):
+            if not moves_from_rest(t + h, y[0], segment, machine):
                 return outcome, t + h, y[0], 0.0, y[2], used
             t, theta, theta_dot, W = t + h, y[0], 0.0, y[2]
             k1 = rates(TIME, t, theta, theta_dot, np.nan, machine, segment)

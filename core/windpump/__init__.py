@@ -4,7 +4,8 @@ The model is M. Louge, *A simple wind-pump analysis* (2010): a windmill drives, 
 two sprockets, a slider-crank and a single-acting piston lifting water by a head h. Equation numbers
 in the docstrings are that paper's. Beyond it: several cylinders with their phase lags,
 double-acting pistons and a windmill with torque at rest (``Design.cylinders``, ``double_acting``,
-``T_0``).
+``T_0``), and the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
+:func:`water_per_day`).
 
 >>> import windpump
 >>> design = windpump.Design.seed_example()
@@ -13,7 +14,7 @@ double-acting pistons and a windmill with torque at rest (``Design.cylinders``, 
 (78.6, False)
 """
 
-from . import energy, labdata, linkage, playback
+from . import energy, labdata, linkage, playback, wind
 from .averaged import (
     averaged_stall_time,
     mean_lever_arm,
@@ -40,6 +41,7 @@ from .kinematics import (
 from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .playback import Playback, piston_table, playback_frames
+from .site import steady_flow, water_per_day, wind_thresholds
 from .windmill import (
     OperatingPoint,
     TorqueFit,
@@ -96,9 +98,13 @@ __all__ = [
     "starts_from_rest",
     "stall_margin",
     "stall_sides",
+    "steady_flow",
     "steady_speeds",
     "swept_strokes",
     "time_constant",
+    "water_per_day",
+    "wind",
+    "wind_thresholds",
     "windmill_power",
     "windmill_torque",
 ]

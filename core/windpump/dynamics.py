@@ -493,13 +493,25 @@ def simulate(
 
 
 def kernel_wind(record: WindRecord, V_ref: float):
-    """The record as the kernels take it: V/V_ref, and the spacing when the samples are even."""
+    """The record as the kernels take it: V/V_ref at its kinks (steps land on every sample, so
+    one on a straight line with its neighbours, or on the flat held past the ends, is left out),
+    and the spacing when the samples are even."""
     from ._kernels import Wind
 
-    t = np.ascontiguousarray(record.t, dtype=float)
+    t, V = record.t, record.V
+    if len(t) > 1:  # V is held before the first sample and after the last: flat there
+        rise, run = np.diff(V), np.diff(t)
+        bends = rise[:-1] * run[1:] != rise[1:] * run[:-1]
+        keep = np.concatenate(([rise[0] != 0.0], bends, [rise[-1] != 0.0]))
+        keep[0] |= not keep.any()  # a constant record keeps one sample
+        t, V = t[keep], V[keep]
     steps = np.diff(t)
-    even = len(t) > 1 and np.all(t == t[0] + steps[0] * np.arange(len(t)))
-    return Wind(t, np.ascontiguousarray(record.V / V_ref), float(steps[0]) if even else 0.0)
+    even = len(t) > 1 and bool(np.all(t == t[0] + steps[0] * np.arange(len(t))))
+    return Wind(
+        np.ascontiguousarray(t, dtype=float),
+        np.ascontiguousarray(V / V_ref),
+        float(steps[0]) if even else 0.0,
+    )
 
 
 def first_capacity(

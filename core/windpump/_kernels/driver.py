@@ -39,7 +39,7 @@ from .stepping import (
     next_start,
     rates,
 )
-from .wind import has_record
+from .wind import has_record, next_kink
 
 # Rows of the output array, one per sampled quantity.
 T, THETA, THETA_DOT, WORK, STROKES, FLOW_FACTOR = range(6)
@@ -272,6 +272,7 @@ def integrate(
     g = int(math.floor(theta0 / delta)) + 1  # the next grid angle to sample is g * delta
     if g * delta <= theta0:  # theta0 sits on a grid angle, up to round-off
         g += 1
+    kink = next_kink(t, machine.wind)  # steps land on the wind record's samples
     m = FIRST_SUBSTEPS  # sub-steps per segment
     # Whether theta is where the segment starts: tracked, not compared (fastmath may round
     # (j + 1) pi/n and j pi/n differently).
@@ -294,7 +295,7 @@ def integrate(
         u_free = u - work  # u less the load's work: only the windmill changes it
         k1 = rates(ANGLE, theta, u_free, t, work, machine, segment)
         worst = 0.0
-        failed = False
+        failed = landed = False
         i = 0
         while i < m_seg:
             if steps >= max_steps:
@@ -308,7 +309,8 @@ def integrate(
                     scratch[stage] = load_work(theta_i + NODES[stage] * h, segment, machine)
                 scratch[7] = load_on_crank(theta_i, segment, machine)
             load = aux[7]
-            reach = h if sample_dt is not None else max(h, g * delta - theta_i)
+            # (on a time grid, as far as a grid angle would be: pi / n_per_stroke)
+            reach = max(h, delta if sample_dt is not None else g * delta - theta_i)
             if abs(k1[0] + load * machine.inv_I_eff) * reach >= u:
                 # u may change by more than itself before the next grid angle: theta_dot is near 0,
                 # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
@@ -317,30 +319,44 @@ def integrate(
                 ANGLE, theta_i, u_free, t, t, W, h, k1, aux, segment, machine
             )
             steps += 1
+            h_step, at_kink = h, False
+            if ok and kink < y[2] <= t_end:
+                # V(t) has a kink inside: take the sub-step only as far as it, from where the
+                # step's continuous extension puts the kink's time (the rest of the segment
+                # follows in smaller sub-steps).
+                h_step = h * time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h)
+                for stage in range(7):
+                    scratch[stage] = load_work(theta_i + NODES[stage] * h_step, segment, machine)
+                ok, y, k7, err, dense = dp5_step(
+                    ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, segment, machine
+                )
+                steps += 1
+                at_kink = True
             scaled = max(
                 abs(err[0]) / (rtol * u),
                 abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
             )
+            if y[2] > t_end:
+                break  # the sub-step would pass t_end: go on in time
             if not (ok and scaled <= 1.0):
-                needed = width / (h * (step_factor(scaled) if ok else 0.25))
+                needed = width / (h_step * (step_factor(scaled) if ok else 0.25))
                 if needed > MAX_SUBSTEPS:
                     break  # sub-steps this fine no longer suit theta: go on in time
                 m = max(m + 1, int(math.ceil(needed)))
                 failed = True
                 break
-            if y[2] > t_end:
-                break  # the sub-step would pass t_end: go on in time
-            last = i == m_seg - 1
+            last = i == m_seg - 1 and not at_kink
             if last:
                 theta_new, work = end, end_work[parity]
             else:
-                theta_new = theta_i + h
-                work = aux[6] if use_table else load_work(theta_new, segment, machine)
+                theta_new = theta_i + h_step
+                at_table = use_table and not at_kink
+                work = aux[6] if at_table else load_work(theta_new, segment, machine)
             u_new = y[0] + work
             if sample_dt is not None:
                 out, n, j = record_in_step(
-                    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, segment,
-                    machine,
+                    out, n, j, sample_dt, theta_i, h_step, t, W, u_free, y, k1, k7, dense,
+                    segment, machine,
                 )  # fmt: skip
             else:
                 if n + int(h / delta) + 2 > out.shape[1]:  # (a call per sample would cost 20 %)
@@ -352,12 +368,12 @@ def integrate(
                     if g == end_grid:
                         u_g, t_g, W_g = u_new, y[2], y[3]
                     else:
-                        sigma = (g * delta - theta_i) / h
+                        sigma = (g * delta - theta_i) / h_step
                         u_g = work_table[row] + dense_value(
-                            sigma, u_free, y[0], k1[0], k7[0], dense[0], h
+                            sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
                         )
-                        t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h)
-                        W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+                        t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
+                        W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
                     strokes = (g // period) * per_revolution + strokes_table[row]
                     n = record(
                         out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g, strokes, flow_table[row]
@@ -369,7 +385,12 @@ def integrate(
             k1 = k7
             worst = max(worst, scaled)
             i += 1
-        if i == m_seg:  # the segment is done: size the next one's sub-steps
+            if at_kink:  # past it, up to round-off in its time: on from here in a new split
+                kink = next_kink(max(t, kink), machine.wind)
+                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+                landed = True
+                break
+        if i == m_seg and not landed:  # the segment is done: size the next one's sub-steps
             segment += 1
             was_full, full = full, True
             if t >= t_end:
@@ -382,19 +403,24 @@ def integrate(
             continue
         if i > 0:
             full = False  # part of the segment is done
-        if failed:
+        if failed or landed:
             continue
         # On in time, as far as the next grid angle or switch (or sample time).
         target = end if g == end_grid or sample_dt is not None else min(g * delta, end)
-        until = min(t_end, j * sample_dt) if sample_dt is not None else t_end
+        until = min(t_end, kink)
+        if sample_dt is not None:
+            until = min(until, j * sample_dt)
         outcome, t, theta, theta_dot, W, used = advance_in_time(
             t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps
         )
         steps += used
         out = with_room(out, n, 1)
-        if outcome == REACHED_T_END and t < t_end:  # a sample time, on a time grid
-            n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, False)
-            j += 1
+        if outcome == REACHED_T_END and t < t_end:  # a sample time or a kink
+            if sample_dt is not None and t == j * sample_dt:
+                n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, False)
+                j += 1
+            if t == kink:
+                kink = next_kink(t, machine.wind)
             u = 0.5 * theta_dot * theta_dot
             full = False
             continue
@@ -407,6 +433,7 @@ def integrate(
                 return out, n, RESTING, steps, events, count
             events, count = note_event(events, count, start, START)
             t, theta_dot, u = start, 0.0, 0.0
+            kink = next_kink(t, machine.wind)
             full = theta == segment_start(segment, machine)
             continue
         if outcome != LANDED:

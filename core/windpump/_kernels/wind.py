@@ -99,3 +99,23 @@ def _rise_above(t, threshold, wind):
             s_a = wind_scale(a, wind)
             return a + (threshold - s_a) / (scale[i + 1] - s_a) * (times[i + 1] - a)
     return math.inf
+
+
+def next_kink(t, wind):
+    """The record's first sample time after t [s], where V(t) has a kink (steps land on it), or
+    inf: none without a record, or past its last sample."""
+    if wind is None:
+        return math.inf
+    return _next_kink(t, wind)
+
+
+@overload(next_kink, jit_options=JIT_OPTIONS)
+def _next_kink_overload(t, wind):
+    if isinstance(wind, types.NoneType):
+        return lambda t, wind: math.inf
+    return _next_kink
+
+
+def _next_kink(t, wind):
+    i = np.searchsorted(wind.t, t, side="right")
+    return wind.t[i] if i < wind.t.shape[0] else math.inf

@@ -27,6 +27,7 @@ from views import (
     SpeedView,
     StallView,
 )
+from wind_tab import WindTab
 
 import windpump
 from windpump import Status
@@ -98,6 +99,10 @@ class Explorer(pn.viewable.Viewer):
         self._mechanisms: Mechanisms | None = None  # built when first opened: most pages never do
         self._drawn_linkage: tuple | None = None
         self._build_widgets()
+        self.wind = WindTab(self.sliders, bins)
+        self.wind_open = False  # the Wind tab runs its day only once it has been opened
+        self.wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
+        self.wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
         self._build_results()
         if not defer_views:
             self.show_views()
@@ -281,6 +286,34 @@ class Explorer(pn.viewable.Viewer):
             self.error.visible = False
             self.stale = False
             self._mark_stale(False)
+            if self.wind_open:
+                self.update_wind()
+
+    def update_wind(self) -> None:
+        """Redraw the Wind tab: its curve and its day, run in full (about a second)."""
+        try:
+            with pn.io.hold():
+                self.wind.update(self.inputs.design_at_v_ref(), self.inputs)
+        except ValueError as error:
+            self.wind.error.object = f"The wind cannot be run: {error}"
+            self.wind.error.visible = True
+        except Exception as error:  # a bug: say so, log it, keep the session alive
+            log.exception("wind update failed")
+            self.wind.error.object = f"Something went wrong ({type(error).__name__}: {error})."
+            self.wind.error.visible = True
+
+    def open_wind(self) -> None:
+        self.wind_open = True
+        self.update_wind()
+
+    def load_wind_data(self, data: bytes | None) -> None:
+        """A measured wind CSV for the day; a bad file is refused and the day stays as it was."""
+        if self.wind.load(data, self.wind.upload.filename or ""):
+            self.update_wind()
+
+    def forget_wind_data(self) -> None:
+        self.wind.forget()
+        self.update_wind()
 
     def _culprit(self, error: ValueError) -> str:
         """The control behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
@@ -588,9 +621,9 @@ class Explorer(pn.viewable.Viewer):
     # -- layout ------------------------------------------------------------------------------
 
     def controls(self) -> pn.Column:
-        main = [self.sliders[name] for name, (_f, is_main) in FORMATS.items() if is_main]
+        main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]
         more = pn.Card(
-            *(self.sliders[name] for name, (_f, is_main) in FORMATS.items() if not is_main),
+            *(self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "more"),
             title="More parameters",
             collapsed=True,
             sizing_mode="stretch_width",
@@ -656,6 +689,7 @@ class Explorer(pn.viewable.Viewer):
         tabs = pn.Tabs(
             ("Wind pump", self.pump()),
             ("Mechanisms", pn.pane.Markdown("Loading the mechanisms…", stylesheets=TEXT)),
+            ("Wind", pn.pane.Markdown("Running a day of wind…", stylesheets=TEXT)),
             dynamic=False,
             sizing_mode="stretch_width",
             stylesheets=[
@@ -668,8 +702,12 @@ class Explorer(pn.viewable.Viewer):
         def open_mechanisms(event) -> None:
             if event.new == 1 and not isinstance(tabs[1], pn.Column):
                 tabs[1] = ("Mechanisms", self.mechanisms.layout())
+            if event.new == 2 and not self.wind_open:
+                self.open_wind()  # data first: a figure sent empty warns in the browser
+                tabs[2] = ("Wind", self.wind.layout())
 
         tabs.param.watch(open_mechanisms, "active")
+        self.tabs = tabs
         return tabs
 
     def __panel__(self) -> pn.Row:

@@ -16,20 +16,26 @@ import windpump
 SEED = windpump.Design.seed_example()
 SEED_MARGIN = windpump.stall_margin(SEED)
 
-# name: (display format, main slider?)
+# name: (display format, where its slider sits: the sidebar's "main" list, its "more" card, or
+# the Wind tab)
 FORMATS = {
-    "L_over_R": ("0.00", True),
-    "R_dagger": ("0.0", True),
-    "h": ("0.0", True),
-    "T_m": ("0.00", True),
-    "omega_m": ("0", False),
-    "t_end": ("0", False),
-    "theta_dot0": ("0.0", False),
-    "theta0": ("0.00", False),
-    "I0": ("0.00", False),
-    "I1": ("0.0000", False),
-    "cylinders": ("0", True),
-    "T_0": ("0.00", False),
+    "L_over_R": ("0.00", "main"),
+    "R_dagger": ("0.0", "main"),
+    "h": ("0.0", "main"),
+    "T_m": ("0.00", "main"),
+    "omega_m": ("0", "more"),
+    "t_end": ("0", "more"),
+    "theta_dot0": ("0.0", "more"),
+    "theta0": ("0.00", "more"),
+    "I0": ("0.00", "more"),
+    "I1": ("0.0000", "more"),
+    "cylinders": ("0", "main"),
+    "T_0": ("0.00", "more"),
+    "V": ("0.0", "wind"),
+    "mean_wind": ("0.0", "wind"),
+    "k": ("0.0", "wind"),
+    "time_scale": ("0", "wind"),
+    "seed": ("0", "wind"),
 }
 
 # Switches (check boxes), by name; in the link as true/false.
@@ -58,6 +64,13 @@ class PumpInputs(param.Parameterized):
     cylinders = param.Number(1, bounds=(1, 6), step=1, label="Cylinders n (phase lag 2π/n)")
     T_0 = param.Number(0.0, bounds=(0.0, 4.95), step=0.05, label="Torque at rest T₀ [N·m]")
     double_acting = param.Boolean(False, label="Double-acting pistons (both faces deliver)")
+    V = param.Number(
+        SEED.V_ref, bounds=(0.5, 20.0), step=0.1, label="Steady wind V [m/s] (Tₘ, ωₘ, T₀ at 5 m/s)"
+    )
+    mean_wind = param.Number(5.0, bounds=(1.0, 12.0), step=0.1, label="Site's mean wind [m/s]")
+    k = param.Number(2.0, bounds=(1.2, 4.0), step=0.1, label="Weibull shape k (2: Rayleigh)")
+    time_scale = param.Number(60.0, bounds=(5.0, 3600.0), step=5.0, label="Gusts' time scale [s]")
+    seed = param.Number(1, bounds=(0, 999), step=1, label="Gusty day number (seed)")
 
     def names(self) -> list[str]:
         return [*FORMATS, *SWITCHES]
@@ -66,7 +79,12 @@ class PumpInputs(param.Parameterized):
         return {name: getattr(self, name) for name in self.names()}
 
     def design(self) -> windpump.Design:
-        """The design these inputs describe: the paper's example with its radii R and R0 kept."""
+        """The design these inputs describe: the paper's example with its radii R and R0 kept,
+        in the steady wind V (its curve's T_m, omega_m and T_0 are given at V_ref = 5 m/s)."""
+        return self.design_at_v_ref().in_wind(self.V)
+
+    def design_at_v_ref(self) -> windpump.Design:
+        """The design with its curve as the sliders give it, at V_ref (for a wind record)."""
         return SEED.with_ratios(
             L_over_R=self.L_over_R,
             R_dagger=self.R_dagger,

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import windpump
+from windpump.wind import gusty
 
 from served import (
     CHROMIUM,
@@ -238,8 +239,8 @@ def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
     page.keyboard.press("Home")
     page.get_by_role("tab", name="Wind pump", selected=True).wait_for(timeout=30_000)
     page.keyboard.press("End")
-    page.keyboard.press("Enter")
-    page.get_by_role("tab", name="Mechanisms", selected=True).wait_for(timeout=30_000)
+    page.keyboard.press("Enter")  # the last tab: Wind, which runs its day when first opened
+    page.get_by_role("tab", name="Wind", selected=True).wait_for(timeout=60_000)
     assert page.problems == []
 
 
@@ -248,6 +249,7 @@ def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
 FOCUS_SHOWN = """() => {
   let el = document.activeElement;
   while (el && el.shadowRoot && el.shadowRoot.activeElement) el = el.shadowRoot.activeElement;
+  if (!el || el === document.body) return [null, true];  // past the last control: not a control
   const name = el ? (el.getAttribute('aria-label') || el.textContent.trim().slice(0, 30) || el.tagName) : null;
   for (let node = el; node; node = node.parentNode || node.host) {
     if (node.nodeType === 1 && getComputedStyle(node).outlineStyle !== 'none') return [name, true];
@@ -263,6 +265,7 @@ def test_every_control_shows_its_focus(page):
         page.keyboard.press("Tab")
         name, shown = page.evaluate(FOCUS_SHOWN)
         seen[name] = shown
+    seen.pop(None, None)
     hidden = [name for name, shown in seen.items() if not shown]
     assert len(seen) > 10 and hidden == [], hidden
 
@@ -473,6 +476,53 @@ def test_the_machine_draws_every_cylinder_on_its_own_throw(browser, url):
             assert abs(math.remainder(drawn - lag, 2 * math.pi)) < 0.01, k
             x = float(windpump.piston_position(drawn, design.R, design.L))
             assert ys[5 + 2 * k][1] == pytest.approx(design.L + design.R - x, abs=2e-6)
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def wind_day_litres(design, mean_wind, kick=3.0) -> str:
+    record = gusty(mean_wind, 86_400.0, seed=1)
+    run = windpump.simulate(design, 86_400.0, math.pi / 2, kick, wind=record, sample_dt=1.0)
+    return f"{1e3 * run.volume[-1]:,.0f}"
+
+
+def test_the_wind_tab_runs_the_linked_day_and_follows_its_sliders(browser, url):
+    design = SEED.replace(T_0=0.3)
+    page = open_page(browser, url, width=1280, height=720, query="?T_0=0.3&mean_wind=4")
+    try:
+        page.get_by_text("Wind", exact=True).first.click()
+        wait_for_readout(page, "day_litres", wind_day_litres(design, 4.0))
+        low, high = windpump.water_per_day(design, 4.0)
+        assert text(page, "site_bounds") == f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+        bands = "(n) => window.Bokeh.documents[0].get_model_by_name(n).data.t.length"
+        assert 0 < page.evaluate(bands, "windtab_wind") <= 450
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "wind_1280x720.png"), full_page=True)
+
+        press(page, "Site's mean wind [m/s]", "ArrowRight", 5)  # 4.0 -> 4.5
+        page.wait_for_function(
+            "() => new URLSearchParams(location.search).get('mean_wind') === '4.5'",
+            timeout=60_000,
+        )
+        wait_for_readout(page, "day_litres", wind_day_litres(design, 4.5))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_the_wind_tab_on_a_phone(browser, url):
+    page = open_page(browser, url, width=390, height=844, query="?T_0=0.3")
+    try:
+        page.get_by_text("Wind", exact=True).first.click()
+        page.wait_for_function(
+            f"() => /^[0-9,]+$/.test(({DEEP_TEXT})('[data-name=day_litres]') || '')",
+            timeout=120_000,
+        )
+        width = page.evaluate("() => document.documentElement.scrollWidth")
+        assert width <= 390 + 1, "no sideways scrolling on a phone"
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "wind_390x844.png"), full_page=True)
         assert page.problems == []
     finally:
         page.close()

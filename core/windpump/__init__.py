@@ -41,7 +41,7 @@ from .kinematics import (
 from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .playback import Playback, piston_table, playback_frames
-from .site import steady_flow, water_per_day, wind_thresholds
+from .site import record_water, steady_flow, water_per_day, wind_thresholds
 from .windmill import (
     OperatingPoint,
     TorqueFit,
@@ -90,6 +90,7 @@ __all__ = [
     "playback_frames",
     "power_budget",
     "read_torque_csv",
+    "record_water",
     "revolution_marks",
     "rod_angle",
     "simulate",

@@ -14,6 +14,7 @@ import numpy as np
 
 from .averaged import stall_margin
 from .design import Design
+from .errors import ParameterError
 from .loads import peak_load_torque
 from .wind import shape, weibull_scale
 
@@ -74,8 +75,6 @@ def steady_flow(design: Design, V):
     speeds = np.asarray(V, dtype=float)
     if not np.all(np.isfinite(speeds)) or np.any(speeds < 0.0):
         bad = speeds[~(np.isfinite(speeds) & (speeds >= 0.0))].ravel()[0]
-        from .errors import ParameterError
-
         raise ParameterError("V", float(bad), "finite wind speeds >= 0", "m/s")
     flow = design.volume_per_revolution * _running_speed(design, speeds) / (2 * math.pi)
     return flow if flow.ndim else float(flow)
@@ -151,3 +150,41 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
     near, _ = integrate.quad(root_term, q_from, q_far, epsabs=0.0, epsrel=1e-12, limit=400)
     tail, _ = integrate.quad(root_term, q_far, math.inf, epsabs=0.0, epsrel=1e-12, limit=400)
     return per_radian * (p / design.V_ref * linear + g * (near + tail))
+
+
+def record_water(design: Design, record) -> tuple[float, float]:
+    """Water a day [m^3/day] by the averaged theory over a wind record's own speeds: (low, high).
+
+    The time average of :func:`steady_flow` over the record (V linear between samples, by the
+    trapezoidal rule on its samples), counting the winds above V_start (low; 0 when T_0 = 0) or
+    above V_stop (high), per day: the bounds :func:`water_per_day` gives for a Weibull site, for
+    this record. A full run in the record (``simulate(..., wind=record)``) lies between them when
+    the wind varies slowly against the spin-up time.
+
+    Parameters
+    ----------
+    design : Design
+    record : (t, V) pair
+        Times [s] and wind speeds [m/s], as ``simulate`` takes them; at least two samples.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> low, high = record_water(Design.seed_example(), ([0.0, 3600.0], [5.0, 5.0]))
+    >>> low, round(high, 2)
+    (0.0, 32.78)
+    """
+    from .wind import as_record
+
+    t, V = as_record(record, 1.0)
+    if len(t) < 2:
+        raise ParameterError("record", f"{len(t)} sample", "a record of at least 2 samples")
+    V_stop, V_start = wind_thresholds(design)
+    flow = steady_flow(design, V)
+    duration = t[-1] - t[0]
+
+    def daily(kept) -> float:
+        q = np.where(kept, flow, 0.0)
+        return float(SECONDS_PER_DAY * np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(t)) / duration)
+
+    return (0.0 if V_start is None else daily(V >= V_start)), daily(V > V_stop)

@@ -1,0 +1,320 @@
+"""The Wind tab: the pump at a site, from its steady-wind curve to a gusty day run in full.
+
+Two views and a day: water against steady wind (``windpump.steady_flow``) with V_stop, V_start
+and the site's Weibull density; and a day of wind (a gusty record drawn from the site's Weibull
+wind, or a measured CSV) integrated in full by ``windpump.simulate``: its V(t), crank speed and
+cumulative litres with stops and starts marked, and its litres a day beside the averaged bounds.
+Every number comes from ``windpump``.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
+from envelope import band
+from figures import COLORS, TICKS, draw_band, empty, legend, line, new_figure
+from readouts import Readout
+from views import CAPTION_CSS, refill
+
+import windpump
+from windpump.labdata import LabDataError, check_file_size
+from windpump.wind import MAX_CSV_BYTES, gusty, read_csv, weibull_scale
+
+DAY = 86_400.0
+WIND_READOUTS = {
+    "day_litres": "This day, in full [L/day]",
+    "record_bounds": "Averaged over this day's wind [L/day]",
+    "site_bounds": "Averaged over the site's Weibull wind [L/day]",
+    "thresholds": "V_stop · V_start [m/s]",
+}
+TEXT = [":host { font-size: 16px; }"]
+STOP_COLOR, START_COLOR = "#d62728", "#2ca02c"
+
+
+@functools.lru_cache(maxsize=8)
+def gusty_day(mean_wind: float, k: float, time_scale: float, seed: int):
+    """A day of gusty wind at one sample a second (kept: a pump slider move reuses it)."""
+    return gusty(mean_wind, DAY, k=k, time_scale=time_scale, seed=seed)
+
+
+class WindTab:
+    """The Wind tab's widgets, figures and ``update(design_at_v_ref, inputs)``."""
+
+    def __init__(self, sliders: dict, bins: int | None):
+        self.bins = bins
+        self.sliders = sliders
+        self.measured: windpump.wind.WindRecord | None = None
+        self.measured_name = ""
+        self.sources: dict[str, ColumnDataSource] = {}
+        self.readouts = {name: Readout(name) for name in WIND_READOUTS}
+        self.upload = pn.widgets.FileInput(
+            accept=".csv,.txt,.tsv", stylesheets=TEXT, sizing_mode="stretch_width"
+        )
+        self.upload_message = pn.pane.Alert(
+            "", alert_type="danger", visible=False, stylesheets=TEXT
+        )
+        self.use_gusty = pn.widgets.Button(
+            label="Back to the gusty day",
+            visible=False,
+            stylesheets=TEXT,
+            sizing_mode="stretch_width",
+        )
+        self.day_note = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
+        self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
+        self.curve = self._curve_figure()
+        self.day_wind, self.day_speed, self.day_litres = self._day_figures()
+        for name, source in self.sources.items():
+            source.name = f"windtab_{name}"  # for a browser: get_model_by_name
+        self.last_run: windpump.SimulationResult | None = None
+
+    # -- figures -----------------------------------------------------------------------------
+
+    def _curve_figure(self):
+        s = self.sources
+        s["curve"] = empty("V", "flow")
+        s["density"] = empty("V", "density")
+        s["here"] = empty("V", "flow")
+        fig = new_figure("Water against steady wind", "wind speed V [m/s]", "mean flow [L/s]")
+        fig.extra_y_ranges = {"density": Range1d(0, 1)}
+        axis = LinearAxis(y_range_name="density", axis_label="Weibull density [s/m]")
+        axis.axis_label_text_font_size = axis.major_label_text_font_size = TICKS
+        fig.add_layout(axis, "right")
+        curve = line(fig, "V", "flow", s["curve"], COLORS["flow"], 3)
+        density = fig.varea(
+            "V", 0, "density", source=s["density"], y_range_name="density", color="#999999",
+            alpha=0.3,
+        )  # fmt: skip
+        here = fig.scatter("V", "flow", source=s["here"], size=12, color=COLORS["mean"])
+        self.stop_span = Span(location=0, dimension="height", line_color=STOP_COLOR, line_width=2)
+        self.start_span = Span(
+            location=0, dimension="height", line_color=START_COLOR, line_width=2, line_dash="dashed"
+        )
+        fig.add_layout(self.stop_span)
+        fig.add_layout(self.start_span)
+        fig.add_tools(
+            HoverTool(
+                renderers=[curve],
+                tooltips=[("V", "@V{0.0} m/s"), ("flow", "@flow{0.000} L/s")],
+                mode="vline",
+            )
+        )
+        self.curve_items = legend(
+            fig,
+            {"averaged flow (α₊)": curve, "site's wind (Weibull)": density, "steady wind V": here},
+        )
+        return fig
+
+    def _day_figures(self):
+        s = self.sources
+        s["wind"] = empty("t", "lower", "upper")
+        s["speed"] = empty("t", "lower", "upper")
+        s["litres"] = empty("t", "litres")
+        for kind in ("stops", "starts"):
+            s[f"{kind}_wind"] = empty("t", "y")
+            s[f"{kind}_litres"] = empty("t", "y")
+        shared = Range1d(0, 24)
+        wind = new_figure("The day's wind", "time [h]", "wind speed V [m/s]", x_range=shared)
+        draw_band(wind, s["wind"], "#8c564b")
+        speed = new_figure("Crank speed", "time [h]", "crank speed θ̇ [rad/s]", x_range=shared)
+        draw_band(speed, s["speed"], COLORS["integrated"])
+        litres = new_figure("Water lifted", "time [h]", "water since dawn [L]", x_range=shared)
+        lifted = line(litres, "t", "litres", s["litres"], COLORS["flow"], 3)
+        markers = {}
+        for fig, suffix in ((wind, "wind"), (litres, "litres")):
+            markers[suffix] = (
+                fig.scatter("t", "y", source=s[f"stops_{suffix}"], marker="inverted_triangle",
+                            size=11, color=STOP_COLOR),
+                fig.scatter("t", "y", source=s[f"starts_{suffix}"], marker="triangle", size=11,
+                            color=START_COLOR),
+            )  # fmt: skip
+        legend(wind, {"stops": markers["wind"][0], "starts": markers["wind"][1]})
+        litres.add_tools(
+            HoverTool(
+                renderers=[lifted],
+                tooltips=[("t", "@t{0.00} h"), ("water", "@litres{0} L")],
+                mode="vline",
+            )
+        )
+        for fig, what in ((wind, "V"), (speed, "θ̇")):
+            fig.add_tools(
+                HoverTool(
+                    tooltips=[("t", "@t{0.00} h"), (what, "@lower{0.00} to @upper{0.00}")],
+                    mode="vline",
+                    renderers=[fig.renderers[0]],
+                )
+            )
+        return wind, speed, litres
+
+    # -- updates -----------------------------------------------------------------------------
+
+    def update(self, design: windpump.Design, inputs) -> None:
+        """Redraw for the design at V_ref (its sliders' curve) and the wind inputs; the design
+        in the steady wind is ``design.in_wind(inputs.V)``."""
+        self._update_curve(design, inputs)
+        self._update_day(design, inputs)
+
+    def _update_curve(self, design, inputs) -> None:
+        c = weibull_scale(inputs.mean_wind, inputs.k)
+        top = max(20.0, 2.5 * c)
+        V = np.linspace(0.0, top, 400)
+        refill(self.sources["curve"], {"V": V, "flow": 1e3 * windpump.steady_flow(design, V)})
+        k = inputs.k
+        density = k / c * (V / c) ** (k - 1) * np.exp(-((V / c) ** k))
+        refill(self.sources["density"], {"V": V, "density": density})
+        self.curve.extra_y_ranges["density"].end = 1.1 * float(np.max(density))
+        here = 1e3 * windpump.steady_flow(design, inputs.V)
+        refill(self.sources["here"], {"V": [inputs.V], "flow": [here]})
+        V_stop, V_start = windpump.wind_thresholds(design)
+        self.stop_span.location = V_stop
+        self.start_span.location = V_start if V_start is not None else -1.0
+        self.start_span.visible = V_start is not None
+        start = f"{V_start:.1f}" if V_start is not None else "never (T₀ = 0)"
+        self.readouts["thresholds"].show(WIND_READOUTS["thresholds"], f"{V_stop:.1f} · {start}")
+        low, high = windpump.water_per_day(design, inputs.mean_wind, inputs.k)
+        self.readouts["site_bounds"].show(
+            WIND_READOUTS["site_bounds"], f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+        )
+
+    def record(self, inputs) -> windpump.wind.WindRecord:
+        """The day's wind: the measured record if one was loaded, else the gusty day."""
+        if self.measured is not None:
+            return self.measured
+        return gusty_day(inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
+
+    def _update_day(self, design, inputs) -> None:
+        record = self.record(inputs)
+        duration = float(record.t[-1])
+        kick = 0.0 if windpump.starts_from_rest(design) else inputs.theta_dot0
+        try:
+            run = windpump.simulate(
+                design, duration, inputs.theta0, kick, wind=record,
+                sample_dt=max(1.0, duration / DAY),
+            )  # fmt: skip
+        except ValueError as error:
+            self.error.object = f"The day cannot be run: {error}"
+            self.error.visible = True
+            return
+        self.error.visible = False
+        self.last_run = run
+        hours = run.t / 3600.0
+        self.day_wind.x_range.end = self.day_wind.x_range.start + duration / 3600.0
+        bins = self.bins
+        for name, values in (("wind", run.wind_speed), ("speed", run.theta_dot)):
+            x, lower, upper = band(hours, values, bins)
+            refill(self.sources[name], {"t": x, "lower": lower, "upper": upper})
+        x, _, lifted = band(hours, 1e3 * run.volume, bins)
+        refill(self.sources["litres"], {"t": x, "litres": lifted})
+        for kind, times in (("stops", run.stops), ("starts", run.starts)):
+            at = np.asarray(times)
+            refill(
+                self.sources[f"{kind}_wind"],
+                {"t": at / 3600.0, "y": np.interp(at, record.t, record.V)},
+            )
+            refill(
+                self.sources[f"{kind}_litres"],
+                {"t": at / 3600.0, "y": 1e3 * np.interp(at, run.t, run.volume)},
+            )
+        per_day = 1e3 * float(run.volume[-1]) * DAY / duration
+        self.readouts["day_litres"].show(WIND_READOUTS["day_litres"], f"{per_day:,.0f}")
+        low, high = windpump.record_water(design, record)
+        self.readouts["record_bounds"].show(
+            WIND_READOUTS["record_bounds"], f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+        )
+        source = (
+            f"the measured record *{self.measured_name}* ({duration / 3600:.1f} h)"
+            if self.measured is not None
+            else f"a gusty day (seed {int(round(inputs.seed))})"
+        )
+        start = "starts on its own" if kick == 0.0 else f"is kicked at {kick:g} rad/s"
+        self.day_note.object = (
+            f"Integrated in full over {source}: the pump {start}, stops {len(run.stops)} "
+            f"time(s) and starts {len(run.starts)} time(s); mean wind "
+            f"{np.mean(run.wind_speed):.2f} m/s."
+        )
+
+    # -- a measured record -------------------------------------------------------------------
+
+    def load(self, data: bytes | None, name: str = "") -> bool:
+        """Read a measured wind CSV; True when it replaced the day's wind. A bad file is refused
+        with its message and the day's wind stays as it was."""
+        if not data:
+            return False
+        try:
+            check_file_size(len(data), MAX_CSV_BYTES)
+            record = read_csv(data)
+        except LabDataError as error:
+            self.upload_message.object = f"This wind file cannot be used: {error}"
+            self.upload_message.visible = True
+            return False
+        if record.t[-1] > 400 * DAY:
+            self.upload_message.object = "This wind file is longer than 400 days; cut it shorter."
+            self.upload_message.visible = True
+            return False
+        self.measured, self.measured_name = record, name or "uploaded"
+        self.upload_message.visible = False
+        self.use_gusty.visible = True
+        return True
+
+    def forget(self) -> None:
+        self.measured, self.measured_name = None, ""
+        self.use_gusty.visible = False
+
+    # -- layout ------------------------------------------------------------------------------
+
+    def layout(self) -> pn.Column:
+        def caption(text: str):
+            return pn.pane.HTML(f"<p>{text}</p>", stylesheets=CAPTION_CSS)
+
+        flex = {"flex": "1 1 460px", "min-width": "300px"}
+        site = pn.Column(
+            self.sliders["V"],
+            pn.pane.Bokeh(self.curve, sizing_mode="stretch_width"),
+            caption(
+                "Mean flow m A R α₊(V)/π of the averaged theory in a steady wind (the rotor by "
+                "similarity: torque ∝ V², speed ∝ V). Below V_stop (red) a running pump stops; "
+                "above V_start (green, dashed) a resting one starts. Grey: the site's Weibull "
+                "wind."
+            ),
+            sizing_mode="stretch_width",
+            styles=flex,
+        )
+        day_controls = pn.Column(
+            self.sliders["mean_wind"],
+            self.sliders["k"],
+            self.sliders["time_scale"],
+            self.sliders["seed"],
+            pn.pane.Markdown(
+                "**Measured wind**: a CSV of time [s] or ISO timestamp, wind speed [m/s]",
+                stylesheets=TEXT,
+            ),
+            self.upload,
+            self.upload_message,
+            self.use_gusty,
+            sizing_mode="stretch_width",
+            styles=flex,
+        )
+        readouts = pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width")
+        day = [
+            pn.Column(
+                pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+                sizing_mode="stretch_width",
+                styles=flex,
+            )  # fmt: skip
+            for fig in (self.day_wind, self.day_speed, self.day_litres)
+        ]
+        return pn.Column(
+            readouts,
+            self.error,
+            pn.FlexBox(site, day_controls, flex_wrap="wrap", sizing_mode="stretch_width"),
+            self.day_note,
+            pn.FlexBox(*day, flex_wrap="wrap", sizing_mode="stretch_width"),
+            caption(
+                "The day integrated in full (Eq. 12 with the curve following V(t)): a pump at "
+                "rest waits until R†T₀(V/V_ref)² beats the load at its angle. Red: stops; green: "
+                "starts."
+            ),
+            sizing_mode="stretch_width",
+        )

@@ -1,0 +1,114 @@
+"""The Wind tab in-process: its readouts and sources against windpump, the link, measured files."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import windpump
+from windpump.wind import gusty
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
+from explorer import Explorer  # noqa: E402
+from views import BINS  # noqa: E402
+from wind_tab import DAY  # noqa: E402
+
+SEED = windpump.Design.seed_example()
+
+
+@pytest.fixture
+def app():
+    explorer = Explorer()
+    explorer.main().active = 2  # open the Wind tab
+    return explorer
+
+
+def value(app, name):
+    html = app.wind.readouts[name].object
+    return html.split(f'data-name="{name}">')[1].split("<")[0]
+
+
+def litres(number: float) -> str:
+    return f"{number:,.0f}"
+
+
+def test_opening_the_tab_runs_a_gusty_day_in_full(app):
+    design = SEED.replace(T_0=0.3)
+    app.set_values(T_0=0.3, mean_wind=4.0)
+    record = gusty(4.0, DAY, k=2.0, time_scale=60.0, seed=1)
+    run = windpump.simulate(design, DAY, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
+    assert value(app, "day_litres") == litres(1e3 * run.volume[-1])
+    low, high = windpump.record_water(design, record)
+    assert value(app, "record_bounds") == f"{litres(1e3 * low)} … {litres(1e3 * high)}"
+    low, high = windpump.water_per_day(design, 4.0, 2.0)
+    assert value(app, "site_bounds") == f"{litres(1e3 * low)} … {litres(1e3 * high)}"
+    V_stop, V_start = windpump.wind_thresholds(design)
+    assert value(app, "thresholds") == f"{V_stop:.1f} · {V_start:.1f}"
+    stops = app.wind.sources["stops_wind"].data
+    np.testing.assert_allclose(stops["t"], np.asarray(run.stops) / 3600.0)
+    for name in ("wind", "speed", "litres"):
+        assert len(app.wind.sources[name].data["t"]) <= BINS
+    assert app.wind.sources["litres"].data["litres"][-1] == pytest.approx(1e3 * run.volume[-1])
+
+
+def test_the_steady_wind_moves_every_view(app):
+    app.set_values(V=8.0)
+    moved = SEED.in_wind(8.0)
+    assert app.seen.design == moved
+    assert app.seen.mean_flow == windpump.explore(moved, 600.0).mean_flow
+    here = app.wind.sources["here"].data
+    assert here["V"] == [8.0]
+    assert here["flow"][0] == pytest.approx(1e3 * windpump.steady_flow(SEED, 8.0))
+    curve = app.wind.sources["curve"].data
+    np.testing.assert_allclose(curve["flow"], 1e3 * windpump.steady_flow(SEED, curve["V"]))
+
+
+def test_a_self_starting_pump_needs_no_kick_and_stops_and_starts_with_the_wind(app):
+    app.set_values(cylinders=2.0, T_0=0.4, mean_wind=3.0, time_scale=600.0, I0=0.2)
+    run = app.wind.last_run
+    assert run.theta_dot[0] == 0.0  # no kick: at rest until the wind first can turn it
+    assert np.all(run.theta_dot[run.t < run.starts[0]] == 0.0)
+    assert len(run.stops) >= 1 and len(run.starts) >= 2
+    assert "starts on its own" in app.wind.day_note.object
+    assert len(app.wind.sources["starts_litres"].data["t"]) == len(run.starts)
+
+
+def test_a_link_sets_the_wind_and_a_tampered_one_is_ignored_with_a_notice():
+    query = {"V": [b"6.5"], "mean_wind": [b"4"], "k": [b"2.5"], "time_scale": [b"99"],
+             "seed": [b"7"], "T_0": [b"0.2"]}  # fmt: skip
+    app = Explorer(query=query)
+    assert (app.inputs.V, app.inputs.mean_wind, app.inputs.k) == (6.5, 4.0, 2.5)
+    assert (app.inputs.time_scale, app.inputs.seed) == (99.0, 7)
+    assert "V=6.5" in app.inputs.query() and "seed=7.0" in app.inputs.query()
+    tampered = Explorer(query={"k": [b"99"], "mean_wind": [b"gale"]})
+    assert tampered.notices.visible
+    assert "Weibull shape k (2: Rayleigh) (k)" in tampered.notices.object
+    assert "(mean_wind)" in tampered.notices.object
+    assert (tampered.inputs.k, tampered.inputs.mean_wind) == (2.0, 5.0)
+
+
+def test_a_measured_wind_file_replaces_the_day_and_a_bad_one_is_refused(app):
+    rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
+    app.wind.upload.filename = "mast.csv"
+    app.load_wind_data(("t [s],V [m/s]\n" + rows + "\n").encode())
+    run = app.wind.last_run
+    assert run.t[-1] == 7200.0 and "mast.csv" in app.wind.day_note.object
+    day = value(app, "day_litres")
+    assert day == litres(1e3 * run.volume[-1] * DAY / 7200.0)
+    app.load_wind_data(b"t,V\n0,5\n10,-3\n")
+    assert app.wind.upload_message.visible and "line 3" in app.wind.upload_message.object
+    assert value(app, "day_litres") == day  # nothing lost
+    app.forget_wind_data()
+    assert app.wind.last_run.t[-1] == DAY
+
+
+def test_a_design_the_day_cannot_run_is_said_and_the_tab_lives(app):
+    app.set_values(h=30.0, T_m=0.05)  # the pump never carries its load: the day rests
+    assert not app.wind.error.visible
+    assert value(app, "day_litres") == "0"
+    app.set_values(h=3.0, T_m=0.6)
+    assert value(app, "day_litres") != "0"

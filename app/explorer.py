@@ -55,6 +55,13 @@ VIEW_FLEX_ROW = {"gap": "8px"}
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
+# A tab's content arrives after its header is chosen (the Wind tab's after its day has run): its
+# file input gets the page's size check (uploads.js) as soon as it is drawn.
+GUARD_NEW_UPLOADS_JS = """
+for (const delay of [300, 1000, 2500, 5000, 10000, 20000]) {
+  setTimeout(() => window.__windpumpGuardAll && window.__windpumpGuardAll(), delay)
+}
+"""
 
 
 class PromptSlider(pn.widgets.FloatSlider):
@@ -581,6 +588,9 @@ class Explorer(pn.viewable.Viewer):
         size = self.refused_upload.size
         if size is None:
             return
+        if self.refused_upload.wind:
+            self.wind.refuse_size(size)
+            return
         try:
             windpump.labdata.check_file_size(size)
         except ValueError as error:
@@ -707,6 +717,7 @@ class Explorer(pn.viewable.Viewer):
                 tabs[2] = ("Wind", self.wind.layout())
 
         tabs.param.watch(open_mechanisms, "active")
+        tabs.jscallback(active=GUARD_NEW_UPLOADS_JS)
         self.tabs = tabs
         return tabs
 

@@ -21,12 +21,17 @@ if (!window.__windpumpUploads) {
     input.addEventListener(
       "change",
       (event) => {
-        const big = [...(input.files || [])].find((file) => file.size > max_bytes)
+        // A wind record (its upload's host carries `wind_class`) may be larger than a lab file.
+        const host = input.getRootNode().host
+        const wind = host != null && host.classList.contains(wind_class)
+        const limit = wind ? wind_max_bytes : max_bytes
+        const big = [...(input.files || [])].find((file) => file.size > limit)
         if (big == null) return
         event.stopImmediatePropagation()
         input.value = ""
         const model = channel()
-        if (model != null) model.value = `${big.size}\t${Date.now()}\t${big.name}`
+        const kind = wind ? "wind" : "lab"
+        if (model != null) model.value = `${big.size}\t${Date.now()}\t${kind}\t${big.name}`
       },
       true,
     )
@@ -37,6 +42,8 @@ if (!window.__windpumpUploads) {
     for (const el of root.querySelectorAll("*")) if (el.shadowRoot) walk(el.shadowRoot)
   }
   walk(document)
+  // A tab drawn later (the Wind tab's upload) calls this again once its content has arrived.
+  window.__windpumpGuardAll = () => walk(document)
   // A file input drawn later is guarded before it can be used.
   for (const type of ["focusin", "pointerdown", "dragenter"]) {
     document.addEventListener(

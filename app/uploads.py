@@ -15,13 +15,19 @@ from bokeh.document import Document
 from bokeh.models import CustomJS
 
 from windpump.labdata import MAX_BYTES
+from windpump.wind import MAX_CSV_BYTES
+
+# A wind record is sent whole too: its limit stays below the ~15 MB that closes the connection.
+WIND_MAX_BYTES = min(MAX_CSV_BYTES, 10_000_000)
+WIND_CLASS = "wind-upload"
 
 UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
 CHANNEL_CLASS = "upload-refused"
 
 
 class RefusedUploads(pn.widgets.TextInput):
-    """Hidden; the page writes ``"<bytes>\\t<time>\\t<name>"`` into it when it refuses a file."""
+    """Hidden; the page writes ``"<bytes>\\t<time>\\t<lab|wind>\\t<name>"`` into it when it refuses
+    a file."""
 
     def __init__(self, **params):
         super().__init__(visible=False, css_classes=[CHANNEL_CLASS], **params)
@@ -32,10 +38,24 @@ class RefusedUploads(pn.widgets.TextInput):
         head = self.value.split("\t", 1)[0]
         return int(head) if head.isdigit() else None
 
+    @property
+    def wind(self) -> bool:
+        """Whether the refused file was a wind record (else a lab torque file)."""
+        fields = self.value.split("\t")
+        return len(fields) > 2 and fields[2] == "wind"
+
 
 def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
     """Run ``uploads.js`` in the page once Bokeh has drawn it."""
     document.js_on_event(
         "document_ready",
-        CustomJS(args=dict(max_bytes=max_bytes, channel_class=CHANNEL_CLASS), code=UPLOADS_JS),
+        CustomJS(
+            args=dict(
+                max_bytes=max_bytes,
+                wind_max_bytes=WIND_MAX_BYTES,
+                wind_class=WIND_CLASS,
+                channel_class=CHANNEL_CLASS,
+            ),
+            code=UPLOADS_JS,
+        ),
     )

@@ -17,11 +17,12 @@ from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
 from envelope import band
 from figures import COLORS, TICKS, draw_band, empty, legend, line, new_figure
 from readouts import Readout
+from uploads import WIND_CLASS, WIND_MAX_BYTES
 from views import CAPTION_CSS, refill
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
-from windpump.wind import MAX_CSV_BYTES, gusty, read_csv, weibull_scale
+from windpump.wind import gusty, read_csv, weibull_scale
 
 DAY = 86_400.0
 WIND_READOUTS = {
@@ -51,7 +52,10 @@ class WindTab:
         self.sources: dict[str, ColumnDataSource] = {}
         self.readouts = {name: Readout(name) for name in WIND_READOUTS}
         self.upload = pn.widgets.FileInput(
-            accept=".csv,.txt,.tsv", stylesheets=TEXT, sizing_mode="stretch_width"
+            accept=".csv,.txt,.tsv",
+            css_classes=[WIND_CLASS],  # the page's size check knows it by this
+            stylesheets=TEXT,
+            sizing_mode="stretch_width",
         )
         self.upload_message = pn.pane.Alert(
             "", alert_type="danger", visible=False, stylesheets=TEXT
@@ -243,7 +247,7 @@ class WindTab:
         if not data:
             return False
         try:
-            check_file_size(len(data), MAX_CSV_BYTES)
+            check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
             record = read_csv(data)
         except LabDataError as error:
             self.upload_message.object = f"This wind file cannot be used: {error}"
@@ -257,6 +261,16 @@ class WindTab:
         self.upload_message.visible = False
         self.use_gusty.visible = True
         return True
+
+    def refuse_size(self, size: int) -> None:
+        """The page stopped a wind file over the limit before sending it: say so here."""
+        if size <= WIND_MAX_BYTES:
+            return  # not a size the page refuses: a tampered value
+        self.upload_message.object = (
+            f"This wind file cannot be used: it has {size:,} bytes; at most "
+            f"{WIND_MAX_BYTES:,} are read (a day at one sample a second is about 1.5 MB)."
+        )
+        self.upload_message.visible = True
 
     def forget(self) -> None:
         self.measured, self.measured_name = None, ""

@@ -112,3 +112,12 @@ def test_a_design_the_day_cannot_run_is_said_and_the_tab_lives(app):
     assert value(app, "day_litres") == "0"
     app.set_values(h=3.0, T_m=0.6)
     assert value(app, "day_litres") != "0"
+
+
+def test_a_wind_file_the_page_refused_is_reported_in_the_wind_tab(app):
+    app.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
+    assert app.wind.upload_message.visible and "12,000,000 bytes" in app.wind.upload_message.object
+    assert not app.lab_message.visible
+    app.wind.upload_message.visible = False
+    app.refused_upload.value = f"{5_000}\t2\twind\tsmall.csv"  # not a size the page refuses
+    assert not app.wind.upload_message.visible

@@ -526,3 +526,25 @@ def test_the_wind_tab_on_a_phone(browser, url):
         assert page.problems == []
     finally:
         page.close()
+
+
+def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url):
+    page = open_page(browser, url)
+    try:
+        page.get_by_text("Wind", exact=True).first.click()
+        page.wait_for_function(
+            f"() => /^[0-9,]+$/.test(({DEEP_TEXT})('[data-name=day_litres]') || '')",
+            timeout=120_000,
+        )
+        rows = "".join(f"{t:.1f},{5 + math.sin(t / 900):.3f}\n" for t in range(0, 86_401))
+        day = {"name": "mast.csv", "mimeType": "text/csv", "buffer": ("t,V\n" + rows).encode()}
+        assert len(day["buffer"]) > 1_000_000  # over the lab file's limit, within the wind's
+        upload = page.locator("input[type=file]").nth(1)
+        upload.set_input_files(files=[day])
+        page.get_by_text("the measured record mast.csv").first.wait_for(timeout=120_000)
+        huge = {"name": "huge.csv", "mimeType": "text/csv", "buffer": b"0,5\n" * 3_000_000}
+        upload.set_input_files(files=[huge])
+        page.get_by_text("it has 12,000,000 bytes").first.wait_for(timeout=60_000)
+        assert page.problems == []
+    finally:
+        page.close()

@@ -90,7 +90,7 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     return TorqueTable(omega=values[:, 0], torque=values[:, 1], header=header)
 
 
-def check_file_size(size: int, max_bytes: int = MAX_BYTES) -> None:
+def check_file_size(size: int, max_bytes: int = MAX_BYTES, what: str = "a torque curve") -> None:
     """Refuse a lab file of ``size`` bytes before reading it, if it is larger than ``max_bytes``.
 
     A page checks the size of a chosen file before sending it (a 50 MB file would otherwise
@@ -102,6 +102,8 @@ def check_file_size(size: int, max_bytes: int = MAX_BYTES) -> None:
         The file's size [bytes].
     max_bytes : int, default MAX_BYTES
         The largest file read [bytes].
+    what : str, default "a torque curve"
+        What the file holds, for the message.
 
     Raises
     ------
@@ -118,8 +120,7 @@ def check_file_size(size: int, max_bytes: int = MAX_BYTES) -> None:
     """
     if size > max_bytes:
         raise LabDataError(
-            f"the file has {size:,} bytes; at most {max_bytes:,} are read "
-            "(a torque curve needs far fewer)"
+            f"the file has {size:,} bytes; at most {max_bytes:,} are read ({what} needs far fewer)"
         )
 
 

@@ -106,10 +106,8 @@ class Explorer(pn.viewable.Viewer):
         self._mechanisms: Mechanisms | None = None  # built when first opened: most pages never do
         self._drawn_linkage: tuple | None = None
         self._build_widgets()
-        self.wind = WindTab(self.sliders, bins)
+        self._wind: WindTab | None = None  # built when first opened: most pages never do
         self.wind_open = False  # the Wind tab runs its day only once it has been opened
-        self.wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
-        self.wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
         self._build_results()
         if not defer_views:
             self.show_views()
@@ -171,6 +169,16 @@ class Explorer(pn.viewable.Viewer):
     def _name_sources(self) -> None:
         for name, source in self.sources.items():
             source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
+
+    @property
+    def wind(self) -> WindTab:
+        """The Wind tab's content, built on first use (its four figures cost every page that
+        never opens it)."""
+        if self._wind is None:
+            self._wind = WindTab(self.sliders, self.bins)
+            self._wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
+            self._wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
+        return self._wind
 
     @property
     def mechanisms(self) -> Mechanisms:

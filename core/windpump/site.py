@@ -172,7 +172,7 @@ def record_water(design: Design, record) -> tuple[float, float]:
     >>> from windpump import Design
     >>> low, high = record_water(Design.seed_example(), ([0.0, 3600.0], [5.0, 5.0]))
     >>> low, round(high, 2)
-    (0.0, 32.78)
+    (0.0, 32.77)
     """
     from .wind import as_record
 

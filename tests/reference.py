@@ -135,6 +135,16 @@ def summed_load(design: Design, segment_mid: float):
     return load
 
 
+def segment_ahead(design: Design, theta: float):
+    """(the switch that ends the segment theta is in [rad], that segment's summed load); a theta
+    on a switch up to round-off belongs to the segment it starts."""
+    width = math.pi / design.cylinders
+    segment = math.floor(theta / width)
+    if (segment + 1) * width - theta < 1e-13:
+        segment += 1
+    return (segment + 1) * width, summed_load(design, (segment + 0.5) * width)
+
+
 def general_rhs(design: Design, load):
     """d(theta, theta_dot, V, W)/dt with the torque curve T_0 + (T_m - T_0) x (2 - x)."""
     Rd = design.R1 / design.R0
@@ -161,15 +171,10 @@ def general_reference_run(design: Design, t_end: float, theta0: float, theta_dot
     solve_ivp call per segment between switches (every pi / n), a stop located as an event and
     resumed from rest when R+ T_0 exceeds the load there."""
     Rd = design.R1 / design.R0
-    width = math.pi / design.cylinders
     t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
     atol = [1e-12, 1e-13 * min(1.0, max(theta_dot0, 1e-3)), 1e-18, 1e-12]
     while True:
-        segment = math.floor(y[0] / width)
-        if (segment + 1) * width - y[0] < 1e-13:
-            segment += 1
-        end = (segment + 1) * width
-        load = summed_load(design, (segment + 0.5) * width)
+        end, load = segment_ahead(design, y[0])
         if y[1] == 0.0 and Rd * design.T_0 + load(y[0]) <= 0.0:
             return Reference(t, y[0], 0.0, y[2], y[3], True, t)
 
@@ -237,17 +242,12 @@ def wind_reference_run(design: Design, t_end, theta0, theta_dot0, wind_t, wind_V
     sample (where V(t) has a kink); a crank at rest waits for :func:`restart_time`. Returns the
     final Reference and the lists of stop and start times."""
     wind_t, wind_V = np.asarray(wind_t, float), np.asarray(wind_V, float)
-    width = math.pi / design.cylinders
     t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
     atol = [1e-12, 1e-13 * min(1.0, max(theta_dot0, 1e-3)), 1e-18, 1e-12]
     stops, starts = [], []
     moving = theta_dot0 > 0
     while True:
-        segment = math.floor(y[0] / width)
-        if (segment + 1) * width - y[0] < 1e-13:
-            segment += 1
-        end = (segment + 1) * width
-        load = summed_load(design, (segment + 0.5) * width)
+        end, load = segment_ahead(design, y[0])
         if y[1] == 0.0:
             restart = restart_time(design, -load(y[0]), t, wind_t, wind_V)
             if moving and restart > t:

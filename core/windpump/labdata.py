@@ -63,6 +63,29 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     >>> table.omega.tolist(), table.torque.tolist(), table.header
     ([10.0, 50.0, 90.0], [0.216, 0.6, 0.216], ('speed', 'torque'))
     """
+    rows = read_rows(source, max_bytes, COLUMNS)
+    header = None
+    if not all(_is_number(cell) for cell in rows[0][1]):
+        header = tuple(rows[0][1])
+        _check_header(rows[0][0], header)
+        rows = rows[1:]
+    values = np.array([_row(number, cells) for number, cells in rows]).reshape(-1, 2)
+    if len(values) < 3:
+        raise LabDataError(f"the file has {len(values)} measurement(s); the fit needs at least 3")
+    return TorqueTable(omega=values[:, 0], torque=values[:, 1], header=header)
+
+
+def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]]]:
+    """A CSV's rows as (line number, cells): UTF-8 text, ``#`` comments and blank lines skipped,
+    the separator found (tab, then ``;``, then ``,``; decimal commas read as points with the first
+    two). The rules every file this package reads follows; ``columns`` says what an empty file
+    needed.
+
+    Raises
+    ------
+    LabDataError
+        For a file over ``max_bytes``, not UTF-8 text, or empty.
+    """
     data = _read_bytes(source, max_bytes)
     try:
         text = data.decode("utf-8-sig")
@@ -76,18 +99,9 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
         if line.strip() and not line.lstrip().startswith("#")
     ]
     if not lines:
-        raise LabDataError(f"the file is empty; it needs {COLUMNS}")
+        raise LabDataError(f"the file is empty; it needs {columns}")
     separator = _separator(line for _, line in lines)
-    rows = [(number, _cells(line, separator)) for number, line in lines]
-    header = None
-    if not all(_is_number(cell) for cell in rows[0][1]):
-        header = tuple(rows[0][1])
-        _check_header(rows[0][0], header)
-        rows = rows[1:]
-    values = np.array([_row(number, cells) for number, cells in rows]).reshape(-1, 2)
-    if len(values) < 3:
-        raise LabDataError(f"the file has {len(values)} measurement(s); the fit needs at least 3")
-    return TorqueTable(omega=values[:, 0], torque=values[:, 1], header=header)
+    return [(number, _cells(line, separator)) for number, line in lines]
 
 
 def check_file_size(size: int, max_bytes: int = MAX_BYTES, what: str = "a torque curve") -> None:

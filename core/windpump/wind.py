@@ -17,7 +17,7 @@ import typing
 import numpy as np
 
 from .errors import ParameterError
-from .labdata import LabDataError, _cells, _is_number, _read_bytes, _separator
+from .labdata import LabDataError, _is_number, read_rows
 from .validation import positive
 
 MAX_RECORD = 10_000_000
@@ -226,22 +226,7 @@ def read_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_CSV_BYTES) 
     >>> record.t.tolist(), record.V.tolist()
     ([0.0, 10.0], [4.5, 6.0])
     """
-    data = _read_bytes(source, max_bytes)
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as error:
-        raise LabDataError(
-            f"the file is not text (byte {error.start + 1} is not UTF-8); save it as CSV"
-        ) from None
-    lines = [
-        (number, line.strip())
-        for number, line in enumerate(text.splitlines(), start=1)
-        if line.strip() and not line.lstrip().startswith("#")
-    ]
-    if not lines:
-        raise LabDataError(f"the file is empty; it needs {COLUMNS}")
-    separator = _separator(line for _, line in lines)
-    rows = [(number, _cells(line, separator)) for number, line in lines]
+    rows = read_rows(source, max_bytes, COLUMNS)
     if not (_is_number(rows[0][1][-1]) and _time(rows[0][1][0]) is not None):
         rows = rows[1:]  # a header row
     times: list[float | datetime.datetime] = []

@@ -41,6 +41,12 @@ def gusty_day(mean_wind: float, k: float, time_scale: float, seed: int):
     return gusty(mean_wind, DAY, k=k, time_scale=time_scale, seed=seed)
 
 
+def _same_day(a: tuple, b: tuple) -> bool:
+    """Whether two (design, record, theta0, kick) describe the same run (the record by identity:
+    a gusty day is cached, a measured one kept)."""
+    return len(a) == len(b) == 4 and a[0] == b[0] and a[1] is b[1] and a[2:] == b[2:]
+
+
 class WindTab:
     """The Wind tab's widgets, figures and ``update(design_at_v_ref, inputs)``."""
 
@@ -73,6 +79,7 @@ class WindTab:
         for name, source in self.sources.items():
             source.name = f"windtab_{name}"  # for a browser: get_model_by_name
         self.last_run: windpump.SimulationResult | None = None
+        self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
 
     # -- figures -----------------------------------------------------------------------------
 
@@ -192,6 +199,9 @@ class WindTab:
         record = self.record(inputs)
         duration = float(record.t[-1])
         kick = 0.0 if windpump.starts_from_rest(design) else inputs.theta_dot0
+        run_of = (design, record, inputs.theta0, kick)
+        if self.last_run is not None and _same_day(run_of, self._drawn_day):
+            return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         try:
             run = windpump.simulate(
                 design, duration, inputs.theta0, kick, wind=record,
@@ -202,7 +212,7 @@ class WindTab:
             self.error.visible = True
             return
         self.error.visible = False
-        self.last_run = run
+        self.last_run, self._drawn_day = run, run_of
         hours = run.t / 3600.0
         self.day_wind.x_range.end = self.day_wind.x_range.start + duration / 3600.0
         bins = self.bins

@@ -121,3 +121,11 @@ def test_a_wind_file_the_page_refused_is_reported_in_the_wind_tab(app):
     app.wind.upload_message.visible = False
     app.refused_upload.value = f"{5_000}\t2\twind\tsmall.csv"  # not a size the page refuses
     assert not app.wind.upload_message.visible
+
+
+def test_a_steady_wind_move_leaves_the_day_as_it_was(app):
+    day = app.wind.last_run
+    app.set_values(V=7.0)
+    assert app.wind.last_run is day  # the day runs in its own record: V does not enter it
+    app.set_values(seed=2.0)
+    assert app.wind.last_run is not day

@@ -22,7 +22,7 @@ from views import CAPTION_CSS, refill
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
-from windpump.wind import gusty, read_csv, weibull_scale
+from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
 DAY = 86_400.0
 WIND_READOUTS = {
@@ -172,8 +172,7 @@ class WindTab:
         top = max(20.0, 2.5 * c)
         V = np.linspace(0.0, top, 400)
         refill(self.sources["curve"], {"V": V, "flow": 1e3 * windpump.steady_flow(design, V)})
-        k = inputs.k
-        density = k / c * (V / c) ** (k - 1) * np.exp(-((V / c) ** k))
+        density = weibull_density(V, inputs.mean_wind, inputs.k)
         refill(self.sources["density"], {"V": V, "density": density})
         self.curve.extra_y_ranges["density"].end = 1.1 * float(np.max(density))
         here = 1e3 * windpump.steady_flow(design, inputs.V)

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy import special, stats
 
 import windpump
 from windpump.wind import gusty
@@ -53,6 +54,9 @@ def test_opening_the_tab_runs_a_gusty_day_in_full(app):
     for name in ("wind", "speed", "litres"):
         assert len(app.wind.sources[name].data["t"]) <= BINS
     assert app.wind.sources["litres"].data["litres"][-1] == pytest.approx(1e3 * run.volume[-1])
+    density = app.wind.sources["density"].data
+    expected = stats.weibull_min(2.0, scale=4.0 / special.gamma(1.5)).pdf(density["V"])
+    np.testing.assert_allclose(density["density"], expected, rtol=1e-12)
 
 
 def test_the_steady_wind_moves_every_view(app):

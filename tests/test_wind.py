@@ -14,7 +14,7 @@ from scipy import integrate, special, stats
 import windpump
 from windpump import Design, ParameterError, simulate
 from windpump.labdata import LabDataError
-from windpump.wind import gusty, read_csv, weibull_scale
+from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
 from reference import wind_reference_run
 
@@ -357,3 +357,10 @@ def test_any_wind_record_runs_or_is_refused_by_name(t, V):
         return
     assert np.all(np.isfinite(run.theta_dot)) and np.all(np.diff(run.volume) >= 0)
     assert run.t[-1] == 5.0
+
+
+def test_weibull_density_is_scipys():
+    V = np.linspace(0.0, 30.0, 301)
+    for mean, k in ((5.0, 2.0), (3.0, 1.4), (8.0, 3.5)):
+        expected = stats.weibull_min(k, scale=weibull_scale(mean, k)).pdf(V)
+        np.testing.assert_allclose(weibull_density(V, mean, k), expected, rtol=1e-12, atol=1e-300)

@@ -59,6 +59,23 @@ def weibull_scale(mean: float, k: float) -> float:
     return mean / math.gamma(1.0 + 1.0 / k)
 
 
+def weibull_density(V, mean: float, k: float = 2.0):
+    """The Weibull density of wind speeds with this mean and shape at speeds V [s/m].
+
+    ``(k/c) (V/c)^(k-1) exp(-(V/c)^k)`` with ``c = weibull_scale(mean, k)``: what
+    :func:`windpump.water_per_day` weighs the flow with.
+
+    Examples
+    --------
+    >>> round(float(weibull_density(5.0, 5.0)), 4)
+    0.1432
+    """
+    c = weibull_scale(mean, k)
+    k = shape(k)
+    x = np.asarray(V, dtype=float) / c
+    return k / c * x ** (k - 1.0) * np.exp(-(x**k))
+
+
 def shape(k: object) -> float:
     """Return the Weibull shape k as a float if it lies in [0.5, 20] (sites lie in 1.2 ... 4)."""
     value = positive("k", k)

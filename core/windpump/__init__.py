@@ -4,8 +4,9 @@ The model is M. Louge, *A simple wind-pump analysis* (2010): a windmill drives, 
 two sprockets, a slider-crank and a single-acting piston lifting water by a head h. Equation numbers
 in the docstrings are that paper's. Beyond it: several cylinders with their phase lags,
 double-acting pistons and a windmill with torque at rest (``Design.cylinders``, ``double_acting``,
-``T_0``), and the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
-:func:`water_per_day`).
+``T_0``), the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
+:func:`water_per_day`), and studies: the design map over gear ratio and head (:func:`design_map`)
+and many runs on any executor, a dask cluster's included (:func:`sweep`).
 
 >>> import windpump
 >>> design = windpump.Design.seed_example()
@@ -27,7 +28,7 @@ from .averaged import (
 from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
 from .energy import PowerBudget, StartupPower, power_budget, startup_power
-from .errors import NoClosure, ParameterError, StallError
+from .errors import DesignFileError, NoClosure, ParameterError, StallError
 from .exploration import Exploration, Status, explore
 from .kinematics import (
     delivering_faces,
@@ -40,8 +41,10 @@ from .kinematics import (
 )
 from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
+from .maps import DesignMap, design_map
 from .playback import Playback, piston_table, playback_frames
 from .site import record_water, steady_flow, water_per_day, wind_thresholds
+from .studies import Sweep, sweep
 from .windmill import (
     OperatingPoint,
     TorqueFit,
@@ -55,6 +58,8 @@ from .windmill import (
 __all__ = [
     "MAX_SAMPLES",
     "Design",
+    "DesignFileError",
+    "DesignMap",
     "Exploration",
     "Intermittency",
     "LabDataError",
@@ -66,11 +71,13 @@ __all__ = [
     "SimulationResult",
     "StallError",
     "StartupPower",
+    "Sweep",
     "Status",
     "TorqueFit",
     "TorqueTable",
     "averaged_stall_time",
     "delivering_faces",
+    "design_map",
     "energy",
     "explore",
     "f2",
@@ -101,6 +108,7 @@ __all__ = [
     "stall_sides",
     "steady_flow",
     "steady_speeds",
+    "sweep",
     "swept_strokes",
     "time_constant",
     "water_per_day",

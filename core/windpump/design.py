@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import typing
 
-from .errors import ParameterError
+from .errors import DesignFileError, ParameterError
 from .validation import LARGEST, flag, magnitude, non_negative, positive, rod_ratio, whole
 
 # Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
@@ -30,6 +31,10 @@ UNITS = {
 }
 
 MAX_CYLINDERS = 6
+
+SCHEMA = "windpump.design"
+SCHEMA_VERSION = 1
+"""What a design file says it is, and the version of its layout (:meth:`Design.to_json`)."""
 
 WIDEST_RATIO = 1e50
 """Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
@@ -238,6 +243,50 @@ class Design:
             T_m=self.T_m * s**2, omega_m=self.omega_m * s, T_0=self.T_0 * s**2, V_ref=V
         )
 
+    def to_json(self) -> str:
+        """The design as JSON text: every field with its unit, under a schema name and version.
+
+        Examples
+        --------
+        >>> d = Design.seed_example()
+        >>> Design.from_json(d.to_json()) == d
+        True
+        >>> import json
+        >>> file = json.loads(d.to_json())
+        >>> file["schema"], file["version"], file["fields"]["h"], file["units"]["h"]
+        ('windpump.design', 1, 3.0, 'm')
+        """
+        document = {
+            "schema": SCHEMA,
+            "version": SCHEMA_VERSION,
+            "fields": self.as_dict(),
+            "units": dict(UNITS),
+        }
+        return json.dumps(document, indent=2) + "\n"
+
+    @classmethod
+    def from_json(cls, text: str | bytes) -> Design:
+        """A design from the JSON text :meth:`to_json` writes.
+
+        ``fields`` must name every field without a default (R0 ... h); those with one (rho_w,
+        g, cylinders, double_acting, T_0, V_ref) may be left out. ``units``, when present, must
+        be this version's (SI units throughout).
+
+        Raises
+        ------
+        DesignFileError
+            (a ValueError) for text that is not such a document: not JSON, another schema or a
+            newer version, unknown or missing fields, or another unit; naming what is wrong.
+        ParameterError
+            For a field out of range, as the constructor.
+        """
+        try:
+            document = json.loads(text)
+        except (json.JSONDecodeError, UnicodeDecodeError) as error:
+            raise DesignFileError(f"not JSON: {error}") from None
+        fields = _design_fields(document)
+        return cls(**fields)
+
     def as_dict(self) -> dict[str, float | int | bool]:
         """The fields as a plain dict [SI units]."""
         return dataclasses.asdict(self)
@@ -302,3 +351,36 @@ class Design:
     def bore(self) -> float:
         """Piston diameter sqrt(4 A / pi) [m], from its cross-section A."""
         return math.sqrt(4.0 * self.A / math.pi)
+
+
+def _design_fields(document: object) -> dict[str, typing.Any]:
+    """The ``fields`` of a design document, checked against this version's layout."""
+    if not isinstance(document, dict) or document.get("schema") != SCHEMA:
+        raise DesignFileError(f'not a design file: it needs "schema": "{SCHEMA}"')
+    version = document.get("version")
+    if isinstance(version, bool) or not isinstance(version, int) or version < 1:
+        raise DesignFileError(f'"version" = {version!r} is not allowed: it must be 1')
+    if version > SCHEMA_VERSION:
+        raise DesignFileError(
+            f"version {version} was written by a newer windpump; this one reads version "
+            f"{SCHEMA_VERSION}"
+        )
+    fields = document.get("fields")
+    if not isinstance(fields, dict):
+        raise DesignFileError('"fields" must be an object of field names and values')
+    unknown = sorted(set(fields) - set(UNITS))
+    if unknown:
+        raise DesignFileError(f"unknown field(s) {unknown}; the fields are {list(UNITS)}")
+    required = [f.name for f in dataclasses.fields(Design) if f.default is dataclasses.MISSING]
+    missing = [name for name in required if name not in fields]
+    if missing:
+        raise DesignFileError(f"missing field(s) {missing}")
+    units = document.get("units", {})
+    if not isinstance(units, dict):
+        raise DesignFileError('"units" must be an object of field names and units')
+    for name, unit in units.items():
+        if name in UNITS and unit != UNITS[name]:
+            raise DesignFileError(
+                f'the unit of {name} is "{unit}"; design files use SI units: "{UNITS[name]}"'
+            )
+    return fields

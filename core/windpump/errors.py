@@ -38,6 +38,10 @@ class ParameterError(ValueError):
         return type(self), (self.name, self.value, self.allowed, self.unit, self.why)
 
 
+class DesignFileError(ValueError):
+    """A design file (:meth:`windpump.Design.from_json`) is not one this version can read."""
+
+
 class StallError(ValueError):
     """The windmill cannot carry the load: the margin of Eq. (22) is 1 or less."""
 

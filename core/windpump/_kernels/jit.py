@@ -10,7 +10,7 @@ from numba import njit
 OPTIONS = {"error_model": "numpy", "fastmath": {"contract", "reassoc", "nsz", "arcp"}}
 
 
-def kernel(function):
+def kernel(function, **options):
     """Compile ``function`` lazily (on its first call) and cache it on disk when it can.
 
     An install without a writable ``__pycache__`` (read-only site-packages, no
@@ -18,6 +18,11 @@ def kernel(function):
     without caching rather than fail the import.
     """
     try:
-        return njit(cache=True, **OPTIONS)(function)
+        return njit(cache=True, **OPTIONS, **options)(function)
     except RuntimeError:  # "cannot cache function ...: no locator available"
-        return njit(cache=False, **OPTIONS)(function)
+        return njit(cache=False, **OPTIONS, **options)(function)
+
+
+def parallel_kernel(function):
+    """A :func:`kernel` whose ``numba.prange`` loops run on every core."""
+    return kernel(function, parallel=True)

@@ -1,0 +1,331 @@
+"""The ``windpump`` command: simulate a design, map it, sweep a table of designs, serve the explorer.
+
+Every command starts from the paper's example (``Design.seed_example``), or a design file
+(``--design FILE.json``, :meth:`Design.to_json`), with fields changed by ``--set NAME=VALUE``
+(a field of :class:`Design`, or ``L_over_R`` / ``R_dagger``). Errors are one line on stderr and
+exit code 1 (2 for a command line argparse cannot read).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from .averaged import stall_margin, steady_speeds, time_constant
+from .design import UNITS, Design
+from .errors import StallError
+from .maps import DesignMap, design_map
+from .studies import FIGURES, INPUTS, sweep
+
+RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
+MAX_FILE_BYTES = 50_000_000
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv`` (default: the process's); return the exit code."""
+    parser = build_parser()
+    args, extra = parser.parse_known_args(argv)
+    if extra and args.command != "serve":
+        parser.error(f"unrecognized arguments: {' '.join(extra)}")
+    try:
+        return args.run(args, extra)
+    except (ValueError, OSError, ImportError) as error:
+        print(f"windpump {args.command}: error: {error}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"windpump {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The parser of every command."""
+    parser = argparse.ArgumentParser(
+        prog="windpump", description="Dynamics of a wind-driven piston pump (Louge 2010)."
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    simulate = commands.add_parser("simulate", help="run a design in full and summarise it")
+    design_options(simulate)
+    run_options(simulate)
+    simulate.add_argument("--csv", metavar="FILE", help="write the run's samples here")
+    simulate.add_argument("--litres", action="store_true", help="volume and flow in L in the CSV")
+    simulate.set_defaults(run=simulate_command)
+
+    mapping = commands.add_parser("map", help="the design map over gear ratio and head")
+    design_options(mapping)
+    mapping.add_argument("--gear-ratios", metavar="FROM:TO:N", help="default R+/8:2R+:200")
+    mapping.add_argument("--heads", metavar="FROM:TO:N", help="default 0:3h:200")
+    mapping.add_argument("--numeric", action="store_true", help="from full simulations")
+    mapping.add_argument("--csv", metavar="FILE", help="write the map here (default: stdout)")
+    mapping.add_argument("--png", metavar="FILE", help="draw the map here (needs matplotlib)")
+    mapping.set_defaults(run=map_command)
+
+    sweeping = commands.add_parser("sweep", help="run a table of designs")
+    sweeping.add_argument("file", metavar="FILE", help="designs: .csv (a row each) or .json")
+    design_options(sweeping, base="the design each row changes")
+    run_options(sweeping)
+    sweeping.add_argument("--workers", type=int, default=1, help="processes on this machine")
+    sweeping.add_argument("--scheduler", metavar="ADDRESS", help="a dask.distributed scheduler")
+    sweeping.add_argument("--csv", metavar="FILE", help="write the table here (default: stdout)")
+    sweeping.set_defaults(run=sweep_command)
+
+    serve = commands.add_parser("serve", help="start the explorer (panel serve app/)")
+    serve.set_defaults(run=serve_command)
+    return parser
+
+
+def design_options(parser: argparse.ArgumentParser, base: str = "the design") -> None:
+    parser.add_argument("--design", metavar="FILE", help=f"{base}, as JSON (default: the paper's)")
+    parser.add_argument(
+        "--set",
+        metavar="NAME=VALUE",
+        action="append",
+        default=[],
+        help="change a field (repeatable), e.g. --set h=5",
+    )
+
+
+def run_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--t-end", type=float, default=600.0, help="duration [s] (600)")
+    parser.add_argument("--theta0", type=float, default=math.pi / 2, help="start angle [rad]")
+    parser.add_argument("--theta-dot0", type=float, default=3.0, help="kick [rad/s] (3)")
+
+
+def chosen_design(args: argparse.Namespace) -> Design:
+    """The design of --design and --set."""
+    design = Design.seed_example()
+    if args.design:
+        design = Design.from_json(read_text(args.design))
+    changes = dict(parse_setting(text) for text in args.set)
+    ratios = {name: changes.pop(name) for name in RATIOS if name in changes}
+    return design.with_ratios(**ratios, **changes)
+
+
+def parse_setting(text: str) -> tuple[str, object]:
+    """``NAME=VALUE`` as (name, value), the value typed as the field is."""
+    name, equals, value = text.partition("=")
+    name, value = name.strip(), value.strip()
+    if not equals or name not in (*UNITS, *RATIOS):
+        known = ", ".join((*UNITS, *RATIOS))
+        raise ValueError(f"--set {text!r}: expected NAME=VALUE with NAME one of {known}")
+    return name, typed(name, value)
+
+
+def typed(name: str, value: str) -> object:
+    """A field's value from text: double_acting true/false, cylinders whole, else a float."""
+    if name == "double_acting":
+        if value.lower() in ("true", "1", "yes"):
+            return True
+        if value.lower() in ("false", "0", "no"):
+            return False
+        raise ValueError(f"double_acting = {value!r} is not allowed: it must be true or false")
+    try:
+        number = float(value)
+    except ValueError:
+        raise ValueError(f"{name} = {value!r} is not allowed: {name} must be a number") from None
+    if name == "cylinders" and number == int(number):
+        return int(number)
+    return number
+
+
+def read_text(path: str) -> str:
+    """A file's text, refusing one too large to be a design or a table of them."""
+    file = Path(path)
+    if file.stat().st_size > MAX_FILE_BYTES:
+        raise ValueError(f"{path}: larger than {MAX_FILE_BYTES // 1_000_000} MB")
+    return file.read_text(encoding="utf-8")
+
+
+def simulate_command(args: argparse.Namespace, extra: list[str]) -> int:
+    """``windpump simulate``: a summary on stdout, the samples in --csv."""
+    from .dynamics import simulate
+
+    design = chosen_design(args)
+    run = simulate(design, args.t_end, args.theta0, args.theta_dot0)
+    for line in summary(design, run):
+        print(line)
+    if args.csv:
+        run.to_csv(args.csv, litres=args.litres)
+        print(f"samples written to {args.csv}")
+    return 0
+
+
+def summary(design: Design, run) -> list[str]:
+    """The lines ``windpump simulate`` prints: the averaged theory, then the run."""
+    margin = stall_margin(design)
+    lines = [f"stall margin (Eq. 22)        {margin:.6g}"]
+    try:
+        alpha_plus, alpha_minus = steady_speeds(design)
+        tau = time_constant(design)
+    except StallError:
+        lines.append("alpha+, alpha-, tau           none: the windmill cannot carry this load")
+    else:
+        lines.append(f"alpha+ (Eq. 21)              {alpha_plus:.6g} rad/s")
+        lines.append(f"alpha- (Eq. 21)              {alpha_minus:.6g} rad/s")
+        lines.append(f"tau (Eq. 25)                 {tau:.6g} s")
+    turns = (run.theta[-1] - run.theta[0]) / (2 * math.pi)
+    if not run.stalled and turns >= 1.0:
+        flow = run.intermittency(10).mean_flow
+        lines.append(
+            f"mean flow, last revolutions  {flow * 1e3:.6g} L/s ({flow * 86400:.4g} m^3/day)"
+        )
+    lines.append(f"volume pumped                {run.volume[-1] * 1e3:.6g} L in {run.t[-1]:.6g} s")
+    if run.stalled:
+        lines.append(f"stalled                      at t = {run.t_stall:.6g} s")
+    else:
+        lines.append("stalled                      no: turning at the end")
+    return lines
+
+
+def grid_option(text: str | None, default: tuple[float, float, int], name: str) -> np.ndarray:
+    """``FROM:TO:N`` as N evenly spaced values."""
+    if text is None:
+        start, stop, count = default
+    else:
+        parts = text.split(":")
+        try:
+            start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
+        except (IndexError, ValueError):
+            raise ValueError(f"--{name} {text!r}: expected FROM:TO:N, e.g. 1:10:200") from None
+        if len(parts) != 3 or count < 1:
+            raise ValueError(f"--{name} {text!r}: expected FROM:TO:N with N >= 1")
+    return np.linspace(start, stop, count)
+
+
+def map_command(args: argparse.Namespace, extra: list[str]) -> int:
+    """``windpump map``: the map as CSV (stdout or --csv), and a plot with --png."""
+    design = chosen_design(args)
+    ratios = grid_option(
+        args.gear_ratios, (design.R_dagger / 8, 2 * design.R_dagger, 200), "gear-ratios"
+    )
+    heads = grid_option(args.heads, (0.0, 3 * design.h if design.h > 0 else 10.0, 200), "heads")
+    if args.png:
+        import_matplotlib()  # before the work: a missing plotter is found at once
+    result = design_map(design, ratios, heads, numeric=args.numeric)
+    write(result.to_csv(), args.csv)
+    if args.png:
+        plot_map(result, args.png)
+        print(f"map drawn in {args.png}", file=sys.stderr)
+    return 0
+
+
+def import_matplotlib():
+    try:
+        import matplotlib
+    except ImportError:
+        raise ImportError("--png needs matplotlib: pip install matplotlib") from None
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_map(result: DesignMap, path: str) -> None:
+    """Mean flow contours over gear ratio and head, the stall boundary and the best gear."""
+    plt = import_matplotlib()
+    figure, axes = plt.subplots(figsize=(8, 5.5), dpi=120)
+    per_day = result.mean_flow * 86400  # m^3/day
+    filled = axes.contourf(result.gear_ratios, result.heads, per_day, levels=16)
+    figure.colorbar(filled, ax=axes, label="mean flow [m³/day]")
+    axes.plot(result.stall_gear_ratio, result.heads, "k-", lw=2, label="stall boundary (margin 1)")
+    axes.plot(result.best_gear_ratio, result.heads, "w--", lw=2, label="best gear ratio")
+    design = result.design
+    axes.plot(design.R_dagger, design.h, "r*", ms=14, label="the design")
+    axes.set_xlim(result.gear_ratios[0], result.gear_ratios[-1])
+    axes.set_xlabel("gear ratio R1/R0 [-]")
+    axes.set_ylabel("head h [m]")
+    kind = "full simulations" if result.numeric else "averaged theory"
+    axes.set_title(f"Design map ({kind})")
+    axes.legend(loc="lower right")
+    figure.savefig(path)
+    plt.close(figure)
+
+
+def write(text: str, path: str | None) -> None:
+    """Text to a file, or to stdout."""
+    if path:
+        Path(path).write_text(text, encoding="utf-8")
+    else:
+        sys.stdout.write(text)
+
+
+def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[float]]]:
+    """Designs from a CSV (a row each: field columns, optional t_end/theta0/theta_dot0; a header
+    like ``h [m]`` is read as ``h``) or a JSON list of design documents; and per-run inputs."""
+    text = read_text(path)
+    if path.endswith(".json"):
+        documents = json.loads(text)
+        if not isinstance(documents, list):
+            documents = [documents]
+        return [Design.from_json(json.dumps(d)) for d in documents], {}
+    rows = list(csv.reader(io.StringIO(text)))
+    if not rows:
+        raise ValueError(f"{path}: empty")
+    names = [cell.split("[")[0].strip() for cell in rows[0]]
+    known = set(UNITS) | set(RATIOS) | set(INPUTS) | set(FIGURES)  # (a sweep's table reads back)
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise ValueError(f"{path}: unknown column(s) {unknown}; columns are fields of Design")
+    designs, inputs = [], {name: [] for name in INPUTS if name in names}
+    for line, row in enumerate(rows[1:], start=2):
+        if not row:
+            continue
+        if len(row) != len(names):
+            raise ValueError(f"{path}, line {line}: {len(row)} cells for {len(names)} columns")
+        values = dict(zip(names, row, strict=True))
+        try:
+            changes = {n: typed(n, v) for n, v in values.items() if n in UNITS or n in RATIOS}
+            ratios = {n: changes.pop(n) for n in RATIOS if n in changes}
+            designs.append(base.with_ratios(**ratios, **changes))
+            for name in inputs:
+                inputs[name].append(float(values[name]))
+        except ValueError as error:
+            raise ValueError(f"{path}, line {line}: {error}") from None
+    return designs, inputs
+
+
+def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
+    """``windpump sweep FILE``: the table as CSV, on --workers processes or a dask scheduler."""
+    designs, inputs = read_designs(args.file, chosen_design(args))
+    runs = {
+        "t_end": inputs.get("t_end", args.t_end),
+        "theta0": inputs.get("theta0", args.theta0),
+        "theta_dot0": inputs.get("theta_dot0", args.theta_dot0),
+    }
+    if args.workers < 1:
+        raise ValueError(f"--workers {args.workers} is not allowed: it must be 1 or more")
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise ImportError(
+                "--scheduler needs dask.distributed: pip install distributed"
+            ) from None
+        with Client(args.scheduler) as client:
+            table = sweep(designs, **runs, executor=client.get_executor())
+    elif args.workers > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(args.workers) as pool:
+            table = sweep(designs, **runs, executor=pool)
+    else:
+        table = sweep(designs, **runs)
+    write(table.to_csv(), args.csv)
+    return 0
+
+
+def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
+    """``windpump serve [panel serve options]``: the explorer, as ``panel serve app/``."""
+    app = Path(__file__).resolve().parents[2] / "app"
+    if not (app / "main.py").is_file():
+        raise OSError(f"the explorer's app/ folder is not beside this install ({app})")
+    command = [sys.executable, "-m", "panel", "serve", str(app), *extra]
+    return subprocess.call(command)

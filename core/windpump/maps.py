@@ -1,0 +1,325 @@
+"""The design map: stall margin, running speed, time constant and flow over gear ratio and head.
+
+The first question a designer asks of a head and a windmill is which gear ratio R+ = R1/R0 pumps
+the most water without stalling. By the averaged theory (Eqs. 19-25, generalised as in
+:mod:`windpump.averaged`) the cycle-mean running speed is ``alpha+ = p (1 + s)`` with
+``p = omega_m / R+`` and ``s = sqrt((T_m - u) / (T_m - T_0))``, ``u = M / R+`` the mean load
+reflected to the windmill; the flow is ``m 2 R A alpha+ / 2 pi``. As a function of u it is
+proportional to ``u (1 + s)``, which rises from 0 and falls to the stall (u = T_m) with one
+maximum, where ``3 (T_m - T_0) s^2 + 2 (T_m - T_0) s = T_m``:
+
+    s* = (sqrt(1 + 3 T_m / (T_m - T_0)) - 1) / 3,   R+* = M / (T_m - (T_m - T_0) s*^2).
+
+With T_0 = 0, s* = 1/3 and the best gear puts the stall margin at exactly 9/8. The inertias do
+not enter alpha+ (only tau). In a grid's range of ratios the best is R+* clipped to the range.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .averaged import steady_speeds
+from .design import WIDEST_RATIO, Design
+from .errors import ParameterError
+from .progress import Progress, reporter
+from .validation import LARGEST, SMALLEST
+
+MAX_POINTS = 4_000_000
+"""Largest design map (heads x gear ratios)."""
+
+MEASURED_TURNS = 10
+"""A numeric map measures speed and flow over the last this many revolutions of each run."""
+
+SETTLE_TAUS, FEWEST_TURNS, MOST_TURNS = 4.0, 60, 3000
+"""A numeric run lasts SETTLE_TAUS time constants, from FEWEST_TURNS to MOST_TURNS revolutions."""
+
+POINTS_PER_REPORT = 1000
+"""A numeric map reports its progress after about this many runs."""
+
+
+@dataclasses.dataclass(frozen=True)
+class DesignMap:
+    """A design over a grid of heads (rows) and gear ratios (columns): :func:`design_map`.
+
+    Every 2-D array has the shape ``(len(heads), len(gear_ratios))`` and is NaN where the pump
+    cannot run (the stall margin is 1 or less; in a numeric map also where the run stalled).
+
+    Attributes
+    ----------
+    design : Design
+        The design the map varies: R1 = R0 x gear ratio and h, every other field kept.
+    gear_ratios : ndarray
+        R+ = R1/R0 [-], increasing (the columns).
+    heads : ndarray
+        h [m], increasing (the rows).
+    margin : ndarray
+        Stall margin R+ T_m / M [-] (Eq. 22): inf at h = 0.
+    alpha_plus : ndarray
+        Cycle-mean running crank speed [rad/s] (Eq. 21, or measured in a numeric map).
+    tau : ndarray
+        Spin-up time constant [s] (Eq. 25; the averaged one in a numeric map too).
+    mean_flow : ndarray
+        Mean volume flow [m^3/s].
+    best_gear_ratio : ndarray
+        For each head, the gear ratio in the grid's range that lifts the most water [-]; NaN
+        when no ratio in the range runs.
+    best_flow : ndarray
+        The mean flow at ``best_gear_ratio`` [m^3/s].
+    numeric : bool
+        Whether the speeds and flows come from full simulations (Eq. 12) rather than Eq. (21).
+    """
+
+    design: Design
+    gear_ratios: np.ndarray
+    heads: np.ndarray
+    margin: np.ndarray
+    alpha_plus: np.ndarray
+    tau: np.ndarray
+    mean_flow: np.ndarray
+    best_gear_ratio: np.ndarray
+    best_flow: np.ndarray
+    numeric: bool = False
+
+    @property
+    def stall_gear_ratio(self) -> np.ndarray:
+        """For each head, the gear ratio where the stall margin is 1 (Eq. 22) [-]: the averaged
+        theory's stall boundary; the pump runs at larger ratios."""
+        return _mean_load(self.design, self.heads) / self.design.T_m
+
+    def design_at(self, row: int, column: int) -> Design:
+        """The design at heads[row] and gear_ratios[column]."""
+        ratio, head = float(self.gear_ratios[column]), float(self.heads[row])
+        return self.design.replace(R1=self.design.R0 * ratio, h=head)
+
+    def to_csv(self) -> str:
+        """The map as CSV text, one row per grid point, units in the header.
+
+        Examples
+        --------
+        >>> from windpump import Design, design_map
+        >>> text = design_map(Design.seed_example(), [4.0], [3.0]).to_csv()
+        >>> text.splitlines()[0]
+        'h [m],gear_ratio [-],margin [-],alpha_plus [rad/s],tau [s],mean_flow [m^3/s]'
+        """
+        heads, ratios = np.meshgrid(self.heads, self.gear_ratios, indexing="ij")
+        columns = (heads, ratios, self.margin, self.alpha_plus, self.tau, self.mean_flow)
+        header = "h [m],gear_ratio [-],margin [-],alpha_plus [rad/s],tau [s],mean_flow [m^3/s]"
+        rows = np.column_stack([np.ravel(column) for column in columns])
+        lines = [header] + [",".join(f"{value:.12g}" for value in row) for row in rows]
+        return "\n".join(lines) + "\n"
+
+
+def design_map(
+    design: Design,
+    gear_ratios,
+    heads,
+    *,
+    numeric: bool = False,
+    progress: bool | Progress | None = None,
+) -> DesignMap:
+    """Stall margin, running speed, time constant and mean flow over gear ratios and heads.
+
+    By the averaged theory (Eqs. 21, 22, 25, generalised to several cylinders, double-acting
+    pistons and T_0), vectorised over the grid; the gear ratio R+ is varied through R1 with R0
+    fixed, so I_eff = I1 + I0 R+^2 changes with it. For each head the best gear ratio in the
+    grid's range is found in closed form (module docstring).
+
+    With ``numeric=True`` every point that runs by the averaged theory is simulated in full
+    (Eq. 12, compiled, in parallel over the cores) from theta = 0 at its alpha+, for 4 tau (60
+    to 3000 revolutions), and speed and flow are measured over its last 10 revolutions: near the
+    stall boundary the speed ripple within a revolution lowers the windmill's mean torque, and
+    the real pump runs slower or stalls where the averaged one runs. The best gear ratio is then
+    the grid's best, refined by a parabola through it and its neighbours (in log R+).
+
+    Parameters
+    ----------
+    design : Design
+        Every field but R1 and h is kept (cylinders, double_acting, T_0; V_ref: the map is in
+        the design's wind).
+    gear_ratios : array_like
+        R+ = R1/R0 [-], increasing, > 0.
+    heads : array_like
+        h [m], increasing, >= 0.
+    numeric : bool, default False, keyword-only
+        Measure speed and flow in full simulations.
+    progress : bool, callable or None, keyword-only
+        A numeric map's progress: a callable taking (done, total), True or False for a tqdm
+        bar or none, None for a bar only in a terminal.
+
+    Returns
+    -------
+    DesignMap
+
+    Raises
+    ------
+    ParameterError
+        Naming ``gear_ratios`` or ``heads`` when they are empty, not increasing, out of range,
+        or the grid is larger than ``MAX_POINTS``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from windpump import Design, design_map
+    >>> m = design_map(Design.seed_example(), np.linspace(1, 30, 200), [3.0, 10.0])
+    >>> [round(float(r), 3) for r in m.best_gear_ratio]  # margin 9/8 at the best gear
+    [0.882, 2.94]
+    >>> [round(float(q) * 86400) for q in m.best_flow]  # m^3/day
+    [40, 12]
+    """
+    if not isinstance(design, Design):
+        raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")
+    ratios = _grid("gear_ratios", gear_ratios, "", 1 / WIDEST_RATIO, WIDEST_RATIO)
+    heads = _grid("heads", heads, "m", 0.0, LARGEST)
+    _check_corners(design, ratios, heads)
+    margin, alpha_plus, tau = _averaged_grid(design, ratios, heads)
+    if numeric:
+        alpha_plus, tau = _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress)
+    mean_flow = design.volume_per_revolution * alpha_plus / (2 * math.pi)
+    if numeric:
+        best_ratio, best_flow = _refined_best(ratios, mean_flow)
+    else:
+        best_ratio = _best_gear_ratio(design, ratios, heads)
+        best_flow = np.array(
+            [_averaged_flow(design, r, h) for r, h in zip(best_ratio, heads, strict=True)]
+        )
+    return DesignMap(
+        design=design,
+        gear_ratios=ratios,
+        heads=heads,
+        margin=margin,
+        alpha_plus=alpha_plus,
+        tau=tau,
+        mean_flow=mean_flow,
+        best_gear_ratio=best_ratio,
+        best_flow=best_flow,
+        numeric=numeric,
+    )
+
+
+def _grid(name: str, values, unit: str, lowest: float, highest: float) -> np.ndarray:
+    """``values`` as a 1-D increasing float array in [lowest, highest], or a ParameterError."""
+    try:
+        array = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(name, values, "a sequence of numbers", unit) from None
+    if array.ndim != 1 or array.size == 0:
+        raise ParameterError(name, f"shape {array.shape}", "a non-empty 1-D sequence", unit)
+    bad = ~np.isfinite(array) | (array < lowest) | (array > highest)
+    if bad.any():
+        limits = f"finite numbers from {lowest:g} to {highest:g}"
+        raise ParameterError(name, float(array[bad][0]), limits, unit)
+    if np.any(np.diff(array) <= 0.0):
+        raise ParameterError(name, f"{array.tolist()[:6]}...", "strictly increasing", unit)
+    return array
+
+
+def _check_corners(design: Design, ratios: np.ndarray, heads: np.ndarray) -> None:
+    """Refuse a grid too large, or whose extreme designs are not valid Designs."""
+    points = ratios.size * heads.size
+    if points > MAX_POINTS:
+        raise ParameterError(
+            "heads", f"{heads.size} x {ratios.size} gear ratios", f"<= {MAX_POINTS} points"
+        )
+    for ratio in (ratios[0], ratios[-1]):
+        R1 = design.R0 * ratio
+        if not SMALLEST <= R1 <= LARGEST:
+            raise ParameterError(
+                "gear_ratios", float(ratio), f"R0 x ratio from {SMALLEST:g} to {LARGEST:g} m"
+            )
+    design.replace(h=float(heads[-1]))
+
+
+def _mean_load(design: Design, heads: np.ndarray) -> np.ndarray:
+    """Mean load torque on the crank at each head, m rho_w g h A R / pi [N m] (Eq. 18)."""
+    load_torque = design.rho_w * design.g * heads * design.A * design.R
+    return design.deliveries * load_torque / math.pi
+
+
+def _averaged_grid(design: Design, ratios: np.ndarray, heads: np.ndarray):
+    """margin, alpha+ [rad/s] and tau [s] on the grid (rows: heads), NaN where margin <= 1.
+
+    The expressions of :mod:`windpump.averaged`, broadcast: margin R+ T_m / M;
+    ``k = R+^3 (T_m - T_0) / (I_eff omega_m^2)``, ``p = omega_m / R+``,
+    ``delta^2 = p^2 (R+ T_m - M) / (R+ (T_m - T_0))``; alpha+ = p + delta, tau = 1 / (2 k delta).
+    """
+    x = ratios[np.newaxis, :]
+    M = _mean_load(design, heads)[:, np.newaxis]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        margin = np.where(M > 0.0, x * design.T_m / M, np.inf)
+        runs = margin > 1.0
+        c = design.T_m - design.T_0
+        k = x**3 * c / ((design.I1 + design.I0 * x**2) * design.omega_m**2)
+        p = design.omega_m / x
+        delta = np.sqrt(np.where(runs, p * p * (x * design.T_m - M) / (x * c), np.nan))
+        return margin, p + delta, 1.0 / (2.0 * k * delta)
+
+
+def _best_gear_ratio(design: Design, ratios: np.ndarray, heads: np.ndarray) -> np.ndarray:
+    """For each head, R+* of the module docstring clipped to the grid's range; NaN when even the
+    largest ratio in the range cannot carry the load (the margin grows with R+)."""
+    c = design.T_m - design.T_0
+    s = (math.sqrt(1.0 + 3.0 * design.T_m / c) - 1.0) / 3.0
+    M = _mean_load(design, heads)
+    best = np.clip(M / (design.T_m - c * s * s), ratios[0], ratios[-1])
+    return np.where(ratios[-1] * design.T_m > M, best, np.nan)
+
+
+def _averaged_flow(design: Design, ratio: float, head: float) -> float:
+    """Mean flow m 2 R A alpha+ / 2 pi [m^3/s] of one design (Eq. 21); NaN when it cannot run."""
+    if math.isnan(ratio):
+        return math.nan
+    alpha_plus, _ = steady_speeds(design.replace(R1=design.R0 * ratio, h=float(head)))
+    return design.volume_per_revolution * alpha_plus / (2 * math.pi)
+
+
+def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
+    """alpha+ measured in full simulations of every running point, and tau where they ran."""
+    from ._kernels.grid import steady_runs  # here: numba loads on the first numeric map
+    from .dynamics import MAX_STEPS, RTOL
+
+    shape = alpha_plus.shape
+    x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
+    load_torque = design.rho_w * design.g * heads * design.A * design.R
+    load = np.broadcast_to(load_torque[:, np.newaxis], shape).ravel()
+    kick = np.nan_to_num(alpha_plus.ravel(), nan=0.0)
+    turns = np.clip(SETTLE_TAUS * tau.ravel() * kick / (2 * math.pi), FEWEST_TURNS, MOST_TURNS)
+    t_end = np.where(kick > 0.0, turns * 2 * math.pi / np.where(kick > 0.0, kick, 1.0), 0.0)
+    inv_I_eff = 1.0 / (design.I1 + design.I0 * x**2)
+    # Runs differ in cost (slow stalls, many fast turns): a shuffled order balances the cores.
+    order = np.random.default_rng(0).permutation(x.size)
+    speed = np.full(x.size, np.nan)
+    report = reporter(progress, x.size, "design map")
+    base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
+    for start in range(0, x.size, POINTS_PER_REPORT):
+        chunk = order[start : start + POINTS_PER_REPORT]
+        measured, _ = steady_runs(
+            x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
+            design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS,
+        )  # fmt: skip
+        speed[chunk] = measured
+        report(min(start + POINTS_PER_REPORT, x.size), x.size)
+    speed = speed.reshape(shape)
+    return speed, np.where(np.isnan(speed), np.nan, tau)
+
+
+def _refined_best(ratios: np.ndarray, flow: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each row, the grid's best ratio and flow, refined by a parabola in log R+ through the
+    best point and its two neighbours when all three ran."""
+    rows = flow.shape[0]
+    best_ratio, best_flow = np.full(rows, np.nan), np.full(rows, np.nan)
+    logs = np.log(ratios)
+    for row in range(rows):
+        if np.all(np.isnan(flow[row])):
+            continue
+        j = int(np.nanargmax(flow[row]))
+        best_ratio[row], best_flow[row] = ratios[j], flow[row, j]
+        if 0 < j < len(ratios) - 1 and np.all(np.isfinite(flow[row, j - 1 : j + 2])):
+            a, b, c = np.polyfit(logs[j - 1 : j + 2], flow[row, j - 1 : j + 2], 2)
+            if a < 0.0:
+                peak = -b / (2 * a)
+                best_ratio[row] = math.exp(peak)
+                best_flow[row] = (a * peak + b) * peak + c
+    return best_ratio, best_flow

@@ -16,6 +16,7 @@ import math
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -104,7 +105,7 @@ def chosen_design(args: argparse.Namespace) -> Design:
     design = Design.seed_example()
     if args.design:
         design = Design.from_json(read_text(args.design))
-    changes = dict(parse_setting(text) for text in args.set)
+    changes: dict[str, Any] = dict(parse_setting(text) for text in args.set)
     ratios = {name: changes.pop(name) for name in RATIOS if name in changes}
     return design.with_ratios(**ratios, **changes)
 
@@ -274,7 +275,8 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
     unknown = [name for name in names if name not in known]
     if unknown:
         raise ValueError(f"{path}: unknown column(s) {unknown}; columns are fields of Design")
-    designs, inputs = [], {name: [] for name in INPUTS if name in names}
+    designs: list[Design] = []
+    inputs: dict[str, list[float]] = {name: [] for name in INPUTS if name in names}
     for line, row in enumerate(rows[1:], start=2):
         if not row:
             continue
@@ -282,7 +284,9 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
             raise ValueError(f"{path}, line {line}: {len(row)} cells for {len(names)} columns")
         values = dict(zip(names, row, strict=True))
         try:
-            changes = {n: typed(n, v) for n, v in values.items() if n in UNITS or n in RATIOS}
+            changes: dict[str, Any] = {
+                n: typed(n, v) for n, v in values.items() if n in UNITS or n in RATIOS
+            }
             ratios = {n: changes.pop(n) for n in RATIOS if n in changes}
             designs.append(base.with_ratios(**ratios, **changes))
             for name in inputs:
@@ -294,14 +298,14 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
 
 def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump sweep FILE``: the table as CSV, on --workers processes or a dask scheduler."""
+    if args.workers < 1:
+        raise ValueError(f"--workers {args.workers} is not allowed: it must be 1 or more")
     designs, inputs = read_designs(args.file, chosen_design(args))
     runs = {
         "t_end": inputs.get("t_end", args.t_end),
         "theta0": inputs.get("theta0", args.theta0),
         "theta_dot0": inputs.get("theta_dot0", args.theta_dot0),
     }
-    if args.workers < 1:
-        raise ValueError(f"--workers {args.workers} is not allowed: it must be 1 or more")
     if args.scheduler:
         try:
             from distributed import Client

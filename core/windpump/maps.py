@@ -33,7 +33,7 @@ MAX_POINTS = 4_000_000
 MEASURED_TURNS = 10
 """A numeric map measures speed and flow over the last this many revolutions of each run."""
 
-SETTLE_TAUS, FEWEST_TURNS, MOST_TURNS = 4.0, 60, 3000
+SETTLE_TAUS, FEWEST_TURNS, MOST_TURNS = 8.0, 60, 4000
 """A numeric run lasts SETTLE_TAUS time constants, from FEWEST_TURNS to MOST_TURNS revolutions."""
 
 POINTS_PER_REPORT = 1000
@@ -128,8 +128,8 @@ def design_map(
     grid's range is found in closed form (module docstring).
 
     With ``numeric=True`` every point that runs by the averaged theory is simulated in full
-    (Eq. 12, compiled, in parallel over the cores) from theta = 0 at its alpha+, for 4 tau (60
-    to 3000 revolutions), and speed and flow are measured over its last 10 revolutions: near the
+    (Eq. 12, compiled, in parallel over the cores) from theta = 0 at its alpha+, for 8 tau (60
+    to 4000 revolutions), and speed and flow are measured over its last 10 revolutions: near the
     stall boundary the speed ripple within a revolution lowers the windmill's mean torque, and
     the real pump runs slower or stalls where the averaged one runs. The best gear ratio is then
     the grid's best, refined by a parabola through it and its neighbours (in log R+).
@@ -163,11 +163,11 @@ def design_map(
     --------
     >>> import numpy as np
     >>> from windpump import Design, design_map
-    >>> m = design_map(Design.seed_example(), np.linspace(1, 30, 200), [3.0, 10.0])
+    >>> m = design_map(Design.seed_example(), np.linspace(0.5, 30, 200), [3.0, 10.0])
     >>> [round(float(r), 3) for r in m.best_gear_ratio]  # margin 9/8 at the best gear
-    [0.882, 2.94]
-    >>> [round(float(q) * 86400) for q in m.best_flow]  # m^3/day
-    [40, 12]
+    [0.883, 2.943]
+    >>> [round(float(q) * 86400) for q in m.best_flow]  # m^3/day (32.8 at the paper's R+ = 4)
+    [104, 31]
     """
     if not isinstance(design, Design):
         raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")

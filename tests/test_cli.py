@@ -1,0 +1,131 @@
+"""The windpump command, run as a subprocess: its outputs, files, errors and exit codes."""
+
+from __future__ import annotations
+
+import csv
+import io
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import windpump
+from windpump import Design
+
+SEED = Design.seed_example()
+
+
+def windpump_command(*args, cwd=None) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "-m", "windpump", *args],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=cwd,
+    )
+
+
+def test_the_console_script_is_installed():
+    script = shutil.which("windpump")
+    assert script is not None
+    done = subprocess.run([script, "--help"], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0
+    assert all(command in done.stdout for command in ("simulate", "map", "sweep", "serve"))
+
+
+def test_simulate_prints_the_papers_example_and_writes_its_csv(tmp_path):
+    out = tmp_path / "run.csv"
+    done = windpump_command("simulate", "--csv", str(out))
+    assert done.returncode == 0, done.stderr
+    margin = float(done.stdout.split("stall margin (Eq. 22)")[1].split()[0])
+    alpha_plus = float(done.stdout.split("alpha+ (Eq. 21)")[1].split()[0])
+    assert margin == pytest.approx(windpump.stall_margin(SEED), rel=1e-5)
+    assert alpha_plus == pytest.approx(windpump.steady_speeds(SEED)[0], rel=1e-5)
+    assert "turning at the end" in done.stdout
+    header = [line for line in out.read_text().splitlines() if line.startswith("# h ")]
+    assert header == ["# h = 3 m"]  # the CSV records its design
+    data = np.genfromtxt(out, delimiter=",", comments="#", skip_header=1)
+    run = windpump.simulate(SEED, 600.0)
+    assert data[-1, 0] == pytest.approx(600.0) and data[-1, 3] == pytest.approx(run.volume[-1])
+
+
+def test_set_and_design_files_choose_the_design(tmp_path):
+    changed = SEED.replace(h=5.0, cylinders=2)
+    file = tmp_path / "pump.json"
+    file.write_text(changed.to_json())
+    by_file = windpump_command("simulate", "--design", str(file), "--t-end", "60")
+    by_set = windpump_command("simulate", "--set", "h=5", "--set", "cylinders=2", "--t-end", "60")
+    assert by_file.returncode == 0 == by_set.returncode
+    assert by_file.stdout == by_set.stdout
+    assert f"{windpump.stall_margin(changed):.6g}" in by_file.stdout
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["simulate", "--set", "h=-1"], "h = -1.0 m is not allowed"),
+        (["simulate", "--set", "bore=1"], "expected NAME=VALUE"),
+        (["simulate", "--set", "h"], "expected NAME=VALUE"),
+        (["simulate", "--set", "double_acting=maybe"], "double_acting"),
+        (["simulate", "--t-end", "1e9"], "t_end"),
+        (["simulate", "--design", "no-such-file.json"], "no-such-file.json"),
+        (["map", "--heads", "1:2"], "FROM:TO:N"),
+        (["map", "--gear-ratios", "3:1:5"], "gear_ratios"),
+        (["sweep", "no-such-table.csv"], "no-such-table.csv"),
+        (["sweep", "x.csv", "--workers", "0"], "--workers"),
+    ],
+)
+def test_errors_are_one_line_and_exit_1(args, words):
+    done = windpump_command(*args)
+    assert done.returncode == 1
+    assert done.stdout == ""
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("windpump ") and words in lines[0]
+
+
+def test_a_command_line_argparse_cannot_read_exits_2():
+    done = windpump_command("simulate", "--t-end", "soon")
+    assert done.returncode == 2 and "--t-end" in done.stderr
+    assert windpump_command("fly").returncode == 2
+
+
+def test_map_writes_the_design_maps_csv_and_png(tmp_path):
+    out, png = tmp_path / "map.csv", tmp_path / "map.png"
+    done = windpump_command(
+        "map", "--gear-ratios", "1:8:8", "--heads", "0:9:4", "--csv", str(out), "--png", str(png)
+    )
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(out.read_text())))
+    expected = windpump.design_map(SEED, np.linspace(1, 8, 8), np.linspace(0, 9, 4))
+    assert len(rows) == 32
+    flows = np.array([float(row["mean_flow [m^3/s]"]) for row in rows]).reshape(4, 8)
+    np.testing.assert_allclose(flows, expected.mean_flow, rtol=1e-11)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_sweep_runs_a_table_of_designs_on_two_workers(tmp_path):
+    table = tmp_path / "designs.csv"
+    table.write_text("h [m],R_dagger,t_end\n1,4,100\n3,6,100\n20,4,90\n")
+    out = tmp_path / "out.csv"
+    done = windpump_command("sweep", str(table), "--workers", "2", "--csv", str(out))
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(out.read_text())))
+    designs = [SEED.replace(h=1.0), SEED.with_ratios(R_dagger=6.0, h=3.0), SEED.replace(h=20.0)]
+    expected = windpump.sweep(designs, [100.0, 100.0, 90.0])
+    assert [float(row["volume [m^3]"]) for row in rows] == pytest.approx(expected.volume, rel=1e-11)
+    assert [row["stalled"] for row in rows] == ["False", "False", "True"]
+    # the table reads back as designs (its figure columns are ignored)
+    again = windpump_command("sweep", str(out), "--csv", str(tmp_path / "again.csv"))
+    assert again.returncode == 0, again.stderr
+    assert (tmp_path / "again.csv").read_text() == out.read_text()
+
+
+def test_a_bad_row_names_its_line(tmp_path):
+    table = tmp_path / "designs.csv"
+    table.write_text("h,T_m\n1,0.6\n2,-0.6\n")
+    done = windpump_command("sweep", str(table))
+    assert done.returncode == 1 and "line 3" in done.stderr and "T_m" in done.stderr
+    table.write_text("h,colour\n1,red\n")
+    assert "unknown column(s) ['colour']" in windpump_command("sweep", str(table)).stderr

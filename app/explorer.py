@@ -15,6 +15,7 @@ from bokeh.models import ColumnDataSource, Range1d
 from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
+from map_tab import MapTab
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
 from uploads import RefusedUploads
@@ -108,6 +109,8 @@ class Explorer(pn.viewable.Viewer):
         self._build_widgets()
         self._wind: WindTab | None = None  # built when first opened: most pages never do
         self.wind_open = False  # the Wind tab runs its day only once it has been opened
+        self._map: MapTab | None = None  # the Design map tab, also built when first opened
+        self.map_open = False
         self._build_results()
         if not defer_views:
             self.show_views()
@@ -179,6 +182,23 @@ class Explorer(pn.viewable.Viewer):
             self._wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
             self._wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
         return self._wind
+
+    @property
+    def design_map(self) -> MapTab:
+        """The Design map tab, built on first use."""
+        if self._map is None:
+            bounds = self.inputs.param
+            self._map = MapTab(bounds["R_dagger"].bounds, bounds["h"].bounds, self.move_to)
+        return self._map
+
+    def move_to(self, ratio: float, h: float) -> None:
+        """A tap on the design map: the sprocket ratio and head there, on the sliders' steps."""
+        values = {}
+        for name, value in (("R_dagger", ratio), ("h", h)):
+            low, high = self.inputs.param[name].bounds
+            step = self.inputs.param[name].step
+            values[name] = round(min(max(round(value / step) * step, low), high), 10)
+        self.set_values(**values)
 
     @property
     def mechanisms(self) -> Mechanisms:
@@ -303,6 +323,23 @@ class Explorer(pn.viewable.Viewer):
             self._mark_stale(False)
             if self.wind_open:
                 self.update_wind()
+            if self.map_open:
+                self.update_map()
+
+    def update_map(self) -> None:
+        """Redraw the Design map (when the map itself changed) and move its marker."""
+        try:
+            with pn.io.hold():
+                self.design_map.update(self.inputs.design())
+        except Exception as error:  # a bug: say so, log it, keep the session alive
+            log.exception("design map update failed")
+            self.design_map.readout.object = (
+                f"Something went wrong ({type(error).__name__}: {error})."
+            )
+
+    def open_map(self) -> None:
+        self.map_open = True
+        self.update_map()
 
     def update_wind(self) -> None:
         """Redraw the Wind tab: its curve and its day, run in full (about a second)."""
@@ -708,11 +745,14 @@ class Explorer(pn.viewable.Viewer):
             ("Wind pump", self.pump()),
             ("Mechanisms", pn.pane.Markdown("Loading the mechanisms…", stylesheets=TEXT)),
             ("Wind", pn.pane.Markdown("Running a day of wind…", stylesheets=TEXT)),
+            ("Design map", pn.pane.Markdown("Mapping the design…", stylesheets=TEXT)),
             dynamic=False,
             sizing_mode="stretch_width",
             stylesheets=[
                 ":host { font-size: 16px; }",
                 ".bk-tab { font-size: 16px; }",
+                # four headers fit a phone's width
+                "@media (max-width: 500px) { .bk-tab { font-size: 14px; padding: 8px 6px !important; } }",
                 TAB_FOCUS_CSS,
             ],
         )
@@ -723,6 +763,9 @@ class Explorer(pn.viewable.Viewer):
             if event.new == 2 and not self.wind_open:
                 self.open_wind()  # data first: a figure sent empty warns in the browser
                 tabs[2] = ("Wind", self.wind.layout())
+            if event.new == 3 and not self.map_open:
+                self.open_map()
+                tabs[3] = ("Design map", self.design_map.layout())
 
         tabs.param.watch(open_mechanisms, "active")
         tabs.jscallback(active=GUARD_NEW_UPLOADS_JS)

@@ -239,8 +239,8 @@ def test_the_keyboard_switches_tabs_and_screen_readers_hear_every_slider(page):
     page.keyboard.press("Home")
     page.get_by_role("tab", name="Wind pump", selected=True).wait_for(timeout=30_000)
     page.keyboard.press("End")
-    page.keyboard.press("Enter")  # the last tab: Wind, which runs its day when first opened
-    page.get_by_role("tab", name="Wind", selected=True).wait_for(timeout=60_000)
+    page.keyboard.press("Enter")  # the last tab: the Design map, mapped when first opened
+    page.get_by_role("tab", name="Design map", selected=True).wait_for(timeout=60_000)
     assert page.problems == []
 
 
@@ -545,6 +545,42 @@ def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url
         huge = {"name": "huge.csv", "mimeType": "text/csv", "buffer": b"0,5\n" * 3_000_000}
         upload.set_input_files(files=[huge])
         page.get_by_text("it has 12,000,000 bytes").first.wait_for(timeout=60_000)
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+MAP_MARKER = """() => {
+  const source = window.Bokeh.documents[0].get_model_by_name('maptab_here');
+  return source && source.data.ratio.length ? [source.data.ratio[0], source.data.h[0]] : null;
+}"""
+QUERY = "(name) => new URLSearchParams(location.search).get(name)"
+
+
+def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url):
+    page = open_page(browser, url, width=1280, height=720, query="?h=5")
+    try:
+        page.get_by_text("Design map", exact=True).first.click()
+        page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
+        assert page.evaluate(MAP_MARKER) == [4.0, 5.0]
+        image = page.evaluate(
+            "() => window.Bokeh.documents[0].get_model_by_name('maptab_flow').data.image[0].length"
+        )
+        assert 0 < image <= 160 * 160  # no more cells than the figure has pixels
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "design_map_1280x720.png"))
+        canvases = [c for c in page.locator("canvas").all() if c.is_visible()]
+        map_canvas = max(canvases, key=lambda c: c.bounding_box()["height"])
+        box = map_canvas.bounding_box()
+        page.mouse.click(box["x"] + 0.45 * box["width"], box["y"] + 0.3 * box["height"])
+        page.wait_for_function(f"() => ({QUERY})('R_dagger') !== '4.0'", timeout=60_000)
+        ratio, head = float(page.evaluate(QUERY, "R_dagger")), float(page.evaluate(QUERY, "h"))
+        assert 0.5 <= ratio <= 10.0 and head > 5.0  # above and about the middle of the map
+        page.wait_for_function(f"() => ({MAP_MARKER})()[0] === {ratio}", timeout=60_000)
+        assert page.evaluate(MAP_MARKER) == [ratio, head]
+        # the sliders and the run followed: the main readout is this design's margin
+        design = SEED.with_ratios(R_dagger=ratio, h=head)
+        wait_for_readout(page, "margin", f"{windpump.stall_margin(design):.3f}")
         assert page.problems == []
     finally:
         page.close()

@@ -14,7 +14,8 @@ BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), 
 @pytest.mark.parametrize("number", range(len(BLOCKS)))
 def test_a_readme_example_runs(number, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # run.to_csv("run.csv") writes here
-    exec(compile(BLOCKS[number], f"README.md python block {number + 1}", "exec"), {})
+    code = compile(BLOCKS[number], f"README.md python block {number + 1}", "exec")
+    exec(code, {"__name__": "__main__"})  # as a script runs it
 
 
 def test_the_readme_has_examples():

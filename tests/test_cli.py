@@ -5,8 +5,11 @@ from __future__ import annotations
 import csv
 import io
 import shutil
+import socket
 import subprocess
 import sys
+import time
+import urllib.request
 
 import numpy as np
 import pytest
@@ -129,3 +132,30 @@ def test_a_bad_row_names_its_line(tmp_path):
     assert done.returncode == 1 and "line 3" in done.stderr and "T_m" in done.stderr
     table.write_text("h,colour\n1,red\n")
     assert "unknown column(s) ['colour']" in windpump_command("sweep", str(table)).stderr
+
+
+def test_serve_starts_the_explorer(tmp_path):
+    with socket.socket() as probe:  # a free port
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    log = (tmp_path / "serve.log").open("w")
+    server = subprocess.Popen(
+        [sys.executable, "-m", "windpump", "serve", "--port", str(port)],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
+    try:
+        deadline = time.monotonic() + 240  # a busy machine compiles slowly
+        status = None
+        while time.monotonic() < deadline and server.poll() is None:
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/app?h=5", timeout=60) as r:
+                    status = r.status
+                    break
+            except OSError:
+                time.sleep(1.0)
+        assert status == 200, (tmp_path / "serve.log").read_text()[-2000:]
+    finally:
+        server.terminate()
+        server.wait(timeout=60)
+        log.close()

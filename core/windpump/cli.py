@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -332,4 +333,6 @@ def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
     if not (app / "main.py").is_file():
         raise OSError(f"the explorer's app/ folder is not beside this install ({app})")
     command = [sys.executable, "-m", "panel", "serve", str(app), *extra]
+    if os.name == "posix":  # become the server: a signal to this process reaches it
+        os.execv(sys.executable, command)
     return subprocess.call(command)

@@ -141,6 +141,23 @@ def test_the_numeric_map_agrees_with_long_runs_of_simulate_at_sample_points():
         assert result.alpha_plus[row, column] == pytest.approx(kick, rel=1e-3)
 
 
+@pytest.mark.parametrize(
+    "name", ["three double-acting cylinders", "two cylinders, T_0, strong wind"]
+)
+def test_the_numeric_map_of_several_cylinders_and_torque_at_rest_matches_simulate(name):
+    design = DESIGNS[name]
+    ratios, heads = np.array([2.0, 6.0]), np.array([0.5, 2.0])
+    result = design_map(design, ratios, heads, numeric=True, progress=False)
+    averaged = design_map(design, ratios, heads)
+    running = np.argwhere(~np.isnan(averaged.alpha_plus))
+    assert len(running) >= 3
+    for row, column in running:
+        kick, tau = averaged.alpha_plus[row, column], averaged.tau[row, column]
+        long_run = max(200, int(16 * tau * kick / (2 * math.pi)))
+        speed = simulated_speed(result.design_at(row, column), kick, long_run)
+        assert result.alpha_plus[row, column] == pytest.approx(speed, rel=2e-6)
+
+
 def test_a_light_rotor_stalls_in_full_where_the_averaged_theory_runs():
     light = SEED.replace(I0=SEED.I0 / 1000, I1=SEED.I1 / 1000)
     ratios, heads = np.linspace(0.5, 8, 16), np.linspace(0.5, 10, 12)

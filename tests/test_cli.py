@@ -159,3 +159,35 @@ def test_serve_starts_the_explorer(tmp_path):
         server.terminate()
         server.wait(timeout=60)
         log.close()
+
+
+def test_sweep_goes_to_a_dask_scheduler_by_its_address(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    table = tmp_path / "designs.json"
+    designs = [SEED.replace(h=2.0), SEED.replace(cylinders=2, T_0=0.3)]
+    table.write_text("[" + ",".join(d.to_json() for d in designs) + "]")
+    out = tmp_path / "out.csv"
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, dashboard_address=None
+    ) as cluster:
+        done = windpump_command(
+            "sweep", str(table), "--scheduler", cluster.scheduler_address, "--csv", str(out),
+            "--t-end", "120",
+        )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(out.read_text())))
+    expected = windpump.sweep(designs, 120.0)
+    assert [float(row["volume [m^3]"]) for row in rows] == list(expected.volume)
+
+
+def test_progress_is_a_bar_on_request_and_a_callback_as_given(capsys):
+    from windpump.progress import reporter
+
+    bar = reporter(True, 4, "sweep")
+    for done in range(1, 5):
+        bar(done, 4)
+    assert "sweep:" in capsys.readouterr().err  # a tqdm bar, cleared when done
+    calls = []
+    windpump.sweep([SEED, SEED], 10.0, chunksize=1, progress=lambda *a: calls.append(a))
+    assert calls == [(1, 2), (2, 2)]
+    assert reporter(False, 4, "quiet")(4, 4) is None and capsys.readouterr().err == ""

@@ -132,6 +132,12 @@ def test_a_bad_row_names_its_line(tmp_path):
     assert done.returncode == 1 and "line 3" in done.stderr and "T_m" in done.stderr
     table.write_text("h,colour\n1,red\n")
     assert "unknown column(s) ['colour']" in windpump_command("sweep", str(table)).stderr
+    designs = tmp_path / "designs.json"
+    designs.write_text(f'[{SEED.to_json()}, {{"schema": "other"}}]')
+    done = windpump_command("sweep", str(designs))
+    assert done.returncode == 1 and "designs.json, design 2: not a design file" in done.stderr
+    designs.write_text("[{")
+    assert "designs.json: not JSON" in windpump_command("sweep", str(designs)).stderr
 
 
 def test_serve_starts_the_explorer(tmp_path):

@@ -264,10 +264,19 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
     like ``h [m]`` is read as ``h``) or a JSON list of design documents; and per-run inputs."""
     text = read_text(path)
     if path.endswith(".json"):
-        documents = json.loads(text)
+        try:
+            documents = json.loads(text)
+        except json.JSONDecodeError as error:
+            raise ValueError(f"{path}: not JSON: {error}") from None
         if not isinstance(documents, list):
             documents = [documents]
-        return [Design.from_json(json.dumps(d)) for d in documents], {}
+        designs = []
+        for number, document in enumerate(documents, start=1):
+            try:
+                designs.append(Design.from_json(json.dumps(document)))
+            except ValueError as error:
+                raise ValueError(f"{path}, design {number}: {error}") from None
+        return designs, {}
     rows = list(csv.reader(io.StringIO(text)))
     if not rows:
         raise ValueError(f"{path}: empty")

@@ -9,11 +9,12 @@ import logging
 import panel as pn
 from explorer import BINS, Explorer
 from keyboard import keyboard_and_screen_readers
-from serving import release_memory, stylesheets_from_this_server, without_mathjax
+from serving import release_memory, stylesheets_from_this_server, without_mathjax, without_webgl
 from uploads import guard_uploads
 
 pn.extension(notifications=False)
 without_mathjax()
+without_webgl()
 stylesheets_from_this_server(pn.state.curdoc)
 keyboard_and_screen_readers(pn.state.curdoc)
 guard_uploads(pn.state.curdoc)

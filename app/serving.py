@@ -30,6 +30,24 @@ def without_mathjax() -> None:
     resources._panel_use_mathjax = lambda roots: False
 
 
+def without_webgl() -> None:
+    """No figure here asks for WebGL, but Bokeh's resources list bokeh-gl (190 KB of script a
+    browser must parse) for every page. Leave it out of the page Panel's server renders."""
+    from panel.io import server
+
+    if getattr(server.bundle_resources, "without_webgl", False):
+        return
+    bundle_resources = server.bundle_resources
+
+    def bundle_without_webgl(roots, resources, *args, **kwargs):
+        bundle = bundle_resources(roots, resources, *args, **kwargs)
+        bundle.js_files = [url for url in bundle.js_files if "/bokeh-gl" not in str(url)]
+        return bundle
+
+    bundle_without_webgl.without_webgl = True
+    server.bundle_resources = bundle_without_webgl
+
+
 def stylesheets_from_this_server(document) -> None:
     """Make every stylesheet Panel creates in ``document`` point at this server, not the HoloViz CDN.
 

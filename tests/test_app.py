@@ -527,3 +527,16 @@ def test_the_new_inputs_travel_in_the_link():
     bad = Explorer(query={"double_acting": [b"maybe"], "cylinders": [b"9"]})
     assert "it must be true or false" in bad.notices.object
     assert "from 1 to 6" in bad.notices.object and bad.inputs.design() == SEED
+
+
+def test_no_figure_asks_for_webgl(app):
+    """app/serving.py leaves Bokeh's WebGL bundle out of the page: safe while no figure, on any
+    tab, asks for WebGL."""
+    from bokeh.models import Plot
+
+    root = app.__panel__().get_root()
+    for tab in (1, 2, 3):
+        app.tabs.active = tab  # each tab builds its figures when first opened
+    plots = list(root.select({"type": Plot}))
+    assert len(plots) > 10
+    assert [p for p in plots if p.output_backend == "webgl"] == []

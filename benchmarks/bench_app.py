@@ -22,6 +22,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import math
+import os
 import statistics
 import sys
 import time
@@ -124,12 +125,15 @@ def slider_moves(browser, url):
     return readouts, plots, sizes
 
 
-async def a_class(url):
+async def a_class(url, server_pid):
     """CLASS pages opened at once: each one's seconds from opening to its correct readout, and
-    to its views drawn."""
+    to its views drawn; and the CPU each kind of process had used when the last readout showed."""
     from playwright.async_api import async_playwright
 
     target = expected_readout(SEED.h)
+    start_cpu = cpu_by_process(server_pid)
+    at_last_readout = {}
+    shown = []
 
     async def student(browser):
         page = await browser.new_page()
@@ -137,6 +141,9 @@ async def a_class(url):
         await page.goto(url, timeout=600_000)
         await page.wait_for_function(f"(e) => ({READOUT})() === e", arg=target, timeout=600_000)
         readout = time.perf_counter() - start
+        shown.append(readout)
+        if len(shown) == CLASS:
+            at_last_readout.update(cpu_by_process(server_pid))
         await page.wait_for_function(VIEWS_DRAWN, timeout=600_000)
         views = time.perf_counter() - start
         await page.close()
@@ -145,9 +152,41 @@ async def a_class(url):
     async with async_playwright() as playwright:
         browser = await playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
         try:
-            return await asyncio.gather(*(student(browser) for _ in range(CLASS)))
+            times = await asyncio.gather(*(student(browser) for _ in range(CLASS)))
         finally:
             await browser.close()
+    used = {kind: at_last_readout[kind] - start_cpu.get(kind, 0.0) for kind in at_last_readout}
+    return times, used
+
+
+def cpu_by_process(server_pid: int) -> dict[str, float]:
+    """CPU seconds used so far by this process's descendants, by kind: the server, and chromium's
+    processes by their --type (browser, renderer, gpu-process, ...), from /proc."""
+    parents, kinds = {}, {}
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        pid = int(stat.parent.name)
+        try:
+            parents[pid] = int(stat.read_text().rsplit(")", 1)[1].split()[1])
+            # chromium rewrites its children's command lines as one space-separated string
+            arguments = (stat.parent / "cmdline").read_bytes().replace(b"\0", b" ").split()
+        except (OSError, IndexError, ValueError):
+            continue
+        types = [a[7:].decode() for a in arguments if a.startswith(b"--type=")]
+        program = arguments[0] if arguments else b""  # none for a kernel thread
+        kinds[pid] = types[0] if types else "browser" if b"chrom" in program else "other"
+    used: dict[str, float] = {}
+    for pid in kinds:
+        ancestor = pid
+        while ancestor in parents and ancestor not in (os.getpid(), 0, 1):
+            ancestor = parents[ancestor]
+        if ancestor != os.getpid():
+            continue
+        kind = "server" if pid == server_pid else kinds[pid]
+        try:
+            used[kind] = used.get(kind, 0.0) + cpu_seconds(pid)
+        except OSError:  # it ended meanwhile
+            pass
+    return used
 
 
 @contextlib.contextmanager
@@ -205,7 +244,7 @@ def slider():
 def classroom():
     with served_app() as (url, server):
         before = cpu_seconds(server.pid)
-        times = asyncio.run(a_class(url))
+        times, used = asyncio.run(a_class(url, server.pid))
         server_cpu = cpu_seconds(server.pid) - before
     readouts, views = (sorted(column) for column in zip(*times, strict=True))
     print(
@@ -218,6 +257,9 @@ def classroom():
     )
     print(f"   views drawn:     median {statistics.median(views):.1f} s, slowest {views[-1]:.1f} s")
     print(f"   server CPU: {server_cpu:.0f} s for the class, {server_cpu / CLASS:.2f} s a page")
+    shares = ", ".join(f"{kind} {seconds:.0f} s" for kind, seconds in sorted(used.items()))
+    print(f"   CPU used until the last readout showed: {shares} ({sum(used.values()):.0f} s")
+    print(f"   on 2 cores in {readouts[-1]:.0f} s)")
 
 
 PARTS = {"first": first_pages, "slider": slider, "class": classroom}

@@ -5,11 +5,18 @@ inputs, so a link reproduces what is on the screen.
 """
 
 import logging
+from functools import partial
 
 import panel as pn
 from explorer import BINS, Explorer
 from keyboard import keyboard_and_screen_readers
-from serving import release_memory, stylesheets_from_this_server, without_mathjax, without_webgl
+from serving import (
+    READOUTS_FIRST,
+    release_memory,
+    stylesheets_from_this_server,
+    without_mathjax,
+    without_webgl,
+)
 from uploads import guard_uploads
 
 pn.extension(notifications=False)
@@ -29,6 +36,10 @@ pn.state.location.sync(explorer.inputs, explorer.inputs.names())
 pn.state.location.sync(explorer, {"presentation": "presentation"})
 with pn.state.curdoc.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
-# The plots and the machine follow once the page has loaded: a class opening it at once gets
-# its readouts sooner (Explorer.show_views).
-pn.state.onload(explorer.show_views)
+# The plots and the machine follow once the page has loaded, and once every other page opening
+# meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner.
+document = pn.state.curdoc
+session_id = document.session_context.id
+READOUTS_FIRST.opened(session_id)
+# partial, not a lambda: Bokeh clears this module's globals once the session has started
+pn.state.onload(partial(READOUTS_FIRST.loaded, session_id, document, explorer.show_views))

@@ -5,18 +5,22 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import gc
+import time
+from collections.abc import Callable
 
 _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
 
 
 def release_memory(session_context) -> None:  # Bokeh requires exactly this signature
-    """When a session closes, free its arrays and hand the memory back to the operating system
-    (glibc otherwise keeps freed arenas, and a server that runs through a lecture only grows).
+    """When a session closes, stop counting it as loading (ReadoutsFirst), free its arrays and
+    hand the memory back to the operating system (glibc otherwise keeps freed arenas, and a
+    server that runs through a lecture only grows).
 
     Lives in a module of its own: Bokeh clears ``main.py``'s globals once a session has started,
     so a callback defined there cannot reach its imports when the session ends.
     """
+    READOUTS_FIRST.closed(session_context.id)
     gc.collect()
     if _LIBC is not None and hasattr(_LIBC, "malloc_trim"):
         _LIBC.malloc_trim(0)
@@ -62,3 +66,49 @@ def stylesheets_from_this_server(document) -> None:
 
     local = f"{state.rel_path}/{LOCAL_DIST}" if state.rel_path else LOCAL_DIST
     document._template_variables.setdefault("dist_url", local)
+
+
+class ReadoutsFirst:
+    """The server's order when a class opens the page at once: readouts for every page, then views.
+
+    A page's views (the plots and the machine, ~450 Bokeh models) cost the server and the browser
+    several times what its controls and readouts do. Built as soon as each page has loaded, the
+    first pages' views hold up the readouts of the pages still loading; here they wait until no
+    other page is still loading, for at most ``patience`` seconds. One instance serves every
+    session (this module outlives them); a page alone gets its views at once.
+    """
+
+    def __init__(self, patience: float = 15.0, forget_after: float = 180.0, poll: float = 0.25):
+        self.patience = patience  # [s] the longest a loaded page's views wait for the others
+        self.forget_after = forget_after  # [s] a page that never loads stops holding others back
+        self.poll = poll  # [s]
+        self.loading: dict[str, float] = {}  # session id -> when its page was built
+
+    def opened(self, session_id: str) -> None:
+        self.loading[session_id] = time.monotonic()
+
+    def closed(self, session_id: str) -> None:
+        self.loading.pop(session_id, None)
+
+    def others_loading(self) -> bool:
+        now = time.monotonic()
+        for session_id, since in list(self.loading.items()):
+            if now - since > self.forget_after:
+                del self.loading[session_id]
+        return bool(self.loading)
+
+    def loaded(self, session_id: str, document, show_views: Callable[[], None]) -> None:
+        """The page of ``session_id`` shows its readouts: show its views once the others do."""
+        self.closed(session_id)
+        self._show_when_free(document, show_views, time.monotonic())
+
+    def _show_when_free(self, document, show_views: Callable[[], None], since: float) -> None:
+        if not self.others_loading() or time.monotonic() - since >= self.patience:
+            show_views()
+            return
+        document.add_timeout_callback(
+            lambda: self._show_when_free(document, show_views, since), int(self.poll * 1e3)
+        )
+
+
+READOUTS_FIRST = ReadoutsFirst()

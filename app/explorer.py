@@ -786,6 +786,10 @@ class Explorer(pn.viewable.Viewer):
             header_background="#0b4f8a",
             theme="dark" if self.dark else "default",
             meta_viewport="width=device-width, initial-scale=1",
+            # Panel's busy spinner follows the whole server's activity, so every other student's
+            # move made it spin on this page and sent it a message: a class of 30 loading at once
+            # kept 30 spinners turning and the server messaging every page for everyone's work.
+            busy_indicator=None,
         )
         page.config.raw_css.extend([NARROW_CSS, PAGE_FOCUS_CSS])
         return page

@@ -93,14 +93,16 @@ def open_page(browser, url, width=1400, height=1000, query=""):
             else None
         ),
     )
-    scripts = []
+    scripts, received = [], []
     page.on("request", lambda r: scripts.append(r.url) if r.resource_type == "script" else None)
+    page.on("websocket", lambda ws: ws.on("framereceived", lambda frame: received.append(frame)))
     page.goto(url + query, timeout=120_000)
     page.wait_for_function(
         f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
     )
     page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
     page.problems, page.elsewhere, page.scripts = problems, elsewhere, scripts
+    page.received = received  # the server's messages over the page's websocket
     return page
 
 
@@ -165,6 +167,23 @@ def test_a_keyboard_move_redraws_what_the_core_computes(page):
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(ARTIFACTS / "explorer.png"))
     assert page.problems == []
+
+
+def test_one_students_moves_send_nothing_to_another_students_page(browser, url):
+    mine, theirs = open_page(browser, url), open_page(browser, url)
+    try:
+        time.sleep(2.0)  # both pages settled
+        before = len(theirs.received)
+        press(mine, "Head h [m]", "ArrowRight", 3)
+        wait_for_readout(mine, "mean_flow", flow_readout(SEED.replace(h=3.3)))
+        time.sleep(2.0)  # anything the server sent the other page has arrived
+        # (the other page's own layout reports may still get their "OK" replies)
+        changes = [f for f in theirs.received[before:] if '"msgtype": "PATCH-DOC"' in str(f)]
+        assert changes == []
+        assert mine.problems == [] and theirs.problems == []
+    finally:
+        mine.close()
+        theirs.close()
 
 
 def test_a_rejected_value_is_shown_marked_stale_and_the_next_move_recovers(page):

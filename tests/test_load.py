@@ -39,6 +39,9 @@ SETTLE = 60.0  # s allowed for the server to drop closed sessions
 # take over 300 s after its key presses, while the same test alone passed in 515 s in all); the
 # class as a whole is still bounded (``classroom``, 1200 s).
 PAGE_WAIT_MS = 600_000
+# Checked every 250 ms: playwright's default checks on every animation frame, and 30 pages walking
+# their DOM 60 times a second cost the shared machine more than the pages themselves.
+POLL_MS = 250
 
 
 async def one_student(browser, url, k):
@@ -65,7 +68,9 @@ async def one_student(browser, url, k):
     try:
         await page.goto(url, timeout=PAGE_WAIT_MS)
         await page.wait_for_function(
-            f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=PAGE_WAIT_MS
+            f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null",
+            timeout=PAGE_WAIT_MS,
+            polling=POLL_MS,
         )
         before = await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]")
         title = page.locator(".bk-slider-title", has_text="Head h [m]")
@@ -81,6 +86,7 @@ async def one_student(browser, url, k):
             f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e",
             arg=expected,
             timeout=PAGE_WAIT_MS,
+            polling=POLL_MS,
         )
         assert expected != before
         return await page.evaluate(DEEP_TEXT, "[data-name=mean_flow]"), problems

@@ -13,7 +13,9 @@ Debian's chromium at /usr/bin/chromium)
    new head, and to the plots holding windpump's values; the websocket bytes the server sent
    meanwhile are added up. The baseline, timed in the same run, is the same
    page with display decimation off (`?resolution=full`: every sample of every trace sent).
-4. A class: 30 pages opened at once on one server; each page's time to its readout.
+4. A class: 30 pages opened at once on one server, each in its own browser context made before
+   the clock starts; each page's time to its readout and to its views, checked every 250 ms, and
+   the CPU the server and each kind of chromium process used until the last readout.
 Every readout is checked against windpump, so a fast wrong page cannot pass.
 """
 

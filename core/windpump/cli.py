@@ -259,24 +259,29 @@ def write(text: str, path: str | None) -> None:
         sys.stdout.write(text)
 
 
+def read_json_designs(path: str, text: str) -> list[Design]:
+    """A JSON design document, or a list of them; an error names the file and the design."""
+    try:
+        documents = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ValueError(f"{path}: not JSON: {error}") from None
+    if not isinstance(documents, list):
+        documents = [documents]
+    designs = []
+    for number, document in enumerate(documents, start=1):
+        try:
+            designs.append(Design.from_json(json.dumps(document)))
+        except ValueError as error:
+            raise ValueError(f"{path}, design {number}: {error}") from None
+    return designs
+
+
 def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[float]]]:
     """Designs from a CSV (a row each: field columns, optional t_end/theta0/theta_dot0; a header
     like ``h [m]`` is read as ``h``) or a JSON list of design documents; and per-run inputs."""
     text = read_text(path)
     if path.endswith(".json"):
-        try:
-            documents = json.loads(text)
-        except json.JSONDecodeError as error:
-            raise ValueError(f"{path}: not JSON: {error}") from None
-        if not isinstance(documents, list):
-            documents = [documents]
-        designs = []
-        for number, document in enumerate(documents, start=1):
-            try:
-                designs.append(Design.from_json(json.dumps(document)))
-            except ValueError as error:
-                raise ValueError(f"{path}, design {number}: {error}") from None
-        return designs, {}
+        return read_json_designs(path, text), {}
     rows = list(csv.reader(io.StringIO(text)))
     if not rows:
         raise ValueError(f"{path}: empty")

@@ -12,7 +12,7 @@ from explorer import BINS, Explorer
 from keyboard import keyboard_and_screen_readers
 from serving import (
     READOUTS_FIRST,
-    release_memory,
+    session_closed,
     stylesheets_from_this_server,
     without_mathjax,
     without_webgl,
@@ -27,7 +27,7 @@ keyboard_and_screen_readers(pn.state.curdoc)
 guard_uploads(pn.state.curdoc)
 logging.basicConfig(level=logging.INFO)
 
-pn.state.on_session_destroyed(release_memory)
+pn.state.on_session_destroyed(session_closed)
 query = pn.state.session_args
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"

@@ -12,7 +12,7 @@ _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
 
 
-def release_memory(session_context) -> None:  # Bokeh requires exactly this signature
+def session_closed(session_context) -> None:  # Bokeh requires exactly this signature
     """When a session closes, stop counting it as loading (ReadoutsFirst), free its arrays and
     hand the memory back to the operating system (glibc otherwise keeps freed arenas, and a
     server that runs through a lecture only grows).

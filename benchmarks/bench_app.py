@@ -37,6 +37,7 @@ from served import (  # noqa: E402
     CHROMIUM,
     CHROMIUM_FLAGS,
     DEEP_TEXT,
+    POLL_MS,
     VIEWS_DRAWN,
     cpu_seconds,
     served_app,
@@ -44,9 +45,6 @@ from served import (  # noqa: E402
 
 MOVES = 30
 CLASS = 30
-# The class's pages are checked every 250 ms: playwright's default checks on every animation frame,
-# and 30 pages walking their DOM 60 times a second cost chromium more than the pages themselves.
-POLL_MS = 250
 SEED = windpump.Design.seed_example()
 READOUT = f"() => ({DEEP_TEXT})('[data-name=mean_flow]')"
 

@@ -35,6 +35,10 @@ DEEP_TEXT = """(selector) => {
   return el ? el.textContent : null;
 }"""
 
+# How often a class's pages are checked [ms]: playwright's default checks on every animation
+# frame, and 30 pages walking their DOM 60 times a second cost chromium more than the pages do.
+POLL_MS = 250
+
 # True once a page's views are drawn: the crank-speed band holds data (a served page gets its views
 # after its readouts, Explorer.show_views).
 VIEWS_DRAWN = (

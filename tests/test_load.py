@@ -20,6 +20,7 @@ from served import (
     CHROMIUM,
     CHROMIUM_FLAGS,
     DEEP_TEXT,
+    POLL_MS,
     require_chromium,
     resident_memory,
     served_app,
@@ -39,9 +40,6 @@ SETTLE = 60.0  # s allowed for the server to drop closed sessions
 # take over 300 s after its key presses, while the same test alone passed in 515 s in all); the
 # class as a whole is still bounded (``classroom``, 1200 s).
 PAGE_WAIT_MS = 600_000
-# Checked every 250 ms: playwright's default checks on every animation frame, and 30 pages walking
-# their DOM 60 times a second cost the shared machine more than the pages themselves.
-POLL_MS = 250
 
 
 async def one_student(browser, url, k):

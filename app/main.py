@@ -20,11 +20,12 @@ from serving import (
 from uploads import guard_uploads
 
 pn.extension(notifications=False)
+document = pn.state.curdoc
 without_mathjax()
 without_webgl()
-stylesheets_from_this_server(pn.state.curdoc)
-keyboard_and_screen_readers(pn.state.curdoc)
-guard_uploads(pn.state.curdoc)
+stylesheets_from_this_server(document)
+keyboard_and_screen_readers(document)
+guard_uploads(document)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(session_closed)
@@ -34,11 +35,10 @@ full = query.get("resolution", [b""])[0] == b"full"
 explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True)
 pn.state.location.sync(explorer.inputs, explorer.inputs.names())
 pn.state.location.sync(explorer, {"presentation": "presentation"})
-with pn.state.curdoc.models.freeze():  # one walk of the models for the page, not one per root
+with document.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
 # The plots and the machine follow once the page has loaded, and once every other page opening
 # meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner.
-document = pn.state.curdoc
 session_id = document.session_context.id
 READOUTS_FIRST.opened(session_id)
 # partial, not a lambda: Bokeh clears this module's globals once the session has started

@@ -409,7 +409,7 @@ def test_the_machine_plays_the_run_in_the_browser(page):
     time.sleep(1.0)
     later = page.evaluate(PLAYER)
     assert later["drawn"] > first["drawn"] and later["t"] > first["t"]  # frames advance
-    page.get_by_role("button", name="⏸ Pause").click()
+    page.get_by_role("button", name="▮▮ Pause").click()
     paused = page.evaluate(PLAYER)["t"]
     time.sleep(0.5)
     assert page.evaluate(PLAYER)["t"] == paused and not page.evaluate(PLAYER)["playing"]

@@ -15,7 +15,7 @@ import panel as pn
 from bokeh.layouts import column, row
 from bokeh.models import Button, ColumnDataSource, CustomJS, InlineStyleSheet, Select, Slider
 from bokeh.plotting import figure
-from figures import COLORS, empty
+from figures import empty, palette
 from keyboard import FOCUS_CSS
 from views import View, refill
 
@@ -33,8 +33,16 @@ SPEEDS = [
 ASPECT = 16 / 10  # the drawing's width / height
 WIDGET_CSS = ":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }"
 # Three blades and the sprocket's mark, then each cylinder's crank and rod (the player draws
-# as many as the design has cylinders).
-LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]
+# as many as the design has cylinders, in the colours it is given: ``moving_colors``).
+MOVING = ("blade", "crank", "rod")
+
+
+def moving_colors(dark: bool = False) -> dict[str, str]:
+    """The theme's colours of what the player moves: blades, cranks and rods."""
+    return {part: palette(dark)[part] for part in MOVING}
+
+
+LINK_COLORS = [palette()["blade"]] * 4 + [palette()["crank"], palette()["rod"]]
 
 
 def tangents(c0, r0, c1, r1):
@@ -63,16 +71,18 @@ class MachineView(View):
         "not to scale."
     )
 
-    def __init__(self, cursor: ColumnDataSource):
-        super().__init__()
-        s = self.sources
+    def __init__(self, cursor: ColumnDataSource, dark: bool = False):
+        super().__init__(dark)
+        s, c = self.sources, self.colors
+        moving = moving_colors(dark)
+        link_colors = [moving["blade"]] * 4 + [moving["crank"], moving["rod"]]
         s["frames"] = empty("t", "theta", "theta_dot", "volume")
         s["piston_table"] = empty("theta", "x")
         s["machine_geometry"] = ColumnDataSource({})
         s["machine_static"] = empty("xs", "ys")
         s["machine_circles"] = empty("x", "y", "radius")
         s["machine_links"] = ColumnDataSource(
-            {"xs": [[]] * len(LINK_COLORS), "ys": [[]] * len(LINK_COLORS), "color": LINK_COLORS}
+            {"xs": [[]] * len(link_colors), "ys": [[]] * len(link_colors), "color": link_colors}
         )
         s["machine_joints"] = empty("x", "y")
         s["machine_piston"] = empty("x", "y", "width", "height")
@@ -93,14 +103,14 @@ class MachineView(View):
         fig.axis.visible = False
         fig.grid.visible = False
         fig.outline_line_color = None
-        fig.multi_line("xs", "ys", source=s["machine_static"], color="#444444", line_width=3)
+        fig.multi_line("xs", "ys", source=s["machine_static"], color=c["structure"], line_width=3)
         fig.circle(
             "x",
             "y",
             radius="radius",
             source=s["machine_circles"],
-            fill_color="#dddddd",
-            line_color="#444444",
+            fill_color=c["sprocket"],
+            line_color=c["structure"],
             line_width=2,
         )
         fig.rect(
@@ -109,8 +119,7 @@ class MachineView(View):
             "width",
             "height",
             source=s["machine_water"],
-            fill_color=COLORS["flow"],
-            fill_alpha=0.6,
+            fill_color=c["flow"],
             line_color=None,
         )
         fig.multi_line(
@@ -122,8 +131,8 @@ class MachineView(View):
             "width",
             "height",
             source=s["machine_piston"],
-            fill_color="#9ecae1",
-            line_color="black",
+            fill_color=c["piston"],
+            line_color=c["ink"],
             line_width=2,
         )
         fig.scatter(
@@ -131,12 +140,18 @@ class MachineView(View):
             "y",
             source=s["machine_joints"],
             size=10,
-            fill_color="white",
-            line_color="black",
+            fill_color=c["joint"],
+            line_color=c["ink"],
             line_width=2,
         )
         fig.text(
-            "x", "y", "text", source=s["machine_label"], text_font_size="15px", text_baseline="top"
+            "x",
+            "y",
+            "text",
+            source=s["machine_label"],
+            text_font_size="15px",
+            text_baseline="top",
+            text_color=c["ink"],
         )
         self._controls(cursor)
 
@@ -170,6 +185,7 @@ class MachineView(View):
             water=s["machine_water"],
             label=s["machine_label"],
             cursor=cursor,
+            palette=moving_colors(self.dark),
             scrubber=self.scrubber,
             button=self.button,
             speed_select=self.speed,

@@ -22,6 +22,14 @@ GHOST = palette()["ghost"]  # (the light theme's; a view takes its theme's)
 CAPTION_CSS = [":host { font-size: 15px; margin: 0 8px; } p { margin: 2px 0; }"]
 
 
+SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def superscript(power: int) -> str:
+    """An integer as a superscript: -4 → ⁻⁴ (a label shows no caret)."""
+    return str(power).translate(SUPERSCRIPTS)
+
+
 def same(old, new) -> bool:
     """True when two column dicts hold the same columns and values."""
     if old.keys() != new.keys():
@@ -361,7 +369,9 @@ class StallView(View):
         power = math.floor(math.log10(sides.max()))
         data = {**self.sources["stall"].data, "value": sides / 10.0**power}
         refill(self.sources["stall"], data)
-        self.figure.xaxis.axis_label = f"dimensionless torque, Eqs. (14, 15) [× 10^{power}]"
+        self.figure.xaxis.axis_label = (
+            f"dimensionless torque, Eqs. (14, 15) [× 10{superscript(power)}]"
+        )
         verdict = "runs" if seen.margin > 1 else "stalls"
         self.figure.title.text = (
             f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"

@@ -100,9 +100,10 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
     return fig.line(x, y, source=source, color=color, line_width=width, line_dash=dash)
 
 
-def legend(fig, items: dict, location="top_left", place="below"):
+def legend(fig, items: dict, location="top_left", place="below", columns: int | None = None):
     """A legend of {label: renderer, or a list of renderers drawn as one swatch} beside the plot
-    (``place``; below by default, so it never covers data), in as many columns as fit. Returns
+    (``place``; below by default, so it never covers data), in two rows, or in rows of at most
+    ``columns`` items (a legend of long labels, which would be cut at the plot's edge). Returns
     {label: LegendItem}, so an update can hide the items of what is not drawn."""
     entries = {
         label: LegendItem(
@@ -110,12 +111,13 @@ def legend(fig, items: dict, location="top_left", place="below"):
         )
         for label, drawn in items.items()
     }
+    rows = 2 if columns is None else max(2, -(-len(entries) // columns))
     fig.add_layout(
         Legend(
             items=list(entries.values()),
             location=location,
             orientation="horizontal" if place in ("below", "above") else "vertical",
-            nrows=2 if place in ("below", "above") and len(entries) > 2 else "auto",
+            nrows=rows if place in ("below", "above") and len(entries) > 2 else "auto",
             label_text_font_size=TICKS,
             click_policy="hide",
             background_fill_alpha=0.7,

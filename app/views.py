@@ -161,6 +161,7 @@ class SpeedView(TimeView):
                 ),
                 "pinned run": ghost,
             },
+            columns=2,  # three of these labels side by side are wider than a 1280 px page's view
         )
         self.hover_on(integrated[0])
 

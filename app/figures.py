@@ -58,6 +58,7 @@ DARK = {
     "crank": "#ff6b6b",
     "rod": "#5aa9e6",
     "joint": "#2b3035",  # a ring, as the light theme's white joint in a black outline
+    "sprocket": "#454b52",  # dark, so that the crank drawn on it stands out
     "path": "#a0a0a0",
 }
 COLORS = LIGHT  # the light theme's (kept for code that imported it)

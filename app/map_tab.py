@@ -108,6 +108,16 @@ def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float
     return float(xs[middle]), float(ys[middle])
 
 
+def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
+    """(text_align, text_baseline) that keep a label at (x, y) inside the map: a label near an
+    edge extends away from it."""
+    (x0, x1), (y0, y1) = x_range, y_range
+    across, up = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
+    align = "left" if across < 0.25 else "right" if across > 0.75 else "center"
+    baseline = "bottom" if up < 0.1 else "top" if up > 0.9 else "middle"
+    return align, baseline
+
+
 class MapTab:
     """The Design map's figure, readout and ``update(design)``; a tap calls ``on_tap(ratio, h)``."""
 
@@ -126,7 +136,9 @@ class MapTab:
             "stall": empty("ratio", "h"),
             "best": empty("ratio", "h"),
             "here": empty("ratio", "h", "flow"),
-            "contour_labels": empty("x", "y", "text", "level", "color", "background"),
+            "contour_labels": empty(
+                "x", "y", "text", "level", "color", "background", "align", "baseline"
+            ),
         }
         for name, source in self.sources.items():
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
@@ -177,7 +189,7 @@ class MapTab:
         }
         fig.text(
             "x", "y", "text", source=s["contour_labels"], text_color="color",
-            text_font_size=TICKS, text_align="center", text_baseline="middle",
+            text_font_size=TICKS, text_align="align", text_baseline="baseline",
             background_fill_color="background", background_fill_alpha=0.75,
         )  # fmt: skip
         c = self.colors
@@ -229,29 +241,39 @@ class MapTab:
         self.mapped = mapped
 
     def _draw_contours(self, flow: np.ndarray) -> None:
-        """The round levels' lines, each labelled with its value at a point of it."""
+        """The round levels' lines, each in black or white for its level's colour and labelled
+        with its value at a point of it."""
         levels = contour_levels(flow)
-        lines = {"xs": [], "ys": [], "levels": [], "color": []}
+        lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
         labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
         if len(levels):
             drawn = contour_data(self.ratios, self.heads, flow, levels, want_fill=False).line_data
             lines = {**drawn.asdict(), "color": []}
-            bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
             for level, xs, ys in zip(drawn.levels, drawn.xs, drawn.ys, strict=True):
                 under = mapped_colour(self.mapper, level)
                 lines["color"].append(ink_on(under))
-                if not np.isfinite(xs).any():
-                    continue
-                x, y = label_point(np.asarray(xs), np.asarray(ys), *bounds)
-                for name, value in zip(
-                    ("x", "y", "text", "level", "color", "background"),
-                    (x, y, f"{level:g} m³/day", float(level), ink_on(under), under),
-                    strict=True,
-                ):
-                    labels[name].append(value)
+                if np.isfinite(xs).any():
+                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under)
+                    for name, value in label.items():
+                        labels[name].append(value)
         self.contours.line_renderer.data_source.data = lines
         self.contours.levels = [float(level) for level in levels]
         refill(self.sources["contour_labels"], labels)
+
+    def _contour_label(self, level: float, xs: np.ndarray, ys: np.ndarray, under: str) -> dict:
+        bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
+        x, y = label_point(xs, ys, *bounds)
+        align, baseline = label_anchor(x, y, *bounds)
+        return {
+            "x": x,
+            "y": y,
+            "text": f"{level:g} m³/day",
+            "level": float(level),
+            "color": ink_on(under),
+            "background": under,
+            "align": align,
+            "baseline": baseline,
+        }
 
     def _mark(self, design: windpump.Design) -> None:
         here = float(windpump.steady_flow(design, design.V_ref)) * PER_DAY

@@ -99,6 +99,9 @@ class Explorer(pn.viewable.Viewer):
         **params,
     ):
         super().__init__(inputs=PumpInputs(), **params)
+        query = query or {}
+        # First: the theme button's label and every figure's colours follow it.
+        self.dark = _text(query.get("theme", [b""])) == "dark"
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self.seen: windpump.Exploration | None = None
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
@@ -112,8 +115,6 @@ class Explorer(pn.viewable.Viewer):
         self._map: MapTab | None = None  # the Design map tab, also built when first opened
         self.map_open = False
         self._build_results()
-        query = query or {}
-        self.dark = _text(query.get("theme", [b""])) == "dark"  # before the views: their colours
         if not defer_views:
             self.show_views()
         self.param.watch(self._restyle, "presentation")

@@ -48,3 +48,8 @@ def test_no_label_shows_a_caret():
         assert [label for label in labels if "^" in label] == []
     label = app.stall.figure.xaxis[0].axis_label
     assert "× 10" in label and label.endswith("]")
+
+
+def test_the_theme_button_offers_the_other_theme():
+    assert Explorer(query={"theme": [b"dark"]}).dark_toggle.label == "Light theme"
+    assert Explorer().dark_toggle.label == "Dark theme"

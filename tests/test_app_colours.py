@@ -168,8 +168,8 @@ def failures_of_renderer(
     glyph, failures = renderer.glyph, []
     drawn = paints(glyph, renderer)
     if isinstance(glyph, AREAS) and "fill" in drawn:
-        seen = all(contrast(over(c, a, background), background) >= MINIMUM
-                   for c, a in drawn["fill"])  # fmt: skip
+        fills = drawn["fill"]
+        seen = all(contrast(over(c, a, background), background) >= MINIMUM for c, a in fills)
         edged = [*extra_edges] if in_legend else edges_of(renderer, fig)
         if not seen and not edged:
             failures.append(f"{where}: translucent area {drawn['fill']} without edges")
@@ -200,7 +200,8 @@ def failures_of(fig) -> list[str]:
     failures = []
 
     def need(colour, alpha, background, what):
-        if opaque(colour, alpha) and contrast(over(colour, alpha, background), background) < 3:
+        seen = over(colour, alpha, background)
+        if opaque(colour, alpha) and contrast(seen, background) < MINIMUM:
             failures.append(f"{title}: {what} {colour} on {background}")
 
     if fig.title.text:
@@ -217,8 +218,8 @@ def failures_of(fig) -> list[str]:
         need(bar.title_text_color, bar.title_text_alpha, behind, "colour bar title")
     for legend in fig.select(type=Legend):
         inside = legend in fig.center
-        behind = over(legend.background_fill_color, legend.background_fill_alpha,
-                      plot if inside else border)  # fmt: skip
+        under = plot if inside else border
+        behind = over(legend.background_fill_color, legend.background_fill_alpha, under)
         need(legend.label_text_color, legend.label_text_alpha, behind, "legend labels")
         for item in legend.items:
             lines = [r for r in item.renderers if isinstance(r.glyph, Line)]
@@ -233,8 +234,8 @@ def failures_of(fig) -> list[str]:
                 )
     for span in fig.select(type=Span):
         need(span.line_color, span.line_alpha, plot, "span")
-    mapper = next((r.glyph.color_mapper for r in fig.renderers
-                   if isinstance(getattr(r, "glyph", None), Image)), None)  # fmt: skip
+    images = [r for r in fig.renderers if isinstance(getattr(r, "glyph", None), Image)]
+    mapper = images[0].glyph.color_mapper if images else None
     for renderer in fig.renderers:
         if not renderer.visible:
             continue
@@ -252,8 +253,8 @@ def failures_of(fig) -> list[str]:
         source = renderer.data_source
         if mapper is not None and "level" in source.column_names:  # labels on the map's colours
             for level, colour in zip(source.data["level"], source.data["color"], strict=True):
-                need(colour, renderer.glyph.text_alpha, over(level_colour(mapper, level), 1.0, "white"),
-                     f"contour label {level:g}")  # fmt: skip
+                under = over(level_colour(mapper, level), 1.0, "white")
+                need(colour, renderer.glyph.text_alpha, under, f"contour label {level:g}")
             continue
         failures += failures_of_renderer(
             renderer, plot, f"{title}: {type(renderer.glyph).__name__}", fig
@@ -284,8 +285,12 @@ def test_the_machines_player_draws_in_the_themes_colours(dark):
     callback = next(iter(app.machine.button.js_event_callbacks["button_click"]))
     assert isinstance(callback, CustomJS)
     palette = callback.args["palette"]
+    assert set(palette) == {"blade", "crank", "rod"}
     for name, colour in palette.items():
         assert contrast(colour, plot) >= MINIMUM, name
+    sprocket = next(r.glyph.fill_color for r in fig.renderers if type(r.glyph).__name__ == "Circle")
+    for part in ("crank", "rod"):  # each drawn over the crank's sprocket
+        assert contrast(palette[part], sprocket) >= MINIMUM, part
 
 
 def test_the_dotted_alpha_plus_line_is_visible():
@@ -294,7 +299,8 @@ def test_the_dotted_alpha_plus_line_is_visible():
         figures = themed(app, dark)
         plot = figures[0].background_fill_color
         line = app.speed.items["α₊, Eq. (21)"].renderers[0].glyph
-        assert line.line_dash == "dotted" or list(line.line_dash) != []
+        dash = list(line.line_dash)  # Bokeh's "dotted": [2, 4], on and off [px]
+        assert len(dash) == 2 and dash[0] / sum(dash) >= 1 / 3  # dots, not a faint scatter
         assert line.line_width >= 2
         assert contrast(line.line_color, plot) >= MINIMUM
 

@@ -51,11 +51,16 @@ def duration_text(seconds: float) -> str:
     return f"{hours} h {minutes} min" if hours else f"{minutes} min"
 
 
+def is_a_day(duration: float) -> bool:
+    """Whether a record [s] is a day long (to the minute): its litres are then a day's."""
+    return math.isclose(duration, DAY, abs_tol=60.0)
+
+
 def record_water_text(litres: float, per_day: float, duration: float) -> tuple[str, str]:
     """The day_litres readout's (label, value): a day's litres for a record of a day; for a
     shorter or longer record its own litres, over its length, and the rate a day that makes (so
     three hours' water is not read as a day's)."""
-    if math.isclose(duration, DAY, abs_tol=60.0):
+    if is_a_day(duration):
         return WIND_READOUTS["day_litres"], f"{litres:,.0f}"
     return (
         f"This record ({duration_text(duration)}), in full",
@@ -280,8 +285,10 @@ class WindTab:
         per_day = lifted * DAY / duration
         self.readouts["day_litres"].show(*record_water_text(lifted, per_day, duration))
         low, high = windpump.record_water(design, record)
+        a_day = is_a_day(duration)
         self.readouts["record_bounds"].show(
-            WIND_READOUTS["record_bounds"], f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+            WIND_READOUTS["record_bounds"] if a_day else "Averaged over this record's wind [L/day]",
+            f"{1e3 * low:,.0f} … {1e3 * high:,.0f}",
         )
         source = (
             f"the measured record *{self.measured_name}* ({duration / 3600:.1f} h)"

@@ -151,11 +151,13 @@ def test_a_record_shorter_than_a_day_says_its_water_and_its_rate_a_day(app):
     lifted = 1e3 * run.volume[-1]
     html = app.wind.readouts["day_litres"].object
     assert "This record (3 h 0 min), in full" in html
+    assert "Averaged over this record's wind [L/day]" in app.wind.readouts["record_bounds"].object
     assert value(app, "day_litres") == (
         f"{litres(lifted)} L ({litres(lifted * 86_400 / duration)} L/day at this rate)"
     )
     app.forget_wind_data()  # a whole day: its litres are the day's
     assert "This day, in full [L/day]" in app.wind.readouts["day_litres"].object
+    assert "Averaged over this day's wind [L/day]" in app.wind.readouts["record_bounds"].object
     assert value(app, "day_litres") == litres(1e3 * app.wind.last_run.volume[-1])
 
 

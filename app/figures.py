@@ -61,7 +61,7 @@ DARK = {
     "sprocket": "#454b52",  # dark, so that the crank drawn on it stands out
     "path": "#a0a0a0",
 }
-COLORS = LIGHT  # the light theme's (kept for code that imported it)
+COLORS = LIGHT  # the light theme's
 # Several faces' pulses, and the links of a drawn mechanism, one colour each.
 FACES = {
     False: ("#d95f02", "#2ca02c", "#9467bd", "#8c564b", "#c2449f", "#0f8b96"),

@@ -42,9 +42,6 @@ def moving_colors(dark: bool = False) -> dict[str, str]:
     return {part: palette(dark)[part] for part in MOVING}
 
 
-LINK_COLORS = [palette()["blade"]] * 4 + [palette()["crank"], palette()["rod"]]
-
-
 def tangents(c0, r0, c1, r1):
     """The two outer tangent segments of two circles: the chain's straight runs."""
     (x0, y0), (x1, y1) = c0, c1

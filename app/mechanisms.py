@@ -16,7 +16,6 @@ from windpump.linkage import NoClosure
 
 STEP = math.radians(2.0)  # a dragged input is followed in steps of at most this
 LINKED = ("r1", "r2", "r3", "r4", "r5")  # the links drawn in a colour of their own
-LINK_COLORS = dict(zip(LINKED, LINKS[False], strict=True))  # the light theme's
 FOUR_BAR = "Four-bar"
 SIX_BAR = "Watt six-bar (double loop)"
 # name: (label, start, end, step, value); lengths [m], angles [°]

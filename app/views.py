@@ -18,7 +18,6 @@ import windpump
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
 CLOSEUP_REVOLUTIONS = 3
-GHOST = palette()["ghost"]  # (the light theme's; a view takes its theme's)
 CAPTION_CSS = [":host { font-size: 15px; margin: 0 8px; } p { margin: 2px 0; }"]
 
 
@@ -216,9 +215,6 @@ class FlowView(TimeView):
         refill(s["flow"], band_data(run.t, 1e3 * run.flow, bins))
         refill(s["mean_flow"], {"t": [0.0, float(run.t[-1])], "flow": [1e3 * seen.mean_flow] * 2})
         self.show_ghost()
-
-
-FACE_COLORS = FACES[False]  # the light theme's; a view takes its theme's
 
 
 class CloseupView(View):

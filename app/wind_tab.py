@@ -33,7 +33,6 @@ WIND_READOUTS = {
     "thresholds": "V_stop · V_start [m/s]",
 }
 TEXT = [":host { font-size: 16px; }"]
-STOP_COLOR, START_COLOR = palette()["load"], palette()["windmill"]  # the light theme's
 
 
 @functools.lru_cache(maxsize=8)

@@ -13,20 +13,12 @@ import panel as pn
 from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
 from envelope import band, bin_means
 from figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
+from styles import CAPTION_CSS
 
 import windpump
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
 CLOSEUP_REVOLUTIONS = 3
-CAPTION_CSS = [":host { font-size: 15px; margin: 0 8px; } p { margin: 2px 0; }"]
-
-
-SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
-
-
-def superscript(power: int) -> str:
-    """An integer as a superscript: -4 → ⁻⁴ (a label shows no caret)."""
-    return str(power).translate(SUPERSCRIPTS)
 
 
 def same(old, new) -> bool:
@@ -139,7 +131,7 @@ class SpeedView(TimeView):
         s["speed_ghost"] = empty("t", "lower", "upper")
         self.figure = fig = self.time_figure(
             "Crank speed",
-            "crank speed θ̇ [rad/s]",
+            "θ̇ [rad/s]",
             [("t", "@t{0.00} s"), ("θ̇", "@lower{0.000} to @upper{0.000} rad/s")],
         )
         ghost = draw_band(fig, s["speed_ghost"], c["ghost"])
@@ -149,7 +141,7 @@ class SpeedView(TimeView):
         self.items = legend(
             fig,
             {
-                "integrated, Eq. (12)": integrated,
+                "full, Eq. (12)": integrated,
                 "averaged, Eq. (24)": averaged,
                 "cycle mean": mean,
                 "α₊, Eq. (21)": line(
@@ -160,7 +152,6 @@ class SpeedView(TimeView):
                 ),
                 "pinned run": ghost,
             },
-            columns=2,  # three of these labels side by side are wider than a 1280 px page's view
         )
         self.hover_on(integrated[0])
 
@@ -195,7 +186,7 @@ class FlowView(TimeView):
         s["mean_flow"] = empty("t", "flow")
         self.figure = fig = self.time_figure(
             "Flow rate over the run",
-            "flow Q [L/s]",
+            "Q [L/s]",
             [("t", "@t{0.00} s"), ("Q", "@lower{0.0000} to @upper{0.0000} L/s")],
         )
         ghost = draw_band(fig, s["flow_ghost"], c["ghost"])
@@ -203,7 +194,7 @@ class FlowView(TimeView):
         self.items = legend(
             fig,
             {
-                "instantaneous (min to max)": instantaneous,
+                "Q, min to max": instantaneous,
                 "mean over the run": line(fig, "t", "flow", s["mean_flow"], c["mean"], 3, "dashed"),
                 "pinned run": ghost,
             },
@@ -231,7 +222,7 @@ class CloseupView(View):
         self.figure = fig = new_figure(
             "Close-up: the last revolutions",
             "time t [s]",
-            "flow Q [L/s]",
+            "Q [L/s]",
             tools="pan,box_zoom,reset,save",
         )
         fig.multi_line(
@@ -301,7 +292,7 @@ class EnergyView(TimeView):
             fig,
             {
                 "lifting water": [water, water_edge],
-                "spinning up (+) / given back (−)": [spin, spin_edge],
+                "spinning up (+), back (−)": [spin, spin_edge],
                 "windmill T ω": shaft,
             },
         )
@@ -332,6 +323,14 @@ class EnergyView(TimeView):
         )
 
 
+SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def superscript(power: int) -> str:
+    """An exponent as a reader writes it: 10⁻⁴, not 10^-4."""
+    return str(power).translate(SUPERSCRIPTS)
+
+
 class StallView(View):
     caption = (
         "Eq. (22): it can run while the windmill's characteristic torque Tₘ† (Eq. 14) exceeds the "
@@ -353,7 +352,7 @@ class StallView(View):
             "Stall criterion, Eq. (22)",
             "dimensionless torque",
             "",
-            height=HEIGHT * 2 // 3,
+            height=HEIGHT * 3 // 4,
             tools="save",
             y_range=FactorRange(*self.NAMES),
         )
@@ -366,12 +365,11 @@ class StallView(View):
         power = math.floor(math.log10(sides.max()))
         data = {**self.sources["stall"].data, "value": sides / 10.0**power}
         refill(self.sources["stall"], data)
-        self.figure.xaxis.axis_label = (
-            f"dimensionless torque, Eqs. (14, 15) [× 10{superscript(power)}]"
-        )
+        self.figure.xaxis.axis_label = f"Eqs. (14, 15) [×10{superscript(power)}]"
         verdict = "runs" if seen.margin > 1 else "stalls"
+        # two short lines: one long line was cut on a phone and in presentation mode
         self.figure.title.text = (
-            f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
+            f"Stall criterion, Eq. (22)\nmargin {seen.margin:.3f}: it {verdict}"
         )
 
 

@@ -410,6 +410,34 @@ def test_presentation_mode_enlarges_text_and_lines(app):
     assert app.speed.figure.title.text_font_size == title
 
 
+def canvas_text_sizes(app) -> list[float]:
+    """Every text size [px] the page's figures draw on their canvas, the tabs' included."""
+    from bokeh.models import Legend, Text
+
+    sizes = []
+    for fig in app.figures():
+        if fig.title.text:
+            sizes.append(fig.title.text_font_size)
+        for axis in (*fig.xaxis, *fig.yaxis):
+            if axis.visible:
+                sizes += [axis.axis_label_text_font_size, axis.major_label_text_font_size]
+        sizes += [legend.label_text_font_size for legend in fig.select(type=Legend)]
+        sizes += [r.glyph.text_font_size for r in fig.renderers if isinstance(r.glyph, Text)]
+    return [float(size[:-2]) for size in sizes]
+
+
+def test_presentation_mode_enlarges_every_canvas_text_and_back(app):
+    """Titles, axes, legends and the machine's label, in every tab opened, not only titles."""
+    assert app.mechanisms.figures()  # the Mechanisms tab, as if opened
+    before = canvas_text_sizes(app)
+    app.present_toggle.value = True
+    after = canvas_text_sizes(app)
+    assert len(after) == len(before) > 20
+    assert all(b >= 1.2 * a for a, b in zip(before, after, strict=True)), (before, after)
+    app.present_toggle.value = False
+    assert canvas_text_sizes(app) == before
+
+
 def test_the_dark_theme_comes_from_the_link():
     assert Explorer(query={"theme": [b"dark"]}).template().theme.__name__.startswith("Dark")
     assert not Explorer().template().theme.__name__.startswith("Dark")

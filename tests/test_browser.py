@@ -339,7 +339,8 @@ def test_the_page_fits_the_screen(browser, url, width, height):
         if (width, height) == (1280, 720):
             for shown in ("Mean flow", "Stall margin, Eq. (22)", "Running."):
                 assert box(page, shown)["y"] + box(page, shown)["height"] <= height, shown
-            for caption in ("Crank speed θ̇: the full", "Flow Q = A ẋ"):  # under its plot
+            # under its plot: the crank speed and the machine playing it, side by side
+            for caption in ("Crank speed θ̇: the full", "The machine playing the computed run"):
                 assert box(page, caption)["y"] <= height, caption
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / f"explorer-{width}x{height}.png"))
@@ -409,7 +410,7 @@ def test_the_machine_plays_the_run_in_the_browser(page):
     time.sleep(1.0)
     later = page.evaluate(PLAYER)
     assert later["drawn"] > first["drawn"] and later["t"] > first["t"]  # frames advance
-    page.get_by_role("button", name="⏸ Pause").click()
+    page.get_by_role("button", name="▮▮ Pause").click()
     paused = page.evaluate(PLAYER)["t"]
     time.sleep(0.5)
     assert page.evaluate(PLAYER)["t"] == paused and not page.evaluate(PLAYER)["playing"]

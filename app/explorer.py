@@ -93,6 +93,9 @@ class Explorer(pn.viewable.Viewer):
         **params,
     ):
         super().__init__(inputs=PumpInputs(), **params)
+        query = query or {}
+        # First: the theme button's label and every figure's colours follow it.
+        self.dark = _text(query.get("theme", [b""])) == "dark"
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self.seen: windpump.Exploration | None = None
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
@@ -108,8 +111,6 @@ class Explorer(pn.viewable.Viewer):
         self._build_results()
         if not defer_views:
             self.show_views()
-        query = query or {}
-        self.dark = _text(query.get("theme", [b""])) == "dark"
         self.param.watch(self._restyle, "presentation")
         values, notices = self.inputs.parse_query(query)
         self._presentation_from(query, notices)
@@ -142,13 +143,14 @@ class Explorer(pn.viewable.Viewer):
     def _build_views(self) -> None:
         self.time_range = Range1d(0.0, 600.0, name="speed_range")
         self.cursor = ColumnDataSource({"t": [0.0]}, name="cursor")
-        self.speed = SpeedView(self.time_range, self.cursor)
-        self.flow = FlowView(self.time_range, self.cursor)
-        self.energy = EnergyView(self.time_range, self.cursor)
-        self.closeup = CloseupView()
-        self.stall = StallView()
-        self.operating = OperatingView()
-        self.machine = MachineView(self.cursor)
+        dark = self.dark  # each view draws in its theme's colours
+        self.speed = SpeedView(self.time_range, self.cursor, dark)
+        self.flow = FlowView(self.time_range, self.cursor, dark)
+        self.energy = EnergyView(self.time_range, self.cursor, dark)
+        self.closeup = CloseupView(dark)
+        self.stall = StallView(dark)
+        self.operating = OperatingView(dark)
+        self.machine = MachineView(self.cursor, dark)
         # The crank speed and the machine playing it first: side by side in a projector's first screen.
         self.views = [
             self.speed,
@@ -176,7 +178,7 @@ class Explorer(pn.viewable.Viewer):
         """The Wind tab's content, built on first use (its four figures cost every page that
         never opens it)."""
         if self._wind is None:
-            self._wind = WindTab(self.sliders, self.bins)
+            self._wind = WindTab(self.sliders, self.bins, self.dark)
             self._wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
             self._wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
         return self._wind
@@ -186,7 +188,9 @@ class Explorer(pn.viewable.Viewer):
         """The Design map tab, built on first use."""
         if self._map is None:
             bounds = self.inputs.param
-            self._map = MapTab(bounds["R_dagger"].bounds, bounds["h"].bounds, self.move_to)
+            self._map = MapTab(
+                bounds["R_dagger"].bounds, bounds["h"].bounds, self.move_to, self.dark
+            )
         return self._map
 
     def move_to(self, ratio: float, h: float) -> None:
@@ -202,7 +206,7 @@ class Explorer(pn.viewable.Viewer):
     def mechanisms(self) -> Mechanisms:
         """The Mechanisms tab's content, built on first use and following the pump's design."""
         if self._mechanisms is None:
-            self._mechanisms = Mechanisms(self._slider)
+            self._mechanisms = Mechanisms(self._slider, self.dark)
             self.sources.update(self._mechanisms.sources)
             self._name_sources()
             if self.seen is not None:

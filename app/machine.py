@@ -23,7 +23,7 @@ from bokeh.models import (
     Slider,
 )
 from bokeh.plotting import figure
-from figures import COLORS, empty
+from figures import empty, palette
 from keyboard import FOCUS_CSS
 from styles import CAPTION_CSS, px
 from views import View, refill
@@ -44,8 +44,13 @@ ASPECT = (
 )
 WIDGET_CSS = f":host {{ font-size: {px(15)}; }} .bk-btn, select {{ font-size: {px(15)}; }}"
 # Three blades and the sprocket's mark, then each cylinder's crank and rod (the player draws
-# as many as the design has cylinders).
-LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]
+# as many as the design has cylinders, in the colours it is given: ``moving_colors``).
+MOVING = ("blade", "crank", "rod")
+
+
+def moving_colors(dark: bool = False) -> dict[str, str]:
+    """The theme's colours of what the player moves: blades, cranks and rods."""
+    return {part: palette(dark)[part] for part in MOVING}
 
 
 def fit_aspect(left, right, bottom, top, aspect):
@@ -85,16 +90,18 @@ class MachineView(View):
         "fills with the volume pumped (Eq. 16). Blades not to scale."
     )
 
-    def __init__(self, cursor: ColumnDataSource):
-        super().__init__()
-        s = self.sources
+    def __init__(self, cursor: ColumnDataSource, dark: bool = False):
+        super().__init__(dark)
+        s, c = self.sources, self.colors
+        moving = moving_colors(dark)
+        link_colors = [moving["blade"]] * 4 + [moving["crank"], moving["rod"]]
         s["frames"] = empty("t", "theta", "theta_dot", "volume")
         s["piston_table"] = empty("theta", "x")
         s["machine_geometry"] = ColumnDataSource({})
         s["machine_static"] = empty("xs", "ys")
         s["machine_circles"] = empty("x", "y", "radius")
         s["machine_links"] = ColumnDataSource(
-            {"xs": [[]] * len(LINK_COLORS), "ys": [[]] * len(LINK_COLORS), "color": LINK_COLORS}
+            {"xs": [[]] * len(link_colors), "ys": [[]] * len(link_colors), "color": link_colors}
         )
         s["machine_joints"] = empty("x", "y")
         s["machine_piston"] = empty("x", "y", "width", "height")
@@ -116,14 +123,14 @@ class MachineView(View):
         fig.axis.visible = False
         fig.grid.visible = False
         fig.outline_line_color = None
-        fig.multi_line("xs", "ys", source=s["machine_static"], color="#444444", line_width=3)
+        fig.multi_line("xs", "ys", source=s["machine_static"], color=c["structure"], line_width=3)
         fig.circle(
             "x",
             "y",
             radius="radius",
             source=s["machine_circles"],
-            fill_color="#dddddd",
-            line_color="#444444",
+            fill_color=c["sprocket"],
+            line_color=c["structure"],
             line_width=2,
         )
         fig.rect(
@@ -132,8 +139,7 @@ class MachineView(View):
             "width",
             "height",
             source=s["machine_water"],
-            fill_color=COLORS["flow"],
-            fill_alpha=0.6,
+            fill_color=c["flow"],
             line_color=None,
         )
         fig.multi_line(
@@ -145,8 +151,8 @@ class MachineView(View):
             "width",
             "height",
             source=s["machine_piston"],
-            fill_color="#9ecae1",
-            line_color="black",
+            fill_color=c["piston"],
+            line_color=c["ink"],
             line_width=2,
         )
         fig.scatter(
@@ -154,12 +160,18 @@ class MachineView(View):
             "y",
             source=s["machine_joints"],
             size=10,
-            fill_color="white",
-            line_color="black",
+            fill_color=c["joint"],
+            line_color=c["ink"],
             line_width=2,
         )
         fig.text(
-            "x", "y", "text", source=s["machine_label"], text_font_size="15px", text_baseline="top"
+            "x",
+            "y",
+            "text",
+            source=s["machine_label"],
+            text_font_size="15px",
+            text_baseline="top",
+            text_color=c["ink"],
         )
         self._controls(cursor)
 
@@ -193,6 +205,7 @@ class MachineView(View):
             water=s["machine_water"],
             label=s["machine_label"],
             cursor=cursor,
+            palette=moving_colors(self.dark),
             scrubber=self.scrubber,
             button=self.button,
             speed_select=self.speed,

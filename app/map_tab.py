@@ -8,15 +8,23 @@ there. Every number comes from ``windpump``.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
 import panel as pn
 from bokeh.events import Tap
-from bokeh.models import ColorBar, ColumnDataSource, HoverTool, LogColorMapper
+from bokeh.models import (
+    ColorBar,
+    ColumnDataSource,
+    FixedTicker,
+    HoverTool,
+    LogColorMapper,
+    PrintfTickFormatter,
+)
 from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
-from figures import TICKS, empty, legend, new_figure
+from figures import TICKS, empty, legend, new_figure, palette
 from styles import CAPTION_CSS, TEXT
 from views import refill
 
@@ -37,15 +45,77 @@ def colour_range(flow: np.ndarray) -> tuple[float, float]:
     return max(float(finite.min()), top / 10**DECADES), top
 
 
+def round_values(low: float, top: float, mantissas=(1.0, 2.0, 5.0)) -> np.ndarray:
+    """The values m x 10^k (m in ``mantissas``) from ``low`` to ``top``, in order."""
+    decades = 10.0 ** np.arange(np.floor(np.log10(low)), np.ceil(np.log10(top)) + 1)
+    values = np.sort(np.outer(decades, mantissas).ravel())
+    return values[(values >= low * (1 - 1e-12)) & (values <= top * (1 + 1e-12))]
+
+
 def contour_levels(flow: np.ndarray) -> np.ndarray:
     """The round levels 1, 2, 5 x 10^k [m^3/day] within the map's colour range; none when
     nothing runs."""
     if not (np.isfinite(flow) & (flow > 0.0)).any():
         return np.array([])
     low, top = colour_range(flow)
-    decades = 10.0 ** np.arange(np.floor(np.log10(low)), np.ceil(np.log10(top)) + 1)
-    levels = np.outer(decades, [1.0, 2.0, 5.0]).ravel()
+    levels = round_values(low, top)
     return levels[(levels > low) & (levels < top)]
+
+
+def colour_ticks(low: float, top: float) -> list[float]:
+    """The colour bar's ticks: 1, 2, 5 x 10^k over the whole log scale (1 to 9 x 10^k on a
+    scale too short for three of those), so its lower part is labelled as well as its top."""
+    ticks = round_values(low, top)
+    if len(ticks) < 3:
+        ticks = round_values(low, top, mantissas=np.arange(1.0, 10.0))
+    return [float(t) for t in ticks]
+
+
+def relative_luminance(colour: str) -> float:
+    """WCAG's relative luminance of a '#rrggbb' colour."""
+    channels = np.array([int(colour[i : i + 2], 16) for i in (1, 3, 5)]) / 255.0
+    linear = np.where(channels <= 0.04045, channels / 12.92, ((channels + 0.055) / 1.055) ** 2.4)
+    return float(linear @ [0.2126, 0.7152, 0.0722])
+
+
+def ink_on(colour: str) -> str:
+    """Black or white, whichever stands out more on ``colour`` (a contour and its label on the
+    map's colour at their level)."""
+    return "#000000" if relative_luminance(colour) > 0.179 else "#ffffff"
+
+
+def mapped_colour(mapper: LogColorMapper, value: float) -> str:
+    """The colour the log colour mapper gives a value (as the browser's LogColorMapper does)."""
+    span = math.log(mapper.high) - math.log(mapper.low)
+    index = int((math.log(value) - math.log(mapper.low)) / span * len(mapper.palette))
+    return mapper.palette[min(max(index, 0), len(mapper.palette) - 1)]
+
+
+def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float, float]:
+    """Where a contour's label goes: its middle vertex away from the map's edges (where a
+    label would be cut), else its middle vertex."""
+    finite = np.isfinite(xs) & np.isfinite(ys)
+    (x0, x1), (y0, y1) = x_range, y_range
+    inner = (
+        finite
+        & (xs > x0 + 0.1 * (x1 - x0))
+        & (xs < x1 - 0.15 * (x1 - x0))
+        & (ys > y0 + 0.05 * (y1 - y0))
+        & (ys < y1 - 0.05 * (y1 - y0))
+    )
+    candidates = np.flatnonzero(inner if inner.any() else finite)
+    middle = candidates[len(candidates) // 2]
+    return float(xs[middle]), float(ys[middle])
+
+
+def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
+    """(text_align, text_baseline) that keep a label at (x, y) inside the map: a label near an
+    edge extends away from it."""
+    (x0, x1), (y0, y1) = x_range, y_range
+    across, up = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
+    align = "left" if across < 0.25 else "right" if across > 0.75 else "center"
+    baseline = "bottom" if up < 0.1 else "top" if up > 0.9 else "middle"
+    return align, baseline
 
 
 class MapTab:
@@ -56,7 +126,9 @@ class MapTab:
         ratio_bounds: tuple[float, float],
         head_bounds: tuple[float, float],
         on_tap: Callable[[float, float], None],
+        dark: bool = False,
     ):
+        self.colors = palette(dark)
         self.ratios = np.linspace(*ratio_bounds, GRID)
         self.heads = np.linspace(*head_bounds, GRID)
         self.sources: dict[str, ColumnDataSource] = {
@@ -64,6 +136,9 @@ class MapTab:
             "stall": empty("ratio", "h"),
             "best": empty("ratio", "h"),
             "here": empty("ratio", "h", "flow"),
+            "contour_labels": empty(
+                "x", "y", "text", "level", "color", "background", "align", "baseline"
+            ),
         }
         for name, source in self.sources.items():
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
@@ -91,16 +166,37 @@ class MapTab:
             image="image", x=x0, y=y0, dw=x1 - x0, dh=y1 - y0, source=s["flow"],
             color_mapper=self.mapper,
         )  # fmt: skip
-        bar = ColorBar(color_mapper=self.mapper, title="mean flow [m³/day]", width=14)
+        self.ticker = FixedTicker(ticks=colour_ticks(0.1, 1.0), minor_ticks=[])
+        bar = ColorBar(
+            color_mapper=self.mapper,
+            title="mean flow [m³/day]",
+            width=14,
+            ticker=self.ticker,
+            formatter=PrintfTickFormatter(format="%g"),
+        )
         bar.title_text_font_size = bar.major_label_text_font_size = TICKS
         fig.add_layout(bar, "right")
+        # Each contour and its label in black or white, whichever stands out on its level's colour.
         self.contours = fig.contour(
             self.ratios, self.heads, np.zeros((GRID, GRID)), [0.5], fill_color=None,
-            line_color="white", line_alpha=0.8, line_width=1.5,
+            line_color="#ffffff", line_width=1.5,
         )  # fmt: skip
-        stall = fig.line("ratio", "h", source=s["stall"], color="#d62728", line_width=3)
+        self.contours.line_renderer.glyph.line_color = "color"
+        self.contours.line_renderer.data_source.data = {
+            "xs": [],
+            "ys": [],
+            "levels": [],
+            "color": [],
+        }
+        fig.text(
+            "x", "y", "text", source=s["contour_labels"], text_color="color",
+            text_font_size=TICKS, text_align="align", text_baseline="baseline",
+            background_fill_color="background", background_fill_alpha=0.75,
+        )  # fmt: skip
+        c = self.colors
+        stall = fig.line("ratio", "h", source=s["stall"], color=c["load"], line_width=3)
         best = fig.line(
-            "ratio", "h", source=s["best"], color="#ff7f0e", line_width=3, line_dash="dashed"
+            "ratio", "h", source=s["best"], color=c["best"], line_width=3, line_dash="dashed"
         )
         here = fig.scatter(
             "ratio", "h", source=s["here"], marker="star", size=24, color="white",
@@ -139,13 +235,46 @@ class MapTab:
         flow = mapped.mean_flow * PER_DAY
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
-        levels = contour_levels(flow)
-        data = contour_data(self.ratios, self.heads, flow, levels, want_fill=False)
-        self.contours.set_data(data)
-        self.contours.levels = list(levels)
+        self.ticker.ticks = colour_ticks(self.mapper.low, self.mapper.high)
+        self._draw_contours(flow)
         refill(self.sources["stall"], {"ratio": mapped.stall_gear_ratio, "h": self.heads})
         refill(self.sources["best"], {"ratio": mapped.best_gear_ratio, "h": self.heads})
         self.mapped = mapped
+
+    def _draw_contours(self, flow: np.ndarray) -> None:
+        """The round levels' lines, each in black or white for its level's colour and labelled
+        with its value at a point of it."""
+        levels = contour_levels(flow)
+        lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
+        labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
+        if len(levels):
+            drawn = contour_data(self.ratios, self.heads, flow, levels, want_fill=False).line_data
+            lines = {**drawn.asdict(), "color": []}
+            for level, xs, ys in zip(drawn.levels, drawn.xs, drawn.ys, strict=True):
+                under = mapped_colour(self.mapper, level)
+                lines["color"].append(ink_on(under))
+                if np.isfinite(xs).any():
+                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under)
+                    for name, value in label.items():
+                        labels[name].append(value)
+        self.contours.line_renderer.data_source.data = lines
+        self.contours.levels = [float(level) for level in levels]
+        refill(self.sources["contour_labels"], labels)
+
+    def _contour_label(self, level: float, xs: np.ndarray, ys: np.ndarray, under: str) -> dict:
+        bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
+        x, y = label_point(xs, ys, *bounds)
+        align, baseline = label_anchor(x, y, *bounds)
+        return {
+            "x": x,
+            "y": y,
+            "text": f"{level:g} m³/day",
+            "level": float(level),
+            "color": ink_on(under),
+            "background": under,
+            "align": align,
+            "baseline": baseline,
+        }
 
     def _mark(self, design: windpump.Design) -> None:
         here = float(windpump.steady_flow(design, design.V_ref)) * PER_DAY
@@ -173,7 +302,7 @@ class MapTab:
             self.readout,
             pn.pane.Bokeh(self.figure, sizing_mode="stretch_width"),
             pn.pane.HTML(
-                "<p>Colour (a log scale) and white contours (1, 2, 5 × 10ᵏ m³/day): mean flow "
+                "<p>Colour (a log scale) and contours labelled in m³/day (1, 2, 5 × 10ᵏ): mean flow "
                 "m A R α₊/π of the averaged theory (Eq. 21) for every other input as set. Left of the red line the stall margin "
                 "(Eq. 22) is below 1 and the pump cannot run; the dashed line is the best ratio "
                 "at each head (stall margin 9/8 without torque at rest). Tap the map to move the "

@@ -8,7 +8,7 @@ import re
 
 import numpy as np
 import panel as pn
-from figures import linkage_view, slider_crank_views
+from figures import LINKS, linkage_view, slider_crank_views
 from styles import TEXT
 
 import windpump
@@ -16,7 +16,7 @@ from windpump import linkage
 from windpump.linkage import NoClosure
 
 STEP = math.radians(2.0)  # a dragged input is followed in steps of at most this
-LINK_COLORS = {"r1": "#d62728", "r2": "#1f77b4", "r3": "#2ca02c", "r4": "#9467bd", "r5": "#ff7f0e"}
+LINKED = ("r1", "r2", "r3", "r4", "r5")  # the links drawn in a colour of their own
 FOUR_BAR = "Four-bar"
 SIX_BAR = "Watt six-bar (double loop)"
 # name: (label, start, end, step, value); lengths [m], angles [°]
@@ -62,10 +62,11 @@ def xy(points) -> dict:
 class Mechanisms:
     """The tab's widgets, figures and data sources; ``set_design`` follows the pump's sliders."""
 
-    def __init__(self, slider):
+    def __init__(self, slider, dark: bool = False):
+        self.link_colors = dict(zip(LINKED, LINKS[dark], strict=True))
         self.crank_angle = slider("Crank angle θ [°]", 0.0, 360.0, 1.0, 90.0, "0")
         self.crank_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
-        self.crank_figure, self.travel_figure, crank_sources = slider_crank_views()
+        self.crank_figure, self.travel_figure, crank_sources = slider_crank_views(dark)
 
         self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
         self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
@@ -83,7 +84,7 @@ class Mechanisms:
         self.linkage_error = pn.pane.Alert(
             "", alert_type="warning", visible=False, stylesheets=NOTE_CSS
         )
-        self.linkage_figure, linkage_sources = linkage_view()
+        self.linkage_figure, linkage_sources = linkage_view(dark)
         self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
         self.sources = {**crank_sources, **linkage_sources}
 
@@ -119,7 +120,9 @@ class Mechanisms:
         bore = d.bore
         s = self.sources
         s["crank_links"].data = segments(
-            [centre, pin, piston], [(0, 1), (1, 2)], ["#d62728", "#1f77b4"]
+            [centre, pin, piston],
+            [(0, 1), (1, 2)],
+            [self.link_colors["r1"], self.link_colors["r2"]],
         )
         s["crank_joints"].data = xy([pin, piston])
         s["crank_pivots"].data = xy([centre])
@@ -232,7 +235,7 @@ class Mechanisms:
             bars += [("D", "C", "r3"), ("C", "F", "r4"), ("F", "E", "r5")]
         s = self.sources
         s["linkage_links"].data = segments(
-            p, [(a, b) for a, b, _ in bars], [LINK_COLORS[link] for *_, link in bars]
+            p, [(a, b) for a, b, _ in bars], [self.link_colors[link] for *_, link in bars]
         )
         s["linkage_pivots"].data = xy([p[name] for name in "ODE" if name in p])
         s["linkage_joints"].data = xy([p[name] for name in "ABCF" if name in p])

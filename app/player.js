@@ -1,6 +1,7 @@
 // The machine's player, in the browser: it draws the run at a time from the frames the server sent
 // once per run, with no server round trip per frame. Every CustomJS of the machine view runs this
 // file's body, then one command: `play`, `scrub`, `reload` (a new run) or `show` (laid out).
+// The moving parts take the theme's colours from `palette` (machine.moving_colors).
 // Changes are made with setv(..., {sync: false}): they redraw here and are never sent back.
 const P = frames._player || (frames._player = {playing: false, t: 0, raf: 0, wall: null, drawn: 0})
 
@@ -42,7 +43,7 @@ function draw(t) {
     xs.push([g.c0x, g.c0x - g.blade * Math.sin(a)]); ys.push([g.c0y, g.c0y + g.blade * Math.cos(a)])
   }
   xs.push([g.c0x, g.c0x - 0.8 * g.R0 * Math.sin(rotor)]); ys.push([g.c0y, g.c0y + 0.8 * g.R0 * Math.cos(rotor)])
-  colors.push(...Array(4).fill("#6b6b6b"))
+  colors.push(...Array(4).fill(palette.blade))
   // Cylinder k on its own throw, pitch * k to the right, sees the crank angle theta - 2 pi k / n.
   const n = g.cylinders || 1, joint = {x: [], y: []}, body = {x: [], y: [], width: [], height: []}
   let top0 = 0
@@ -51,8 +52,8 @@ function draw(t) {
     const pin = [cx - g.R * Math.sin(phi), g.R * Math.cos(phi)]
     const top = g.L + g.R - piston_x(phi)  // piston pin height above the crank centre
     if (k == 0) top0 = top
-    xs.push([cx, pin[0]]); ys.push([0, pin[1]]); colors.push("#d62728")  // crank
-    xs.push([pin[0], cx]); ys.push([pin[1], top]); colors.push("#1f77b4")  // rod
+    xs.push([cx, pin[0]]); ys.push([0, pin[1]]); colors.push(palette.crank)  // crank
+    xs.push([pin[0], cx]); ys.push([pin[1], top]); colors.push(palette.rod)  // rod
     joint.x.push(pin[0], cx); joint.y.push(pin[1], top)
     body.x.push(cx); body.y.push(top + 0.4 * g.bore); body.width.push(g.bore); body.height.push(0.8 * g.bore)
   }

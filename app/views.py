@@ -12,14 +12,13 @@ import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
 from envelope import band, bin_means
-from figures import COLORS, HEIGHT, draw_band, empty, legend, line, new_figure
+from figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
 from styles import CAPTION_CSS
 
 import windpump
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
 CLOSEUP_REVOLUTIONS = 3
-GHOST = "#9a9a9a"
 
 
 def same(old, new) -> bool:
@@ -63,8 +62,10 @@ class View:
 
     caption = ""
 
-    def __init__(self):
+    def __init__(self, dark: bool = False):
         self.sources: dict[str, ColumnDataSource] = {}
+        self.dark = dark
+        self.colors = palette(dark)  # the theme's: every drawn colour stands out of its background
 
     def panel(self, **options) -> pn.Column:
         return pn.Column(
@@ -82,13 +83,15 @@ class TimeView(View):
     """A view against the run's time, on the axis shared by every time view, with the player's
     time cursor."""
 
-    def __init__(self, time_range: Range1d, cursor: ColumnDataSource):
-        super().__init__()
+    def __init__(self, time_range: Range1d, cursor: ColumnDataSource, dark: bool = False):
+        super().__init__(dark)
         self.time_range, self.cursor = time_range, cursor
 
     def time_figure(self, title: str, y_label: str, tooltips: list, **options):
         fig = new_figure(title, "time t [s]", y_label, x_range=self.time_range, **options)
-        fig.vspan(x="t", source=self.cursor, line_color="#444444", line_width=2, alpha=0.6)
+        fig.vspan(
+            x="t", source=self.cursor, line_color=self.colors["cursor"], line_width=2, alpha=0.6
+        )
         fig.add_tools(HoverTool(tooltips=tooltips, mode="vline", renderers=[]))
         return fig
 
@@ -119,9 +122,9 @@ class SpeedView(TimeView):
         "averaged spin-up of Eq. (24) and the steady speeds α± of Eq. (21)."
     )
 
-    def __init__(self, time_range, cursor):
-        super().__init__(time_range, cursor)
-        s = self.sources
+    def __init__(self, time_range, cursor, dark: bool = False):
+        super().__init__(time_range, cursor, dark)
+        s, c = self.sources, self.colors
         s.update({name: empty("t", "speed") for name in ("spinup", "cycle_mean", "alpha_plus")})
         s["alpha_minus"] = empty("t", "speed")
         s["speed"] = empty("t", "lower", "upper")
@@ -131,26 +134,26 @@ class SpeedView(TimeView):
             "θ̇ [rad/s]",
             [("t", "@t{0.00} s"), ("θ̇", "@lower{0.000} to @upper{0.000} rad/s")],
         )
-        ghost = draw_band(fig, s["speed_ghost"], GHOST)
-        band_area = draw_band(fig, s["speed"], COLORS["integrated"])
-        averaged = line(fig, "t", "speed", s["spinup"], COLORS["averaged"], 3, "dashed")
-        mean = line(fig, "t", "speed", s["cycle_mean"], COLORS["mean"])
+        ghost = draw_band(fig, s["speed_ghost"], c["ghost"])
+        integrated = draw_band(fig, s["speed"], c["integrated"])
+        averaged = line(fig, "t", "speed", s["spinup"], c["averaged"], 3, "dashed")
+        mean = line(fig, "t", "speed", s["cycle_mean"], c["mean"])
         self.items = legend(
             fig,
             {
-                "full, Eq. (12)": band_area,
+                "full, Eq. (12)": integrated,
                 "averaged, Eq. (24)": averaged,
                 "cycle mean": mean,
                 "α₊, Eq. (21)": line(
-                    fig, "t", "speed", s["alpha_plus"], COLORS["alpha_plus"], 2, "dotted"
+                    fig, "t", "speed", s["alpha_plus"], c["alpha_plus"], 2, "dotted"
                 ),
                 "α₋, Eq. (21)": line(
-                    fig, "t", "speed", s["alpha_minus"], COLORS["alpha_minus"], 2, "dotted"
+                    fig, "t", "speed", s["alpha_minus"], c["alpha_minus"], 2, "dotted"
                 ),
                 "pinned run": ghost,
             },
         )
-        self.hover_on(band_area)
+        self.hover_on(integrated[0])
 
     def update(self, seen, bins):
         run, s = seen.run, self.sources
@@ -175,9 +178,9 @@ class FlowView(TimeView):
         "draw one by one) and its mean."
     )
 
-    def __init__(self, time_range, cursor):
-        super().__init__(time_range, cursor)
-        s = self.sources
+    def __init__(self, time_range, cursor, dark: bool = False):
+        super().__init__(time_range, cursor, dark)
+        s, c = self.sources, self.colors
         s["flow"] = empty("t", "lower", "upper")
         s["flow_ghost"] = empty("t", "lower", "upper")
         s["mean_flow"] = empty("t", "flow")
@@ -186,28 +189,23 @@ class FlowView(TimeView):
             "Q [L/s]",
             [("t", "@t{0.00} s"), ("Q", "@lower{0.0000} to @upper{0.0000} L/s")],
         )
-        ghost = draw_band(fig, s["flow_ghost"], GHOST)
-        band_area = draw_band(fig, s["flow"], COLORS["flow"])
+        ghost = draw_band(fig, s["flow_ghost"], c["ghost"])
+        instantaneous = draw_band(fig, s["flow"], c["flow"])
         self.items = legend(
             fig,
             {
-                "Q, min to max": band_area,
-                "mean over the run": line(
-                    fig, "t", "flow", s["mean_flow"], COLORS["mean"], 3, "dashed"
-                ),
+                "Q, min to max": instantaneous,
+                "mean over the run": line(fig, "t", "flow", s["mean_flow"], c["mean"], 3, "dashed"),
                 "pinned run": ghost,
             },
         )
-        self.hover_on(band_area)
+        self.hover_on(instantaneous[0])
 
     def update(self, seen, bins):
         run, s = seen.run, self.sources
         refill(s["flow"], band_data(run.t, 1e3 * run.flow, bins))
         refill(s["mean_flow"], {"t": [0.0, float(run.t[-1])], "flow": [1e3 * seen.mean_flow] * 2})
         self.show_ghost()
-
-
-FACE_COLORS = ("#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf")
 
 
 class CloseupView(View):
@@ -217,8 +215,8 @@ class CloseupView(View):
         "several faces, each face's pulses (thin) and their sum (thick)."
     )
 
-    def __init__(self):
-        super().__init__()
+    def __init__(self, dark: bool = False):
+        super().__init__(dark)
         self.sources["closeup"] = empty("t", "flow")
         self.sources["closeup_faces"] = empty("xs", "ys", "color")
         self.figure = fig = new_figure(
@@ -230,8 +228,9 @@ class CloseupView(View):
         fig.multi_line(
             "xs", "ys", source=self.sources["closeup_faces"], line_color="color", line_width=1.5
         )
-        drawn = line(fig, "t", "flow", self.sources["closeup"], COLORS["flow"], width=3)
-        fig.scatter("t", "flow", source=self.sources["closeup"], color=COLORS["flow"], size=4)
+        flow = self.colors["flow"]
+        drawn = line(fig, "t", "flow", self.sources["closeup"], flow, width=3)
+        fig.scatter("t", "flow", source=self.sources["closeup"], color=flow, size=4)
         fig.add_tools(
             HoverTool(
                 tooltips=[("t", "@t{0.000} s"), ("Q", "@flow{0.0000} L/s")],
@@ -247,12 +246,13 @@ class CloseupView(View):
         refill(self.sources["closeup"], {"t": t, "flow": 1e3 * run.flow[window]})
         faces = run.face_flows()[:, window] if run.design.deliveries > 1 else np.empty((0, 0))
         delivering = [k for k in range(len(faces)) if faces[k].any()]
+        faces_colors = FACES[self.dark]
         refill(
             self.sources["closeup_faces"],
             {
                 "xs": [t] * len(delivering),
                 "ys": [1e3 * faces[k] for k in delivering],
-                "color": [FACE_COLORS[(k // 2) % len(FACE_COLORS)] for k in delivering],
+                "color": [faces_colors[(k // 2) % len(faces_colors)] for k in delivering],
             },
         )
 
@@ -263,8 +263,9 @@ class EnergyView(TimeView):
         "into spinning the rotor up, d(½ I_eff θ̇²)/dt; below zero the slowing rotor gives power back."
     )
 
-    def __init__(self, time_range, cursor):
-        super().__init__(time_range, cursor)
+    def __init__(self, time_range, cursor, dark: bool = False):
+        super().__init__(time_range, cursor, dark)
+        c = self.colors
         source = self.sources["power_split"] = empty(
             "t", "hydraulic", "shaft", "kinetic", "kinetic_low", "kinetic_high"
         )
@@ -278,16 +279,20 @@ class EnergyView(TimeView):
                 ("spinning up", "@kinetic{0.00} W"),
             ],
         )
-        water = fig.varea("t", 0.0, "hydraulic", source=source, color=COLORS["flow"], alpha=0.5)
+        # Translucent areas (the dashed line shows through), outlined so that each stands out.
+        water = fig.varea("t", 0.0, "hydraulic", source=source, color=c["flow"], alpha=0.5)
+        water_edge = line(fig, "t", "hydraulic", source, c["flow"], 1.5)
         spin = fig.varea(
-            "t", "kinetic_low", "kinetic_high", source=source, color=COLORS["averaged"], alpha=0.5
+            "t", "kinetic_low", "kinetic_high", source=source, color=c["averaged"], alpha=0.5
         )
-        shaft = line(fig, "t", "shaft", source, "black", 2, "dashed")
+        spin_edge = line(fig, "t", "kinetic_high", source, c["averaged"], 1.5)
+        line(fig, "t", "kinetic_low", source, c["averaged"], 1.5)
+        shaft = line(fig, "t", "shaft", source, c["ink"], 2, "dashed")
         legend(
             fig,
             {
-                "lifting water": water,
-                "spinning up (+), back (−)": spin,
+                "lifting water": [water, water_edge],
+                "spinning up (+), back (−)": [spin, spin_edge],
                 "windmill T ω": shaft,
             },
         )
@@ -334,13 +339,13 @@ class StallView(View):
     )
     NAMES = ("windmill: Tₘ†", "load: m R† L†/π")
 
-    def __init__(self):
-        super().__init__()
+    def __init__(self, dark: bool = False):
+        super().__init__(dark)
         self.sources["stall"] = ColumnDataSource(
             {
                 "name": list(self.NAMES),
                 "value": [0.0, 0.0],
-                "color": [COLORS["windmill"], COLORS["load"]],
+                "color": [self.colors["windmill"], self.colors["load"]],
             }
         )
         self.figure = fig = new_figure(
@@ -374,9 +379,9 @@ class OperatingView(View):
         "the operating point (filled: stable) and an unstable one (open)."
     )
 
-    def __init__(self):
-        super().__init__()
-        s = self.sources
+    def __init__(self, dark: bool = False):
+        super().__init__(dark)
+        s, c = self.sources, self.colors
         s.update(
             {
                 name: empty("omega", "power")
@@ -390,19 +395,17 @@ class OperatingView(View):
             tools="pan,box_zoom,reset,save",
         )
         point = dict(x="omega", y="power", size=14)
-        curve = line(fig, "omega", "power", s["curve"], COLORS["windmill"], 3)
+        curve = line(fig, "omega", "power", s["curve"], c["windmill"], 3)
         self.items = legend(
             fig,
             {
                 "windmill, Eq. (11)": curve,
-                "pump load, Eq. (5)": line(
-                    fig, "omega", "power", s["load_line"], COLORS["load"], 3
-                ),
-                "operating point": fig.scatter(source=s["stable"], color="black", **point),
+                "pump load, Eq. (5)": line(fig, "omega", "power", s["load_line"], c["load"], 3),
+                "operating point": fig.scatter(source=s["stable"], color=c["ink"], **point),
                 "unstable": fig.scatter(
                     source=s["unstable"],
-                    fill_color="white",
-                    line_color="black",
+                    fill_color=c["joint"],
+                    line_color=c["ink"],
                     line_width=2,
                     **point,
                 ),
@@ -412,7 +415,7 @@ class OperatingView(View):
                     source=s["data"],
                     size=8,
                     marker="triangle",
-                    color=COLORS["data"],
+                    color=c["data"],
                 ),
             },
         )

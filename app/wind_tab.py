@@ -10,12 +10,13 @@ Every number comes from ``windpump``.
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
 from envelope import band
-from figures import COLORS, TICKS, draw_band, empty, legend, line, new_figure
+from figures import TICKS, draw_band, empty, legend, line, new_figure, palette
 from readouts import Readout
 from styles import CAPTION_CSS, TEXT
 from uploads import WIND_CLASS, WIND_MAX_BYTES
@@ -32,13 +33,38 @@ WIND_READOUTS = {
     "site_bounds": "Averaged over the site's Weibull wind [L/day]",
     "thresholds": "V_stop · V_start [m/s]",
 }
-STOP_COLOR, START_COLOR = "#d62728", "#2ca02c"
 
 
 @functools.lru_cache(maxsize=8)
 def gusty_day(mean_wind: float, k: float, time_scale: float, seed: int):
     """A day of gusty wind at one sample a second (kept: a pump slider move reuses it)."""
     return gusty(mean_wind, DAY, k=k, time_scale=time_scale, seed=seed)
+
+
+def duration_text(seconds: float) -> str:
+    """A record's length as a person says it: "3 h 0 min", "45 min", "12.5 days"."""
+    minutes = round(seconds / 60.0)
+    if minutes >= 2 * 24 * 60:
+        return f"{seconds / DAY:.1f} days"
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours} h {minutes} min" if hours else f"{minutes} min"
+
+
+def is_a_day(duration: float) -> bool:
+    """Whether a record [s] is a day long (to the minute): its litres are then a day's."""
+    return math.isclose(duration, DAY, abs_tol=60.0)
+
+
+def record_water_text(litres: float, per_day: float, duration: float) -> tuple[str, str]:
+    """The day_litres readout's (label, value): a day's litres for a record of a day; for a
+    shorter or longer record its own litres, over its length, and the rate a day that makes (so
+    three hours' water is not read as a day's)."""
+    if is_a_day(duration):
+        return WIND_READOUTS["day_litres"], f"{litres:,.0f}"
+    return (
+        f"This record ({duration_text(duration)}), in full",
+        f"{litres:,.0f} L ({per_day:,.0f} L/day at this rate)",
+    )
 
 
 def _same_day(a: tuple, b: tuple) -> bool:
@@ -50,8 +76,9 @@ def _same_day(a: tuple, b: tuple) -> bool:
 class WindTab:
     """The Wind tab's widgets, figures and ``update(design_at_v_ref, inputs)``."""
 
-    def __init__(self, sliders: dict, bins: int | None):
+    def __init__(self, sliders: dict, bins: int | None, dark: bool = False):
         self.bins = bins
+        self.colors = palette(dark)
         self.sliders = sliders
         self.measured: windpump.wind.WindRecord | None = None
         self.measured_name = ""
@@ -84,7 +111,7 @@ class WindTab:
     # -- figures -----------------------------------------------------------------------------
 
     def _curve_figure(self):
-        s = self.sources
+        s, c = self.sources, self.colors
         s["curve"] = empty("V", "flow")
         s["density"] = empty("V", "density")
         s["here"] = empty("V", "flow")
@@ -93,15 +120,28 @@ class WindTab:
         axis = LinearAxis(y_range_name="density", axis_label="Weibull density [s/m]")
         axis.axis_label_text_font_size = axis.major_label_text_font_size = TICKS
         fig.add_layout(axis, "right")
-        curve = line(fig, "V", "flow", s["curve"], COLORS["flow"], 3)
+        curve = line(fig, "V", "flow", s["curve"], c["flow"], 3)
         density = fig.varea(
-            "V", 0, "density", source=s["density"], y_range_name="density", color="#999999",
+            "V", 0, "density", source=s["density"], y_range_name="density", color=c["site"],
             alpha=0.3,
         )  # fmt: skip
-        here = fig.scatter("V", "flow", source=s["here"], size=12, color=COLORS["mean"])
-        self.stop_span = Span(location=0, dimension="height", line_color=STOP_COLOR, line_width=2)
+        # The faint area's outline, so that it stands out of the background.
+        density_edge = fig.line(
+            "V",
+            "density",
+            source=s["density"],
+            y_range_name="density",
+            color=c["site"],
+            line_width=1.5,
+        )
+        here = fig.scatter("V", "flow", source=s["here"], size=12, color=c["mean"])
+        self.stop_span = Span(location=0, dimension="height", line_color=c["load"], line_width=2)
         self.start_span = Span(
-            location=0, dimension="height", line_color=START_COLOR, line_width=2, line_dash="dashed"
+            location=0,
+            dimension="height",
+            line_color=c["windmill"],
+            line_width=2,
+            line_dash="dashed",
         )
         fig.add_layout(self.stop_span)
         fig.add_layout(self.start_span)
@@ -114,12 +154,16 @@ class WindTab:
         )
         self.curve_items = legend(
             fig,
-            {"averaged flow (α₊)": curve, "site's wind (Weibull)": density, "steady wind V": here},
+            {
+                "averaged flow (α₊)": curve,
+                "site's wind (Weibull)": [density, density_edge],
+                "steady wind V": here,
+            },
         )
         return fig
 
     def _day_figures(self):
-        s = self.sources
+        s, c = self.sources, self.colors
         s["wind"] = empty("t", "lower", "upper")
         s["speed"] = empty("t", "lower", "upper")
         s["litres"] = empty("t", "litres")
@@ -128,20 +172,25 @@ class WindTab:
             s[f"{kind}_litres"] = empty("t", "y")
         shared = Range1d(0, 24)
         wind = new_figure("The day's wind", "time [h]", "wind speed V [m/s]", x_range=shared)
-        draw_band(wind, s["wind"], "#8c564b")
+        draw_band(wind, s["wind"], c["wind"])
         speed = new_figure("Crank speed", "time [h]", "crank speed θ̇ [rad/s]", x_range=shared)
-        draw_band(speed, s["speed"], COLORS["integrated"])
+        draw_band(speed, s["speed"], c["integrated"])
         litres = new_figure("Water lifted", "time [h]", "water since dawn [L]", x_range=shared)
-        lifted = line(litres, "t", "litres", s["litres"], COLORS["flow"], 3)
+        lifted = line(litres, "t", "litres", s["litres"], c["flow"], 3)
         markers = {}
         for fig, suffix in ((wind, "wind"), (litres, "litres")):
             markers[suffix] = (
                 fig.scatter("t", "y", source=s[f"stops_{suffix}"], marker="inverted_triangle",
-                            size=11, color=STOP_COLOR),
+                            size=11, color=c["load"]),
                 fig.scatter("t", "y", source=s[f"starts_{suffix}"], marker="triangle", size=11,
-                            color=START_COLOR),
+                            color=c["windmill"]),
             )  # fmt: skip
-        legend(wind, {"stops": markers["wind"][0], "starts": markers["wind"][1]})
+        # Items only for what the day has: no empty swatches on a day without stops.
+        self.marker_items = legend(
+            wind, {"stops": markers["wind"][0], "starts": markers["wind"][1]}
+        )
+        for item in self.marker_items.values():
+            item.visible = False
         litres.add_tools(
             HoverTool(
                 renderers=[lifted],
@@ -230,11 +279,15 @@ class WindTab:
                 self.sources[f"{kind}_litres"],
                 {"t": at / 3600.0, "y": 1e3 * np.interp(at, run.t, run.volume)},
             )
-        per_day = 1e3 * float(run.volume[-1]) * DAY / duration
-        self.readouts["day_litres"].show(WIND_READOUTS["day_litres"], f"{per_day:,.0f}")
+            self.marker_items[kind].visible = len(at) > 0
+        lifted = 1e3 * float(run.volume[-1])
+        per_day = lifted * DAY / duration
+        self.readouts["day_litres"].show(*record_water_text(lifted, per_day, duration))
         low, high = windpump.record_water(design, record)
+        a_day = is_a_day(duration)
         self.readouts["record_bounds"].show(
-            WIND_READOUTS["record_bounds"], f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+            WIND_READOUTS["record_bounds"] if a_day else "Averaged over this record's wind [L/day]",
+            f"{1e3 * low:,.0f} … {1e3 * high:,.0f}",
         )
         source = (
             f"the measured record *{self.measured_name}* ({duration / 3600:.1f} h)"

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from bokeh.events import Tap
+from bokeh.models import ColorBar
 
 import windpump
 
@@ -78,3 +79,41 @@ def test_contour_levels_are_round_and_within_the_colour_range():
     assert list(contour_levels(flow)) == [5.0, 10.0, 20.0, 50.0, 100.0]
     assert colour_range(np.array([[0.01, 104.0]])) == (1.04, 104.0)  # two decades at most
     assert len(contour_levels(np.full((2, 2), np.nan))) == 0
+
+
+def test_the_colour_bar_is_labelled_over_its_whole_log_scale(app):
+    tab = app.design_map
+    bar = tab.figure.select_one(ColorBar)
+    low, high = tab.mapper.low, tab.mapper.high
+    ticks = np.array(bar.ticker.ticks)
+    assert len(ticks) >= 4 and np.all((ticks >= low) & (ticks <= high))
+    position = (np.log(ticks) - math.log(low)) / (math.log(high) - math.log(low))
+    assert position.min() < 0.25 and position.max() > 0.75  # not bunched at the top
+    labels = [bar.formatter.format % tick for tick in ticks]  # the page's printf formatting
+    mantissas = {float(label.replace("0", "").replace(".", "") or 0) for label in labels}
+    assert mantissas <= {1.0, 2.0, 5.0}  # round values: 0.5, 1, 2, 5, 10, 20, 50, ...
+    assert not any("e" in label or "^" in label for label in labels)
+
+
+def test_every_contour_is_labelled_with_its_value_on_it(app):
+    tab = app.design_map
+    flow = tab.sources["flow"].data["image"][0]  # checked against the core above
+    lines = tab.contours.line_renderer.data_source.data
+    drawn = [level for level, xs in zip(lines["levels"], lines["xs"], strict=True)
+             if np.isfinite(xs).any()]  # fmt: skip
+    assert len(drawn) >= 3
+    labels = tab.sources["contour_labels"].data
+    assert labels["text"] == [f"{level:g} m³/day" for level in drawn]
+    for level, x, y in zip(drawn, labels["x"], labels["y"], strict=True):
+        assert on_a_grid_edge(tab, flow, x, y) == pytest.approx(level, rel=1e-6)  # on its line
+
+
+def on_a_grid_edge(tab, flow, x, y) -> float:
+    """The map's value at a point of a grid cell's edge (where contour lines cross it), linear
+    along that edge."""
+    column = np.flatnonzero(np.isclose(tab.ratios, x, rtol=0, atol=1e-12))
+    if column.size:
+        return float(np.interp(y, tab.heads, flow[:, column[0]]))
+    row = np.flatnonzero(np.isclose(tab.heads, y, rtol=0, atol=1e-12))
+    assert row.size, (x, y)  # a vertex of a contour line lies on the grid's edges
+    return float(np.interp(x, tab.ratios, flow[row[0], :]))

@@ -11,7 +11,7 @@ import pytest
 from scipy import special, stats
 
 import windpump
-from windpump.wind import gusty
+from windpump.wind import gusty, read_csv
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
 from explorer import Explorer  # noqa: E402
@@ -102,7 +102,8 @@ def test_a_measured_wind_file_replaces_the_day_and_a_bad_one_is_refused(app):
     run = app.wind.last_run
     assert run.t[-1] == 7200.0 and "mast.csv" in app.wind.day_note.object
     day = value(app, "day_litres")
-    assert day == litres(1e3 * run.volume[-1] * DAY / 7200.0)
+    lifted = 1e3 * run.volume[-1]
+    assert day == f"{litres(lifted)} L ({litres(lifted * DAY / 7200.0)} L/day at this rate)"
     app.load_wind_data(b"t,V\n0,5\n10,-3\n")
     assert app.wind.upload_message.visible and "line 3" in app.wind.upload_message.object
     assert value(app, "day_litres") == day  # nothing lost
@@ -133,3 +134,44 @@ def test_a_steady_wind_move_leaves_the_day_as_it_was(app):
     assert app.wind.last_run is day  # the day runs in its own record: V does not enter it
     app.set_values(seed=2.0)
     assert app.wind.last_run is not day
+
+
+def steady_record(hours: float, speed: float) -> bytes:
+    rows = "".join(f"{60 * i},{speed}\n" for i in range(int(hours * 60) + 1))
+    return ("t [s],V [m/s]\n" + rows).encode()
+
+
+def test_a_record_shorter_than_a_day_says_its_water_and_its_rate_a_day(app):
+    """Three hours' water is not a day's: the readout gives the record's litres over its length,
+    then the rate a day that makes."""
+    app.load_wind_data(steady_record(3.0, 6.0))
+    duration = 3 * 3600.0
+    record = read_csv(steady_record(3.0, 6.0))
+    run = windpump.simulate(SEED, duration, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
+    lifted = 1e3 * run.volume[-1]
+    html = app.wind.readouts["day_litres"].object
+    assert "This record (3 h 0 min), in full" in html
+    assert "Averaged over this record's wind [L/day]" in app.wind.readouts["record_bounds"].object
+    assert value(app, "day_litres") == (
+        f"{litres(lifted)} L ({litres(lifted * 86_400 / duration)} L/day at this rate)"
+    )
+    app.forget_wind_data()  # a whole day: its litres are the day's
+    assert "This day, in full [L/day]" in app.wind.readouts["day_litres"].object
+    assert "Averaged over this day's wind [L/day]" in app.wind.readouts["record_bounds"].object
+    assert value(app, "day_litres") == litres(1e3 * app.wind.last_run.volume[-1])
+
+
+def legend_labels(fig) -> list[str]:
+    return [item.label.value for item in fig.legend[0].items if item.visible]
+
+
+def test_the_stops_and_starts_legend_lists_only_what_the_day_has(app):
+    app.load_wind_data(steady_record(3.0, 6.0))  # a steady wind: it never stops
+    run = app.wind.last_run
+    assert len(run.stops) == len(run.starts) == 0
+    assert legend_labels(app.wind.day_wind) == []
+    app.forget_wind_data()
+    app.set_values(cylinders=2.0, T_0=0.4, mean_wind=3.0, time_scale=600.0, I0=0.2)
+    run = app.wind.last_run
+    assert len(run.stops) >= 1 and len(run.starts) >= 1
+    assert legend_labels(app.wind.day_wind) == ["stops", "starts"]

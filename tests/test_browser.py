@@ -441,6 +441,47 @@ def test_a_preset_sets_the_design_and_says_what_to_look_at(page):
     assert page.problems == []
 
 
+# Every legend the page draws, with its visible labels, its box and its figure's width [px]
+# (Bokeh draws legends on the canvas: a label past the figure's edge is cut, "cycle mea").
+LEGEND_BOXES = """() => {
+  const found = []
+  for (const model of Bokeh.documents[0].all_models) {
+    if (model.type !== 'Legend' && model.constructor.__name__ !== 'Legend') continue
+    const view = Bokeh.index.find_one(model)
+    if (!view || !view.bbox) continue
+    const labels = model.items.filter(item => item.visible).map(item => item.label.value)
+    found.push({labels, x0: view.bbox.x0, x1: view.bbox.x1, width: view.parent.bbox.width})
+  }
+  return found
+}"""
+
+
+def test_with_a_pinned_run_every_legend_label_shows_in_full(browser, url):
+    """A kick just above α₋ draws all six of the crank-speed view's items once a run is pinned:
+    every legend lies within its figure at 1280 x 720."""
+    page = open_page(browser, url, width=1280, height=720, query="?theta_dot0=1.5")
+    try:
+        page.get_by_role("button", name="Pin this run").click()
+        page.wait_for_function(
+            "() => Bokeh.documents[0].get_model_by_name('speed_ghost').data.t.length > 0",
+            timeout=60_000,
+        )
+        page.wait_for_timeout(500)  # the legend is laid out on the next frame
+        legends = page.evaluate(LEGEND_BOXES)
+        speed = [
+            box
+            for box in legends
+            if "pinned run" in box["labels"] and "α₋, Eq. (21)" in box["labels"]
+        ]
+        assert len(speed) == 1 and len(speed[0]["labels"]) == 6
+        assert len(legends) >= 4
+        for box in legends:
+            assert box["x0"] >= 0 and box["x1"] <= box["width"], box
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize(
     "query, shown",
     [

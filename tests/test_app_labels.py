@@ -1,0 +1,59 @@
+"""What the figures say: no label reads as code, and every legend's labels fit its figure."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+from bokeh.models import Axis, ColorBar, Legend
+
+import windpump
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
+from explorer import Explorer  # noqa: E402
+
+
+def every_figure(app: Explorer) -> list:
+    app.main().active = 2  # the Wind tab runs its day once opened
+    wind, design_map, mechanisms = app.wind, app.design_map, app.mechanisms
+    design_map.update(app.inputs.design())
+    return [
+        *(view.figure for view in app.views),
+        wind.curve,
+        wind.day_wind,
+        wind.day_speed,
+        wind.day_litres,
+        design_map.figure,
+        mechanisms.crank_figure,
+        mechanisms.travel_figure,
+        mechanisms.linkage_figure,
+    ]
+
+
+def texts(fig) -> list[str]:
+    """A figure's title, axis labels, colour bar titles and legend labels."""
+    found = [fig.title.text]
+    found += [axis.axis_label or "" for axis in fig.select(type=Axis)]
+    found += [bar.title or "" for bar in fig.select(type=ColorBar)]
+    found += [item.label.value for legend in fig.select(type=Legend) for item in legend.items]
+    return found
+
+
+def test_no_label_shows_a_caret():
+    """Powers of ten are written as superscripts (× 10⁻⁴), never as code (× 10^-4)."""
+    app = Explorer()
+    for design in ({"h": 3.0}, {"h": 30.0, "T_m": 0.05}, {"T_m": 5.0, "h": 0.5}):
+        app.set_values(**design)
+        figures = every_figure(app)
+        labels = [text for fig in figures for text in texts(fig)]
+        assert len(labels) > 40
+        assert [label for label in labels if "^" in label] == []
+    power = math.floor(math.log10(max(windpump.stall_sides(app.inputs.design()))))
+    written = "".join(dict(zip("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹", strict=True))[c] for c in str(power))
+    assert app.stall.figure.xaxis[0].axis_label.endswith(f"×10{written}]")
+
+
+def test_the_theme_button_offers_the_other_theme():
+    assert Explorer(query={"theme": [b"dark"]}).dark_toggle.label == "Light theme"
+    assert Explorer().dark_toggle.label == "Dark theme"

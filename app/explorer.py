@@ -14,7 +14,7 @@ import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
 from figures import present
-from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text, on_grid
+from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from map_tab import MapTab
@@ -69,15 +69,6 @@ class PromptSlider(pn.widgets.FloatSlider):
     gathered by Panel and the latest applied, so a drag never queues runs."""
 
     _debounce = 0
-
-    def _process_property_change(self, msg: dict) -> dict:
-        # A key press adds the step in the browser's floating point (3.0999999999999996): the
-        # page runs, and the link carries, the value the slider shows (3.1).
-        msg = super()._process_property_change(msg)
-        for key in ("value", "value_throttled"):
-            if isinstance(msg.get(key), int | float) and self.step:
-                msg[key] = on_grid(msg[key], self.step, self.start)
-        return msg
 
 
 class ActionButton(pn.widgets.Button):

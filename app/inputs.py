@@ -108,9 +108,17 @@ class PumpInputs(param.Parameterized):
             {
                 name: link_text(name, value)
                 for name, value in self.values().items()
-                if value != self.param[name].default
+                if not self.is_default(name, value)
             }
         )
+
+    def is_default(self, name: str, value: float | bool) -> bool:
+        """Whether ``value`` is input ``name``'s default, but for the float noise of a slider
+        moved in the browser (3 + 0.1 - 0.1 = 3.0000000000000004)."""
+        default = self.param[name].default
+        if isinstance(value, bool) or isinstance(default, bool):
+            return value == default
+        return abs(value - default) <= 1e-9 * self.param[name].step
 
     def parse_query(self, query: dict) -> tuple[dict[str, float], list[str]]:
         """Values to apply from a URL query (str or bytes values, lists as Tornado gives them),
@@ -177,11 +185,10 @@ def step_decimals(step: float) -> int:
     return len(f"{step:.10f}".rstrip("0").split(".")[1])
 
 
-def on_grid(value: float, step: float, start: float = 0.0) -> float:
-    """``value`` on the slider's grid ``start + k step``, written to the step's decimals (noise
-    such as 3.0999999999999996 becomes 3.1)."""
-    decimals = max(step_decimals(step), step_decimals(start))
-    return round(start + round((value - start) / step) * step, decimals)
+def on_grid(value: float, step: float) -> float:
+    """``value`` on a slider's grid (multiples of ``step``, as every slider here starts on one),
+    to the step's decimals: noise such as 3.0999999999999996 becomes 3.1."""
+    return round(round(value / step) * step, step_decimals(step))
 
 
 def link_text(name: str, value: float | bool) -> str:

@@ -3,10 +3,13 @@ enough for a classroom network."""
 
 from __future__ import annotations
 
+import dataclasses
 import gc
 import logging
 
 from bokeh.server.tornado import DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
+from tornado import httputil
+from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
 
 import windpump
@@ -19,6 +22,14 @@ log = logging.getLogger("windpump.app")
 # and builds the page a second time on connection: measured with 12 pages at once, 8 were built
 # twice and the burst took 91 s instead of 63 s. A session whose page was closed lingers as long.
 UNCONNECTED_SESSION_LIFETIME = 600_000  # [ms]
+
+# Tornado closes a connection whose request line and headers pass 64 KB, with no answer at all (the
+# browser shows ERR_EMPTY_RESPONSE), and answers 400 to a query of more than 1000 fields; a page's
+# link comes back in its session token, in the websocket's request header. Chromium sends URLs up
+# to 2 MB: the page opens, and says when it ignored a link too long to read (explorer.MAX_QUERY).
+REQUEST_HEADERS_LIMIT = 4 * 1024 * 1024  # [bytes]
+# Fields are counted before they are parsed; parsing 20,000 costs the server ~50 ms.
+QUERY_FIELDS_LIMIT = 20_000
 
 
 def on_server_loaded(_server_context) -> None:
@@ -36,6 +47,7 @@ def on_server_loaded(_server_context) -> None:
     for server in servers:
         compress_responses(server)
         keep_sessions_until_connected(server)
+    accept_long_links(http_servers())
     log.info("solver compiled and HTTP compression on, before the first page")
 
 
@@ -43,6 +55,24 @@ def bokeh_servers() -> list[BokehTornado]:
     """The running Bokeh server's Tornado application (``panel serve`` does not hand it to hooks)."""
     # type(), not isinstance(): the heap holds weak proxies, and isinstance() on a dead one raises
     return [o for o in gc.get_objects() if issubclass(type(o), BokehTornado)]
+
+
+def http_servers() -> list[HTTPServer]:
+    """The running server's Tornado HTTP servers (made before the hooks run)."""
+    return [o for o in gc.get_objects() if issubclass(type(o), HTTPServer)]
+
+
+def accept_long_links(servers: list[HTTPServer]) -> None:
+    """Raise the request headers Tornado reads to REQUEST_HEADERS_LIMIT (each new connection
+    takes its limit from the server's ``conn_params``) and the fields of a query it parses to
+    QUERY_FIELDS_LIMIT (a global of Tornado's, from 6.5.5)."""
+    for server in servers:
+        params = server.conn_params
+        params.max_header_size = max(params.max_header_size or 0, REQUEST_HEADERS_LIMIT)
+    config = getattr(httputil, "_DEFAULT_PARSE_BODY_CONFIG", None)
+    if config is not None and config.urlencoded.max_arguments < QUERY_FIELDS_LIMIT:
+        urlencoded = dataclasses.replace(config.urlencoded, max_arguments=QUERY_FIELDS_LIMIT)
+        httputil.set_parse_body_config(dataclasses.replace(config, urlencoded=urlencoded))
 
 
 def compress_responses(server: BokehTornado) -> None:

@@ -8,12 +8,13 @@ from __future__ import annotations
 import contextlib
 import io
 import logging
+from urllib.parse import urlencode
 
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
 from figures import present
-from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs
+from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from map_tab import MapTab
@@ -50,6 +51,8 @@ BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
+MAX_NOTICES = 5  # the link's ignored values listed; the rest counted
+MAX_QUERY = 64 * 1024  # [characters] a longer link's parameters are ignored (app_hooks.py)
 # A tab's content arrives after its header is chosen (the Wind tab's after its day has run): its
 # file input gets the page's size check (uploads.js) as soon as it is drawn.
 GUARD_NEW_UPLOADS_JS = """
@@ -66,6 +69,22 @@ class PromptSlider(pn.widgets.FloatSlider):
     gathered by Panel and the latest applied, so a drag never queues runs."""
 
     _debounce = 0
+
+
+class ActionButton(pn.widgets.Button):
+    """Panel's button, its click handled under the page's document lock.
+
+    A click that arrives while a slider's move is still queued (three arrow keys, then Pin and
+    Reset at once) is run by Panel (1.9.4, ``Syncable._server_event``) as a coroutine without the
+    lock; a Bokeh model changed there (the pinned run's data) raised Bokeh's "_pending_writes
+    should be non-None" and the rest of the action (Reset's inputs) was lost. Panel's
+    ``async_execute`` keeps the lock for a callback marked ``lock``.
+    """
+
+    async def _event_coroutine(self, doc, event) -> None:
+        await super()._event_coroutine(doc, event)
+
+    _event_coroutine.lock = True  # type: ignore[attr-defined]
 
 
 def design_filename(design: windpump.Design) -> str:
@@ -93,7 +112,7 @@ class Explorer(pn.viewable.Viewer):
         **params,
     ):
         super().__init__(inputs=PumpInputs(), **params)
-        query = query or {}
+        query, notices = _readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
         self.dark = _text(query.get("theme", [b""])) == "dark"
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
@@ -112,12 +131,15 @@ class Explorer(pn.viewable.Viewer):
         if not defer_views:
             self.show_views()
         self.param.watch(self._restyle, "presentation")
-        values, notices = self.inputs.parse_query(query)
+        values, read = self.inputs.parse_query(query)
+        notices += read
         self._presentation_from(query, notices)
         self.inputs.param.update(**values)
+        seen = self._run_link(values, notices)
         self._show_notices(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
-        self.update()
+        self._location = None  # the page's address, once follow_in_link() is called
+        self.update(seen)
 
     # -- building ----------------------------------------------------------------------------
 
@@ -244,15 +266,15 @@ class Explorer(pn.viewable.Viewer):
             for name in SWITCHES
         }
         button = dict(stylesheets=[*TEXT, BUTTON_CSS, FOCUS_CSS], sizing_mode="stretch_width")
-        self.reset_button = pn.widgets.Button(
+        self.reset_button = ActionButton(
             label="Reset to the paper's example", color="primary", **button
         )
         self.preset = pn.widgets.Select(
             label="Presets", options=[PRESET_PROMPT, *PRESETS], **button
         )
         self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
-        self.pin_button = pn.widgets.Button(label="Pin this run", **button)
-        self.clear_button = pn.widgets.Button(label="Clear pinned", disabled=True, **button)
+        self.pin_button = ActionButton(label="Pin this run", **button)
+        self.clear_button = ActionButton(label="Clear pinned", disabled=True, **button)
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
         self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
         self.copy_link.js_on_click(code=COPY_LINK_JS)
@@ -305,11 +327,36 @@ class Explorer(pn.viewable.Viewer):
         # dragged slider redraws as fast as the machine can and always ends on its final value.
         self.update()
 
-    def update(self) -> None:
-        """Run the core on the current inputs and redraw; a rejected input shows its message."""
+    def _explore(self) -> windpump.Exploration:
         i = self.inputs
+        return windpump.explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
+
+    def _run_link(self, values: dict, notices: list[str]) -> windpump.Exploration | None:
+        """The run of the link's values. A value the core refuses with the others (``T_0=0.9``
+        with the default T_m = 0.6) is ignored with the core's reason, as a value refused on
+        reading is, and the page opens on the rest. None: nothing ran (update() says why)."""
+        values = dict(values)
+        while True:
+            try:
+                return self._explore()
+            except ValueError as error:
+                name = _input_name(error)
+                if name not in values:
+                    return None
+                label = self.inputs.param[name].label
+                notices.append(
+                    f"{label} ({name}) = “{link_text(name, values.pop(name))}” ignored: "
+                    f"{_sentence(error)}"
+                )
+                setattr(self.inputs, name, self.inputs.param[name].default)
+            except Exception:  # a bug: update() shows and logs it
+                return None
+
+    def update(self, seen: windpump.Exploration | None = None) -> None:
+        """Run the core on the current inputs (``seen``: that run, done already) and redraw; a
+        rejected input shows its message."""
         try:
-            seen = windpump.explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
+            seen = self._explore() if seen is None else seen
             with pn.io.hold():
                 self._draw(seen)
         except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
@@ -372,9 +419,7 @@ class Explorer(pn.viewable.Viewer):
 
     def _culprit(self, error: ValueError) -> str:
         """The control behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
-        name = {"L": "L_over_R", "R1": "R_dagger"}.get(
-            getattr(error, "name", None), getattr(error, "name", None)
-        )
+        name = _input_name(error)
         if name in FORMATS:
             return f"{self.inputs.param[name].label} = {getattr(self.inputs, name):g} "
         return "This design "
@@ -583,14 +628,44 @@ class Explorer(pn.viewable.Viewer):
             self.presentation = raw == "true"
         elif raw:
             notices.append(
-                f"Presentation mode (presentation) = “{raw[:24]}” ignored: true or false."
+                f"Presentation mode (presentation) = “{clipped(raw)}” ignored: true or false."
             )
 
     def _show_notices(self, notices: list[str]) -> None:
-        self.notices.object = "**Some values in the link were ignored:**\n\n" + "\n".join(
-            f"- {notice}" for notice in notices
-        )
+        """The link's ignored values, MAX_NOTICES at most (a link may carry thousands)."""
+        listed = [f"- {notice}" for notice in notices[:MAX_NOTICES]]
+        if len(notices) > MAX_NOTICES:
+            listed.append(f"- … and {len(notices) - MAX_NOTICES} more ignored.")
+        self.notices.object = "**Some values in the link were ignored:**\n\n" + "\n".join(listed)
         self.notices.visible = bool(notices)
+
+    # -- the link ----------------------------------------------------------------------------
+
+    def link_query(self) -> str:
+        """The page's query as its link carries it: the inputs that differ from the defaults,
+        each as its slider shows it, then presentation mode, the dark theme and full resolution
+        if on. Nothing else: a key the page ignored is not carried on."""
+        page = {"presentation": "true"} if self.presentation else {}
+        if self.dark:
+            page["theme"] = "dark"
+        if self.bins is None:
+            page["resolution"] = "full"
+        return "&".join(part for part in (self.inputs.query(), urlencode(page)) if part)
+
+    def follow_in_link(self, location) -> None:
+        """Keep ``location`` (a served page's ``pn.state.location``) on ``link_query()``: written
+        on every change, and written again when the browser reports the address it opened."""
+        self._location = location
+        self.inputs.param.watch(self._write_link, self.inputs.names())
+        self.param.watch(self._write_link, "presentation")
+        location.param.watch(self._write_link, "search")
+        self._write_link()
+
+    def _write_link(self, *_events) -> None:
+        query = self.link_query()
+        search = f"?{query}" if query else ""
+        if self._location is not None and self._location.search != search:
+            self._location.search = search
 
     # -- files -------------------------------------------------------------------------------
 
@@ -811,6 +886,29 @@ class Explorer(pn.viewable.Viewer):
 def card_header(title: str) -> pn.pane.HTML:
     """A card's title at the page's text size (Panel's own title keeps a fixed size)."""
     return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
+
+
+def _readable(query: dict) -> tuple[dict, list[str]]:
+    """``query``, or nothing and a notice if it is longer than MAX_QUERY characters (a link of
+    this page is a few hundred)."""
+    size = sum(len(key) + sum(len(v) + 2 for v in _listed(raw)) for key, raw in query.items())
+    if size <= MAX_QUERY:
+        return query, []
+    return {}, [
+        f"The link was too long ({size / 1024:.0f} KB; at most {MAX_QUERY // 1024} KB): "
+        "its parameters were ignored."
+    ]
+
+
+def _listed(raw) -> list:
+    return list(raw) if isinstance(raw, list | tuple) else [raw]
+
+
+def _input_name(error: Exception) -> str | None:
+    """The input behind a parameter the core refused (the core names R1 and L, the page R† and
+    L/R)."""
+    name = getattr(error, "name", None)
+    return {"L": "L_over_R", "R1": "R_dagger"}.get(name, name)
 
 
 def _linkage_of(design: windpump.Design) -> tuple[float, ...]:

@@ -102,47 +102,116 @@ class PumpInputs(param.Parameterized):
         return {name: self.param[name].default for name in self.names()}
 
     def query(self) -> str:
-        """The URL query of the current inputs (shortest repr of each float, true/false)."""
-        return urlencode({name: _shown(value) for name, value in self.values().items()})
+        """The URL query of the current inputs: only those that differ from their defaults, each
+        written as its slider shows it (``h=3.1``, ``cylinders=2``, ``double_acting=true``)."""
+        return urlencode(
+            {
+                name: link_text(name, value)
+                for name, value in self.values().items()
+                if not self.is_default(name, value)
+            }
+        )
+
+    def is_default(self, name: str, value: float | bool) -> bool:
+        """Whether ``value`` is input ``name``'s default, but for the float noise of a slider
+        moved in the browser (3 + 0.1 - 0.1 = 3.0000000000000004)."""
+        default = self.param[name].default
+        if isinstance(value, bool) or isinstance(default, bool):
+            return value == default
+        return abs(value - default) <= 1e-9 * self.param[name].step
 
     def parse_query(self, query: dict) -> tuple[dict[str, float], list[str]]:
         """Values to apply from a URL query (str or bytes values, lists as Tornado gives them),
-        and a notice for each key ignored: unknown, not a number, or out of its range."""
+        and a notice for each key ignored (unknown, not a number, out of its range, a count that
+        is not whole), given twice (the last is used) or moved to its slider's step."""
         values, notices = {}, []
-        for key, raw in query.items():
-            raw = raw[-1] if isinstance(raw, list | tuple) else raw
-            text = raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
-            shown = text if len(text) <= 24 else text[:24] + "…"
+        for key, raws in query.items():
+            raws = list(raws) if isinstance(raws, list | tuple) else [raws]
+            texts = [_decoded(raw) for raw in raws] or [""]
+            text = texts[-1]
+            if len(texts) > 1 and (key in FORMATS or key in SWITCHES):
+                given = ", ".join(clipped(t) for t in texts[:5]) + (", …" if len(texts) > 5 else "")
+                notices.append(
+                    f"“{clipped(key)}” is given {len(texts)} times ({given}): the last, "
+                    f"“{clipped(text)}”, is used."
+                )
             if key in SWITCHES:
                 if text.lower() in ("true", "false"):
                     values[key] = text.lower() == "true"
                 else:
                     label = self.param[key].label
                     notices.append(
-                        f"{label} ({key}) = “{shown}” ignored: it must be true or false."
+                        f"{label} ({key}) = “{clipped(text)}” ignored: it must be true or false."
                     )
                 continue
             if key not in FORMATS:
                 if key not in IGNORED_QUERY_KEYS:
-                    notices.append(f"“{key}” is not a parameter of this page; ignored.")
+                    notices.append(f"“{clipped(key)}” is not a parameter of this page; ignored.")
                 continue
-            label, (low, high) = self.param[key].label, self.param[key].bounds
-            try:
-                value = float(text)
-            except ValueError:
-                value = math.nan
-            if not (math.isfinite(value) and low <= value <= high):
-                notices.append(
-                    f"{label} ({key}) = “{shown}” ignored: it must be a number from {low:g} to {high:g}."
-                )
-                continue
-            values[key] = value
+            value, notice = self._read_number(key, text)
+            if value is not None:
+                values[key] = value
+            if notice:
+                notices.append(notice)
         return values, notices
 
+    def _read_number(self, key: str, text: str) -> tuple[float | None, str]:
+        """A link's number for slider ``key``, on the slider's step (None if refused), and what
+        to tell the student about it ("" if nothing)."""
+        label, (low, high) = self.param[key].label, self.param[key].bounds
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        shown = f"{label} ({key}) = “{clipped(text)}”"
+        if not (math.isfinite(value) and low <= value <= high):
+            return None, f"{shown} ignored: it must be a number from {low:g} to {high:g}."
+        if key in COUNTS and value != round(value):
+            return None, f"{shown} ignored: it must be a whole number from {low:g} to {high:g}."
+        if value == self.param[key].default:  # a default off the slider's grid (θ₀ = π/2)
+            return value, ""
+        step = self.param[key].step
+        snapped = on_grid(value, step)
+        if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):  # float noise
+            return snapped, ""
+        return (
+            snapped,
+            f"{shown} taken as {link_text(key, snapped)} (its slider moves in steps of {step:g}).",
+        )
 
-def _shown(value: float | bool) -> str:
-    return str(value).lower() if isinstance(value, bool) else repr(float(value))
 
+def step_decimals(step: float) -> int:
+    """Decimals a slider's step needs: 0.05 -> 2, 0.0005 -> 4, 10.0 -> 0."""
+    return len(f"{step:.10f}".rstrip("0").split(".")[1])
+
+
+def on_grid(value: float, step: float) -> float:
+    """``value`` on a slider's grid (multiples of ``step``, as every slider here starts on one),
+    to the step's decimals: noise such as 3.0999999999999996 becomes 3.1."""
+    return round(round(value / step) * step, step_decimals(step))
+
+
+def link_text(name: str, value: float | bool) -> str:
+    """A value as the link carries it: as its slider shows it, to its step's decimals, without
+    trailing zeros (``3.1``, ``0.8``, ``2``, ``true``)."""
+    if isinstance(value, bool):
+        return str(value).lower()
+    text = f"{float(value):.{step_decimals(PumpInputs.param[name].step)}f}"
+    text = text.rstrip("0").rstrip(".") if "." in text else text
+    return "0" if text == "-0" else text
+
+
+def clipped(text: str, limit: int = 40) -> str:
+    """A key or value echoed in a notice, cut to ``limit`` characters (a link may be long)."""
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _decoded(raw) -> str:
+    return raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw)
+
+
+# Sliders that count things: a link's value must be a whole number.
+COUNTS = ("cylinders", "seed")
 
 # Keys the page itself uses, not inputs.
 IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation"}

@@ -1,7 +1,7 @@
 """Entry point of the live explorer: ``panel serve app/`` (a Bokeh directory app).
 
 The page starts from its URL's query (``?h=5&T_m=0.8``) and keeps the query in step with the
-inputs, so a link reproduces what is on the screen.
+inputs (``Explorer.follow_in_link``), so a link reproduces what is on the screen.
 """
 
 import logging
@@ -33,8 +33,7 @@ query = pn.state.session_args
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"
 explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True)
-pn.state.location.sync(explorer.inputs, explorer.inputs.names())
-pn.state.location.sync(explorer, {"presentation": "presentation"})
+explorer.follow_in_link(pn.state.location)  # one way: the page writes its link, reads it once
 with document.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
 # The plots and the machine follow once the page has loaded, and once every other page opening

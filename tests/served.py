@@ -58,8 +58,8 @@ def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, 
     """Start `panel serve app/` on 127.0.0.1; yield (page URL, process); stop it afterwards.
 
     The server's output goes to a temporary file, never a pipe: a pipe nobody reads fills up and
-    stops a chatty server. Waiting for it is bounded by ``timeout`` [s]; the log is shown if it
-    does not come up.
+    stops a chatty server (``server_log(process)`` reads it). Waiting for it is bounded by
+    ``timeout`` [s]; the log is shown if it does not come up.
     """
     port = free_port()
     command = [
@@ -79,6 +79,7 @@ def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, 
     url = f"http://127.0.0.1:{port}/app"
     with tempfile.TemporaryFile("w+") as log:
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, text=True)
+        process.log = log  # type: ignore[attr-defined]
         try:
             # A static file, not the page: asking for the page would open the server's first session
             wait_until_up(f"http://127.0.0.1:{port}/static/js/bokeh.min.js", process, log, timeout)
@@ -90,6 +91,13 @@ def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, 
             except subprocess.TimeoutExpired:
                 process.kill()
                 process.wait(timeout=15)
+
+
+def server_log(process: subprocess.Popen) -> str:
+    """Everything a server started by ``served_app`` has written so far (stdout and stderr)."""
+    fd = process.log.fileno()  # type: ignore[attr-defined]
+    # pread: the server writes through the same file offset, which a seek would move
+    return os.pread(fd, os.fstat(fd).st_size, 0).decode("utf-8", "replace")
 
 
 def wait_until_up(url: str, process: subprocess.Popen, log, timeout: float) -> None:

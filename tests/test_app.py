@@ -5,10 +5,14 @@ from __future__ import annotations
 import logging
 import math
 import sys
+from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
+import param
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import windpump
 
@@ -461,13 +465,36 @@ def test_the_dark_theme_comes_from_the_link():
     assert not Explorer().template().theme.__name__.startswith("Dark")
 
 
-def test_a_link_to_a_design_that_cannot_run_shows_why_over_the_papers_example():
-    app = Explorer(query={"L_over_R": [b"1"]})
-    assert app.error.visible and "the rod cannot reach the crank" in app.error.object
-    assert app.stale and app.results.styles["opacity"] == "0.35"
-    assert max(app.sources["speed"].data["upper"]) == pytest.approx(expected().run.theta_dot.max())
-    app.inputs.L_over_R = 2.0
-    assert not app.stale and not app.error.visible
+@pytest.mark.parametrize(
+    "query, words, runs",
+    [
+        (
+            {"T_0": [b"0.9"]},  # above the default T_m = 0.6
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed: "
+            "T_0 must be < T_m = 0.6 N m",
+            SEED,
+        ),
+        (
+            {"L_over_R": [b"1"], "h": [b"5"]},
+            "L/R, rod / crank (L_over_R) = “1” ignored: L_over_R = 1.0 is not allowed",
+            SEED.replace(h=5.0),
+        ),
+        (
+            {"T_0": [b"0.5"], "T_m": [b"0.4"]},
+            "(T_0) = “0.5” ignored: T_0 = 0.5 N m is not allowed: T_0 must be < T_m = 0.4 N m",
+            SEED.replace(T_m=0.4),
+        ),
+    ],
+)
+def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(query, words, runs):
+    app = Explorer(query=query)
+    assert app.notices.visible and words in app.notices.object
+    assert not app.error.visible and not app.stale and app.results.styles["opacity"] == "1"
+    assert app.inputs.design() == runs
+    assert max(app.sources["speed"].data["upper"]) == pytest.approx(
+        expected(runs).run.theta_dot.max(), rel=1e-12
+    )
+    assert "T_0" not in app.link_query() and "L_over_R" not in app.link_query()
 
 
 def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
@@ -567,7 +594,7 @@ def test_the_new_inputs_travel_in_the_link():
     app = Explorer(query={"cylinders": [b"3"], "double_acting": [b"true"], "T_0": [b"0.25"]})
     assert app.inputs.design() == SEED.replace(cylinders=3, double_acting=True, T_0=0.25)
     query = dict(_query_pairs(app.inputs.query()))
-    assert query["double_acting"] == "true" and query["cylinders"] == "3.0"
+    assert query["double_acting"] == "true" and query["cylinders"] == "3"
     again = Explorer(query={k: [v.encode()] for k, v in query.items()})
     assert again.inputs.values() == app.inputs.values()
     bad = Explorer(query={"double_acting": [b"maybe"], "cylinders": [b"9"]})
@@ -586,3 +613,139 @@ def test_no_figure_asks_for_webgl(app):
     plots = list(root.select({"type": Plot}))
     assert len(plots) > 10
     assert [p for p in plots if p.output_backend == "webgl"] == []
+
+
+# -- the link as it is written --------------------------------------------------------------------
+
+SLIDERS = [name for name in PumpInputs().names() if name != "double_acting"]
+
+
+def _grid(name: str, index: int) -> float:
+    """The ``index``-th value of a slider's grid, in decimal arithmetic (no float steps added)."""
+    parameter = PumpInputs.param[name]
+    low, high = (Decimal(repr(b)) for b in parameter.bounds)
+    step = Decimal(repr(parameter.step))
+    return float(min(low + index * step, high))
+
+
+@settings(deadline=None, max_examples=200, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    st.dictionaries(
+        st.sampled_from(SLIDERS), st.integers(min_value=0, max_value=10_000), max_size=6
+    ),
+    st.booleans(),
+)
+def test_any_value_on_a_sliders_grid_travels_through_the_link_exactly(indices, double):
+    values = {name: _grid(name, index) for name, index in indices.items()}
+    inputs = PumpInputs(**values, double_acting=double)
+    query = inputs.query()
+    pairs = dict(_query_pairs(query))
+    for name, text in pairs.items():
+        if name == "double_acting":
+            assert text == "true"
+            continue
+        step_decimals = -Decimal(repr(PumpInputs.param[name].step)).normalize().as_tuple().exponent
+        assert len(text.partition(".")[2]) <= max(step_decimals, 0), (name, text)
+        assert getattr(inputs, name) != PumpInputs.param[name].default  # defaults never written
+    written = {n for n, v in inputs.values().items() if v != PumpInputs.param[n].default}
+    assert set(pairs) == written
+    read, notices = PumpInputs().parse_query({k: [v.encode()] for k, v in pairs.items()})
+    assert notices == []
+    assert {**PumpInputs().values(), **read} == inputs.values()
+
+
+def test_the_defaults_make_an_empty_link_and_reset_clears_it(app):
+    assert app.inputs.query() == "" and app.link_query() == ""
+    app.set_values(h=6.0, cylinders=2.0, T_0=0.25, double_acting=True)
+    assert app.link_query() == "h=6&cylinders=2&T_0=0.25&double_acting=true"
+    app.present_toggle.value = True
+    app.reset_button.clicks += 1
+    assert app.link_query() == "presentation=true"  # a mode, not an input: Reset keeps it
+    assert Explorer(query={"theme": [b"dark"]}).link_query() == "theme=dark"
+
+
+def test_a_slider_moved_in_the_browser_is_linked_as_it_shows(app):
+    """The browser adds a slider's step in floating point; the page keeps the value it sent (a
+    value sent back would move a slider still being moved) and links what the slider shows."""
+    app.sliders["h"]._process_events({"value": 3.0999999999999996})  # an ArrowRight press
+    assert app.link_query() == "h=3.1"
+    assert readout_text(app, "mean_flow") == readout_text(
+        Explorer(query={"h": [b"3.1"]}), "mean_flow"
+    )
+    app.sliders["T_m"]._process_events({"value": 0.7000000000000001})
+    assert app.link_query() == "h=3.1&T_m=0.7"
+    app.sliders["h"]._process_events({"value": 3.0000000000000004})  # and back
+    app.sliders["T_m"]._process_events({"value": 0.6000000000000001})
+    assert app.link_query() == ""
+
+
+class FakeLocation(param.Parameterized):
+    """What the explorer uses of pn.state.location."""
+
+    search = param.String("")
+
+
+def test_the_page_writes_its_link_and_drops_what_it_ignored():
+    query = {"foo": [b"1"], "h": [b"3.0999999999999996"], "T_m": [b"0.8"]}
+    app, location = Explorer(query=query), FakeLocation(search="?foo=1&h=3.0999999999999996")
+    assert app.inputs.h == 3.1 and "“foo” is not a parameter" in app.notices.object
+    app.follow_in_link(location)
+    assert location.search == "?h=3.1&T_m=0.8"
+    location.search = "?foo=1&h=3.0999999999999996"  # the browser reports the address it opened
+    assert location.search == "?h=3.1&T_m=0.8"
+    app.inputs.h = 4.0
+    assert location.search == "?h=4&T_m=0.8"
+    app.present_toggle.value = True
+    assert location.search == "?h=4&T_m=0.8&presentation=true"
+    app.present_toggle.value = False
+    app.reset()
+    assert location.search == ""
+    assert "“foo” is not a parameter" in app.notices.object  # the notice stays
+
+
+@pytest.mark.parametrize("raw", [b"2.5", b"4.5", b"2.0000001"])
+def test_a_count_that_is_not_whole_is_refused_and_the_run_follows_the_slider(raw):
+    app = Explorer(query={"cylinders": [raw], "h": [b"2"]})
+    text = raw.decode()
+    assert (
+        f"Cylinders n (phase lag 2π/n) (cylinders) = “{text}” ignored: it must be a whole "
+        "number from 1 to 6." in app.notices.object
+    )
+    assert app.sliders["cylinders"].value == app.inputs.cylinders == 1
+    assert app.inputs.design() == SEED.replace(h=2.0)  # the slider's count is the run's
+    again = Explorer(query={"cylinders": [b"3"]})
+    assert again.sliders["cylinders"].value == 3 and again.inputs.design().cylinders == 3
+
+
+def test_a_key_given_twice_says_which_value_is_used():
+    app = Explorer(query={"h": [b"5", b"7"]})
+    assert app.inputs.h == 7.0
+    assert "“h” is given 2 times (5, 7): the last, “7”, is used." in app.notices.object
+
+
+def test_a_value_off_its_sliders_step_is_moved_onto_it_and_said():
+    app = Explorer(query={"h": [b"3.14159"], "T_m": [b"0.7000000000000001"]})
+    assert app.inputs.h == 3.1 and app.inputs.T_m == 0.7
+    assert "Head h [m] (h) = “3.14159” taken as 3.1 (its slider moves in steps of 0.1)." in (
+        app.notices.object
+    )
+    assert "T_m" not in app.notices.object  # float noise is not worth a word
+    old = Explorer(query={"theta0": [repr(math.pi / 2).encode()], "I0": [b"%r" % SEED.I0]})
+    assert not old.notices.visible and old.inputs.values() == PumpInputs().values()
+
+
+def test_notices_are_bounded_however_long_the_link():
+    name = "x" * 30_000
+    app = Explorer(query={name: [b"1"], "h": [b"y" * 30_000]})
+    assert len(app.notices.object) < 600
+    assert "“" + "x" * 39 + "…” is not a parameter" in app.notices.object
+    many = Explorer(query={f"k{i}": [b"1"] for i in range(1000)})
+    assert many.notices.object.count("\n- ") == 6 and "… and 995 more ignored." in (
+        many.notices.object
+    )
+    assert len(many.notices.object) < 600
+    huge = Explorer(query={"h": [b"5"], "pad": [b"z" * 100_000]})
+    assert "The link was too long (98 KB; at most 64 KB): its parameters were ignored." in (
+        huge.notices.object
+    )
+    assert huge.inputs.values() == PumpInputs().values() and "Running" in huge.status.object

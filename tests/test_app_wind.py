@@ -82,12 +82,13 @@ def test_a_self_starting_pump_needs_no_kick_and_stops_and_starts_with_the_wind(a
 
 
 def test_a_link_sets_the_wind_and_a_tampered_one_is_ignored_with_a_notice():
-    query = {"V": [b"6.5"], "mean_wind": [b"4"], "k": [b"2.5"], "time_scale": [b"99"],
+    query = {"V": [b"6.5"], "mean_wind": [b"4"], "k": [b"2.5"], "time_scale": [b"95"],
              "seed": [b"7"], "T_0": [b"0.2"]}  # fmt: skip
     app = Explorer(query=query)
     assert (app.inputs.V, app.inputs.mean_wind, app.inputs.k) == (6.5, 4.0, 2.5)
-    assert (app.inputs.time_scale, app.inputs.seed) == (99.0, 7)
-    assert "V=6.5" in app.inputs.query() and "seed=7.0" in app.inputs.query()
+    assert (app.inputs.time_scale, app.inputs.seed) == (95.0, 7)
+    assert "V=6.5" in app.inputs.query() and "seed=7" in app.inputs.query()
+    assert "time_scale=99" not in Explorer(query={"time_scale": [b"99"]}).link_query()  # step 5
     tampered = Explorer(query={"k": [b"99"], "mean_wind": [b"gale"]})
     assert tampered.notices.visible
     assert "Weibull shape k (2: Rayleigh) (k)" in tampered.notices.object

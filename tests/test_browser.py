@@ -21,6 +21,7 @@ from served import (
     VIEWS_DRAWN,
     require_chromium,
     served_app,
+    server_log,
 )
 
 pytestmark = pytest.mark.browser
@@ -59,10 +60,15 @@ TEXT_SIZES = """() => {
 
 
 @pytest.fixture(scope="module")
-def url():
+def server():
     require_chromium()
-    with served_app() as (address, _process):
-        yield address
+    with served_app() as (address, process):
+        yield address, process
+
+
+@pytest.fixture(scope="module")
+def url(server):
+    return server[0]
 
 
 @pytest.fixture(scope="module")
@@ -386,6 +392,126 @@ def test_a_tampered_link_is_ignored_with_a_notice(browser, url):
         assert page.get_by_text("Head h [m] (h) = “banana” ignored").first.is_visible()
         assert page.get_by_text("L/R, rod / crank (L_over_R) = “1e9” ignored").first.is_visible()
         wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(T_m=0.8)))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+LINK = "() => location.search"
+# The opacity an element is seen with: its own times its ancestors', through shadow roots.
+SEEN_OPACITY = """e => {
+  let seen = 1
+  for (let n = e; n; n = n.parentElement || n.getRootNode().host)
+    seen *= parseFloat(getComputedStyle(n).opacity)
+  return seen
+}"""
+NOTICES_HTML = """() => Array.from(window.Bokeh.documents[0].all_models)
+  .map(m => m.text).find(t => typeof t === 'string' && t.includes('Some values in the link'))"""
+COPIED_LINK = """() => {
+  window.__copied = null
+  navigator.clipboard.writeText = (text) => { window.__copied = text; return Promise.resolve() }
+}"""
+
+
+def wait_for_link(page, search):
+    page.wait_for_function(f"(s) => ({LINK})() === s", arg=search, timeout=60_000)
+
+
+def test_the_link_reads_as_the_sliders_and_reset_leaves_it_bare(page):
+    press(page, "Head h [m]", "ArrowRight", 1)
+    press(page, "Windmill torque Tₘ [N·m]", "ArrowRight", 2)
+    wait_for_link(page, "?h=3.1&T_m=0.7")  # not h=3.0999999999999996, T_m=0.7000000000000001
+    wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=3.1, T_m=0.7)))
+    press(page, "Head h [m]", "ArrowRight", 9)
+    wait_for_link(page, "?h=4&T_m=0.7")
+    page.evaluate(COPIED_LINK)
+    page.get_by_role("button", name="Copy link to this state").click()
+    page.wait_for_function("() => window.__copied !== null", timeout=30_000)
+    assert urlparse(page.evaluate("() => window.__copied")).query == "h=4&T_m=0.7"
+    page.get_by_role("button", name="Reset to the paper's example").click()
+    wait_for_link(page, "")  # the defaults are not written
+    assert page.problems == []
+
+
+def test_a_link_opens_cleaned_with_a_word_for_what_it_ignored(browser, url):
+    query = "?foo=1&h=5&h=3.0999999999999996&cylinders=2.5&T_m=0.8"
+    page = open_page(browser, url, query=query)
+    try:
+        wait_for_link(page, "?h=3.1&T_m=0.8")  # unknown keys and refused values dropped
+        notices = page.locator("text=Some values in the link were ignored").first
+        assert notices.is_visible()
+        for words in (
+            "“foo” is not a parameter of this page; ignored.",
+            "“h” is given 2 times (5, 3.0999999999999996): the last",
+            "(cylinders) = “2.5” ignored: it must be a whole number from 1 to 6.",
+        ):
+            assert page.get_by_text(words).first.is_visible(), words
+        # the slider, the run and the link agree: one cylinder, h = 3.1
+        assert page.locator(".bk-slider-title", has_text="Cylinders n (phase lag 2π/n): 1").count()
+        wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=3.1, T_m=0.8)))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(browser, url):
+    page = open_page(browser, url, query="?T_0=0.9&h=5")
+    try:
+        page.get_by_text(
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed"
+        ).first.wait_for(timeout=30_000)
+        wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=5.0)))
+        assert "Running" in page.get_by_text("Running.").first.inner_text()
+        assert page.locator("[data-name=mean_flow]").evaluate(SEEN_OPACITY) == 1  # not greyed
+        assert page.get_by_text("cannot be run").count() == 0
+        wait_for_link(page, "?h=5")
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize(
+    "query, words",
+    [
+        (
+            "?" + "&".join(f"k{i}=1" for i in range(1000)) + "&" + "x" * 30_000 + "=1",
+            "996 more ignored",
+        ),
+        ("?h=5&pad=" + "z" * 100_000, "The link was too long"),
+    ],
+    ids=["1001 keys, 37 KB", "100 KB"],
+)
+def test_a_very_long_link_opens_the_page_with_a_short_notice(browser, url, query, words):
+    page = open_page(browser, url, query=query)
+    try:
+        page.get_by_text(words).first.wait_for(timeout=30_000)
+        assert len(page.evaluate(NOTICES_HTML)) < 1000
+        wait_for_link(page, "")
+        wait_for_readout(page, "mean_flow", flow_readout(SEED))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_pin_and_reset_at_once_after_arrow_keys_always_reset(browser, server):
+    """A class's quick hands: three arrow keys, then Pin and Reset at once, twelve times."""
+    url, process = server
+    page = open_page(browser, url)
+    logged = len(server_log(process))
+    reset_state = """() => location.search === ''
+      && window.Bokeh.documents[0].get_model_by_name('speed_ghost').data.t.length === 0"""
+    try:
+        for _attempt in range(12):
+            press(page, "Head h [m]", "ArrowRight", 3)
+            page.locator(".bk-slider-title", has_text="Head h [m]: 3.3").wait_for(timeout=30_000)
+            page.get_by_role("button", name="Pin this run").click()
+            page.get_by_role("button", name="Reset to the paper's example").click()
+            # back to h = 3.0 only once the server has reset it: the page showed 3.3 until then
+            page.locator(".bk-slider-title", has_text="Head h [m]: 3.0").wait_for(timeout=60_000)
+            page.wait_for_function(reset_state, timeout=60_000)  # no ghost left pinned
+            wait_for_readout(page, "mean_flow", flow_readout(SEED))
+        new_lines = server_log(process)[logged:]
+        assert "Traceback" not in new_lines and "RuntimeError" not in new_lines, new_lines
         assert page.problems == []
     finally:
         page.close()

@@ -304,7 +304,7 @@ def test_lab_data_in_a_european_spreadsheet_is_read(app):
     [
         (b"", "The file is empty"),
         (b"1,2\n2,3\nabc,4\n", "Line 3, column 1: 'abc' is not a number"),
-        (b"1,2,3\n2,3,4\n", "Line 1: 3 columns where the file needs two columns"),
+        (b"1,2,3\n2,3,4\n", "Line 1, column 3: 3 columns where the file needs two columns"),
         (b"x" * 1_000_001, "at most 1,000,000 are read"),
         (b"torque,speed\n0.2,10\n0.6,50\n0.2,90\n", "the header names torque first"),
         (b"speed,torque\n1,1\n2,2\n3,3\n", "Could not use that file"),

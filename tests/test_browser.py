@@ -308,6 +308,49 @@ def test_a_lab_file_over_the_limit_is_refused_in_the_page_and_the_session_lives(
     assert page.problems == []
 
 
+TO_THE_TOP = "() => document.querySelectorAll('*').forEach((el) => { el.scrollTop = 0 })"
+
+
+def in_view(page, shown):
+    """Whether the first element with this text lies wholly inside the window."""
+    box = page.get_by_text(shown).first.bounding_box()
+    height, width = page.evaluate("() => [window.innerHeight, window.innerWidth]")
+    return (
+        box is not None
+        and 0 <= box["y"]
+        and box["y"] + box["height"] <= height
+        and (0 <= box["x"] and box["x"] + box["width"] <= width)
+    )
+
+
+def test_every_lab_uploads_outcome_is_shown_in_view_at_1280x720(browser, url):
+    """The messages under the upload lie below the sidebar's fold: each outcome is scrolled to."""
+    from playwright.sync_api import expect
+
+    omega = np.linspace(5, 95, 10)
+    torque = 0.6 * (omega / 50) * (2 - omega / 50)
+    swapped = "".join(f"{q},{w}\n" for w, q in zip(omega, torque, strict=True)).encode()
+    page = open_page(browser, url, width=1280, height=720)
+    try:
+        upload = page.locator("input[type=file]").first
+        for name, content, shown in [
+            ("typo.csv", b"10,0.216x\n50,0.6\n90,0.2\n", "Line 1, column 2: '0.216x' is not"),
+            ("empty.csv", b"", "The file is empty"),
+            ("swapped.csv", swapped, "It cannot be applied: Windmill torque"),
+        ]:
+            page.evaluate(TO_THE_TOP)  # the sidebar scrolled back: the upload's messages below
+            upload.set_input_files(
+                files=[{"name": name, "mimeType": "text/csv", "buffer": content}]
+            )
+            message = page.get_by_text(shown).first
+            expect(message).to_be_in_viewport(ratio=1.0, timeout=60_000)
+            assert in_view(page, shown), name
+        assert page.get_by_role("button", name="Apply this fit anyway").is_hidden()
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 # -- the page a class sees ------------------------------------------------------------------------
 
 

@@ -78,6 +78,7 @@ def browser():
 
 def open_page(browser, url, width=1400, height=1000, query=""):
     page = browser.new_page(viewport={"width": width, "height": height})
+    page.set_default_timeout(60_000)  # clicks and locators on a busy machine (playwright's: 30 s)
     problems, elsewhere = [], []
     page.on(
         "console", lambda m: problems.append(m.text) if m.type in ("error", "warning") else None
@@ -449,9 +450,11 @@ def test_the_machine_plays_the_run_in_the_browser(page):
     page.get_by_role("button", name="▶ Play").click()
     page.wait_for_function(f"() => ({PLAYER})() && ({PLAYER})().t > 1.0", timeout=30_000)
     first = page.evaluate(PLAYER)
-    time.sleep(1.0)
-    later = page.evaluate(PLAYER)
-    assert later["drawn"] > first["drawn"] and later["t"] > first["t"]  # frames advance
+    page.wait_for_function(  # frames advance (however slowly the machine draws them)
+        f"(first) => ({PLAYER})().drawn > first.drawn && ({PLAYER})().t > first.t",
+        arg=first,
+        timeout=30_000,
+    )
     page.get_by_role("button", name="⏸ Pause").click()
     paused = page.evaluate(PLAYER)["t"]
     time.sleep(0.5)
@@ -461,7 +464,7 @@ def test_the_machine_plays_the_run_in_the_browser(page):
         page.evaluate(
             f"() => {{ window.Bokeh.documents[0].get_model_by_name('scrubber').value = {t} }}"
         )
-        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=10_000)
+        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=30_000)
         theta, piston = drawn_crank(page)
         run_theta = float(np.interp(t, run.t, run.theta)) % (2 * math.pi)
         assert abs(math.remainder(theta - run_theta, 2 * math.pi)) < 0.01

@@ -616,6 +616,11 @@ def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url
         upload = page.locator("input[type=file]").nth(1)
         upload.set_input_files(files=[day])
         page.get_by_text("the measured record mast.csv").first.wait_for(timeout=120_000)
+        empty = {"name": "empty.csv", "mimeType": "text/csv", "buffer": b""}
+        upload.set_input_files(files=[empty])
+        page.get_by_text("This wind file cannot be used: the file is empty").wait_for(
+            timeout=60_000
+        )
         huge = {"name": "huge.csv", "mimeType": "text/csv", "buffer": b"0,5\n" * 3_000_000}
         upload.set_input_files(files=[huge])
         page.get_by_text("it has 12,000,000 bytes").first.wait_for(timeout=60_000)

@@ -12,12 +12,14 @@ import logging
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
+from figures import present
 from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from map_tab import MapTab
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
+from styles import COMPACT, TEXT, ZOOM_JS, px, zoom_css
 from uploads import RefusedUploads, Reveal
 from views import (
     BINS,
@@ -41,18 +43,10 @@ STATUS_STYLE = {
     Status.STALLED: "danger",
     Status.NEVER_STARTED: "warning",
 }
-TEXT = [
-    ":host { font-size: 16px; }",
-    ".bk-slider-title { font-size: 15px; }",
-    ".bk-btn, .bk-input, select, input { font-size: 15px; }",
-]
-COMPACT = [
-    ":host { font-size: 16px; }",
-    ".alert { padding: 8px 14px; margin: 4px 0; }",
-    "p { margin: 0; }",
-]
 VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
 VIEW_FLEX_ROW = {"gap": "8px"}
+# Two buttons share a row of the sidebar: in presentation mode a label wraps inside its button.
+BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4px; }"
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
@@ -157,10 +151,11 @@ class Explorer(pn.viewable.Viewer):
         self.stall = StallView()
         self.operating = OperatingView()
         self.machine = MachineView(self.cursor)
+        # The crank speed and the machine playing it first: side by side in a projector's first screen.
         self.views = [
             self.speed,
-            self.flow,
             self.machine,
+            self.flow,
             self.closeup,
             self.energy,
             self.stall,
@@ -174,6 +169,9 @@ class Explorer(pn.viewable.Viewer):
     def _name_sources(self) -> None:
         for name, source in self.sources.items():
             source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
+        for name in ("speed", "flow", "energy", "closeup", "stall", "operating", "machine"):
+            if self.views:
+                getattr(self, name).figure.name = f"{name}_figure"
 
     @property
     def wind(self) -> WindTab:
@@ -246,7 +244,7 @@ class Explorer(pn.viewable.Viewer):
             )
             for name in SWITCHES
         }
-        button = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
+        button = dict(stylesheets=[*TEXT, BUTTON_CSS, FOCUS_CSS], sizing_mode="stretch_width")
         self.reset_button = pn.widgets.Button(
             label="Reset to the paper's example", color="primary", **button
         )
@@ -301,6 +299,7 @@ class Explorer(pn.viewable.Viewer):
         self.pin_button.on_click(lambda _e: self.pin())
         self.clear_button.on_click(lambda _e: self.clear_pinned())
         self.present_toggle.link(self, value="presentation", bidirectional=True)
+        self.present_toggle.jscallback(value=ZOOM_JS)
         self.lab_data.param.watch(
             lambda *_e: self.load_lab_data(_chosen(self.lab_data)), ["value", "filename"]
         )
@@ -578,17 +577,17 @@ class Explorer(pn.viewable.Viewer):
         self._restyle_views(event.new)
 
     def _restyle_views(self, large: bool) -> None:
-        """Presentation mode on (``large``) or back off: titles, axes and line widths."""
-        for view in self.views:
-            fig = view.figure
-            fig.title.text_font_size = "22px" if large else "16px"
-            for axis in (*fig.xaxis, *fig.yaxis):
-                axis.axis_label_text_font_size = "20px" if large else "15px"
-                axis.major_label_text_font_size = "18px" if large else "14px"
-            for renderer in fig.renderers:
-                glyph = renderer.glyph
-                if hasattr(glyph, "line_width") and isinstance(glyph.line_width, int | float):
-                    glyph.line_width = glyph.line_width * (1.5 if large else 1 / 1.5)
+        """Presentation mode on (``large``) or back off, in every figure built so far: the text
+        they draw on their canvas and their lines (the page's HTML follows ``styles.ZOOM_JS``)."""
+        for fig in self.figures():
+            present(fig, large)
+
+    def figures(self) -> list:
+        """Every figure on the page so far: the views' and those of the tabs opened."""
+        figures = [view.figure for view in self.views]
+        for tab in (self._wind, self._map, self._mechanisms):
+            figures.extend(tab.figures() if tab is not None else [])
+        return figures
 
     def _presentation_from(self, query: dict, notices: list[str]) -> None:
         """``?presentation=true`` opens the page in presentation mode (kept in the link, so the
@@ -713,7 +712,7 @@ class Explorer(pn.viewable.Viewer):
         main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]
         more = pn.Card(
             *(self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "more"),
-            title="More parameters",
+            header=card_header("More parameters"),
             collapsed=True,
             sizing_mode="stretch_width",
             stylesheets=TEXT,
@@ -757,7 +756,7 @@ class Explorer(pn.viewable.Viewer):
         panels[self.views.index(self.machine)].append(
             pn.Card(
                 pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width"),
-                title="What is this machine?",
+                header=card_header("What is this machine?"),
                 collapsed=True,
                 sizing_mode="stretch_width",
                 stylesheets=TEXT,
@@ -784,11 +783,14 @@ class Explorer(pn.viewable.Viewer):
             dynamic=False,
             sizing_mode="stretch_width",
             stylesheets=[
-                ":host { font-size: 16px; }",
-                ".bk-tab { font-size: 16px; }",
+                f":host {{ font-size: {px(16)}; }}",
+                f".bk-tab {{ font-size: {px(16)}; }}",
                 # four headers fit a phone's width
                 "@media (max-width: 500px) { .bk-tab { font-size: 14px; padding: 8px 6px !important; } }",
                 TAB_FOCUS_CSS,
+                # Panel keeps a hidden tab's content laid out (visibility: hidden), so the page
+                # was as tall as the longest tab: a short tab scrolled into blank space.
+                ':host > [aria-hidden="true"] { max-height: 0; overflow: hidden; }',
             ],
         )
 
@@ -801,6 +803,8 @@ class Explorer(pn.viewable.Viewer):
             if event.new == 3 and not self.map_open:
                 self.open_map()
                 tabs[3] = ("Design map", self.design_map.layout())
+            if self.presentation:
+                self._restyle_views(True)
 
         tabs.param.watch(open_mechanisms, "active")
         tabs.jscallback(active=GUARD_NEW_UPLOADS_JS)
@@ -814,7 +818,12 @@ class Explorer(pn.viewable.Viewer):
 
     def template(self) -> pn.template.BootstrapTemplate:
         page = pn.template.BootstrapTemplate(
-            title="Wind pump explorer — M. Louge, A simple wind-pump analysis (2010)",
+            title="Wind pump explorer",
+            header=[
+                pn.pane.HTML(
+                    "M. Louge, <i>A simple wind-pump analysis</i> (2010)", stylesheets=CITATION_CSS
+                )
+            ],
             sidebar=[self.controls()],
             main=[self.main()],
             sidebar_width=330,
@@ -826,8 +835,13 @@ class Explorer(pn.viewable.Viewer):
             # kept 30 spinners turning and the server messaging every page for everyone's work.
             busy_indicator=None,
         )
-        page.config.raw_css.extend([NARROW_CSS, PAGE_FOCUS_CSS])
+        page.config.raw_css.extend([NARROW_CSS, PAGE_FOCUS_CSS, zoom_css(self.presentation)])
         return page
+
+
+def card_header(title: str) -> pn.pane.HTML:
+    """A card's title at the page's text size (Panel's own title keeps a fixed size)."""
+    return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
 
 
 def _linkage_of(design: windpump.Design) -> tuple[float, ...]:
@@ -864,6 +878,12 @@ if (navigator.clipboard && window.isSecureContext) {
   if (ok) done(); else window.prompt('Copy this link:', url)
 }
 """
+
+# The paper beside the title, left out on a phone (the header keeps one line there).
+CITATION_CSS = [
+    f":host {{ color: white; font-size: {px(18)}; align-self: center; margin-left: 1em; }}",
+    "@media (max-width: 700px) { :host { display: none !important; } }",
+]
 
 # Below 700 px the sidebar stacks above the views and the page scrolls as one column.
 NARROW_CSS = """

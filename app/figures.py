@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from bokeh.models import ColumnDataSource, Legend, LegendItem
+from bokeh.models import ColumnDataSource, CustomJS, Legend, LegendItem
 from bokeh.plotting import figure
 
 WIDTH, HEIGHT = 900, 330  # WIDTH: the widest a view is drawn, so bins of 2 px: WIDTH // 2
@@ -21,6 +21,43 @@ COLORS = {
 }
 
 
+# Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
+PRESENTATION_SIZES = {TITLE: "22px", LABEL: "20px", TICKS: "18px"}
+LINE_SCALE = 1.5  # lines in presentation mode
+
+
+def present(fig, large: bool) -> None:
+    """Presentation mode on (``large``) or back off for one figure: every text it draws on its
+    canvas (title, axes, legends, colour bars, text glyphs) and its lines. Idempotent."""
+    if getattr(fig, "_presented", False) == large:
+        return
+    fig._presented = large
+    size = (
+        {**PRESENTATION_SIZES, "15px": "19px"}
+        if large
+        else {v: k for k, v in PRESENTATION_SIZES.items()} | {"19px": "15px"}
+    )
+    fig.title.text_font_size = size.get(fig.title.text_font_size, fig.title.text_font_size)
+    for axis in (*fig.xaxis, *fig.yaxis):
+        axis.axis_label_text_font_size = size.get(axis.axis_label_text_font_size, LABEL)
+        axis.major_label_text_font_size = size.get(axis.major_label_text_font_size, TICKS)
+    for panel in fig.center + fig.below + fig.above + fig.left + fig.right:
+        for prop in ("label_text_font_size", "title_text_font_size", "major_label_text_font_size"):
+            value = getattr(panel, prop, None)
+            if isinstance(value, str) and value in size:
+                setattr(panel, prop, size[value])
+        if isinstance(panel, Legend):
+            panel.glyph_width = panel.glyph_height = 28 if large else 20
+    scale = LINE_SCALE if large else 1 / LINE_SCALE
+    for renderer in fig.renderers:
+        glyph = getattr(renderer, "glyph", None)
+        if hasattr(glyph, "line_width") and isinstance(glyph.line_width, int | float):
+            glyph.line_width = glyph.line_width * scale
+        font = getattr(glyph, "text_font_size", None)
+        if isinstance(font, str) and font in size:
+            glyph.text_font_size = size[font]
+
+
 def empty(*columns: str) -> ColumnDataSource:
     return ColumnDataSource({column: [] for column in columns})
 
@@ -37,11 +74,81 @@ def new_figure(
         axis.axis_label_text_font_size = LABEL
         axis.major_label_text_font_size = TICKS
     fig.toolbar.autohide = True
+    fit_text_in_the_browser(fig)
     return fig
+
+
+# A figure's canvas text in the browser, whenever its size, a text or a text's size changes: each
+# title and axis label at the size the server set, or smaller down to 14 px if it would be cut
+# (a phone, presentation mode); legends below a plot in two columns if two fit, else one.
+FIT_TEXT_JS = """
+const P = plot.__fit_text ?? (plot.__fit_text = {asked: new Map(), busy: false})
+if (P.busy) return
+P.busy = true
+try {
+  const ctx = document.createElement('canvas').getContext('2d')
+  const measure = (text, px, style) => {
+    ctx.font = `${style} ${px}px helvetica`
+    return Math.max(0, ...String(text ?? '').split('\\n').map(line => ctx.measureText(line).width))
+  }
+  // The size the server asked for: remembered, unless it has sent another since we fitted it.
+  const asked = (model, attr) => {
+    const key = model.id + attr, entry = P.asked.get(key)
+    if (entry == null || model[attr] !== entry.fitted) P.asked.set(key, {size: model[attr], fitted: model[attr]})
+    return P.asked.get(key)
+  }
+  const fit = (model, attr, text, style, room) => {
+    if (model == null || !text || room <= 0) return
+    const entry = asked(model, attr)
+    let px = parseFloat(entry.size)
+    while (px > 14 && measure(text, px, style) > room) px -= 1
+    entry.fitted = `${px}px`
+    if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
+  }
+  const width = plot.inner_width, height = plot.inner_height
+  fit(plot.title, 'text_font_size', plot.title?.text, 'bold', plot.outer_width - (plot.outer_width - width) * 0.8)
+  for (const axis of plot.below) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', width)
+  for (const axis of plot.left) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', height)
+  for (const legend of [...plot.below, ...plot.above]) {
+    if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
+    ctx.font = `${legend.label_text_font_size} helvetica`
+    const texts = legend.items.map(item => item.label?.value ?? String(item.label ?? ''))
+    const widest = Math.max(0, ...texts.map(text => ctx.measureText(text).width))
+    const column = widest + legend.glyph_width + legend.label_standoff + legend.spacing + 2 * legend.padding
+    const ncols = 2 * column + 2 * legend.margin <= plot.outer_width ? 2 : 1
+    if (legend.ncols !== ncols) legend.setv({ncols}, {sync: false})
+  }
+} finally {
+  P.busy = false
+}
+"""
+
+
+def fit_text_in_the_browser(fig) -> None:
+    """Keep a figure's canvas text inside it at every width (``FIT_TEXT_JS``)."""
+    fit = CustomJS(args=dict(plot=fig), code=FIT_TEXT_JS)
+    fig.js_on_change("outer_width", fit)
+    fig.js_on_change("inner_height", fit)
+    fig.title.js_on_change("text", fit)
+    fig.title.js_on_change("text_font_size", fit)
+    for axis in (*fig.xaxis, *fig.yaxis):
+        axis.js_on_change("axis_label", fit)
+        axis.js_on_change("axis_label_text_font_size", fit)
+    fig._fit_text = fit
 
 
 def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = "solid"):
     return fig.line(x, y, source=source, color=color, line_width=width, line_dash=dash)
+
+
+LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
+
+
+def legend_columns(labels, font_px: float = 14) -> int:
+    """Two columns of labels below a plot when two fit in LEGEND_WIDTH, else one."""
+    longest = max((len(label) for label in labels), default=0)
+    # a label: ~0.55 of the font size a character; a swatch and gaps of ~2 characters
+    return 2 if 2 * 0.55 * font_px * (longest + 4) <= LEGEND_WIDTH else 1
 
 
 def legend(fig, items: dict, location="top_left", place="below"):
@@ -51,18 +158,19 @@ def legend(fig, items: dict, location="top_left", place="below"):
     entries = {
         label: LegendItem(label=label, renderers=[renderer]) for label, renderer in items.items()
     }
-    fig.add_layout(
-        Legend(
-            items=list(entries.values()),
-            location=location,
-            orientation="horizontal" if place in ("below", "above") else "vertical",
-            nrows=2 if place in ("below", "above") and len(entries) > 2 else "auto",
-            label_text_font_size=TICKS,
-            click_policy="hide",
-            background_fill_alpha=0.7,
-        ),
-        place,
+    across = place in ("below", "above")
+    box = Legend(
+        items=list(entries.values()),
+        location=location,
+        orientation="horizontal" if across else "vertical",
+        ncols=legend_columns(items) if across else "auto",
+        label_text_font_size=TICKS,
+        click_policy="hide",
+        background_fill_alpha=0.7,
     )
+    fig.add_layout(box, place)
+    if across and hasattr(fig, "_fit_text"):
+        box.js_on_change("label_text_font_size", fig._fit_text)
     return entries
 
 

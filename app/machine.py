@@ -13,10 +13,19 @@ from pathlib import Path
 import numpy as np
 import panel as pn
 from bokeh.layouts import column, row
-from bokeh.models import Button, ColumnDataSource, CustomJS, InlineStyleSheet, Select, Slider
+from bokeh.models import (
+    Button,
+    ColumnDataSource,
+    CustomJS,
+    InlineStyleSheet,
+    Range1d,
+    Select,
+    Slider,
+)
 from bokeh.plotting import figure
 from figures import COLORS, empty
 from keyboard import FOCUS_CSS
+from styles import CAPTION_CSS, px
 from views import View, refill
 
 import windpump
@@ -30,11 +39,25 @@ SPEEDS = [
     ("5", "5×"),
     ("20", "20× fast"),
 ]
-ASPECT = 16 / 10  # the drawing's width / height
-WIDGET_CSS = ":host { font-size: 15px; } .bk-btn, select { font-size: 15px; }"
+ASPECT = (
+    1.9  # the drawing's width / height: wide, so the drawing and its controls fit beside a plot
+)
+WIDGET_CSS = f":host {{ font-size: {px(15)}; }} .bk-btn, select {{ font-size: {px(15)}; }}"
 # Three blades and the sprocket's mark, then each cylinder's crank and rod (the player draws
 # as many as the design has cylinders).
 LINK_COLORS = ["#6b6b6b"] * 4 + ["#d62728", "#1f77b4"]
+
+
+def fit_aspect(left, right, bottom, top, aspect):
+    """The smallest box of width / height ``aspect`` around a drawing, centred on it."""
+    width, height = right - left, top - bottom
+    if width < aspect * height:
+        grow = (aspect * height - width) / 2
+        left, right = left - grow, right + grow
+    else:
+        grow = (width / aspect - height) / 2
+        bottom, top = bottom - grow, top + grow
+    return left, right, bottom, top
 
 
 def tangents(c0, r0, c1, r1):
@@ -78,18 +101,19 @@ class MachineView(View):
         s["machine_piston"] = empty("x", "y", "width", "height")
         s["machine_water"] = empty("x", "y", "width", "height")
         s["machine_label"] = ColumnDataSource({"x": [0.0], "y": [0.0], "text": [""]})
+        # Ranges set from the design (set_design) to the figure's own aspect, with no border: equal
+        # scales on both axes whatever width the page gives it.
         self.figure = fig = figure(
             width=640,
             height=int(640 / ASPECT),
             sizing_mode="scale_width",
             max_width=900,
             tools="save",
-            match_aspect=True,
             toolbar_location=None,
+            x_range=Range1d(0.0, 1.0),
+            y_range=Range1d(0.0, 1.0),
+            min_border=0,
         )
-        # Invisible corners of the drawing: the ranges fit them, with equal scales on both axes.
-        s["machine_bounds"] = empty("x", "y")
-        fig.scatter("x", "y", source=s["machine_bounds"], alpha=0.0)
         fig.axis.visible = False
         fig.grid.visible = False
         fig.outline_line_color = None
@@ -180,18 +204,18 @@ class MachineView(View):
         self.scrubber.js_on_change("value", callback)
         s["frames"].js_on_change("data", callback)
         self.figure.js_on_change("inner_width", callback)
+        # The scrubber under the drawing takes the whole width (~1 s a pixel for a 600 s run).
         self.layout = column(
             self.figure,
-            row(self.button, self.speed, self.scrubber, sizing_mode="stretch_width"),
+            self.scrubber,
+            row(self.button, self.speed),
             sizing_mode="stretch_width",
         )
 
     def panel(self, **options) -> pn.Column:
         return pn.Column(
             pn.pane.Bokeh(self.layout, sizing_mode="stretch_width"),
-            pn.pane.HTML(
-                f"<p>{self.caption}</p>", stylesheets=[":host { font-size: 15px; margin: 0 8px; }"]
-            ),
+            pn.pane.HTML(f"<p>{self.caption}</p>", stylesheets=CAPTION_CSS),
             sizing_mode="stretch_width",
             **options,
         )
@@ -258,7 +282,9 @@ class MachineView(View):
             min(-d.R1, c0[1] - blade) - 0.05 * blade,
             max(c0[1] + blade, tank_y + tank_h) + 0.2 * blade,
         )
-        refill(self.sources["machine_bounds"], {"x": [left, right], "y": [bottom, high]})
+        left, right, bottom, high = fit_aspect(left, right, bottom, high, ASPECT)
+        self.figure.x_range.update(start=left, end=right)
+        self.figure.y_range.update(start=bottom, end=high)
         self.label_at = (left, high)
 
     def update(self, seen, bins) -> None:

@@ -17,13 +17,13 @@ from bokeh.models import ColorBar, ColumnDataSource, HoverTool, LogColorMapper
 from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
 from figures import TICKS, empty, legend, new_figure
-from views import CAPTION_CSS, refill
+from styles import CAPTION_CSS, TEXT
+from views import refill
 
 import windpump
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
 PER_DAY = 86_400.0  # m^3/s to m^3/day
-TEXT = [":host { font-size: 16px; }"]
 DECADES = 2
 
 
@@ -68,6 +68,7 @@ class MapTab:
         for name, source in self.sources.items():
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
         self.figure = self._figure()
+        self.figure.name = "map_figure"  # a browser test finds it by name
         self.figure.on_event(Tap, lambda event: on_tap(event.x, event.y))
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
         self.mapped: windpump.DesignMap | None = None
@@ -163,6 +164,9 @@ class MapTab:
             f"lifting **{best_flow:.1f} m³/day** (averaged theory); this design, "
             f"R₁/R₀ = {design.R_dagger:.2f}: {now}."
         )
+
+    def figures(self) -> list:
+        return [self.figure]
 
     def layout(self) -> pn.Column:
         return pn.Column(

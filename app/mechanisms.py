@@ -9,6 +9,7 @@ import re
 import numpy as np
 import panel as pn
 from figures import linkage_view, slider_crank_views
+from styles import TEXT
 
 import windpump
 from windpump import linkage
@@ -33,7 +34,7 @@ SECOND_LOOP = {
     "beta": ("Angle between link 3's arms β [°]", -180.0, 180.0, 1.0, 25.0),
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
-NOTE_CSS = [":host { font-size: 16px; }"]
+NOTE_CSS = TEXT[:1]
 
 
 def degrees(angle: float) -> str:
@@ -83,6 +84,7 @@ class Mechanisms:
             "", alert_type="warning", visible=False, stylesheets=NOTE_CSS
         )
         self.linkage_figure, linkage_sources = linkage_view()
+        self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
         self.sources = {**crank_sources, **linkage_sources}
 
         self.design: windpump.Design | None = None
@@ -302,6 +304,9 @@ class Mechanisms:
             self.draw_slider_crank()
 
     # -- layout ------------------------------------------------------------------------------
+
+    def figures(self) -> list:
+        return [self.crank_figure, self.travel_figure, self.linkage_figure]
 
     def layout(self) -> pn.Column:
         figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)

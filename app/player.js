@@ -73,7 +73,7 @@ function end_time() { const T = col(frames, "t"); return T.length ? T[T.length -
 
 function set_playing(on) {
   P.playing = on
-  button.setv({label: on ? "⏸ Pause" : "▶ Play"}, {sync: false})
+  button.setv({label: on ? "▮▮ Pause" : "▶ Play"}, {sync: false})
   if (P.raf) { cancelAnimationFrame(P.raf); P.raf = 0 }
   P.wall = null
   if (on) P.raf = requestAnimationFrame(tick)

@@ -13,13 +13,13 @@ import panel as pn
 from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
 from envelope import band, bin_means
 from figures import COLORS, HEIGHT, draw_band, empty, legend, line, new_figure
+from styles import CAPTION_CSS
 
 import windpump
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
 CLOSEUP_REVOLUTIONS = 3
 GHOST = "#9a9a9a"
-CAPTION_CSS = [":host { font-size: 15px; margin: 0 8px; } p { margin: 2px 0; }"]
 
 
 def same(old, new) -> bool:
@@ -128,7 +128,7 @@ class SpeedView(TimeView):
         s["speed_ghost"] = empty("t", "lower", "upper")
         self.figure = fig = self.time_figure(
             "Crank speed",
-            "crank speed θ̇ [rad/s]",
+            "θ̇ [rad/s]",
             [("t", "@t{0.00} s"), ("θ̇", "@lower{0.000} to @upper{0.000} rad/s")],
         )
         ghost = draw_band(fig, s["speed_ghost"], GHOST)
@@ -138,7 +138,7 @@ class SpeedView(TimeView):
         self.items = legend(
             fig,
             {
-                "integrated, Eq. (12)": band_area,
+                "full, Eq. (12)": band_area,
                 "averaged, Eq. (24)": averaged,
                 "cycle mean": mean,
                 "α₊, Eq. (21)": line(
@@ -183,7 +183,7 @@ class FlowView(TimeView):
         s["mean_flow"] = empty("t", "flow")
         self.figure = fig = self.time_figure(
             "Flow rate over the run",
-            "flow Q [L/s]",
+            "Q [L/s]",
             [("t", "@t{0.00} s"), ("Q", "@lower{0.0000} to @upper{0.0000} L/s")],
         )
         ghost = draw_band(fig, s["flow_ghost"], GHOST)
@@ -191,7 +191,7 @@ class FlowView(TimeView):
         self.items = legend(
             fig,
             {
-                "instantaneous (min to max)": band_area,
+                "Q, min to max": band_area,
                 "mean over the run": line(
                     fig, "t", "flow", s["mean_flow"], COLORS["mean"], 3, "dashed"
                 ),
@@ -224,7 +224,7 @@ class CloseupView(View):
         self.figure = fig = new_figure(
             "Close-up: the last revolutions",
             "time t [s]",
-            "flow Q [L/s]",
+            "Q [L/s]",
             tools="pan,box_zoom,reset,save",
         )
         fig.multi_line(
@@ -287,7 +287,7 @@ class EnergyView(TimeView):
             fig,
             {
                 "lifting water": water,
-                "spinning up (+) / given back (−)": spin,
+                "spinning up (+), back (−)": spin,
                 "windmill T ω": shaft,
             },
         )
@@ -318,6 +318,14 @@ class EnergyView(TimeView):
         )
 
 
+SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def superscript(power: int) -> str:
+    """An exponent as a reader writes it: 10⁻⁴, not 10^-4."""
+    return str(power).translate(SUPERSCRIPTS)
+
+
 class StallView(View):
     caption = (
         "Eq. (22): it can run while the windmill's characteristic torque Tₘ† (Eq. 14) exceeds the "
@@ -339,7 +347,7 @@ class StallView(View):
             "Stall criterion, Eq. (22)",
             "dimensionless torque",
             "",
-            height=HEIGHT * 2 // 3,
+            height=HEIGHT * 3 // 4,
             tools="save",
             y_range=FactorRange(*self.NAMES),
         )
@@ -352,10 +360,11 @@ class StallView(View):
         power = math.floor(math.log10(sides.max()))
         data = {**self.sources["stall"].data, "value": sides / 10.0**power}
         refill(self.sources["stall"], data)
-        self.figure.xaxis.axis_label = f"dimensionless torque, Eqs. (14, 15) [× 10^{power}]"
+        self.figure.xaxis.axis_label = f"Eqs. (14, 15) [×10{superscript(power)}]"
         verdict = "runs" if seen.margin > 1 else "stalls"
+        # two short lines: one long line was cut on a phone and in presentation mode
         self.figure.title.text = (
-            f"Stall criterion, Eq. (22): margin {seen.margin:.3f}, it {verdict}"
+            f"Stall criterion, Eq. (22)\nmargin {seen.margin:.3f}: it {verdict}"
         )
 
 

@@ -17,8 +17,9 @@ from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
 from envelope import band
 from figures import COLORS, TICKS, draw_band, empty, legend, line, new_figure
 from readouts import Readout
+from styles import CAPTION_CSS, TEXT
 from uploads import WIND_CLASS, WIND_MAX_BYTES
-from views import CAPTION_CSS, refill
+from views import refill
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
@@ -31,7 +32,6 @@ WIND_READOUTS = {
     "site_bounds": "Averaged over the site's Weibull wind [L/day]",
     "thresholds": "V_stop · V_start [m/s]",
 }
-TEXT = [":host { font-size: 16px; }"]
 STOP_COLOR, START_COLOR = "#d62728", "#2ca02c"
 # An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
 WIND_MESSAGE, WIND_DAY_NOTE = "wind-message", "wind-day-note"
@@ -290,6 +290,9 @@ class WindTab:
         self.use_gusty.visible = False
 
     # -- layout ------------------------------------------------------------------------------
+
+    def figures(self) -> list:
+        return [self.curve, self.day_wind, self.day_speed, self.day_litres]
 
     def layout(self) -> pn.Column:
         def caption(text: str):

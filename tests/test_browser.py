@@ -455,7 +455,7 @@ def test_the_machine_plays_the_run_in_the_browser(page):
         arg=first,
         timeout=30_000,
     )
-    page.get_by_role("button", name="⏸ Pause").click()
+    page.get_by_role("button", name="▮▮ Pause").click()
     paused = page.evaluate(PLAYER)["t"]
     time.sleep(0.5)
     assert page.evaluate(PLAYER)["t"] == paused and not page.evaluate(PLAYER)["playing"]

@@ -1,0 +1,48 @@
+"""Text sizes of the page's HTML, in one place, scaled by presentation mode.
+
+Every Panel and Bokeh component draws in its own shadow root, so a page-wide stylesheet cannot
+reach its text; a CSS custom property can (it inherits through shadow roots). Each component's
+sizes are ``calc(N px * var(--windpump-zoom))``, and presentation mode sets that one property on
+the page: the sidebar, captions, notes, status and notices grow together, in one change made in the
+browser. (The figures draw their text on a canvas: ``figures.present`` sizes it on the server.)
+"""
+
+from __future__ import annotations
+
+PRESENTATION_ZOOM = 1.25
+ZOOM_VARIABLE = "--windpump-zoom"
+
+
+def px(size: float) -> str:
+    """A CSS length of ``size`` pixels, scaled in presentation mode."""
+    return f"calc({size:g}px * var({ZOOM_VARIABLE}, 1))"
+
+
+TEXT = [
+    f":host {{ font-size: {px(16)}; }}",
+    f".bk-slider-title {{ font-size: {px(15)}; }}",
+    f".bk-btn, .bk-input, select, input {{ font-size: {px(15)}; }}",
+]
+COMPACT = [
+    f":host {{ font-size: {px(16)}; }}",
+    ".alert { padding: 6px 14px; margin: 4px 0; }",
+    "p { margin: 0; }",
+]
+CAPTION_CSS = [f":host {{ font-size: {px(15)}; margin: 0 8px; }} p {{ margin: 2px 0; }}"]
+
+
+def zoom_css(presentation: bool) -> str:
+    """The page's starting zoom (a page opened with ?presentation=true starts enlarged); a phone
+    keeps its usual sizes (presentation mode is for a projector, and a phone has no room)."""
+    return (
+        f":root {{ {ZOOM_VARIABLE}: {PRESENTATION_ZOOM if presentation else 1}; }}\n"
+        f"@media (max-width: 700px) {{ :root {{ {ZOOM_VARIABLE}: 1 !important; }} }}"
+    )
+
+
+# The presentation toggle's value, in the browser, sets the zoom: it runs for a click and for a
+# change sent by the server alike (the model's ``active`` property changes either way).
+ZOOM_JS = f"""
+document.documentElement.style.setProperty(
+  '{ZOOM_VARIABLE}', cb_obj.active ? '{PRESENTATION_ZOOM}' : '1')
+"""

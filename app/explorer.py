@@ -753,16 +753,16 @@ class Explorer(pn.viewable.Viewer):
 
     def _view_panels(self) -> list:
         panels = [view.panel(styles=VIEW_FLEX) for view in self.views]
-        panels[self.views.index(self.machine)].append(
-            pn.Card(
-                pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width"),
-                header=card_header("What is this machine?"),
-                collapsed=True,
-                sizing_mode="stretch_width",
-                stylesheets=TEXT,
-            )
+        # After the views, across the page: beside the machine it made the first row of views
+        # taller than its neighbours, and a band of blank space under them.
+        about = pn.Card(
+            pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width"),
+            header=card_header("What is this machine?"),
+            collapsed=True,
+            sizing_mode="stretch_width",
+            stylesheets=TEXT,
         )
-        return panels
+        return [*panels, about]
 
     def pump(self) -> pn.Column:
         return pn.Column(

@@ -80,10 +80,9 @@ def tangents(c0, r0, c1, r1):
 
 class MachineView(View):
     caption = (
-        "The machine playing the computed run: the windmill turns the small sprocket R₁/R₀ times "
-        "faster than the crank (Eq. 4); each piston follows Eq. (1), cylinder k on its own throw "
-        "2πk/n behind the first; the tank fills with the volume pumped (Eq. 16). Rotor blades "
-        "not to scale."
+        "The machine playing the computed run: the windmill turns R₁/R₀ times faster than the "
+        "crank (Eq. 4); each piston follows Eq. (1), cylinder k 2πk/n behind the first; the tank "
+        "fills with the volume pumped (Eq. 16). Blades not to scale."
     )
 
     def __init__(self, cursor: ColumnDataSource):
@@ -280,7 +279,7 @@ class MachineView(View):
         left, right = c0[0] - blade * 1.05, tank_x + tank_w + 0.1 * blade
         bottom, high = (
             min(-d.R1, c0[1] - blade) - 0.05 * blade,
-            max(c0[1] + blade, tank_y + tank_h) + 0.2 * blade,
+            max(c0[1] + blade, tank_y + tank_h) + 0.4 * blade,  # room for the label
         )
         left, right, bottom, high = fit_aspect(left, right, bottom, high, ASPECT)
         self.figure.x_range.update(start=left, end=right)

@@ -17,7 +17,7 @@ READOUT_CSS = """
 """
 PRESENTATION_CSS = """
 :host { font-size: 20px; }
-.readout .value {font-size: 28px}
+.readout .value {font-size: 30px}
 .readout .label {font-size: 17px; opacity: 1}
 """
 

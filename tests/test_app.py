@@ -454,6 +454,52 @@ def test_presentation_mode_enlarges_text_and_lines(app):
     assert app.speed.figure.title.text_font_size == title
 
 
+@pytest.mark.parametrize("cylinders", [1, 6])
+def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
+    """Every fixed part (the tank's top included) inside the ranges, whose aspect is the figure's."""
+    from machine import ASPECT
+
+    app = Explorer(query={"cylinders": [str(cylinders).encode()]})
+    app.show_views()
+    fig, data = app.machine.figure, app.sources["machine_static"].data
+    xs, ys = np.concatenate(data["xs"]), np.concatenate(data["ys"])
+    assert fig.x_range.start < xs.min() and xs.max() < fig.x_range.end
+    assert fig.y_range.start < ys.min() and ys.max() < fig.y_range.end
+    width, height = fig.x_range.end - fig.x_range.start, fig.y_range.end - fig.y_range.start
+    assert (
+        width / height == pytest.approx(ASPECT) == pytest.approx(fig.width / fig.height, rel=0.01)
+    )
+    assert fig.min_border == 0 and not fig.axis[0].visible  # the frame is the whole figure
+
+
+def canvas_text_sizes(app) -> list[float]:
+    """Every text size [px] the page's figures draw on their canvas, the tabs' included."""
+    from bokeh.models import Legend, Text
+
+    sizes = []
+    for fig in app.figures():
+        if fig.title.text:
+            sizes.append(fig.title.text_font_size)
+        for axis in (*fig.xaxis, *fig.yaxis):
+            if axis.visible:
+                sizes += [axis.axis_label_text_font_size, axis.major_label_text_font_size]
+        sizes += [legend.label_text_font_size for legend in fig.select(type=Legend)]
+        sizes += [r.glyph.text_font_size for r in fig.renderers if isinstance(r.glyph, Text)]
+    return [float(size[:-2]) for size in sizes]
+
+
+def test_presentation_mode_enlarges_every_canvas_text_and_back(app):
+    """Titles, axes, legends and the machine's label, in every tab opened, not only titles."""
+    assert app.mechanisms.figures()  # the Mechanisms tab, as if opened
+    before = canvas_text_sizes(app)
+    app.present_toggle.value = True
+    after = canvas_text_sizes(app)
+    assert len(after) == len(before) > 20
+    assert all(b >= 1.2 * a for a, b in zip(before, after, strict=True)), (before, after)
+    app.present_toggle.value = False
+    assert canvas_text_sizes(app) == before
+
+
 def test_the_dark_theme_comes_from_the_link():
     assert Explorer(query={"theme": [b"dark"]}).template().theme.__name__.startswith("Dark")
     assert not Explorer().template().theme.__name__.startswith("Dark")
@@ -498,9 +544,9 @@ def test_a_served_page_gets_its_readouts_first_and_its_views_when_loaded():
     seen = expected(SEED.replace(h=5.0, T_m=0.8))
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(seen.run.theta_dot.max())
     assert float(app.speed.figure.title.text_font_size[:-2]) > 16
-    assert len(app.results.objects) == len(app.views)
+    assert len(app.results.objects) == len(app.views) + 1  # and the card about the machine
     app.show_views()  # once only
-    assert len(app.results.objects) == len(app.views)
+    assert len(app.results.objects) == len(app.views) + 1
 
 
 def test_pinning_before_the_views_exist_builds_them():

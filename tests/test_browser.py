@@ -383,7 +383,8 @@ def test_the_page_fits_the_screen(browser, url, width, height):
         if (width, height) == (1280, 720):
             for shown in ("Mean flow", "Stall margin, Eq. (22)", "Running."):
                 assert box(page, shown)["y"] + box(page, shown)["height"] <= height, shown
-            for caption in ("Crank speed θ̇: the full", "Flow Q = A ẋ"):  # under its plot
+            # under its plot: the crank speed and the machine playing it, side by side
+            for caption in ("Crank speed θ̇: the full", "The machine playing the computed run"):
                 assert box(page, caption)["y"] <= height, caption
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / f"explorer-{width}x{height}.png"))

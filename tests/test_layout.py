@@ -134,6 +134,22 @@ def test_a_projector_shows_readouts_status_machine_and_crank_speed_in_the_first_
         page.close()
 
 
+def test_a_wide_screen_leaves_no_blank_band_between_rows_of_views(browser, url):
+    """At 1920×1080 the views stand in three columns; the second row follows the first closely
+    (a card beside the machine once left ~150 px of blank space under its neighbours)."""
+    page = open_page(browser, url, 1920, 1080)
+    try:
+        settled(page)
+        speed, machine = (page.evaluate(VIEW_BOX, f"{n}_figure") for n in ("speed", "machine"))
+        closeup = page.evaluate(VIEW_BOX, "closeup_figure")
+        assert abs(speed["y"] - machine["y"]) < 2 and machine["x"] > speed["x"]  # one row
+        caption = page.get_by_text("Crank speed θ̇: the full").first.bounding_box()
+        gap = closeup["y"] - bottom(caption)
+        assert 0 <= gap <= 100, f"{gap:.0f} px between the rows"
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize("width, height", SIZES)
 @pytest.mark.parametrize("query", ["", "?presentation=true"])
 def test_nothing_scrolls_sideways_and_no_canvas_text_is_cut(browser, url, width, height, query):

@@ -21,7 +21,7 @@ from map_tab import MapTab
 from mechanisms import Mechanisms
 from readouts import Readout, StatusAlert
 from styles import COMPACT, TEXT, ZOOM_JS, px, zoom_css
-from uploads import RefusedUploads
+from uploads import RefusedUploads, Reveal
 from views import (
     BINS,
     CloseupView,
@@ -31,7 +31,7 @@ from views import (
     SpeedView,
     StallView,
 )
-from wind_tab import WindTab
+from wind_tab import WIND_DAY_NOTE, WIND_MESSAGE, WindTab
 
 import windpump
 from windpump import Status
@@ -53,6 +53,8 @@ READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "e
 PRESET_PROMPT = "Choose a preset…"
 MAX_NOTICES = 5  # the link's ignored values listed; the rest counted
 MAX_QUERY = 64 * 1024  # [characters] a longer link's parameters are ignored (app_hooks.py)
+# An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
+LAB_MESSAGE, LAB_NOTE = "lab-message", "lab-note"
 # A tab's content arrives after its header is chosen (the Wind tab's after its day has run): its
 # file input gets the page's size check (uploads.js) as soon as it is drawn.
 GUARD_NEW_UPLOADS_JS = """
@@ -201,7 +203,10 @@ class Explorer(pn.viewable.Viewer):
         never opens it)."""
         if self._wind is None:
             self._wind = WindTab(self.sliders, self.bins, self.dark)
-            self._wind.upload.param.watch(lambda e: self.load_wind_data(e.new), "value")
+            upload = self._wind.upload
+            upload.param.watch(
+                lambda *_e: self.load_wind_data(_chosen(upload)), ["value", "filename"]
+            )
             self._wind.use_gusty.on_click(lambda _e: self.forget_wind_data())
         return self._wind
 
@@ -286,8 +291,13 @@ class Explorer(pn.viewable.Viewer):
             accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
         )
         self.refused_upload = RefusedUploads()  # the page's word that it refused a large file
-        self.lab_message = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
-        self.lab_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
+        self.lab_message = pn.pane.Alert(
+            "", alert_type="danger", visible=False, stylesheets=TEXT, css_classes=[LAB_MESSAGE]
+        )
+        self.lab_note = pn.pane.Markdown(
+            "", visible=False, stylesheets=TEXT, css_classes=[LAB_NOTE]
+        )
+        self.reveal = Reveal()  # scrolls an upload's outcome into view
         self.apply_fit = pn.widgets.Button(
             label="Apply this fit anyway", color="warning", visible=False, **button
         )
@@ -316,7 +326,9 @@ class Explorer(pn.viewable.Viewer):
         self.clear_button.on_click(lambda _e: self.clear_pinned())
         self.present_toggle.link(self, value="presentation", bidirectional=True)
         self.present_toggle.jscallback(value=ZOOM_JS)
-        self.lab_data.param.watch(lambda e: self.load_lab_data(e.new), "value")
+        self.lab_data.param.watch(
+            lambda *_e: self.load_lab_data(_chosen(self.lab_data)), ["value", "filename"]
+        )
         self.refused_upload.param.watch(self._on_refused_upload, "value")
         self.apply_fit.on_click(lambda _e: self._apply_fit(self._pending_fit))
 
@@ -409,9 +421,15 @@ class Explorer(pn.viewable.Viewer):
         self.update_wind()
 
     def load_wind_data(self, data: bytes | None) -> None:
-        """A measured wind CSV for the day; a bad file is refused and the day stays as it was."""
+        """A measured wind CSV for the day; a bad file is refused and the day stays as it was.
+        Either outcome is scrolled into view."""
+        if data is None:
+            return
         if self.wind.load(data, self.wind.upload.filename or ""):
             self.update_wind()
+            self.reveal.show(WIND_DAY_NOTE)
+        else:
+            self.reveal.show(WIND_MESSAGE)
 
     def forget_wind_data(self) -> None:
         self.wind.forget()
@@ -693,14 +711,21 @@ class Explorer(pn.viewable.Viewer):
             f"{100 * fit.relative_residual:.0f} % of Tₘ)."
         )
         if fit.poor:
+            outside = self._outside_sliders(fit)
             self.lab_message.object = (
                 f"**A poor fit.** {summary} Eq. (11) misses these data by more than "
-                f"{100 * fit.POOR:.0f} % of Tₘ: are the columns speed, then torque? Not applied."
+                f"{100 * fit.POOR:.0f} % of Tₘ: are the columns speed, then torque? "
+                + (
+                    f"It cannot be applied: {'; '.join(outside)}. Nothing was changed."
+                    if outside
+                    else "Not applied."
+                )
             )
             self.lab_message.alert_type = "warning"
             self.lab_message.visible = True
-            self._pending_fit = fit
-            self.apply_fit.visible = True
+            self._pending_fit = None if outside else fit
+            self.apply_fit.visible = not outside  # offer only what can be applied
+            self.reveal.show(LAB_MESSAGE)
             return
         self.lab_message.visible = False
         self._apply_fit(fit, summary)
@@ -713,6 +738,7 @@ class Explorer(pn.viewable.Viewer):
             return
         if self.refused_upload.wind:
             self.wind.refuse_size(size)
+            self.reveal.show(WIND_MESSAGE)
             return
         try:
             windpump.labdata.check_file_size(size)
@@ -727,22 +753,29 @@ class Explorer(pn.viewable.Viewer):
         )
         self.lab_message.alert_type = "danger"
         self.lab_message.visible = True
+        self.reveal.show(LAB_MESSAGE)
 
-    def _apply_fit(self, fit: windpump.TorqueFit | None, summary: str = "") -> None:
-        if fit is None:
-            return
-        outside = [
+    def _outside_sliders(self, fit: windpump.TorqueFit) -> list[str]:
+        """Why the fit cannot be set on the sliders: each value outside its slider's range."""
+        return [
             f"{self.inputs.param[name].label} = {value:.3g} is outside {low:g}–{high:g}"
             for name, value in (("T_m", fit.T_m), ("omega_m", fit.omega_m))
             for low, high in [self.inputs.param[name].bounds]
             if not low <= value <= high
         ]
+
+    def _apply_fit(self, fit: windpump.TorqueFit | None, summary: str = "") -> None:
+        if fit is None:
+            return
+        outside = self._outside_sliders(fit)
         if outside:
+            self.apply_fit.visible = False
             self.lab_message.object = (
                 f"**The fit cannot be applied:** {'; '.join(outside)}. Nothing was changed."
             )
             self.lab_message.alert_type = "danger"
             self.lab_message.visible = True
+            self.reveal.show(LAB_MESSAGE)
             return
         self.apply_fit.visible = False
         self.lab_note.object = (
@@ -750,6 +783,7 @@ class Explorer(pn.viewable.Viewer):
         )
         self.lab_note.visible = True
         self.set_values(T_m=fit.T_m, omega_m=fit.omega_m)
+        self.reveal.show(LAB_NOTE)
 
     # -- layout ------------------------------------------------------------------------------
 
@@ -777,6 +811,7 @@ class Explorer(pn.viewable.Viewer):
             ),
             self.lab_data,
             self.refused_upload,
+            self.reveal,
             self.lab_message,
             self.apply_fit,
             self.lab_note,
@@ -919,6 +954,14 @@ def _linkage_of(design: windpump.Design) -> tuple[float, ...]:
 def _text(raw) -> str:
     raw = raw[-1] if isinstance(raw, list | tuple) and raw else raw
     return raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw or "")
+
+
+def _chosen(upload: pn.widgets.FileInput) -> bytes | None:
+    """The chosen file's content, or None before one is chosen: Panel reports an empty file as
+    None (the value it had), so only its name tells that one was chosen."""
+    if upload.value is None and upload.filename:
+        return b""
+    return upload.value
 
 
 def _sentence(error: Exception) -> str:

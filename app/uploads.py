@@ -3,7 +3,8 @@
 Bokeh sends a chosen file whole over the page's websocket; over ~15 MB the connection closes and
 the session (the design on the screen) is lost. ``uploads.js`` checks the file's size before
 Bokeh reads it and tells the server through a hidden text input, which ``RefusedUploads`` turns
-into the size in bytes for the explorer to report in the core's words.
+into the size in bytes for the explorer to report in the core's words. ``Reveal`` goes the other
+way: the server names an upload's outcome and the page scrolls it into view.
 """
 
 from __future__ import annotations
@@ -23,6 +24,25 @@ WIND_CLASS = "wind-upload"
 
 UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
 CHANNEL_CLASS = "upload-refused"
+
+# Scrolls the element carrying the CSS class named in the channel's value into view, through
+# Panel's shadow roots, once the server's changes (a message made visible) have been laid out.
+REVEAL_JS = """
+const target = cb_obj.value.split("\\t")[0]
+const find = (root) => {
+  const hit = root.querySelector("." + target)
+  if (hit != null) return hit
+  for (const el of root.querySelectorAll("*")) {
+    if (el.shadowRoot) { const found = find(el.shadowRoot); if (found != null) return found }
+  }
+  return null
+}
+const reveal = () => {
+  const el = target ? find(document) : null
+  if (el != null && el.offsetParent !== null) el.scrollIntoView({block: "nearest"})
+}
+for (const delay of [50, 300, 1000]) setTimeout(reveal, delay)
+"""
 
 
 class RefusedUploads(pn.widgets.TextInput):
@@ -59,3 +79,21 @@ def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
             code=UPLOADS_JS,
         ),
     )
+
+
+class Reveal(pn.widgets.TextInput):
+    """Hidden; ``show(css_class)`` scrolls the page's element with that CSS class into view.
+
+    An upload's outcome (the fit applied, a warning, a refusal) appears next to its upload
+    control, which at 1280×720 lies below the sidebar's fold: without this nothing in view would
+    change. The count in the value makes every outcome a change, the same message twice too.
+    """
+
+    def __init__(self, **params):
+        super().__init__(visible=False, **params)
+        self._count = 0
+        self.jscallback(value=REVEAL_JS)
+
+    def show(self, css_class: str) -> None:
+        self._count += 1
+        self.value = f"{css_class}\t{self._count}"

@@ -33,6 +33,8 @@ WIND_READOUTS = {
     "site_bounds": "Averaged over the site's Weibull wind [L/day]",
     "thresholds": "V_stop · V_start [m/s]",
 }
+# An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
+WIND_MESSAGE, WIND_DAY_NOTE = "wind-message", "wind-day-note"
 
 
 @functools.lru_cache(maxsize=8)
@@ -91,7 +93,7 @@ class WindTab:
             sizing_mode="stretch_width",
         )
         self.upload_message = pn.pane.Alert(
-            "", alert_type="danger", visible=False, stylesheets=TEXT
+            "", alert_type="danger", visible=False, stylesheets=TEXT, css_classes=[WIND_MESSAGE]
         )
         self.use_gusty = pn.widgets.Button(
             label="Back to the gusty day",
@@ -99,7 +101,9 @@ class WindTab:
             stylesheets=TEXT,
             sizing_mode="stretch_width",
         )
-        self.day_note = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
+        self.day_note = pn.pane.Markdown(
+            "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[WIND_DAY_NOTE]
+        )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.curve = self._curve_figure()
         self.day_wind, self.day_speed, self.day_litres = self._day_figures()
@@ -306,7 +310,7 @@ class WindTab:
     def load(self, data: bytes | None, name: str = "") -> bool:
         """Read a measured wind CSV; True when it replaced the day's wind. A bad file is refused
         with its message and the day's wind stays as it was."""
-        if not data:
+        if data is None:
             return False
         try:
             check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")

@@ -6,7 +6,7 @@ import math
 import os
 
 import pytest
-from hypothesis import settings
+from hypothesis import HealthCheck, settings
 
 import windpump
 
@@ -40,9 +40,14 @@ def runs():
     }
 
 
+# No test may fail because the machine is busy: no deadline on an example, and no "too slow"
+# health check (the one check that times the data generation; the others count or measure the
+# data and stay on). Every profile builds on this one.
+settings.register_profile(
+    "patient", deadline=None, suppress_health_check=[HealthCheck.too_slow], print_blob=True
+)
 # CI runs a fixed set of examples, so a landing never depends on a newly drawn one.
 # A longer hunt for counter-examples: pytest --hypothesis-profile=thorough
-settings.register_profile("ci", derandomize=True, print_blob=True)
-settings.register_profile("thorough", max_examples=1000, deadline=None)
-if os.environ.get("CI"):
-    settings.load_profile("ci")
+settings.register_profile("ci", settings.get_profile("patient"), derandomize=True)
+settings.register_profile("thorough", settings.get_profile("patient"), max_examples=1000)
+settings.load_profile("ci" if os.environ.get("CI") else "patient")

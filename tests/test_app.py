@@ -308,7 +308,7 @@ def test_lab_data_in_a_european_spreadsheet_is_read(app):
     [
         (b"", "The file is empty"),
         (b"1,2\n2,3\nabc,4\n", "Line 3, column 1: 'abc' is not a number"),
-        (b"1,2,3\n2,3,4\n", "Line 1: 3 columns where the file needs two columns"),
+        (b"1,2,3\n2,3,4\n", "Line 1, column 3: 3 columns where the file needs two columns"),
         (b"x" * 1_000_001, "at most 1,000,000 are read"),
         (b"torque,speed\n0.2,10\n0.6,50\n0.2,90\n", "the header names torque first"),
         (b"speed,torque\n1,1\n2,2\n3,3\n", "Could not use that file"),
@@ -335,22 +335,66 @@ def test_a_file_the_page_refused_for_its_size_is_explained_and_changes_nothing(a
         assert not app.lab_message.visible
 
 
-def test_a_poor_fit_is_shown_and_applied_only_on_request(app):
+def test_a_poor_fit_outside_the_sliders_is_explained_and_not_offered(app):
+    """Swapped columns: the fit (Tₘ ≈ 59 N·m, ωₘ ≈ 0.4 rad/s) lies outside the sliders' ranges."""
     omega = np.linspace(5, 95, 10)
     torque = 0.6 * (omega / 50) * (2 - omega / 50)
     swapped = "".join(f"{q},{w}\n" for w, q in zip(omega, torque, strict=True)).encode()
+    fit = windpump.fit_torque_curve(torque, omega)
+    assert fit.poor and not 0.05 <= fit.T_m <= 5.0 and not 5.0 <= fit.omega_m <= 150.0
     app.load_lab_data(swapped)
+    message = app.lab_message.object
+    assert app.lab_message.visible and "A poor fit" in message
+    assert f"Windmill torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
+    assert f"Windmill peak speed ωₘ [rad/s] = {fit.omega_m:.3g} is outside 5–150" in message
+    assert "cannot be applied" in message and "Nothing was changed" in message
+    assert not app.apply_fit.visible  # only what can be applied is offered
+    assert app.inputs.T_m == SEED.T_m and app.inputs.omega_m == SEED.omega_m
+
+
+def test_a_poor_fit_inside_the_sliders_is_applied_only_on_request(app):
+    omega = np.linspace(5, 95, 10)
+    torque = 0.6 * (omega / 50) * (2 - omega / 50) + 0.15 * np.array([1, -1] * 5)  # ±25 % of Tₘ
+    fit = windpump.fit_torque_curve(omega, torque)
+    assert fit.poor and 0.05 <= fit.T_m <= 5.0 and 5.0 <= fit.omega_m <= 150.0
+    app.load_lab_data("".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode())
     assert app.lab_message.visible and "A poor fit" in app.lab_message.object
+    assert "cannot be applied" not in app.lab_message.object
     assert app.apply_fit.visible and app.inputs.T_m == SEED.T_m
-    fit = app._pending_fit
-    if all(
-        low <= v <= high for v, (low, high) in ((fit.T_m, (0.05, 5.0)), (fit.omega_m, (5.0, 150.0)))
-    ):
-        app.apply_fit.clicks += 1
-        assert app.inputs.T_m == pytest.approx(fit.T_m)
-    else:
-        app.apply_fit.clicks += 1
-        assert "cannot be applied" in app.lab_message.object and app.inputs.T_m == SEED.T_m
+    app.apply_fit.clicks += 1
+    assert app.inputs.T_m == pytest.approx(fit.T_m) and app.inputs.omega_m == pytest.approx(
+        fit.omega_m
+    )
+    assert app.lab_note.visible and not app.apply_fit.visible
+
+
+def test_an_empty_lab_file_is_explained(app):
+    """Panel reports a chosen 0-byte file as its name with no content (value stays None)."""
+    before = app.inputs.values()
+    app.lab_data.filename = "empty.csv"
+    assert app.lab_message.visible and "The file is empty" in app.lab_message.object
+    assert app.inputs.values() == before
+
+
+def revealed(app) -> str:
+    """The CSS class of what the page was last told to scroll into view."""
+    return app.reveal.value.split("\t")[0]
+
+
+def test_every_lab_upload_outcome_is_scrolled_into_view(app):
+    """At 1280×720 the messages under the upload lie below the sidebar's fold."""
+    omega = np.linspace(5, 95, 10)
+    good = 0.8 * (omega / 45) * (2 - omega / 45)
+    rows = "".join(f"{w},{q}\n" for w, q in zip(omega, good, strict=True))
+    outcomes = []
+    for content in (rows.encode(), b"10,0.216x\n", (rows + "5,9\n").encode(), rows.encode()):
+        app.lab_data.param.update(value=content, filename="lab.csv")  # as the page sends it
+        shown = [pane for pane in (app.lab_message, app.lab_note) if pane.visible]
+        assert revealed(app) in shown[0].css_classes
+        outcomes.append(app.reveal.value)
+    assert len(set(outcomes)) == 4  # the same outcome twice is scrolled to twice
+    app.refused_upload.value = "52428800\t1700000000000\tlab\tbig.csv"
+    assert revealed(app) in app.lab_message.css_classes and app.lab_message.visible
 
 
 def test_download_is_the_run_in_litres_with_its_design(app):

@@ -112,6 +112,26 @@ def test_a_measured_wind_file_replaces_the_day_and_a_bad_one_is_refused(app):
     assert app.wind.last_run.t[-1] == DAY
 
 
+def test_an_empty_wind_file_is_explained_and_the_day_stays(app):
+    """Panel reports a chosen 0-byte file as its name with no content (value stays None)."""
+    day = value(app, "day_litres")
+    app.wind.upload.filename = "empty.csv"
+    assert app.wind.upload_message.visible and "the file is empty" in app.wind.upload_message.object
+    assert value(app, "day_litres") == day
+
+
+def test_every_wind_upload_outcome_is_scrolled_into_view(app):
+    rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
+    app.wind.upload.param.update(value=rows.encode(), filename="mast.csv")
+    assert "mast.csv" in app.wind.day_note.object
+    assert app.reveal.value.split("\t")[0] in app.wind.day_note.css_classes
+    app.wind.upload.param.update(value=b"0,5x\n10,6\n", filename="typo.csv")
+    assert "line 1, column 2" in app.wind.upload_message.object
+    assert app.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
+    app.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
+    assert app.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
+
+
 def test_a_design_the_day_cannot_run_is_said_and_the_tab_lives(app):
     app.set_values(h=30.0, T_m=0.05)  # the pump never carries its load: the day rests
     assert not app.wind.error.visible

@@ -84,6 +84,7 @@ def browser():
 
 def open_page(browser, url, width=1400, height=1000, query=""):
     page = browser.new_page(viewport={"width": width, "height": height})
+    page.set_default_timeout(60_000)  # clicks and locators on a busy machine (playwright's: 30 s)
     problems, elsewhere = [], []
     page.on(
         "console", lambda m: problems.append(m.text) if m.type in ("error", "warning") else None
@@ -314,6 +315,49 @@ def test_a_lab_file_over_the_limit_is_refused_in_the_page_and_the_session_lives(
     assert page.problems == []
 
 
+TO_THE_TOP = "() => document.querySelectorAll('*').forEach((el) => { el.scrollTop = 0 })"
+
+
+def in_view(page, shown):
+    """Whether the first element with this text lies wholly inside the window."""
+    box = page.get_by_text(shown).first.bounding_box()
+    height, width = page.evaluate("() => [window.innerHeight, window.innerWidth]")
+    return (
+        box is not None
+        and 0 <= box["y"]
+        and box["y"] + box["height"] <= height
+        and (0 <= box["x"] and box["x"] + box["width"] <= width)
+    )
+
+
+def test_every_lab_uploads_outcome_is_shown_in_view_at_1280x720(browser, url):
+    """The messages under the upload lie below the sidebar's fold: each outcome is scrolled to."""
+    from playwright.sync_api import expect
+
+    omega = np.linspace(5, 95, 10)
+    torque = 0.6 * (omega / 50) * (2 - omega / 50)
+    swapped = "".join(f"{q},{w}\n" for w, q in zip(omega, torque, strict=True)).encode()
+    page = open_page(browser, url, width=1280, height=720)
+    try:
+        upload = page.locator("input[type=file]").first
+        for name, content, shown in [
+            ("typo.csv", b"10,0.216x\n50,0.6\n90,0.2\n", "Line 1, column 2: '0.216x' is not"),
+            ("empty.csv", b"", "The file is empty"),
+            ("swapped.csv", swapped, "It cannot be applied: Windmill torque"),
+        ]:
+            page.evaluate(TO_THE_TOP)  # the sidebar scrolled back: the upload's messages below
+            upload.set_input_files(
+                files=[{"name": name, "mimeType": "text/csv", "buffer": content}]
+            )
+            message = page.get_by_text(shown).first
+            expect(message).to_be_in_viewport(ratio=1.0, timeout=60_000)
+            assert in_view(page, shown), name
+        assert page.get_by_role("button", name="Apply this fit anyway").is_hidden()
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 # -- the page a class sees ------------------------------------------------------------------------
 
 
@@ -533,9 +577,11 @@ def test_the_machine_plays_the_run_in_the_browser(page):
     page.get_by_role("button", name="▶ Play").click()
     page.wait_for_function(f"() => ({PLAYER})() && ({PLAYER})().t > 1.0", timeout=30_000)
     first = page.evaluate(PLAYER)
-    time.sleep(1.0)
-    later = page.evaluate(PLAYER)
-    assert later["drawn"] > first["drawn"] and later["t"] > first["t"]  # frames advance
+    page.wait_for_function(  # frames advance (however slowly the machine draws them)
+        f"(first) => ({PLAYER})().drawn > first.drawn && ({PLAYER})().t > first.t",
+        arg=first,
+        timeout=30_000,
+    )
     page.get_by_role("button", name="▮▮ Pause").click()
     paused = page.evaluate(PLAYER)["t"]
     time.sleep(0.5)
@@ -545,7 +591,7 @@ def test_the_machine_plays_the_run_in_the_browser(page):
         page.evaluate(
             f"() => {{ window.Bokeh.documents[0].get_model_by_name('scrubber').value = {t} }}"
         )
-        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=10_000)
+        page.wait_for_function(f"() => Math.abs(({PLAYER})().t - {t}) < 1e-9", timeout=30_000)
         theta, piston = drawn_crank(page)
         run_theta = float(np.interp(t, run.t, run.theta)) % (2 * math.pi)
         assert abs(math.remainder(theta - run_theta, 2 * math.pi)) < 0.01
@@ -738,6 +784,11 @@ def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url
         upload = page.locator("input[type=file]").nth(1)
         upload.set_input_files(files=[day])
         page.get_by_text("the measured record mast.csv").first.wait_for(timeout=120_000)
+        empty = {"name": "empty.csv", "mimeType": "text/csv", "buffer": b""}
+        upload.set_input_files(files=[empty])
+        page.get_by_text("This wind file cannot be used: the file is empty").wait_for(
+            timeout=60_000
+        )
         huge = {"name": "huge.csv", "mimeType": "text/csv", "buffer": b"0,5\n" * 3_000_000}
         upload.set_input_files(files=[huge])
         page.get_by_text("it has 12,000,000 bytes").first.wait_for(timeout=60_000)

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 import shutil
 import socket
 import subprocess
 import sys
 import time
 import urllib.request
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -108,6 +110,67 @@ def test_map_writes_the_design_maps_csv_and_png(tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_map_png_has_a_log_colour_scale_with_labelled_contours():
+    from matplotlib.colors import LogNorm
+    from matplotlib.contour import ContourSet
+
+    from windpump.cli import map_figure
+
+    result = windpump.design_map(SEED, np.linspace(0.5, 8, 200), np.linspace(0, 9, 200))
+    per_day = result.mean_flow[result.mean_flow > 0] * 86400
+    low, high = per_day.min(), per_day.max()  # 16 to 276 m³/day
+    nice = [m * 10.0**k for k in range(-1, 5) for m in (1, 2, 5) if low <= m * 10.0**k <= high]
+    assert nice == [20, 50, 100, 200]
+    figure = map_figure(result)
+    axes, bar = figure.axes
+    contours = [c for c in axes.get_children() if isinstance(c, ContourSet)]
+    filled = [c for c in contours if c.filled]
+    lines = [c for c in contours if not c.filled]
+    assert isinstance(filled[0].norm, LogNorm)
+    assert (filled[0].norm.vmin, filled[0].norm.vmax) == pytest.approx((low, high))
+    assert list(lines[0].levels) == pytest.approx(nice)
+    assert sorted(float(t.get_text()) for t in axes.texts) == pytest.approx(nice)  # labelled
+    assert [t.get_text() for t in bar.get_yticklabels()] == ["20", "50", "100", "200"]
+    assert "m³/day" in bar.get_ylabel() and "log" in bar.get_ylabel()
+
+
+def test_the_map_png_is_not_nearly_all_one_colour(tmp_path):
+    """The PNG read back: the map's pixels spread over many colours (on a linear scale 43 % were
+    one colour and 76 % three)."""
+    from matplotlib import image
+
+    from windpump.cli import map_figure
+
+    png = tmp_path / "map.png"
+    done = windpump_command("map", "--csv", str(tmp_path / "map.csv"), "--png", str(png))
+    assert done.returncode == 0, done.stderr
+    pixels = image.imread(png)
+    result = windpump.design_map(SEED, np.linspace(0.5, 8, 200), np.linspace(0, 9, 200))
+    box = map_figure(result).axes[0].get_window_extent()  # the map's pixels, the same layout
+    height = pixels.shape[0]
+    inside = pixels[int(height - box.y1) + 2 : int(height - box.y0) - 2,
+                    int(box.x0) + 2 : int(box.x1) - 2, :3]  # fmt: skip
+    _, counts = np.unique((255 * inside).round().reshape(-1, 3), axis=0, return_counts=True)
+    shares = np.sort(counts / counts.sum())[::-1]
+    assert shares[0] < 0.25 and shares[:3].sum() < 0.5, shares[:3]
+    assert np.count_nonzero(shares > 0.02) >= 8
+
+
+def test_serve_help_lists_the_panel_options_it_passes_on():
+    done = windpump_command("serve", "--help")
+    assert done.returncode == 0, done.stderr
+    for option in ("--port", "--address", "--show", "--allow-websocket-origin", "--num-procs"):
+        assert option in done.stdout.split("usage: panel serve")[0]  # described in ours
+    panel = subprocess.run(
+        [sys.executable, "-m", "panel", "serve", "--help"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    options = set(re.findall(r"^  (--[a-z][a-z-]+)", panel.stdout, flags=re.M))
+    assert len(options) > 30 and options <= set(re.findall(r"--[a-z][a-z-]+", done.stdout))
+
+
 def test_sweep_runs_a_table_of_designs_on_two_workers(tmp_path):
     table = tmp_path / "designs.csv"
     table.write_text("h [m],R_dagger,t_end\n1,4,100\n3,6,100\n20,4,90\n")
@@ -123,6 +186,19 @@ def test_sweep_runs_a_table_of_designs_on_two_workers(tmp_path):
     again = windpump_command("sweep", str(out), "--csv", str(tmp_path / "again.csv"))
     assert again.returncode == 0, again.stderr
     assert (tmp_path / "again.csv").read_text() == out.read_text()
+
+
+def test_the_readmes_designs_csv_is_what_sweep_reads(tmp_path):
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    (example,) = re.findall(r"```csv\n(.*?)```", readme, flags=re.S)
+    table = tmp_path / "designs.csv"
+    table.write_text(example)
+    done = windpump_command("sweep", str(table))
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    designs = [SEED.replace(h=2.0), SEED.with_ratios(R_dagger=6.0, h=5.0, T_m=0.8)]
+    expected = windpump.sweep(designs, [600.0, 1200.0])
+    assert [float(row["volume [m^3]"]) for row in rows] == pytest.approx(expected.volume, rel=1e-11)
 
 
 def test_a_bad_row_names_its_line(tmp_path):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import windpump
@@ -50,18 +50,76 @@ def test_a_path_is_read(tmp_path):
         (b"# only a comment\n\n", None, None, "the file is empty"),
         (b"10,0.2\n50,0.6\n", None, None, "the fit needs at least 3"),
         (b"10,0.2\n50,abc\n90,0.2\n", 2, 2, "'abc' is not a number"),
-        (b"10,0.2\n50,0.6,7\n90,0.2\n", 2, None, "3 columns where the file needs two"),
-        (b"10\n50\n90\n", 1, None, "1 columns"),
+        (b"10,0.2\n50,0.6,7\n90,0.2\n", 2, 3, "3 columns where the file needs two"),
+        (b"10\n50\n90\n", 1, 2, "1 column where"),
         (b"10,0.2\n-50,0.6\n90,0.2\n", 2, 1, "negative"),
         (b"10,0.2\n50,inf\n90,0.2\n", 2, 2, "not a finite number"),
         (b"torque,speed\n0.2,10\n0.6,50\n0.2,90\n", 1, None, "names torque first"),
         (b"\xff\xfe1\x00,\x002\x00", None, None, "not UTF-8"),
+        # a first row is a header by what it says, never because it fails to parse as data
+        (b"10,0.216x\n50,0.6\n90,0.216\n", 1, 2, "'0.216x' is not a number"),
+        (b"10;0,216x\n50;0,6\n90;0,216\n", 1, 2, "'0.216x' is not a number"),
+        (b"-1O,0.216\n50,0.6\n90,0.216\n", 1, 1, "'-1O' is not a number"),
+        (b"10,0.216,7\n50,0.6\n90,0.216\n", 1, 3, "3 columns"),
+        (b"10,0.216,note\n50,0.6\n90,0.216\n", 1, 3, "3 columns"),
+        (b"speed,torque,note\n10,0.2\n50,0.6\n90,0.2\n", 1, 3, "3 columns"),
+        (b"speed\n10,0.2\n50,0.6\n90,0.2\n", 1, 2, "1 column where"),
+        (b"speed,0.216\n50,0.6\n90,0.216\n", 1, 1, "'speed' is not a number"),
+        (b"nan,0.216\n50,0.6\n90,0.216\n", 1, 1, "not a finite number"),
+        (b"10,0.216\x00\n50,0.6\n90,0.216\n", 1, None, "NUL byte"),
+        (b"10,0.2\n\n50\x00,0.6\n90,0.216\n", 3, None, "NUL byte"),
+        (b"1\x00,\x002\x00\n\x00", 1, None, "not text"),
+        (b"   \n\t\n", None, None, "the file is empty"),
+        (b"speed,torque\n", None, None, "the file has 0 measurement"),
     ],
 )
 def test_bad_files_say_what_and_where(content, line, column, words):
     with pytest.raises(LabDataError, match=words) as caught:
         read_torque_csv(content)
     assert (caught.value.line, caught.value.column) == (line, column)
+
+
+@settings(max_examples=60)
+@given(
+    rows=st.lists(st.tuples(finite, st.floats(-1e3, 1e3)), min_size=3, max_size=12),
+    header=st.booleans(),
+    at=st.data(),
+    letter=st.characters(categories=["L"]),
+)
+def test_a_number_with_a_letter_after_it_is_refused_naming_its_line(rows, header, at, letter):
+    """In any row, the first too: a typo never turns a row into a header or drops it."""
+    lines = [[repr(omega), repr(torque)] for omega, torque in rows]
+    row = at.draw(st.integers(0, len(rows) - 1), label="row")
+    column = at.draw(st.integers(1, 2), label="column")
+    lines[row][column - 1] += letter
+    text = "\n".join(",".join(cells) for cells in ([["speed", "torque"]] if header else []) + lines)
+    with pytest.raises(LabDataError, match="is not a number") as caught:
+        read_torque_csv(text.encode())
+    assert (caught.value.line, caught.value.column) == (row + 1 + header, column)
+
+
+@settings(max_examples=60)
+@given(
+    rows=st.lists(st.tuples(finite, st.floats(-1e3, 1e3)), min_size=3, max_size=12),
+    header=st.booleans(),
+    at=st.data(),
+)
+def test_a_nul_byte_anywhere_refuses_the_file(rows, header, at):
+    text = "\n".join((["speed,torque"] if header else []) + [f"{w!r},{t!r}" for w, t in rows])
+    where = at.draw(st.integers(0, len(text)), label="where")
+    with pytest.raises(LabDataError, match="NUL byte"):
+        read_torque_csv((text[:where] + "\x00" + text[where:]).encode())
+
+
+@pytest.mark.parametrize(
+    "header",
+    ["speed,torque", "ω [rad/s];T [N·m]", "Speed (rad/s)\tTorque (N m)", '"w","T"', "rpm,-"],
+)
+def test_a_header_of_names_is_read_as_one(header):
+    separator = next((s for s in ("\t", ";") if s in header), ",")
+    data = [f"10{separator}0.2", f"50{separator}0.6", f"90{separator}0.2"]
+    table = read_torque_csv("\n".join([header, *data]))
+    assert table.omega.tolist() == [10.0, 50.0, 90.0] and table.header is not None
 
 
 def test_a_long_file_is_refused_before_it_is_parsed(tmp_path):

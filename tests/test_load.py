@@ -45,6 +45,7 @@ PAGE_WAIT_MS = 600_000
 async def one_student(browser, url, k):
     """Open the page, move the head slider k % 4 + 1 steps, and see this session's readout follow."""
     page = await browser.new_page()
+    page.set_default_timeout(PAGE_WAIT_MS)  # the focus and key presses too, not playwright's 30 s
     problems = []
     host = urlparse(url).netloc
     page.on(

@@ -344,6 +344,62 @@ def test_read_csv_refuses_bad_files_saying_where(content, fragment):
         read_csv(content)
 
 
+@pytest.mark.parametrize(
+    ("content", "line", "column", "fragment"),
+    [
+        # a first row is a header by what it says, never because it fails to parse as data
+        (b"0,5x\n10,6\n20,4\n", 1, 2, "'5x' is not a number"),
+        (b"0;5,5x\n10;6\n20;4\n", 1, 2, "'5.5x' is not a number"),
+        (b"0x,5\n10,6\n", 1, 1, "neither seconds nor an ISO timestamp"),
+        (b"2026-06-01T00:00:0x,5\n2026-06-01T00:00:10,6\n", 1, 1, "neither seconds"),
+        (b"nan,nan\n0,5\n10,6\n", 1, 1, "neither seconds"),
+        (b"0,5,7\n10,6\n20,4\n", 1, 3, "3 columns"),
+        (b"time,speed,gust\n0,5\n10,6\n", 1, 3, "3 columns"),
+        (b"0,5\n10,6,7\n", 2, 3, "3 columns"),
+        (b"0,5\n10\n", 2, 2, "1 column where"),
+        (b"0,5\n10,6\x00\n", 2, None, "NUL byte"),
+        (b"\x00", 1, None, "NUL byte"),
+        (b" \n# nothing yet\n", None, None, "the file is empty"),
+    ],
+)
+def test_read_csv_names_the_line_and_column_at_fault(content, line, column, fragment):
+    with pytest.raises(LabDataError, match=fragment) as caught:
+        read_csv(content)
+    assert (caught.value.line, caught.value.column) == (line, column)
+
+
+@pytest.mark.parametrize("header", ["t [s],V [m/s]", "time;speed", "Zeit\tWind", '"t","V"'])
+def test_read_csv_reads_a_header_of_names(header):
+    separator = next((s for s in ("\t", ";") if s in header), ",")
+    record = read_csv("\n".join([header, f"0{separator}5", f"10{separator}6"]))
+    assert record.t.tolist() == [0.0, 10.0] and record.V.tolist() == [5.0, 6.0]
+
+
+@settings(max_examples=60)
+@given(
+    speeds=st.lists(st.floats(0.0, 150.0), min_size=2, max_size=12),
+    header=st.booleans(),
+    stamps=st.booleans(),
+    at=st.data(),
+    letter=st.characters(categories=["L"]),
+)
+def test_a_sample_with_a_letter_after_it_is_refused_naming_its_line(
+    speeds, header, stamps, at, letter
+):
+    """In any row, the first too: a typo never turns a row into a header or drops it (which
+    would shift the record's times)."""
+    times = [f"2026-06-01T00:{i // 6:02d}:{10 * (i % 6):02d}" if stamps else str(10 * i)
+             for i in range(len(speeds))]  # fmt: skip
+    lines = [[time, repr(speed)] for time, speed in zip(times, speeds, strict=True)]
+    row = at.draw(st.integers(0, len(lines) - 1), label="row")
+    column = at.draw(st.integers(1, 2), label="column")
+    lines[row][column - 1] += letter
+    text = "\n".join(",".join(cells) for cells in ([["time", "speed"]] if header else []) + lines)
+    with pytest.raises(LabDataError) as caught:
+        read_csv(text.encode())
+    assert (caught.value.line, caught.value.column) == (row + 1 + header, column)
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     t=st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1, max_size=6),

@@ -27,6 +27,15 @@ from .errors import StallError
 from .maps import DesignMap, design_map
 from .studies import FIGURES, INPUTS, sweep
 
+SERVE_OPTIONS = """\
+options of panel serve, passed on (all of them: its own help follows), e.g.:
+  --port PORT           the port to listen on (default 5006)
+  --address ADDRESS     the address to listen on (default: all of this machine's)
+  --show                open the explorer in a browser
+  --allow-websocket-origin HOST[:PORT]
+                        a host the page may be opened from (repeatable; behind a proxy, its name)
+  --num-procs N         serve from N processes (0: one per core)
+"""
 RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
 MAX_FILE_BYTES = 50_000_000
 
@@ -79,8 +88,19 @@ def build_parser() -> argparse.ArgumentParser:
     sweeping.add_argument("--csv", metavar="FILE", help="write the table here (default: stdout)")
     sweeping.set_defaults(run=sweep_command)
 
-    serve = commands.add_parser("serve", help="start the explorer (panel serve app/)")
-    serve.set_defaults(run=serve_command)
+    serve = commands.add_parser(
+        "serve",
+        help="start the explorer (panel serve app/)",
+        description="Start the explorer: panel serve app/, with every other option passed on.",
+        usage="%(prog)s [-h] [panel serve options]",
+        epilog=SERVE_OPTIONS,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        add_help=False,  # its --help adds panel serve's own
+    )
+    serve.add_argument(
+        "-h", "--help", action="store_true", help="show this and panel serve's options, then exit"
+    )
+    serve.set_defaults(run=serve_command, help_text=serve.format_help)
     return parser
 
 
@@ -231,12 +251,42 @@ def import_matplotlib():
 
 
 def plot_map(result: DesignMap, path: str) -> None:
-    """Mean flow contours over gear ratio and head, the stall boundary and the best gear."""
+    """Draw :func:`map_figure` into the PNG file ``path``."""
     plt = import_matplotlib()
+    figure = map_figure(result)
+    figure.savefig(path)
+    plt.close(figure)
+
+
+def map_figure(result: DesignMap):
+    """Mean flow [m³/day] over gear ratio and head on a log colour scale, labelled contours at 1,
+    2 and 5 × 10^k, the stall boundary, the best gear and the design: a matplotlib Figure.
+
+    The flows of a map span one to three decades (the seed's: 16 to 276 m³/day, most below 60):
+    on a linear scale most of the map is one colour. Where the pump stalls there is no flow and
+    no colour.
+    """
+    plt = import_matplotlib()
+    from matplotlib.colors import LogNorm
+    from matplotlib.ticker import FuncFormatter
+
     figure, axes = plt.subplots(figsize=(8, 5.5), dpi=120)
     per_day = result.mean_flow * 86400  # m^3/day
-    filled = axes.contourf(result.gear_ratios, result.heads, per_day, levels=16)
-    figure.colorbar(filled, ax=axes, label="mean flow [m³/day]")
+    flowing = np.isfinite(per_day) & (per_day > 0)
+    if flowing.any():
+        low, high = float(per_day[flowing].min()), float(per_day[flowing].max())
+        high = max(high, low * 1.01)  # a map of one flow still gets a scale
+        shown = np.where(flowing, per_day, np.nan)
+        x, y = result.gear_ratios, result.heads
+        norm = LogNorm(low, high)
+        filled = axes.contourf(x, y, shown, levels=np.geomspace(low, high, 17), norm=norm)
+        marks = nice_levels(low, high) or [low, high]
+        bar = figure.colorbar(filled, ax=axes, ticks=marks)
+        bar.set_label("mean flow [m³/day], log scale")
+        bar.ax.yaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
+        bar.ax.minorticks_off()
+        lines = axes.contour(x, y, shown, levels=marks, colors="white", linewidths=0.8)
+        axes.clabel(lines, fmt=lambda value: f"{value:g}", fontsize=8)
     axes.plot(result.stall_gear_ratio, result.heads, "k-", lw=2, label="stall boundary (margin 1)")
     axes.plot(result.best_gear_ratio, result.heads, "w--", lw=2, label="best gear ratio")
     design = result.design
@@ -245,10 +295,22 @@ def plot_map(result: DesignMap, path: str) -> None:
     axes.set_xlabel("gear ratio R1/R0 [-]")
     axes.set_ylabel("head h [m]")
     kind = "full simulations" if result.numeric else "averaged theory"
-    axes.set_title(f"Design map ({kind})")
+    axes.set_title(f"Design map ({kind}); blank: the pump stalls")
     axes.legend(loc="lower right")
-    figure.savefig(path)
-    plt.close(figure)
+    return figure
+
+
+def nice_levels(low: float, high: float) -> list[float]:
+    """The values 1, 2 and 5 × 10^k from ``low`` to ``high`` (both > 0).
+
+    Examples
+    --------
+    >>> nice_levels(15.9, 276.5)
+    [20.0, 50.0, 100.0, 200.0]
+    """
+    decades = range(math.floor(math.log10(low)), math.ceil(math.log10(high)) + 1)
+    values = [float(f"{m}e{k}") for k in decades for m in (1, 2, 5)]
+    return [value for value in values if low <= value <= high]
 
 
 def write(text: str, path: str | None) -> None:
@@ -343,6 +405,14 @@ def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
 
 def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump serve [panel serve options]``: the explorer, as ``panel serve app/``."""
+    if args.help:
+        print(args.help_text())
+        panel = [sys.executable, "-m", "panel", "serve", "--help"]
+        shown = subprocess.run(panel, capture_output=True, text=True, timeout=300)
+        print(
+            shown.stdout if shown.returncode == 0 else "(panel is not installed: pip install panel)"
+        )
+        return 0
     app = Path(__file__).resolve().parents[2] / "app"
     if not (app / "main.py").is_file():
         raise OSError(f"the explorer's app/ folder is not beside this install ({app})")

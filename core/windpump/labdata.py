@@ -10,6 +10,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import re
 
 import numpy as np
 
@@ -41,7 +42,8 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     """Read a CSV of windmill speed [rad/s] and torque [N m], one measurement per line.
 
     Separators ``,``, ``;`` or tab; with ``;`` or tab a decimal comma is read as a point. One
-    header row of names may come first; lines starting with ``#`` and blank lines are skipped.
+    header row of names may come first (a row is a header when its cells name columns: see
+    :func:`split_header`); lines starting with ``#`` and blank lines are skipped.
 
     Parameters
     ----------
@@ -54,8 +56,9 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     ------
     LabDataError
         (a ValueError) saying what is wrong and where: an empty or over-long file, text that is
-        not UTF-8, a line with other than two columns, a cell that is not a finite number, a
-        negative speed, a header that names torque before speed, fewer than three measurements.
+        not UTF-8 or holds a NUL byte, a line with other than two columns, a cell that is not a
+        finite number (``0.216x`` in the first row too), a negative speed, a header that names
+        torque before speed, fewer than three measurements.
 
     Examples
     --------
@@ -64,11 +67,10 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     ([10.0, 50.0, 90.0], [0.216, 0.6, 0.216], ('speed', 'torque'))
     """
     rows = read_rows(source, max_bytes, COLUMNS)
-    header = None
-    if not all(_is_number(cell) for cell in rows[0][1]):
-        header = tuple(rows[0][1])
-        _check_header(rows[0][0], header)
-        rows = rows[1:]
+    first_line = rows[0][0]
+    header, rows = split_header(rows, _is_number, COLUMNS)
+    if header is not None:
+        _check_header(first_line, header)
     values = np.array([_row(number, cells) for number, cells in rows]).reshape(-1, 2)
     if len(values) < 3:
         raise LabDataError(f"the file has {len(values)} measurement(s); the fit needs at least 3")
@@ -84,7 +86,7 @@ def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]
     Raises
     ------
     LabDataError
-        For a file over ``max_bytes``, not UTF-8 text, or empty.
+        For a file over ``max_bytes``, not UTF-8 text, holding a NUL byte, or empty.
     """
     data = _read_bytes(source, max_bytes)
     try:
@@ -93,6 +95,9 @@ def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]
         raise LabDataError(
             f"the file is not text (byte {error.start + 1} is not UTF-8); save it as CSV"
         ) from None
+    if "\x00" in text:  # UTF-16, or a spreadsheet's binary format
+        line = text.count("\n", 0, text.index("\x00")) + 1
+        raise LabDataError("the file is not text (it holds a NUL byte); save it as CSV", line)
     lines = [
         (number, line.strip())
         for number, line in enumerate(text.splitlines(), start=1)
@@ -102,6 +107,46 @@ def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]
         raise LabDataError(f"the file is empty; it needs {columns}")
     separator = _separator(line for _, line in lines)
     return [(number, _cells(line, separator)) for number, line in lines]
+
+
+def split_header(
+    rows: list[tuple[int, list[str]]], is_value, columns: str
+) -> tuple[tuple[str, ...] | None, list[tuple[int, list[str]]]]:
+    """The first row as a header if it names the columns, and the rows of data.
+
+    A header is recognised by what it says, not by failing to parse as data: none of its cells is
+    a value (``is_value``) or starts like a number (``0.216x`` is a number with a typo), and one
+    at least holds a letter. Any other first row is data, checked like the rest.
+
+    Raises
+    ------
+    LabDataError
+        For a header that does not name two columns (naming the line and the column at fault).
+
+    Examples
+    --------
+    >>> split_header([(1, ["speed", "torque"]), (2, ["10", "0.2"])], _is_number, "")[0]
+    ('speed', 'torque')
+    >>> split_header([(1, ["10", "0.216x"]), (2, ["50", "0.6"])], _is_number, "")[0] is None
+    True
+    """
+    number, cells = rows[0]
+    values = [cell for cell in cells if is_value(cell) or _starts_like_a_number(cell)]
+    if values or not any(letter.isalpha() for cell in cells for letter in cell):
+        return None, rows
+    check_columns(number, cells, columns)
+    return tuple(cells), rows[1:]
+
+
+def check_columns(line: int, cells: list[str], columns: str) -> None:
+    """Refuse a row of other than two cells, naming its line and the column at fault (the third,
+    or the missing second)."""
+    if len(cells) != 2:
+        raise LabDataError(
+            f"{len(cells)} column{'s' if len(cells) > 1 else ''} where the file needs {columns}",
+            line,
+            3 if len(cells) > 2 else 2,
+        )
 
 
 def check_file_size(size: int, max_bytes: int = MAX_BYTES, what: str = "a torque curve") -> None:
@@ -174,6 +219,11 @@ def _is_number(cell: str) -> bool:
     return True
 
 
+def _starts_like_a_number(cell: str) -> bool:
+    """``12``, ``-0.5x``, ``.5``, ``2026-06-01T…``: a digit after an optional sign and point."""
+    return re.match(r"[+-]?\.?\d", cell) is not None
+
+
 def _check_header(line: int, names: tuple[str, ...]) -> None:
     lowered = [name.lower() for name in names]
     if len(lowered) >= 2 and "torque" in lowered[0] and "torque" not in lowered[1]:
@@ -184,8 +234,7 @@ def _check_header(line: int, names: tuple[str, ...]) -> None:
 
 
 def _row(line: int, cells: list[str]) -> tuple[float, float]:
-    if len(cells) != 2:
-        raise LabDataError(f"{len(cells)} columns where the file needs {COLUMNS}", line)
+    check_columns(line, cells, COLUMNS)
     numbers = []
     for column, cell in enumerate(cells, start=1):
         try:

@@ -17,7 +17,7 @@ import typing
 import numpy as np
 
 from .errors import ParameterError
-from .labdata import LabDataError, _is_number, read_rows
+from .labdata import LabDataError, _is_number, check_columns, read_rows, split_header
 from .validation import positive
 
 MAX_RECORD = 10_000_000
@@ -227,15 +227,16 @@ def read_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_CSV_BYTES) 
     ``2026-06-01 12:00``, with or without a zone, one kind throughout); the record's times count
     from its first sample. The rules are the lab torque file's
     (:func:`windpump.read_torque_csv`): ``,``, ``;`` or tab separated, decimal commas with ``;``
-    or tab, an optional header row, ``#`` comments and blank lines skipped.
+    or tab, an optional header row (recognised by its names:
+    :func:`windpump.labdata.split_header`), ``#`` comments and blank lines skipped.
 
     Raises
     ------
     LabDataError
         (a ValueError) saying what is wrong and where: an empty or over-long file, text that is
-        not UTF-8, a line with other than two columns, a time that is neither a number nor a
-        timestamp, times that do not increase, a speed that is not a number from 0 to 150 m/s, fewer
-        than two samples.
+        not UTF-8 or holds a NUL byte, a line with other than two columns, a time that is neither
+        a number nor a timestamp, times that do not increase, a speed that is not a number from 0
+        to 150 m/s (``5x`` in the first row too), fewer than two samples.
 
     Examples
     --------
@@ -244,14 +245,14 @@ def read_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_CSV_BYTES) 
     ([0.0, 10.0], [4.5, 6.0])
     """
     rows = read_rows(source, max_bytes, COLUMNS)
-    if not (_is_number(rows[0][1][-1]) and _time(rows[0][1][0]) is not None):
-        rows = rows[1:]  # a header row
+    _header, rows = split_header(
+        rows, lambda cell: _is_number(cell) or _time(cell) is not None, COLUMNS
+    )
     times: list[float | datetime.datetime] = []
     speeds: list[float] = []
     kind = None
     for number, cells in rows:
-        if len(cells) != 2:
-            raise LabDataError(f"{len(cells)} columns where the file needs {COLUMNS}", number)
+        check_columns(number, cells, COLUMNS)
         moment = _time(cells[0])
         if moment is None:
             raise LabDataError(

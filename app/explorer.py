@@ -13,6 +13,7 @@ from urllib.parse import urlencode
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
+from buttons import ActionButton
 from figures import present
 from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
@@ -71,22 +72,6 @@ class PromptSlider(pn.widgets.FloatSlider):
     gathered by Panel and the latest applied, so a drag never queues runs."""
 
     _debounce = 0
-
-
-class ActionButton(pn.widgets.Button):
-    """Panel's button, its click handled under the page's document lock.
-
-    A click that arrives while a slider's move is still queued (three arrow keys, then Pin and
-    Reset at once) is run by Panel (1.9.4, ``Syncable._server_event``) as a coroutine without the
-    lock; a Bokeh model changed there (the pinned run's data) raised Bokeh's "_pending_writes
-    should be non-None" and the rest of the action (Reset's inputs) was lost. Panel's
-    ``async_execute`` keeps the lock for a callback marked ``lock``.
-    """
-
-    async def _event_coroutine(self, doc, event) -> None:
-        await super()._event_coroutine(doc, event)
-
-    _event_coroutine.lock = True  # type: ignore[attr-defined]
 
 
 def design_filename(design: windpump.Design) -> str:
@@ -298,7 +283,7 @@ class Explorer(pn.viewable.Viewer):
             "", visible=False, stylesheets=TEXT, css_classes=[LAB_NOTE]
         )
         self.reveal = Reveal()  # scrolls an upload's outcome into view
-        self.apply_fit = pn.widgets.Button(
+        self.apply_fit = ActionButton(
             label="Apply this fit anyway", color="warning", visible=False, **button
         )
         self.download = pn.widgets.FileDownload(

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
+from buttons import ActionButton
 from envelope import band
 from figures import TICKS, draw_band, empty, legend, line, new_figure, palette
 from readouts import Readout
@@ -95,7 +96,7 @@ class WindTab:
         self.upload_message = pn.pane.Alert(
             "", alert_type="danger", visible=False, stylesheets=TEXT, css_classes=[WIND_MESSAGE]
         )
-        self.use_gusty = pn.widgets.Button(
+        self.use_gusty = ActionButton(
             label="Back to the gusty day",
             visible=False,
             stylesheets=TEXT,

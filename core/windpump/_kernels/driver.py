@@ -113,7 +113,7 @@ def with_room(out, n, more):
 
 
 @kernel
-def record(out, n, t, theta, theta_dot, W, strokes, flow, final=False):
+def record(out, n, t, theta, theta_dot, W, strokes, flow, final):
     """Write sample n (``out`` has room for it); return the sample count. A sample no later than
     the last one (the crank moved less than time can resolve) replaces it, but the initial state
     stays as given."""
@@ -385,8 +385,9 @@ def integrate(
                         t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
                         W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
                     strokes = (g // period) * per_revolution + strokes_table[row]
+                    theta_dot_g = math.sqrt(2.0 * u_g)
                     n = record(
-                        out, n, t_g, g * delta, math.sqrt(2.0 * u_g), W_g, strokes, flow_table[row]
+                        out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False
                     )
                     g += 1
             u_free, t, W, theta = y[0], y[2], y[3], theta_new
@@ -459,5 +460,5 @@ def integrate(
         if g == end_grid or (target != end and sample_dt is None):
             row = g % period
             strokes = (g // period) * per_revolution + strokes_table[row]
-            n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row])
+            n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row], False)
             g += 1

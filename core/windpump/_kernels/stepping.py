@@ -51,7 +51,7 @@ from .dopri5 import (
     E7,
     step_factor,
 )  # fmt: skip
-from .jit import kernel
+from .jit import by_value_kernel, kernel
 from .model import load_on_crank, windmill_torque_on_crank
 from .wind import rise_above, wind_scale
 
@@ -71,7 +71,7 @@ STOP, START = -1.0, 1.0
 NO_TABLE = np.full(8, np.nan)  # the TIME domain has no stage loads
 
 
-@kernel
+@by_value_kernel
 def rates(domain, s, x0, x1, aux, machine, segment):
     """Derivatives (dx0, dx1, dq0, dq1) with respect to the independent variable s.
 
@@ -90,7 +90,7 @@ def rates(domain, s, x0, x1, aux, machine, segment):
     return x1, (drive + load) * machine.inv_I_eff, drive * x1, 0.0
 
 
-@kernel
+@by_value_kernel
 def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, segment, machine):
     """One Dormand-Prince 5(4) step of size h from (s; x0, x1; q0, q1), k1 = the rates there.
 

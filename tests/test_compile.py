@@ -1,0 +1,83 @@
+"""What a first start compiles: the seed example's kernels once each, in a fresh numba cache.
+
+A first start after an install spends its time compiling (README, "Measured"); these tests count
+what is compiled, not how long it takes (the machine is noisy).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+# Run in a process of its own with an empty cache: with a warm one numba loads the driver from
+# disk and compiles nothing, so there would be nothing to count.
+COMPILE_SEED = """
+import json, sys
+import numba
+from numba.core import event
+import windpump
+
+compiled = []
+class Listener(event.Listener):
+    def on_start(self, e):
+        compiled.append(e.data["dispatcher"].py_func.__module__)
+    def on_end(self, e):
+        pass
+event.register("numba:compile", Listener())
+seen = windpump.explore(windpump.Design.seed_example(), 600.0)
+windpump.power_budget(seen.run).cycle_means()
+windpump.playback_frames(seen.run)
+
+from windpump._kernels import dopri5, driver, grid, model, stepping
+signatures = {}
+for module in (dopri5, driver, grid, model, stepping):
+    for name, value in vars(module).items():
+        if isinstance(value, numba.core.dispatcher.Dispatcher) and value.__module__ == module.__name__:
+            signatures[f"{module.__name__}.{name}"] = len(value.signatures)
+json.dump({"signatures": signatures, "compiled": compiled}, sys.stdout)
+"""
+
+# Compiled once per domain (ANGLE, TIME) on purpose: jit.by_value_kernel.
+BY_DOMAIN = {"windpump._kernels.stepping.rates", "windpump._kernels.stepping.dp5_step"}
+
+
+@pytest.fixture(scope="module")
+def first_start(tmp_path_factory):
+    """The seed example run as the first page runs it, in a fresh process and numba cache."""
+    core = Path(__file__).resolve().parents[1] / "core"
+    environment = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path_factory.mktemp("numba_cache")))
+    environment["PYTHONPATH"] = os.pathsep.join(
+        [str(core), *filter(None, [os.environ.get("PYTHONPATH")])]
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", COMPILE_SEED],
+        env=environment,
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=600,
+    )
+    return json.loads(done.stdout)
+
+
+def test_every_kernel_is_compiled_once(first_start):
+    """A constant argument (record(out, 0, ...), final=True) compiles no copy of its own."""
+    signatures = first_start["signatures"]
+    assert signatures["windpump._kernels.driver.integrate"] == 1
+    assert signatures["windpump._kernels.driver.record"] == 1
+    assert signatures["windpump._kernels.grid.steady_runs"] == 0  # the Map tab's, not this page's
+    twice = {name: count for name, count in signatures.items() if count > 1}
+    assert set(twice) <= BY_DOMAIN
+    assert all(count == 2 for count in twice.values())
+
+
+def test_no_string_formatting_is_compiled(first_start):
+    """numba's error messages of slice assignments (its unicode helpers) are not compiled."""
+    modules = set(first_start["compiled"])
+    assert "windpump._kernels.driver" in modules
+    assert not {name for name in modules if "unicode" in name}

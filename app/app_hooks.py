@@ -6,6 +6,7 @@ from __future__ import annotations
 import dataclasses
 import gc
 import logging
+import time
 
 from bokeh.server.tornado import DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
 from tornado import httputil
@@ -13,8 +14,14 @@ from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
 
 import windpump
+from windpump.dynamics import solver_is_cached
 
 log = logging.getLogger("windpump.app")
+log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
+
+# A first start after an install compiles the solver: measured with benchmarks/bench_app.py
+# first-start on two cores (README, "Measured").
+FIRST_COMPILE_SECONDS = 10
 
 
 # A page's session is built when its HTML is served; if its websocket has not connected within
@@ -33,14 +40,10 @@ QUERY_FIELDS_LIMIT = 20_000
 
 
 def on_server_loaded(_server_context) -> None:
-    """When ``panel serve app/`` starts: compile (or load from numba's cache) the solver and
-    everything a page runs, so the first page opens as fast as the later ones; compress what the
-    server sends over HTTP (the page's scripts shrink about four times); and keep a served page's
-    session until its browser connects, however busy the server."""
-    seed = windpump.Design.seed_example()
-    seen = windpump.explore(seed, 600.0)
-    windpump.power_budget(seen.run).cycle_means()
-    windpump.playback_frames(seen.run)
+    """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
+    scripts shrink about four times); keep a served page's session until its browser connects,
+    however busy the server; accept long links; and compile (or load from numba's cache) the solver and everything
+    a page runs, so that no page waits for it. The server answers once this returns."""
     servers = bokeh_servers()
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")
@@ -48,7 +51,26 @@ def on_server_loaded(_server_context) -> None:
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
-    log.info("solver compiled and HTTP compression on, before the first page")
+    prepare_solver()
+
+
+def prepare_solver() -> None:
+    """Run what a first page runs, saying in the terminal when that means compiling the solver
+    (an empty numba cache: the first start after an install) and how long it took."""
+    seed = windpump.Design.seed_example()
+    cached = solver_is_cached(seed)
+    if not cached:
+        log.info(
+            "compiling the solver: the first start after an install takes about %d s (the "
+            "server answers once it is done); later starts load it from numba's cache",
+            FIRST_COMPILE_SECONDS,
+        )
+    started = time.perf_counter()
+    seen = windpump.explore(seed, 600.0)
+    windpump.power_budget(seen.run).cycle_means()
+    windpump.playback_frames(seen.run)
+    done = "loaded from numba's cache" if cached else "compiled"
+    log.info("solver %s in %.1f s: serving pages", done, time.perf_counter() - started)
 
 
 def bokeh_servers() -> list[BokehTornado]:

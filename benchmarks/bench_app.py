@@ -1,8 +1,8 @@
 """The explorer in a real browser: first page after a fresh start, slider move to new readout, bytes
 on the wire, and a class of 30 pages opening at once.
 
-Run: python benchmarks/bench_app.py [first] [slider] [class]   (all three by default; needs
-Debian's chromium at /usr/bin/chromium)
+Run: python benchmarks/bench_app.py [first] [slider] [class] [first-start]   (the first three by
+default; needs Debian's chromium at /usr/bin/chromium)
 
 1. First page: a fresh `panel serve app/`, then the time from opening the page to the mean-flow
    readout showing, for the first page and for a second one (the goal: the same).
@@ -16,6 +16,12 @@ Debian's chromium at /usr/bin/chromium)
 4. A class: 30 pages opened at once on one server, each in its own browser context made before
    the clock starts; each page's time to its readout and to its views, checked every 250 ms, and
    the CPU the server and each kind of chromium process used until the last readout.
+5. First start after an install (`first-start`): `panel serve app/` launched with an empty numba
+   cache (NUMBA_CACHE_DIR a fresh directory), timed from the launch to the first page's checked
+   readout, then launched again on the cache it left (a later start). Then the seed example's
+   first run alone, cold, in a process of its own (import, then explore + power_budget +
+   playback_frames as the first page runs them): for this checkout and, with BENCH_BASELINE=<git
+   revision>, for that revision's core (extracted with git archive).
 Every readout is checked against windpump, so a fast wrong page cannot pass.
 """
 
@@ -26,7 +32,9 @@ import contextlib
 import math
 import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -272,13 +280,98 @@ def classroom():
     print(f"   on 2 cores in {readouts[-1]:.0f} s)")
 
 
-PARTS = {"first": first_pages, "slider": slider, "class": classroom}
+def launch_to_readout(browser, cache: str) -> tuple[float, float]:
+    """Seconds from launching `panel serve app/` (numba caching to ``cache``) to its answering,
+    and to the first page's checked readout."""
+    before = os.environ.get("NUMBA_CACHE_DIR")
+    os.environ["NUMBA_CACHE_DIR"] = cache  # the server inherits it
+    try:
+        start = time.perf_counter()
+        with served_app(timeout=600) as (url, _server):
+            up = time.perf_counter() - start
+            page = browser.new_page(viewport={"width": 1400, "height": 1000})
+            page.goto(url, timeout=600_000)
+            page.wait_for_function(
+                f"(e) => ({READOUT})() === e", arg=expected_readout(SEED.h), timeout=600_000
+            )
+            readout = time.perf_counter() - start
+            page.close()
+    finally:
+        if before is None:
+            del os.environ["NUMBA_CACHE_DIR"]
+        else:
+            os.environ["NUMBA_CACHE_DIR"] = before
+    return up, readout
 
 
-def main(parts=tuple(PARTS)):
+# The first page's runs, alone, timed in a process of its own (wall and CPU seconds).
+FIRST_RUN = """
+import time
+started = time.perf_counter()
+import windpump
+imported = time.perf_counter()
+cpu = time.process_time()
+seen = windpump.explore(windpump.Design.seed_example(), 600.0)
+windpump.power_budget(seen.run).cycle_means()
+windpump.playback_frames(seen.run)
+print(imported - started, time.perf_counter() - imported, time.process_time() - cpu)
+"""
+
+
+def cold_first_run(core: Path) -> tuple[float, float, float]:
+    """(import, first page's runs, their CPU) [s] with ``core`` on the path and an empty cache."""
+    with tempfile.TemporaryDirectory() as cache:
+        environment = dict(os.environ, NUMBA_CACHE_DIR=cache, PYTHONPATH=str(core))
+        done = subprocess.run(
+            [sys.executable, "-c", FIRST_RUN],
+            env=environment,
+            capture_output=True,
+            text=True,
+            check=True,
+            timeout=900,
+        )
+    imported, runs, cpu = (float(word) for word in done.stdout.split())
+    return imported, runs, cpu
+
+
+def baseline_core(revision: str, into: Path) -> Path:
+    """The core of a git revision of this repository, extracted under ``into``."""
+    root = Path(__file__).resolve().parents[1]
+    archive = subprocess.run(
+        ["git", "-C", str(root), "archive", revision, "core"], capture_output=True, check=True
+    )
+    subprocess.run(["tar", "-x", "-C", str(into)], input=archive.stdout, check=True)
+    return into / "core"
+
+
+def first_start():
+    with a_browser() as browser, tempfile.TemporaryDirectory() as cache:
+        cold_up, cold = launch_to_readout(browser, cache)
+        warm_up, warm = launch_to_readout(browser, cache)
+    print("5. first start after an install: `panel serve app/` launched with an empty numba cache")
+    print(f"   first start:  answering after {cold_up:5.1f} s, first page's readout {cold:5.1f} s")
+    print(f"   later start:  answering after {warm_up:5.1f} s, first page's readout {warm:5.1f} s")
+    print("   the first page's runs alone, cold, in a process of their own:")
+    cores = {"this checkout": Path(__file__).resolve().parents[1] / "core"}
+    with tempfile.TemporaryDirectory() as extracted:
+        if os.environ.get("BENCH_BASELINE"):
+            revision = os.environ["BENCH_BASELINE"]
+            cores[f"BENCH_BASELINE={revision}"] = baseline_core(revision, Path(extracted))
+        for name, core in cores.items():
+            imported, runs, cpu = cold_first_run(core)
+            print(
+                f"   {name:28s} import {imported:4.1f} s, runs {runs:5.1f} s ({cpu:4.1f} s of CPU)"
+            )
+
+
+PARTS = {"first": first_pages, "slider": slider, "class": classroom, "first-start": first_start}
+DEFAULT_PARTS = ("first", "slider", "class")
+
+
+def main(parts=DEFAULT_PARTS):
     for part in parts:
         PARTS[part]()
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or tuple(PARTS))
+    main(sys.argv[1:] or DEFAULT_PARTS)

@@ -7,6 +7,7 @@ what is compiled, not how long it takes (the machine is noisy).
 from __future__ import annotations
 
 import json
+import logging
 import os
 import subprocess
 import sys
@@ -21,7 +22,9 @@ import json, sys
 import numba
 from numba.core import event
 import windpump
+from windpump.dynamics import solver_is_cached
 
+cached_before = solver_is_cached(windpump.Design.seed_example())
 compiled = []
 class Listener(event.Listener):
     def on_start(self, e):
@@ -39,7 +42,8 @@ for module in (dopri5, driver, grid, model, stepping):
     for name, value in vars(module).items():
         if isinstance(value, numba.core.dispatcher.Dispatcher) and value.__module__ == module.__name__:
             signatures[f"{module.__name__}.{name}"] = len(value.signatures)
-json.dump({"signatures": signatures, "compiled": compiled}, sys.stdout)
+cached = [cached_before, solver_is_cached(windpump.Design.seed_example())]
+json.dump({"signatures": signatures, "compiled": compiled, "cached": cached}, sys.stdout)
 """
 
 # Compiled once per domain (ANGLE, TIME) on purpose: jit.by_value_kernel.
@@ -81,3 +85,28 @@ def test_no_string_formatting_is_compiled(first_start):
     modules = set(first_start["compiled"])
     assert "windpump._kernels.driver" in modules
     assert not {name for name in modules if "unicode" in name}
+
+
+def test_the_cache_says_whether_a_first_run_compiles(first_start):
+    """solver_is_cached (the server's "compiling the solver" line): not before the first run in an
+    empty cache, and so after it."""
+    assert first_start["cached"] == [False, True]
+
+
+def test_the_server_says_when_it_compiles(monkeypatch, caplog):
+    """`panel serve app/` says it is compiling, and for about how long, before it does; and how
+    long it took once done (an empty cache is told by solver_is_cached, forced here)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
+    import app_hooks
+
+    for cached, done in [(False, "solver compiled in"), (True, "loaded from numba's cache in")]:
+        caplog.clear()
+        monkeypatch.setattr(app_hooks, "solver_is_cached", lambda _design, c=cached: c)
+        with caplog.at_level(logging.INFO, logger="windpump.app"):
+            app_hooks.prepare_solver()
+        lines = [record.getMessage() for record in caplog.records]
+        assert done in lines[-1]
+        compiling = [line for line in lines if line.startswith("compiling the solver")]
+        assert len(compiling) == (0 if cached else 1)
+        if not cached:
+            assert f"about {app_hooks.FIRST_COMPILE_SECONDS} s" in compiling[0]

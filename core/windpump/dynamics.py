@@ -428,20 +428,8 @@ def simulate(
         )
     from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
 
-    machine = _kernels.Machine(
-        R_dagger=design.R_dagger,
-        T_m=design.T_m,
-        T_0=design.T_0,
-        omega_m=design.omega_m,
-        inv_I_eff=1.0 / design.I_eff,
-        load_torque=design.load_torque,
-        L_over_R=design.L_over_R,
-        cylinders=design.cylinders,
-        double_acting=design.double_acting,
-        wind=None if record is None else kernel_wind(record, design.V_ref),
-    )
     run = _kernels.run(
-        machine,
+        kernel_machine(design, record),
         theta0,
         theta_dot0,
         t_end,
@@ -490,6 +478,45 @@ def simulate(
         starts=run.starts,
         wind=record,
     )
+
+
+def kernel_machine(design: Design, record: WindRecord | None = None):
+    """The design (and wind record, if any) as the compiled integrator takes them."""
+    from . import _kernels
+
+    return _kernels.Machine(
+        R_dagger=design.R_dagger,
+        T_m=design.T_m,
+        T_0=design.T_0,
+        omega_m=design.omega_m,
+        inv_I_eff=1.0 / design.I_eff,
+        load_torque=design.load_torque,
+        L_over_R=design.L_over_R,
+        cylinders=design.cylinders,
+        double_acting=design.double_acting,
+        wind=None if record is None else kernel_wind(record, design.V_ref),
+    )
+
+
+def solver_is_cached(design: Design) -> bool:
+    """Whether numba's on-disk cache holds the integrator compiled for a run of ``design`` in its
+    own wind on the angle grid (``simulate``'s defaults), so that its first run loads it rather
+    than compiling it (a first start after an install: README, "Measured").
+
+    Reads the cache's index only (no compiling, no loading). False also when it cannot tell.
+
+    Parameters
+    ----------
+    design : Design
+        The wind pump whose run would be compiled (its types matter, not its values).
+
+    Returns
+    -------
+    bool
+    """
+    from . import _kernels
+
+    return _kernels.is_cached(kernel_machine(design), sample_dt=None)
 
 
 def kernel_wind(record: WindRecord, V_ref: float):

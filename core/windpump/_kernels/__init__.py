@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import typing
 
+import numba
 import numpy as np
 
 from . import driver
@@ -43,6 +44,7 @@ __all__ = [
     "KernelRun",
     "Machine",
     "Wind",
+    "is_cached",
     "run",
 ]
 
@@ -104,3 +106,18 @@ def run(
         stops=times[kinds == STOP].copy(),
         starts=times[kinds == START].copy(),
     )
+
+
+def is_cached(machine: Machine, sample_dt: float | None) -> bool:
+    """Whether numba's on-disk cache holds :func:`run`'s driver compiled for these argument types
+    (the machine's, and a sample_dt or None), from the cache's index alone; False when it does
+    not, or when caching is off or numba's private cache API has changed."""
+    dispatcher = driver.integrate
+    arguments = (machine, 0.0, 0.0, 1.0, 1, sample_dt, 1e-8, 1, 1)  # typed as run() passes them
+    try:
+        signature = tuple(numba.typeof(argument) for argument in arguments)
+        cache = dispatcher._cache
+        key = cache._index_key(signature, dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:  # a NullCache (no caching), or another numba
+        return False

@@ -21,7 +21,7 @@ log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show 
 
 # A first start after an install compiles the solver: measured with benchmarks/bench_app.py
 # first-start on two cores (README, "Measured").
-FIRST_COMPILE_SECONDS = 10
+FIRST_COMPILE_SECONDS = 8
 
 
 # A page's session is built when its HTML is served; if its websocket has not connected within

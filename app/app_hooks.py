@@ -42,8 +42,9 @@ QUERY_FIELDS_LIMIT = 20_000
 def on_server_loaded(_server_context) -> None:
     """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
     scripts shrink about four times); keep a served page's session until its browser connects,
-    however busy the server; accept long links; and compile (or load from numba's cache) the solver and everything
-    a page runs, so that no page waits for it. The server answers once this returns."""
+    however busy the server; accept long links; and compile (or load from numba's cache) the
+    solver and everything a page runs, so that no page waits for it. The server answers once
+    this returns."""
     servers = bokeh_servers()
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")

@@ -11,6 +11,7 @@ from hypothesis import HealthCheck, settings
 import windpump
 
 from reference import reference_run
+from served import CHROMIUM, CHROMIUM_FLAGS, require_chromium, served_app
 
 SEED = windpump.Design.seed_example()
 SEED_MARGIN = windpump.stall_margin(SEED)
@@ -51,3 +52,27 @@ settings.register_profile(
 settings.register_profile("ci", settings.get_profile("patient"), derandomize=True)
 settings.register_profile("thorough", settings.get_profile("patient"), max_examples=1000)
 settings.load_profile("ci" if os.environ.get("CI") else "patient")
+
+
+# The app served for a test module's pages, and one headless chromium for them (browser tests).
+@pytest.fixture(scope="module")
+def server():
+    require_chromium()
+    with served_app() as (address, process):
+        yield address, process
+
+
+@pytest.fixture(scope="module")
+def url(server):
+    return server[0]
+
+
+@pytest.fixture(scope="module")
+def browser():
+    require_chromium()
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as playwright:
+        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+        yield chromium
+        chromium.close()

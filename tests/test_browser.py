@@ -15,12 +15,8 @@ import windpump
 from windpump.wind import gusty
 
 from served import (
-    CHROMIUM,
-    CHROMIUM_FLAGS,
     DEEP_TEXT,
     VIEWS_DRAWN,
-    require_chromium,
-    served_app,
     server_log,
 )
 
@@ -57,29 +53,6 @@ TEXT_SIZES = """() => {
   walk(document);
   return found;
 }"""
-
-
-@pytest.fixture(scope="module")
-def server():
-    require_chromium()
-    with served_app() as (address, process):
-        yield address, process
-
-
-@pytest.fixture(scope="module")
-def url(server):
-    return server[0]
-
-
-@pytest.fixture(scope="module")
-def browser():
-    require_chromium()
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
-        yield chromium
-        chromium.close()
 
 
 def open_page(browser, url, width=1400, height=1000, query=""):

@@ -9,8 +9,6 @@ import time
 import pytest
 from test_browser import ARTIFACTS, SIZES, open_page
 
-from served import CHROMIUM, CHROMIUM_FLAGS, require_chromium, served_app
-
 pytestmark = pytest.mark.browser
 
 FIGURES = ("speed", "machine", "flow", "closeup", "energy", "stall", "operating")
@@ -72,24 +70,6 @@ FONT_SIZE = """(text) => {
   const el = walk(document);
   return el ? parseFloat(getComputedStyle(el).fontSize) : null;
 }"""
-
-
-@pytest.fixture(scope="module")
-def url():
-    require_chromium()
-    with served_app() as (address, _process):
-        yield address
-
-
-@pytest.fixture(scope="module")
-def browser():
-    require_chromium()
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
-        yield chromium
-        chromium.close()
 
 
 def settled(page) -> None:

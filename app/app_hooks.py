@@ -6,9 +6,11 @@ from __future__ import annotations
 import dataclasses
 import gc
 import logging
+import threading
 import time
 
 from bokeh.server.tornado import DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
+from serving import SOLVER_READY
 from tornado import httputil
 from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
@@ -42,9 +44,9 @@ QUERY_FIELDS_LIMIT = 20_000
 def on_server_loaded(_server_context) -> None:
     """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
     scripts shrink about four times); keep a served page's session until its browser connects,
-    however busy the server; accept long links; and compile (or load from numba's cache) the
-    solver and everything a page runs, so that no page waits for it. The server answers once
-    this returns."""
+    however busy the server; accept long links; and load the solver from numba's cache before
+    the server answers, or, on a first start after an install, compile it in the background
+    while pages open (they run their first design once it is ready)."""
     servers = bokeh_servers()
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")
@@ -52,7 +54,22 @@ def on_server_loaded(_server_context) -> None:
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
-    prepare_solver()
+    if solver_is_cached(windpump.Design.seed_example()):
+        prepare_solver()  # loaded from numba's cache in under a second: before answering
+        return
+    # A first start: compile while the server answers, so a page's browser loads meanwhile
+    # (serving.first_run_when_ready runs its design once the solver is ready).
+    SOLVER_READY.clear()
+    threading.Thread(target=compile_in_background, name="compile the solver", daemon=True).start()
+
+
+def compile_in_background() -> None:
+    try:
+        prepare_solver()
+    except Exception:  # never leave the pages waiting: they will compile what they need
+        log.exception("compiling the solver failed")
+    finally:
+        SOLVER_READY.set()
 
 
 def prepare_solver() -> None:
@@ -62,8 +79,9 @@ def prepare_solver() -> None:
     cached = solver_is_cached(seed)
     if not cached:
         log.info(
-            "compiling the solver: the first start after an install takes about %d s (the "
-            "server answers once it is done); later starts load it from numba's cache",
+            "compiling the solver: the first start after an install takes about %d s (pages "
+            "open meanwhile and show their numbers once it is done); later starts load it "
+            "from numba's cache",
             FIRST_COMPILE_SECONDS,
         )
     started = time.perf_counter()

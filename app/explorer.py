@@ -52,6 +52,10 @@ BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
+COMPILING = (
+    "**Compiling the solver.** The first start after an install compiles it (about 8 s); this "
+    "page's numbers follow as soon as it is done."
+)
 MAX_NOTICES = 5  # the link's ignored values listed; the rest counted
 MAX_QUERY = 64 * 1024  # [characters] a longer link's parameters are ignored (app_hooks.py)
 # An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
@@ -82,7 +86,8 @@ def design_filename(design: windpump.Design) -> str:
 
 
 class Explorer(pn.viewable.Viewer):
-    """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from."""
+    """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from;
+    ``start=False`` waits for ``start()`` to run it (while the server compiles the solver)."""
 
     inputs = param.ClassSelector(class_=PumpInputs)
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
@@ -96,6 +101,7 @@ class Explorer(pn.viewable.Viewer):
         bins: int | None = BINS,
         query: dict | None = None,
         defer_views: bool = False,
+        start: bool = True,
         **params,
     ):
         super().__init__(inputs=PumpInputs(), **params)
@@ -122,10 +128,23 @@ class Explorer(pn.viewable.Viewer):
         notices += read
         self._presentation_from(query, notices)
         self.inputs.param.update(**values)
+        self._location = None  # the page's address, once follow_in_link() is called
+        self._link = (values, notices)  # what start() runs first
+        if start:
+            self.start()
+        else:
+            self.status.object, self.status.alert_type = COMPILING, "info"
+
+    def start(self) -> None:
+        """The first run: the link's design (a value the core refuses is named and left out),
+        then every change of an input runs again."""
+        if self._link is None:
+            return
+        values, notices = self._link
+        self._link = None
         seen = self._run_link(values, notices)
         self._show_notices(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
-        self._location = None  # the page's address, once follow_in_link() is called
         self.update(seen)
 
     # -- building ----------------------------------------------------------------------------

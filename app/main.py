@@ -12,6 +12,8 @@ from explorer import BINS, Explorer
 from keyboard import keyboard_and_screen_readers
 from serving import (
     READOUTS_FIRST,
+    SOLVER_READY,
+    first_run_when_ready,
     session_closed,
     stylesheets_from_this_server,
     without_mathjax,
@@ -32,7 +34,10 @@ pn.state.on_session_destroyed(session_closed)
 query = pn.state.session_args
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"
-explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True)
+# The first start after an install compiles the solver in the background: this page opens at
+# once and runs its design when the solver is ready (serving.first_run_when_ready).
+ready = SOLVER_READY.is_set()
+explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True, start=ready)
 explorer.follow_in_link(pn.state.location)  # one way: the page writes its link, reads it once
 with document.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
@@ -41,4 +46,7 @@ with document.models.freeze():  # one walk of the models for the page, not one p
 session_id = document.session_context.id
 READOUTS_FIRST.opened(session_id)
 # partial, not a lambda: Bokeh clears this module's globals once the session has started
-pn.state.onload(partial(READOUTS_FIRST.loaded, session_id, document, explorer.show_views))
+if ready:
+    pn.state.onload(partial(READOUTS_FIRST.loaded, session_id, document, explorer.show_views))
+else:
+    pn.state.onload(first_run_when_ready(session_id, document, explorer))

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import asyncio
 import ctypes
 import ctypes.util
 import gc
+import threading
 import time
 from collections.abc import Callable
 
@@ -112,3 +114,28 @@ class ReadoutsFirst:
 
 
 READOUTS_FIRST = ReadoutsFirst()
+
+
+# Set once the server's solver is compiled or loaded from numba's cache. A first start after an
+# install compiles it in the background (app_hooks.py): pages open meanwhile, their browsers load
+# while it compiles, and each runs its first design once it is ready (``first_run_when_ready``).
+# Set by default: without the hook (a notebook, the tests) nothing waits.
+SOLVER_READY = threading.Event()
+SOLVER_READY.set()
+
+
+def first_run_when_ready(session_id: str, document, explorer) -> Callable:
+    """The page's onload callback while the solver compiles: wait for it off the event loop,
+    then, under the document's lock, run the page's first design and go on as a page does."""
+
+    async def run() -> None:
+        if not SOLVER_READY.is_set():
+            await asyncio.get_running_loop().run_in_executor(None, SOLVER_READY.wait)
+
+        def first_run() -> None:
+            explorer.start()
+            READOUTS_FIRST.loaded(session_id, document, explorer.show_views)
+
+        document.add_next_tick_callback(first_run)
+
+    return run

@@ -476,6 +476,26 @@ def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
     assert fig.min_border == 0 and not fig.axis[0].visible  # the frame is the whole figure
 
 
+def test_a_page_built_while_the_solver_compiles_runs_its_link_on_start():
+    """start=False (a first start's pages): controls and a word on the compile, no run; start()
+    runs the link's design and names what it ignored, as a page built ready does."""
+    from explorer import COMPILING
+
+    query = {"h": [b"5"], "foo": [b"1"]}
+    waiting = Explorer(query=query, start=False)
+    assert waiting.seen is None and waiting.status.object == COMPILING
+    assert readout_text(waiting, "mean_flow") == ""
+    waiting.inputs.T_m = 0.8  # a move before the first run is in it
+    waiting.start()
+    seen = expected(SEED.replace(h=5.0, T_m=0.8))
+    assert f"{1e3 * seen.mean_flow:.4f} L/s" in readout_text(waiting, "mean_flow")
+    assert "foo" in waiting.notices.object and waiting.notices.visible
+    waiting.inputs.h = 6.0  # and every move after it runs again
+    assert f"{1e3 * expected(SEED.replace(h=6.0, T_m=0.8)).mean_flow:.4f} L/s" in readout_text(
+        waiting, "mean_flow"
+    )
+
+
 def canvas_text_sizes(app) -> list[float]:
     """Every text size [px] the page's figures draw on their canvas, the tabs' included."""
     from bokeh.models import Legend, Text

@@ -110,3 +110,32 @@ def test_the_server_says_when_it_compiles(monkeypatch, caplog):
         assert len(compiling) == (0 if cached else 1)
         if not cached:
             assert f"about {app_hooks.FIRST_COMPILE_SECONDS} s" in compiling[0]
+
+
+@pytest.mark.browser
+def test_a_first_start_answers_while_it_compiles_and_its_first_page_gets_its_numbers(
+    browser, monkeypatch, tmp_path
+):
+    """With an empty numba cache `panel serve app/` answers at once and compiles in the
+    background; a page opened meanwhile loads, then shows the seed example's readout."""
+    import windpump
+
+    from served import DEEP_TEXT, served_app, server_log
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # the server inherits it
+    with served_app(timeout=600) as (url, server):
+        answered = server_log(server)
+        assert "compiling the solver" in answered and "solver compiled" not in answered
+        page = browser.new_page(viewport={"width": 1280, "height": 720})
+        try:
+            page.goto(url, timeout=600_000)
+            seen = windpump.explore(windpump.Design.seed_example(), 600.0)
+            page.wait_for_function(
+                f"(e) => ({DEEP_TEXT})('[data-name=mean_flow]') === e",
+                arg=f"{1e3 * seen.mean_flow:.4f} L/s",
+                timeout=600_000,
+            )
+        finally:
+            page.close()
+        assert "solver compiled in" in server_log(server)
+        assert "Traceback" not in server_log(server)

@@ -53,3 +53,43 @@ def test_a_page_waits_no_longer_than_its_patience_nor_for_a_page_that_never_load
     forgetful.opened("never")
     forgetful.loaded("b", document, lambda: shown.append("b"))
     assert shown == ["a", "b"] and forgetful.loading == {}
+
+
+# -- a first start: pages open while the solver compiles ------------------------------------------
+
+
+class TickDocument(Document):
+    """Also keeps next-tick callbacks (run under the document's lock in a real server)."""
+
+    def add_next_tick_callback(self, callback):
+        self.pending.append(callback)
+
+
+def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready():
+    """The page's onload waits off the event loop for the compile, then, on the document's next
+    tick, runs its first design and goes on as any page (its views through ReadoutsFirst)."""
+    import asyncio
+    import threading
+
+    import serving
+
+    started, shown = [], []
+
+    class Page:
+        def start(self):
+            started.append(serving.SOLVER_READY.is_set())
+
+        def show_views(self):
+            shown.append(True)
+
+    document = TickDocument()
+    serving.SOLVER_READY.clear()
+    try:
+        onload = serving.first_run_when_ready("page", document, Page())
+        threading.Timer(0.2, serving.SOLVER_READY.set).start()  # the compile ends
+        asyncio.run(asyncio.wait_for(onload(), timeout=60))
+        assert started == [] and len(document.pending) == 1  # nothing ran off the lock
+        document.run_pending()
+        assert started == [True] and shown == [True]
+    finally:
+        serving.SOLVER_READY.set()

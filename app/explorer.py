@@ -52,6 +52,7 @@ BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
 PRESET_PROMPT = "Choose a preset…"
+PRESENTATION_GROWTH = 1.3  # the height of a view below the first screen in presentation mode
 COMPILING = (
     "**Compiling the solver.** The first start after an install compiles it (about 8 s); this "
     "page's numbers follow as soon as it is done."
@@ -634,6 +635,12 @@ class Explorer(pn.viewable.Viewer):
         they draw on their canvas and their lines (the page's HTML follows ``styles.ZOOM_JS``)."""
         for fig in self.figures():
             present(fig, large)
+        # Larger text leaves a plot less room: the views below the first screen grow with it
+        # (the crank speed and the machine keep a projector's first screen).
+        for view in self.views:
+            if view not in (self.speed, self.machine):
+                base = view.__dict__.setdefault("base_height", view.figure.height)
+                view.figure.height = round(base * (PRESENTATION_GROWTH if large else 1))
 
     def figures(self) -> list:
         """Every figure on the page so far: the views' and those of the tabs opened."""
@@ -998,6 +1005,7 @@ NARROW_CSS = """
   #header .title { font-size: 1.05rem; }
   #content { flex-direction: column; flex-wrap: nowrap; overflow-y: auto !important; }
   #content > #sidebar { max-width: 100% !important; width: 100% !important; }  /* outranks the template's */
+  #sidebar, #sidebar > * { max-height: none !important; height: auto !important; overflow: visible !important; }  /* no scroll of its own */
   #main { max-height: none !important; overflow: visible !important; width: 100%; }
 }
 """

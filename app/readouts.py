@@ -16,9 +16,11 @@ READOUT_CSS = """
 .readout .value {font-size: 20px; font-weight: bold}
 """
 PRESENTATION_CSS = """
+@media (min-width: 701px) {  /* a phone keeps its sizes (styles.zoom_css) */
 :host { font-size: 20px; }
 .readout .value {font-size: 30px}
 .readout .label {font-size: 17px; opacity: 1}
+}
 """
 
 

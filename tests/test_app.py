@@ -524,6 +524,17 @@ def test_presentation_mode_enlarges_every_canvas_text_and_back(app):
     assert canvas_text_sizes(app) == before
 
 
+def test_presentation_mode_gives_the_views_below_the_first_screen_more_height(app):
+    """Their text grows, so their plots would shrink; the crank speed and the machine keep the
+    first screen's layout."""
+    heights = {view: view.figure.height for view in app.views}
+    app.present_toggle.value = True
+    grown = {view for view in app.views if view.figure.height > 1.2 * heights[view]}
+    assert grown == set(app.views) - {app.speed, app.machine}
+    app.present_toggle.value = False
+    assert {view: view.figure.height for view in app.views} == heights
+
+
 def test_the_dark_theme_comes_from_the_link():
     assert Explorer(query={"theme": [b"dark"]}).template().theme.__name__.startswith("Dark")
     assert not Explorer().template().theme.__name__.startswith("Dark")

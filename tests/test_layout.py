@@ -144,7 +144,12 @@ def test_nothing_scrolls_sideways_and_no_canvas_text_is_cut(browser, url, width,
         assert {n: c for n, c in cut.items() if c} == {}
         header = page.locator("#header").bounding_box()
         assert header["height"] <= 70, "the header keeps to one line"
-        if width < 700:
+        if width < 700:  # the page scrolls as one column: nothing in a scroll of its own
+            inner = page.evaluate(
+                "() => { const s = document.querySelector('#sidebar');"
+                " return s.scrollHeight - s.clientHeight }"
+            )
+            assert inner <= 1, f"the sidebar hides {inner} px in a scroll of its own"
             scrubber = page.locator(
                 ".bk-input-group", has=page.locator(".bk-slider-title", has_text="time t [s]")
             )

@@ -79,7 +79,7 @@ def palette(dark: bool = False) -> dict[str, str]:
 
 
 # Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
-PRESENTATION_SIZES = {TITLE: "22px", LABEL: "20px", TICKS: "18px"}
+PRESENTATION_SIZES = {TITLE: "22px", LABEL: "19px", TICKS: "18px"}  # text glyphs are LABEL
 LINE_SCALE = 1.5  # lines in presentation mode
 
 
@@ -89,15 +89,11 @@ def present(fig, large: bool) -> None:
     if getattr(fig, "_presented", False) == large:
         return
     fig._presented = large
-    size = (
-        {**PRESENTATION_SIZES, "15px": "19px"}
-        if large
-        else {v: k for k, v in PRESENTATION_SIZES.items()} | {"19px": "15px"}
-    )
+    size = PRESENTATION_SIZES if large else {v: k for k, v in PRESENTATION_SIZES.items()}
     fig.title.text_font_size = size.get(fig.title.text_font_size, fig.title.text_font_size)
     for axis in (*fig.xaxis, *fig.yaxis):
-        axis.axis_label_text_font_size = size.get(axis.axis_label_text_font_size, LABEL)
-        axis.major_label_text_font_size = size.get(axis.major_label_text_font_size, TICKS)
+        for prop in ("axis_label_text_font_size", "major_label_text_font_size"):
+            setattr(axis, prop, size.get(getattr(axis, prop), getattr(axis, prop)))
     for panel in fig.center + fig.below + fig.above + fig.left + fig.right:
         for prop in ("label_text_font_size", "title_text_font_size", "major_label_text_font_size"):
             value = getattr(panel, prop, None)

@@ -23,7 +23,7 @@ from bokeh.models import (
     Slider,
 )
 from bokeh.plotting import figure
-from figures import empty, palette
+from figures import LABEL, empty, palette
 from keyboard import FOCUS_CSS
 from styles import CAPTION_CSS, px
 from views import View, refill
@@ -169,7 +169,7 @@ class MachineView(View):
             "y",
             "text",
             source=s["machine_label"],
-            text_font_size="15px",
+            text_font_size=LABEL,
             text_baseline="top",
             text_color=c["ink"],
         )

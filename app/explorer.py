@@ -15,7 +15,7 @@ import param
 from bokeh.models import ColumnDataSource, Range1d
 from buttons import ActionButton
 from figures import present
-from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text
+from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text, on_grid
 from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
 from machine import MachineView
 from map_tab import MapTab
@@ -191,6 +191,7 @@ class Explorer(pn.viewable.Viewer):
             self.operating,
         ]
         self.sources.update(cursor=self.cursor)
+        self.base_heights = {view: view.figure.height for view in self.views}
         for view in self.views:
             self.sources.update(view.sources)
         self._name_sources()
@@ -198,8 +199,8 @@ class Explorer(pn.viewable.Viewer):
     def _name_sources(self) -> None:
         for name, source in self.sources.items():
             source.name = name  # so a browser can find it: Bokeh.documents[0].get_model_by_name
-        for name in ("speed", "flow", "energy", "closeup", "stall", "operating", "machine"):
-            if self.views:
+        if self.views:
+            for name in ("speed", "flow", "energy", "closeup", "stall", "operating", "machine"):
                 getattr(self, name).figure.name = f"{name}_figure"
 
     @property
@@ -231,7 +232,7 @@ class Explorer(pn.viewable.Viewer):
         for name, value in (("R_dagger", ratio), ("h", h)):
             low, high = self.inputs.param[name].bounds
             step = self.inputs.param[name].step
-            values[name] = round(min(max(round(value / step) * step, low), high), 10)
+            values[name] = min(max(on_grid(value, step), low), high)
         self.set_values(**values)
 
     @property
@@ -639,8 +640,8 @@ class Explorer(pn.viewable.Viewer):
         # (the crank speed and the machine keep a projector's first screen).
         for view in self.views:
             if view not in (self.speed, self.machine):
-                base = view.__dict__.setdefault("base_height", view.figure.height)
-                view.figure.height = round(base * (PRESENTATION_GROWTH if large else 1))
+                growth = PRESENTATION_GROWTH if large else 1
+                view.figure.height = round(self.base_heights[view] * growth)
 
     def figures(self) -> list:
         """Every figure on the page so far: the views' and those of the tabs opened."""

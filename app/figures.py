@@ -61,7 +61,6 @@ DARK = {
     "sprocket": "#454b52",  # dark, so that the crank drawn on it stands out
     "path": "#a0a0a0",
 }
-COLORS = LIGHT  # the light theme's
 # Several faces' pulses, and the links of a drawn mechanism, one colour each.
 FACES = {
     False: ("#d95f02", "#2ca02c", "#9467bd", "#8c564b", "#c2449f", "#0f8b96"),
@@ -159,6 +158,8 @@ try {
     if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
   }
   const width = plot.inner_width, height = plot.inner_height
+  // A title starts at the frame's left edge: its room is the frame and the border to its right
+  // (most of the border, ~4/5, is the y axis on the left).
   fit(plot.title, 'text_font_size', plot.title?.text, 'bold', plot.outer_width - (plot.outer_width - width) * 0.8)
   for (const axis of plot.below) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', width)
   for (const axis of plot.left) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', height)
@@ -197,11 +198,12 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
 LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
 
 
-def legend_columns(labels, font_px: float = 14) -> int:
-    """Two columns of labels below a plot when two fit in LEGEND_WIDTH, else one."""
+def legend_columns(labels) -> int:
+    """The server's first guess, before the browser measures them (``FIT_TEXT_JS``): two columns
+    of labels below a plot when two fit in LEGEND_WIDTH at 14 px, else one."""
     longest = max((len(label) for label in labels), default=0)
     # a label: ~0.55 of the font size a character; a swatch and gaps of ~2 characters
-    return 2 if 2 * 0.55 * font_px * (longest + 4) <= LEGEND_WIDTH else 1
+    return 2 if 2 * 0.55 * 14 * (longest + 4) <= LEGEND_WIDTH else 1
 
 
 def legend(fig, items: dict, location="top_left", place="below"):

@@ -1,5 +1,7 @@
 """The mechanisms tab: the pump's slider-crank at a dragged crank angle, and a four-bar / Watt six-bar
-explorer, both drawn from windpump.linkage's Newton-Raphson solutions."""
+explorer, both drawn from windpump.linkage's Newton-Raphson solutions. The core decides every
+position (assembly on a branch, branch following, the coupler's path, Grashof's class); this
+module only draws them."""
 
 from __future__ import annotations
 
@@ -15,7 +17,6 @@ import windpump
 from windpump import linkage
 from windpump.linkage import NoClosure
 
-STEP = math.radians(2.0)  # a dragged input is followed in steps of at most this
 LINKED = ("r1", "r2", "r3", "r4", "r5")  # the links drawn in a colour of their own
 FOUR_BAR = "Four-bar"
 SIX_BAR = "Watt six-bar (double loop)"
@@ -163,19 +164,10 @@ class Mechanisms:
         """New links or branch: close the loops from the compass construction on that branch."""
         self.second_loop.visible = self.kind.value == SIX_BAR
         theta1 = math.radians(self.input_angle.value)
-        v = {name: widget.value for name, widget in self.links.items()}
-        first = linkage.branch_guess(
-            v["r1"], v["r2"], v["r3"], v["r6"], theta1, 0.0, self.branch.value
-        )
-        guess = {"theta2": first[0], "theta3": first[1]}
-        if self.kind.value == SIX_BAR:
-            arm = first[1] + math.radians(v["beta"])  # loop 2's input, from loop 1's guess
-            second = linkage.branch_guess(
-                v["r3p"], v["r4"], v["r5"], v["r6p"], arm, 0.0, self.second_branch.value
-            )
-            guess.update(theta4=second[0], theta5=second[1])
+        loops = self.loops()
+        branches = (self.branch.value, self.second_branch.value)[: len(loops)]
         try:
-            closures = linkage.solve_loops(self.loops(), {"theta1": theta1}, guess)
+            closures = linkage.assemble(loops, {"theta1": theta1}, branches)
         except NoClosure as error:
             self.position = None
             self._cannot_close(error, theta1)
@@ -189,47 +181,20 @@ class Mechanisms:
         if self.position is None:  # the links did not close last time: start afresh
             self.assemble()
             return
-        start, target = self.position["theta1"], math.radians(self.input_angle.value)
-        inputs = np.linspace(start, target, max(2, math.ceil(abs(target - start) / STEP) + 1))
-        swept = linkage.sweep(self.loops(), "theta1", inputs, self.position)
-        last = {name: values[-1] for name, values in swept.values.items()}
-        previous = {name: values[max(0, len(values) - 2)] for name, values in swept.values.items()}
-        closures = linkage.solve_loops(self.loops(), {"theta1": last["theta1"]}, previous)
-        self.position = closures[-1].values
-        self._draw_linkage(closures)
-        if swept.stop is not None:
-            self._cannot_close(swept.stop, target, ends=last["theta1"])
+        target = math.radians(self.input_angle.value)
+        moved = linkage.follow_branch(self.loops(), self.position, target)
+        self.position = moved.closures[-1].values
+        self._draw_linkage(moved.closures)
+        if moved.stop is not None:
+            self._cannot_close(moved.stop, target, ends=self.position["theta1"])
 
     def _trace_path(self) -> None:
         """The path of the traced joint over the branch's reach: all the way round, or to its ends."""
-        loops, here = self.loops(), self.position["theta1"]
-        pieces = []
-        for direction in (-1, 1):
-            inputs = here + direction * np.arange(0.0, 2 * math.pi + STEP, STEP)
-            swept = linkage.sweep(loops, "theta1", inputs, self.position)
-            positions = ({n: v[k] for n, v in swept.values.items()} for k in range(len(swept)))
-            pieces.append([self._traced(loops, values) for values in positions])
-        self.sources["linkage_path"].data = xy(pieces[0][::-1] + pieces[1][1:])
-
-    def _traced(self, loops, values) -> np.ndarray:
-        return list(self._joints(loops, values).values())[-1]
-
-    def _joints(self, loops, values) -> dict[str, np.ndarray]:
-        """Named joints: O, A, B, D of loop 1; C (link 3's second arm), F (links 4 and 5) and E
-        (link 5's pivot) of loop 2. The last one named is the joint whose path is traced."""
-        first = linkage.joints(loops[0], values)
-        points = dict(zip("OABD", first[:4], strict=True))
-        if len(loops) > 1:
-            second = linkage.joints(loops[1], values, origin=points["D"])
-            points.update(zip("CFE", second[1:4], strict=True))
-            points["F"] = points.pop("F")  # traced: the six-bar's output joint
-        else:
-            points["B"] = points.pop("B")  # traced: the coupler's joint with the output link
-        return points
+        self.sources["linkage_path"].data = xy(linkage.coupler_path(self.loops(), self.position))
 
     def _draw_linkage(self, closures) -> None:
         loops, values = self.loops(), closures[-1].values
-        p = self._joints(loops, values)
+        p = linkage.mechanism_joints(loops, values)
         bars = [("O", "A", "r1"), ("A", "B", "r2"), ("B", "D", "r3")]
         if len(loops) > 1:
             bars += [("D", "C", "r3"), ("C", "F", "r4"), ("F", "E", "r5")]
@@ -262,7 +227,7 @@ class Mechanisms:
         )
         branch = linkage.four_bar_branch(values["theta2"], values["theta3"])
         v = [self.links[name].value for name in FIRST_LOOP]
-        turns = linkage.is_grashof(*v) and min(v) in (v[0], v[3])
+        turns = linkage.input_turns_fully(*v)
         histories = " · ".join(
             "|F|: " + " → ".join(f"{r:.0e}" for r in closure.residuals) for closure in closures
         )

@@ -53,8 +53,10 @@ from .four_bar import branch_guess, four_bar, four_bar_branch, four_bar_loop, in
 from .grashof import grashof_class, input_turns_fully, is_grashof
 from .newton import (
     BLOCKED_HALVINGS,
+    LOOSEST_TOL,
     MAX_ITERATIONS,
     MAX_STEP,
+    MOST_ITERATIONS,
     ROUND_OFF,
     TOL,
     Closure,
@@ -65,6 +67,7 @@ from .six_bar import watt_six_bar_loops
 from .slider_crank import SliderCrankPose, slider_crank, slider_crank_loop, slider_crank_pose
 from .tracing import (
     MAX_HALVINGS,
+    MAX_POSITIONS,
     STEP,
     BranchMove,
     BranchTrace,
@@ -83,8 +86,11 @@ sweep = trace_branch
 __all__ = [
     "BLOCKED_HALVINGS",
     "DEAD_CENTRE",
+    "LOOSEST_TOL",
     "MAX_HALVINGS",
     "MAX_ITERATIONS",
+    "MAX_POSITIONS",
+    "MOST_ITERATIONS",
     "MAX_STEP",
     "ROUND_OFF",
     "STEP",

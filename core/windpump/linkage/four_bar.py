@@ -99,7 +99,7 @@ def four_bar(
         of sin(theta3 - theta2). By default ``branch_guess(..., branch=+1)``, the compass
         construction with the joint B to the left of the line from A to D.
     tol : float
-        Newton-Raphson's step tolerance [rad], > 0.
+        Newton-Raphson's step tolerance [rad], > 0 and <= 0.1.
 
     Returns
     -------

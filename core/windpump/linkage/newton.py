@@ -30,6 +30,9 @@ from .vectors import Loop, Vector, _jacobian, _residual, as_loop, as_loops, name
 TOL = 1e-13
 """Newton-Raphson stops once a step is smaller than this [rad; lengths relative to the loop's size]."""
 
+LOOSEST_TOL = 0.1
+"""The largest tolerance a caller may ask for [rad]: a looser one would not fix a position."""
+
 MAX_ITERATIONS = 50
 """Iteration budget of one loop closure."""
 
@@ -122,7 +125,7 @@ def solve_loop(
     guess : mapping
         Starting values of the two unknowns [rad or m]; it selects the branch.
     tol : float
-        Size of the last step [rad; lengths relative to the loop's size], > 0.
+        Size of the last step [rad; lengths relative to the loop's size], > 0 and <= 0.1.
     max_iterations : int
         Iteration budget, 0 to ``MOST_ITERATIONS``.
 
@@ -147,7 +150,7 @@ def solve_loop(
     >>> round(closed["theta2"], 6), round(closed["theta3"], 6), closed.iterations
     (0.585642, 1.554646, 4)
     """
-    tol = positive("tol", tol, "rad")
+    tol = _tolerance(tol)
     max_iterations = whole("max_iterations", max_iterations, 0, MOST_ITERATIONS)
     problem = _problem(as_loop("loop", loop), check.named_numbers("known", known))
     guess = check.named_numbers("guess", guess)
@@ -156,6 +159,14 @@ def solve_loop(
             raise ParameterError("guess", guess, f"a starting value for {name!r}")
     q = np.array([guess[name] for name in problem.unknowns])
     return _iterate(problem, q, tol, max_iterations)
+
+
+def _tolerance(tol: object) -> float:
+    """The step tolerance, in (0, LOOSEST_TOL] [rad]."""
+    as_float = positive("tol", tol, "rad")
+    if as_float > LOOSEST_TOL:
+        raise ParameterError("tol", tol, f"a number > 0 and <= {LOOSEST_TOL:g}", "rad")
+    return as_float
 
 
 def _problem(loop: Loop, known: dict[str, float]) -> _Problem:

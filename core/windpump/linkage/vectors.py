@@ -61,10 +61,11 @@ class Vector:
     def __post_init__(self):
         if isinstance(self.sign, bool) or self.sign not in (1, -1):
             raise ParameterError("sign", self.sign, "+1 or -1")
-        if not isinstance(self.length, str):
-            check.bounded("length", self.length, "m")
-        if not isinstance(self.angle, str):
-            check.angle("angle", self.angle)
+        for name, part, unit in (("length", self.length, "m"), ("angle", self.angle, "rad")):
+            if isinstance(part, str) and not part:
+                raise ParameterError(name, part, "a number or a name that is not empty", unit)
+            if not isinstance(part, str):
+                check.bounded(name, part, unit)
         check.angle("offset", self.offset)
         if not isinstance(self.label, str):
             raise ParameterError("label", self.label, "a str")

@@ -17,7 +17,7 @@ from . import _checks as check
 from .four_bar import branch_guess
 from .newton import Closure, solve_loops
 from .tracing import STEP, branch_reach
-from .vectors import Loop, Vector, as_loops, joints
+from .vectors import Loop, Vector, _as_loops, joints
 
 FOUR_BAR_LOOPS = "loops of four_bar_loop or watt_six_bar_loops: one or two four-bars"
 
@@ -187,7 +187,7 @@ def coupler_path(
 
 def _four_bar_chain(loops: object) -> list[Loop]:
     """The loops, if one or two made by four_bar_vectors (the shape assembly_guess reads)."""
-    checked = as_loops(loops)
+    checked = _as_loops(loops)
     if len(checked) > 2 or not all(_is_four_bar(loop) for loop in checked):
         raise ParameterError("loops", loops, FOUR_BAR_LOOPS)
     return checked

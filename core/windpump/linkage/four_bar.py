@@ -54,10 +54,23 @@ def four_bar_vectors(
     names: tuple[str, str, str],
     offset: float = 0.0,
 ) -> Loop:
-    """A four-bar loop with the angles named ``names`` (input, coupler, output) [m, rad].
+    """A four-bar loop with its angles named ``names``; arguments are not checked.
 
-    The input link's angle is its name's value plus ``offset`` [rad] (link 3's second arm of a
-    Watt six-bar). Labels follow the names: theta3 -> r3. Arguments are not checked.
+    Parameters
+    ----------
+    r_in, r_coupler, r_out, r_ground : float
+        Input, coupler, output and ground link lengths [m].
+    phi_ground : float
+        Angle of the ground link [rad].
+    names : (str, str, str)
+        Names of the input, coupler and output angles; the labels follow them (theta3 -> r3).
+    offset : float
+        Added to the input's named angle [rad] (link 3's second arm of a Watt six-bar).
+
+    Returns
+    -------
+    tuple of Vector
+        ``r_in e(in + offset) + r_coupler e(coupler) - r_out e(out) - r_ground e(phi_ground)``.
     """
     theta_in, theta_coupler, theta_out = names
     labels = [f"r{name[5:]}" for name in names] + ["ground"]
@@ -190,6 +203,18 @@ def included_angle(a: float, b: float, opposite: float) -> float:
 
     Clamped to [0, pi] where the sides cannot make a triangle; pi/2 where a or b is too small
     to divide by. Products, not powers: a large side overflows to inf, never to an error.
+
+    Parameters
+    ----------
+    a, b : float
+        The sides that meet at the angle [m].
+    opposite : float
+        The side opposite it [m].
+
+    Returns
+    -------
+    float
+        The angle, in [0, pi] [rad].
 
     Examples
     --------

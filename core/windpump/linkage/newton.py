@@ -25,7 +25,7 @@ from ..errors import NoClosure, ParameterError
 from ..validation import positive, whole
 from . import _checks as check
 from .closable import DEAD_CENTRE, check_closable
-from .vectors import Loop, Vector, _jacobian, _residual, as_loop, as_loops, names_in
+from .vectors import Loop, Vector, _as_loop, _as_loops, _jacobian, _residual, names_in
 
 TOL = 1e-13
 """Newton-Raphson stops once a step is smaller than this [rad; lengths relative to the loop's size]."""
@@ -152,7 +152,7 @@ def solve_loop(
     """
     tol = _tolerance(tol)
     max_iterations = whole("max_iterations", max_iterations, 0, MOST_ITERATIONS)
-    problem = _problem(as_loop("loop", loop), check.named_numbers("known", known))
+    problem = _problem(_as_loop("loop", loop), check.named_numbers("known", known))
     guess = check.named_numbers("guess", guess)
     for name in problem.unknowns:
         if name not in guess:
@@ -296,7 +296,7 @@ def solve_loops(
     """
     values = check.named_numbers("known", known)
     closures = []
-    for loop in as_loops(loops):
+    for loop in _as_loops(loops):
         closure = solve_loop(loop, values, guess, tol)
         closures.append(closure)
         values = closure.values

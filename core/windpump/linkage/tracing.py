@@ -19,7 +19,7 @@ from ..errors import NoClosure, ParameterError
 from ..validation import LARGEST, finite_array, positive
 from . import _checks as check
 from .newton import TOL, Closure, solve_loops
-from .vectors import Loop, Vector, as_loops, names_in
+from .vectors import Loop, Vector, _as_loops, names_in
 
 MAX_HALVINGS = 12
 """A trace halves a step up to this many times to stay on its branch."""
@@ -108,7 +108,7 @@ def trace_branch(
     >>> len(traced), round(float(np.degrees(traced.values["theta1"][-1]))), traced.stop.reason
     (26, 125, 'cannot close')
     """
-    loops = as_loops(loops)
+    loops = _as_loops(loops)
     input = _input_name(loops, input)
     inputs = _input_values(inputs)
     known = {} if known is None else check.named_numbers("known", known)
@@ -228,7 +228,7 @@ def follow_branch(
     (0.585642, None)
     """
     position = check.named_numbers("position", position)
-    input = _input_name(as_loops(loops), input)
+    input = _input_name(_as_loops(loops), input)
     start, target = _start(position, input), check.bounded("target", target)
     count = _positions("step", step, abs(target - start))
     traced = trace_branch(loops, input, np.linspace(start, target, max(2, count + 1)), position)
@@ -276,7 +276,7 @@ def branch_reach(
     [-126, 126]
     """
     position = check.named_numbers("position", position)
-    input = _input_name(as_loops(loops), input)
+    input = _input_name(_as_loops(loops), input)
     here = _start(position, input)
     count = _positions("step", step, 2 * math.pi)
     pieces = []

@@ -81,7 +81,7 @@ Loop = tuple[Vector, ...]
 """A closed chain of vectors."""
 
 
-def as_loop(name: str, loop: object) -> Loop:
+def _as_loop(name: str, loop: object) -> Loop:
     """``loop`` as a tuple of :class:`Vector`, or a ParameterError naming ``name``."""
     if isinstance(loop, (str, bytes)) or not isinstance(loop, Sequence) or not loop:
         raise ParameterError(name, loop, "a non-empty sequence of linkage.Vector")
@@ -90,14 +90,14 @@ def as_loop(name: str, loop: object) -> Loop:
     return tuple(loop)
 
 
-def as_loops(loops: object) -> list[Loop]:
+def _as_loops(loops: object) -> list[Loop]:
     """``loops`` as a list of loops (a chain of them), or a ParameterError."""
     if isinstance(loops, (str, bytes)) or not isinstance(loops, Sequence) or not loops:
         raise ParameterError("loops", loops, "a non-empty sequence of loops")
-    return [as_loop(f"loops[{k}]", loop) for k, loop in enumerate(loops)]
+    return [_as_loop(f"loops[{k}]", loop) for k, loop in enumerate(loops)]
 
 
-def values_for(loop: Loop, values: object) -> dict[str, float]:
+def _values_for(loop: Loop, values: object) -> dict[str, float]:
     """``values`` checked: bounded numbers [rad or m], one at least for every name of the loop."""
     checked = check.named_numbers("values", values)
     missing = [name for name in names_in(loop) if name not in checked]
@@ -138,7 +138,7 @@ def residual(loop: Sequence[Vector], values: Mapping[str, float]) -> np.ndarray:
     >>> residual([Vector(1.0, 0.0), Vector(1.0, "phi", sign=-1)], {"phi": 0.0}).tolist()
     [0.0, 0.0]
     """
-    loop, values = as_loop("loop", loop), values_for(loop, values)
+    loop, values = _as_loop("loop", loop), _values_for(loop, values)
     return _residual(loop, values)
 
 
@@ -179,7 +179,7 @@ def jacobian(
     >>> jacobian(loop, {"theta2": 0.0, "theta3": 0.0}, ("theta2", "theta3")).tolist()
     [[0.0, 0.0], [2.0, -1.0]]
     """
-    loop, values = as_loop("loop", loop), values_for(loop, values)
+    loop, values = _as_loop("loop", loop), _values_for(loop, values)
     if (
         isinstance(unknowns, str)
         or not isinstance(unknowns, Sequence)
@@ -229,7 +229,7 @@ def joints(
     >>> joints([Vector(1.0, 0.0), Vector(1.0, "phi")], {"phi": math.pi / 2}).round(12).tolist()
     [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]
     """
-    loop, values = as_loop("loop", loop), values_for(loop, values)
+    loop, values = _as_loop("loop", loop), _values_for(loop, values)
     points = [np.array(check.pair("origin", origin, "m"))]
     for vector in loop:
         length, angle = vector.resolve(values)

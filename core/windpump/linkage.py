@@ -435,8 +435,10 @@ def four_bar(
 
     Returns
     -------
-    (theta2, theta3) : tuple of float
-        In [0, 2 pi) [rad].
+    theta2 : float
+        The angle of link 2, in [0, 2 pi) [rad].
+    theta3 : float
+        The angle of link 3, in [0, 2 pi) [rad].
 
     Raises
     ------
@@ -581,7 +583,7 @@ def slider_crank(
     theta : float
         Crank angle from TDC [rad].
     R, L : float
-        Crank radius and rod length [m] (L < R closes only where R |sin theta| <= L).
+        Crank radius and rod length [m] (L < R closes only where ``R |sin theta| <= L``).
     guess : (float, float), optional
         Starting (phi, s) [rad, m]; by default (0, L + R), the piston beyond the crank.
 

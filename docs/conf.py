@@ -78,6 +78,11 @@ numpydoc_validation_exclude = {r"\.WindRecord\.(t|V)$"}
 # Examples on the pages run in `-b doctest`; the docstrings' own examples run under pytest
 # (--doctest-modules), so they are not run a second time here.
 doctest_test_doctest_blocks = ""
+# The examples' files (a script, a designs CSV) by absolute path, wherever the build runs from.
+doctest_global_setup = f"""
+from pathlib import Path
+EXAMPLES = {str(ROOT / "docs" / "examples")!r}
+"""
 
 
 def _top_level_names() -> dict[str, str]:

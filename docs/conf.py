@@ -2,8 +2,8 @@
 
 Build (from the repository root; ``-W`` turns every warning into an error, as CI does)::
 
-    python -m sphinx -W --keep-going -b doctest -d docs/_build/doctrees docs docs/_build/doctest
-    python -m sphinx -W --keep-going -b html -d docs/_build/doctrees docs docs/_build/html
+    python -m sphinx -W --keep-going -b doctest docs docs/_build/doctest
+    python -m sphinx -W --keep-going -b html docs docs/_build/html
 """
 
 from __future__ import annotations

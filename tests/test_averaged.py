@@ -20,12 +20,12 @@ OVERLOAD = SEED.replace(h=3.0 * SEED_MARGIN / 0.95)
 
 @pytest.mark.parametrize("ratio", np.geomspace(1.05, 1000.0, 25))
 def test_mean_lever_arm_is_minus_one_over_pi(ratio):
-    """Eq. (18) for every L/R (model-notes.md: the cos theta tan theta_c part integrates to 0)."""
+    """Eq. (18) for every L/R: the cos theta tan theta_c part integrates to 0 (docs/model.rst)."""
     assert windpump.mean_lever_arm(ratio) == pytest.approx(-1 / math.pi, abs=1e-10)
 
 
 def test_seed_groups_match_model_notes():
-    """model-notes.md: with the paper's example the margin is about 5.1 and tau about 79 s."""
+    """docs/model.rst, "The paper's example": the margin is about 5.1 and tau about 79 s."""
     assert windpump.stall_margin(SEED) == pytest.approx(5.1, abs=0.05)
     assert windpump.time_constant(SEED) == pytest.approx(79, abs=1)
 

@@ -14,7 +14,7 @@ SEED = Design.seed_example()
 
 
 def test_seed_example_reads_the_papers_call():
-    """model-notes.md: inpI = [.03; .12; .04; .15; pi/4 .04^2; I0; I1; 50; .6; 1000 9.81], h = 3 m."""
+    """docs/model.rst: inpI = [.03; .12; .04; .15; pi/4 .04^2; I0; I1; 50; .6; 1000 9.81], h = 3 m."""
     assert (SEED.R0, SEED.R1, SEED.R, SEED.L) == (0.03, 0.12, 0.04, 0.15)
     assert SEED.A == pytest.approx(math.pi / 4 * 0.04**2)
     assert SEED.I0 == pytest.approx(

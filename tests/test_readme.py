@@ -1,4 +1,8 @@
-"""The README's Python examples run as written, each in a fresh namespace."""
+"""What the README promises: its example runs, its commands are CI's, its links and picture exist.
+
+Everything else the README used to carry lives in the documentation (docs/); tests/test_docs.py
+runs the pages' examples and checks that they still say what a user needs.
+"""
 
 from __future__ import annotations
 
@@ -7,16 +11,53 @@ from pathlib import Path
 
 import pytest
 
-README = Path(__file__).resolve().parents[1] / "README.md"
-BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), flags=re.S)
+ROOT = Path(__file__).resolve().parents[1]
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+CI = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+BASH = [block.strip() for block in re.findall(r"```bash\n(.*?)```", README, flags=re.S)]
+
+TEST_COMMAND = 'pip install -e ".[app,test,browser]" && python -m pytest'
 
 
 @pytest.mark.parametrize("number", range(len(BLOCKS)))
 def test_a_readme_example_runs(number, tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)  # run.to_csv("run.csv") writes here
+    monkeypatch.chdir(tmp_path)  # an example that writes a file writes it here
     code = compile(BLOCKS[number], f"README.md python block {number + 1}", "exec")
     exec(code, {"__name__": "__main__"})  # as a script runs it
 
 
-def test_the_readme_has_examples():
-    assert len(BLOCKS) >= 2
+def test_the_readme_is_short_with_a_ten_line_example():
+    assert len(README.splitlines()) <= 150
+    (example,) = BLOCKS
+    assert len(example.strip().splitlines()) <= 10
+
+
+def test_the_test_command_is_the_readmes_and_cis_verbatim():
+    assert TEST_COMMAND in BASH
+    assert CI.rstrip().splitlines()[-1] == TEST_COMMAND  # CI ends with it, as written
+
+
+def test_the_docs_command_builds_what_ci_builds():
+    (command,) = [block for block in BASH if "sphinx" in block]
+    install, build = command.split(" && ")
+    assert install == 'pip install -e ".[docs]"'
+    assert build in CI.splitlines()  # CI runs the same build, warnings as errors
+    assert "-W --keep-going" in build
+    assert re.search(r"^python -m sphinx -W --keep-going -b doctest docs \S+$", CI, flags=re.M)
+    docs_step, tests_step = CI.index(build), CI.index(TEST_COMMAND)
+    assert docs_step < tests_step
+
+
+def test_the_serve_command_serves_the_app():
+    assert 'pip install -e ".[app]" && panel serve app/' in BASH
+    assert (ROOT / "app" / "main.py").is_file()
+
+
+def test_every_local_link_and_picture_exists():
+    targets = re.findall(r"\]\(([^)#\s]+)\)", README)
+    local = [target for target in targets if "://" not in target]
+    assert "docs/explorer.png" in local and "docs/model.rst" in local
+    assert [target for target in local if not (ROOT / target).is_file()] == []
+    for page in ("instructors", "designers", "model", "measured", "known-issues", "architecture"):
+        assert f"docs/{page}.rst" in local

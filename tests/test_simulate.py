@@ -41,7 +41,7 @@ def test_shaft_work_matches_reference(runs, name):
 
 @pytest.mark.parametrize("name", CASES)
 def test_energy_closes_at_every_sample(runs, name):
-    """Shaft work = change of kinetic energy + rho_w g h V (model-notes.md, "Dynamics")."""
+    """Shaft work = change of kinetic energy + rho_w g h V (docs/model.rst, "Dynamics")."""
     (design, _, _, theta_dot0), run, _ = runs[name]
     kinetic = 0.5 * design.I_eff * (run.theta_dot**2 - theta_dot0**2)
     lift = design.rho_w * design.g * design.h * run.volume

@@ -28,7 +28,7 @@ def mean_lever_arm(L_over_R: float) -> float:
     """Cycle mean of the load's lever arm over the exhaust half, the integral of Eq. (18) [-].
 
     ``(1/2 pi) int_pi^2pi sin(theta + theta_c)/cos(theta_c) dtheta``, evaluated by adaptive
-    quadrature; it equals -1/pi for every L/R > 1 (model-notes.md).
+    quadrature; it equals -1/pi for every L/R > 1 (docs/model.rst, "Kinematics").
 
     Parameters
     ----------

@@ -10,7 +10,7 @@ import typing
 from .errors import DesignFileError, ParameterError
 from .validation import LARGEST, flag, magnitude, non_negative, positive, rod_ratio, whole
 
-# Field name -> unit, in the order of the paper's symbols (model-notes.md, "Symbols").
+# Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
 UNITS = {
     "R0": "m",
     "R1": "m",
@@ -154,7 +154,7 @@ class Design:
 
     @classmethod
     def seed_example(cls) -> Design:
-        """The design of the paper's Fig. 3 example, read as in model-notes.md (h = 3 m).
+        """The design of the paper's Fig. 3 example, read as in docs/model.rst (h = 3 m).
 
         Steel sprockets 1 cm thick (density 8000 kg/m^3) and three 0.75 m blades of
         2000 kg/m^3 x 0.1 m x 0.02 m (footnote 4: ``I = rho_b A_b R_b^3 / 3`` each).

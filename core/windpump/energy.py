@@ -123,8 +123,9 @@ class PowerBudget:
 
     @property
     def imbalance(self) -> float:
-        """Largest |shaft work - kinetic energy gained - lift work| over the run, relative to the
-        largest shaft work [-]: 0 for an exact run."""
+        """Largest ``|shaft work - kinetic energy gained - lift work|`` over the run [-].
+
+        Relative to the largest shaft work: 0 for an exact run."""
         gap = self.shaft_work - self.kinetic_energy - self.lift_work
         return float(
             np.max(np.abs(gap)) / max(np.max(np.abs(self.shaft_work)), np.finfo(float).tiny)

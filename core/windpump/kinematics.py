@@ -1,4 +1,4 @@
-"""Slider-crank kinematics of the pump (paper Eqs. 1, 2, 16; model-notes.md "Kinematics").
+"""Slider-crank kinematics of the pump (paper Eqs. 1, 2, 16; docs/model.rst, "Kinematics").
 
 The crank angle ``theta`` is measured from top dead centre (TDC). The cylinder takes water in on
 0 < theta mod 2 pi < pi and exhausts it on pi < theta mod 2 pi < 2 pi. All functions accept numpy
@@ -88,7 +88,7 @@ def f2(theta, L_over_R: float):
 
     ``dV/dt = 2 R A f2(theta) theta_dot``: ``f2 = -(dx/dtheta)/(2R) >= 0`` while exhausting and 0 while
     taking water in, so one revolution delivers one stroke volume 2RA. (The paper writes
-    ``xdot = 2 R theta_dot f2``; model-notes.md explains the sign.)
+    ``xdot = 2 R theta_dot f2``; docs/model.rst, "Sign conventions", explains the sign.)
 
     Examples
     --------

@@ -142,7 +142,7 @@ def design_map(
     gear_ratios : array_like
         R+ = R1/R0 [-], increasing, > 0.
     heads : array_like
-        h [m], increasing, >= 0.
+        Heads h [m], increasing, >= 0.
     numeric : bool, default False, keyword-only
         Measure speed and flow in full simulations.
     progress : bool, callable or None, keyword-only

@@ -155,7 +155,7 @@ class TorqueFit:
 
     @property
     def relative_residual(self) -> float:
-        """rms residual / T_m [-]."""
+        """The rms residual / T_m [-]."""
         return self.rms_residual / self.T_m
 
     @property

@@ -6,7 +6,7 @@ tableau (:mod:`.dopri5`), the steps in angle or time (:mod:`.stepping`) and the 
 (:mod:`.driver`). This module is their typed front: :func:`run` takes a :class:`Machine` and returns
 a :class:`KernelRun`.
 
-Method (model-notes.md, "Dynamics")
+Method (docs/model.rst, "Dynamics")
 -----------------------------------
 The load switches on and off at the switches theta = k pi / n, where the right-hand side has a
 kink. Between switches the crank angle is the independent variable, with ``u = theta_dot^2/2``

@@ -116,8 +116,10 @@ def four_bar(
 
     Returns
     -------
-    (theta2, theta3) : tuple of float
-        In [0, 2 pi) [rad].
+    theta2 : float
+        The angle of link 2, in [0, 2 pi) [rad].
+    theta3 : float
+        The angle of link 3, in [0, 2 pi) [rad].
 
     Raises
     ------
@@ -176,8 +178,10 @@ def branch_guess(
 
     Returns
     -------
-    (theta2, theta3) : tuple of float
-        [rad], exact where the circles meet.
+    theta2 : float
+        The angle of link 2 [rad], exact where the circles meet.
+    theta3 : float
+        The angle of link 3 [rad], exact where the circles meet.
 
     Examples
     --------

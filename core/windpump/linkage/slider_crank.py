@@ -75,7 +75,7 @@ def slider_crank_pose(
         Crank angle from TDC [rad].
     R, L : float
         Crank radius and rod length [m], from 1e-100 to 1e100 (L < R closes only where
-        R |sin theta| <= L).
+        ``R |sin theta| <= L``).
     guess : (float, float), optional
         Starting (phi, s) [rad, m]; by default (0, L + R), the piston beyond the crank.
 
@@ -123,14 +123,16 @@ def slider_crank(
         Crank angle from TDC [rad].
     R, L : float
         Crank radius and rod length [m], from 1e-100 to 1e100 (L < R closes only where
-        R |sin theta| <= L).
+        ``R |sin theta| <= L``).
     guess : (float, float), optional
         Starting (phi, s) [rad, m]; by default (0, L + R), the piston beyond the crank.
 
     Returns
     -------
-    (x, theta_c) : tuple of float
-        [m], [rad].
+    x : float
+        The piston's position [m].
+    theta_c : float
+        The rod's angle [rad].
 
     Examples
     --------

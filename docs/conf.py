@@ -1,0 +1,99 @@
+"""Sphinx configuration: the windpump documentation, built from this checkout.
+
+Build (from the repository root; ``-W`` turns every warning into an error, as CI does)::
+
+    python -m sphinx -W --keep-going -b doctest docs docs/_build/doctest
+    python -m sphinx -W --keep-going -b html docs docs/_build/html
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+# Document this checkout's core, whichever windpump happens to be installed.
+sys.path.insert(0, str(ROOT / "core"))
+
+import windpump  # noqa: E402
+
+project = "windpump"
+author = "the windpump engineers"
+copyright = "2024, the windpump engineers"
+release = windpump.__version__ if hasattr(windpump, "__version__") else "0.1.0"
+
+extensions = [
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.doctest",
+    "sphinx.ext.mathjax",
+    "numpydoc",
+]
+
+templates_path = ["_templates"]
+exclude_patterns = ["_build"]
+html_theme = "alabaster"
+html_static_path: list[str] = []
+html_theme_options = {
+    "description": "A wind-driven piston pump: a checked solver and a live explorer"
+}
+
+# The API reference: one page per public name, generated from the docstrings at build time.
+autosummary_generate = True
+autosummary_imported_members = False
+# ``python -m windpump`` runs the command line on import: not a module to document.
+autosummary_mock_imports = ["windpump.__main__"]
+autodoc_typehints = "none"  # the numpydoc Parameters sections give the types, with units
+autodoc_member_order = "bysource"
+
+# numpydoc renders the docstrings; it does not list every attribute of a class as a second table.
+numpydoc_show_class_members = False
+numpydoc_xref_param_type = False
+
+# numpydoc's validation, as errors under -W: every check of the docstrings' *format* (sections
+# known and in order, parameters that exist and in order, types given, descriptions punctuated),
+# but none that asks for more *content* than a docstring needs: an Examples, See Also or extended
+# summary on every object (EX01, SA01, ES01), a Parameters section on a dataclass that documents its
+# fields as attributes or a Returns section under a one-line "X of the run [unit]" (PR01, RT01), a
+# sentence for a self-explaining ``design : Design`` (PR07, RT03), a docstring on the command
+# line's private option helpers (GL08), and the summary's wording and length (SS05, SS06) or where
+# the closing quotes sit (GL02), which render the same.
+numpydoc_validation_checks = {
+    "all",
+    "EX01",
+    "SA01",
+    "ES01",
+    "PR01",
+    "RT01",
+    "PR07",
+    "RT03",
+    "GL08",
+    "SS05",
+    "SS06",
+    "GL02",
+}
+# A NamedTuple's fields carry Python's own docstring ("Alias for field number 0").
+numpydoc_validation_exclude = {r"\.WindRecord\.(t|V)$"}
+
+# Examples on the pages run in `-b doctest`; the docstrings' own examples run under pytest
+# (--doctest-modules), so they are not run a second time here.
+doctest_test_doctest_blocks = ""
+# The examples' files (a script, a designs CSV) by absolute path, wherever the build runs from.
+doctest_global_setup = f"""
+from pathlib import Path
+EXAMPLES = {str(ROOT / "docs" / "examples")!r}
+"""
+
+
+def _top_level_names() -> dict[str, str]:
+    """Each name ``windpump`` exposes, with the module that defines it (for the module pages)."""
+    names = {}
+    for name in windpump.__all__:
+        obj = getattr(windpump, name)
+        module = getattr(obj, "__module__", None)
+        if module and not isinstance(obj, type(windpump)):
+            names[name] = module
+    return names
+
+
+autosummary_context = {"toplevel": _top_level_names()}

@@ -1,0 +1,149 @@
+"""The documentation (docs/): its examples run, and it still tells a user what the README used to.
+
+CI builds the site with ``sphinx -W -b doctest``, which runs every example on its pages; these tests
+run the same examples under pytest, so ``python -m pytest`` alone still checks them, and check
+that the pages keep what moved there from the README.
+"""
+
+from __future__ import annotations
+
+import doctest
+import re
+import runpy
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+EXAMPLES = DOCS / "examples"
+PAGES = sorted(DOCS.glob("*.rst"))
+# Sphinx's doctest defaults, so a page passes here exactly when it passes in the docs build.
+FLAGS = doctest.ELLIPSIS | doctest.IGNORE_EXCEPTION_DETAIL | doctest.DONT_ACCEPT_TRUE_FOR_1
+
+
+def page(name: str) -> str:
+    return (DOCS / f"{name}.rst").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize("path", PAGES, ids=lambda p: p.name)
+def test_a_pages_examples_run(path, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    globs = {"EXAMPLES": str(EXAMPLES), "Path": Path}
+    failed, _ = doctest.testfile(str(path), module_relative=False, globs=globs, optionflags=FLAGS)
+    assert failed == 0, f"{path.name}: {failed} example(s) failed (printed above)"
+
+
+def test_the_pages_have_examples():
+    examples = [
+        re.findall(r"^\s+>>> ", (DOCS / f"{p}.rst").read_text("utf-8"), flags=re.M)
+        for p in ("designers", "model", "instructors", "index")
+    ]
+    assert all(len(found) > 0 for found in examples)
+    assert len(examples[0]) > 40  # the designers' guide carries the README's old examples
+
+
+def test_the_cluster_example_runs_as_a_script():
+    runpy.run_path(str(EXAMPLES / "sweep_on_a_cluster.py"), run_name="__main__")
+
+
+def test_the_instructors_guide_names_every_link_parameter_and_preset():
+    text = page("instructors")
+    parameters = (
+        "L_over_R R_dagger h T_m omega_m cylinders double_acting t_end theta_dot0 theta0 I0 I1 T_0"
+    )
+    wind = "V mean_wind k time_scale seed"
+    for name in (parameters + " " + wind).split():
+        assert f"``{name}``" in text, name
+    for mode in ("presentation=true", "theme=dark", "resolution=full"):
+        assert mode in text
+    presets = (
+        "The paper's example",
+        "Near the stall boundary",
+        "Kicked below α₋",
+        "A light rotor, large ripple",
+        "Two cylinders, torque at rest",
+        "A double-acting pump",
+        "A stalled pump",
+    )
+    for preset in presets:
+        assert f"**{preset}**" in text, preset
+    for needed in (
+        "--allow-websocket-origin",
+        "Copy link to this state",
+        "Presentation mode",
+        "Lab data uploads",
+        "1 MB",
+        "Pin this run",
+        "Download this run",
+    ):
+        assert needed in text, needed
+
+
+def test_the_designers_guide_covers_the_command_line_and_clusters():
+    text = page("designers")
+    for command in ("windpump simulate", "windpump map", "windpump sweep", "windpump serve"):
+        assert command in text
+    for needed in (
+        "--scheduler",
+        "MALLOC_TRIM_THRESHOLD_",
+        "Design.to_json",
+        "DesignFileError",
+        "ParameterError",
+        "samples_per_stroke",
+        "sample_dt",
+        "numeric=True",
+    ):
+        assert needed in text, needed
+    assert ".. literalinclude:: examples/sweep_on_a_cluster.py" in text
+
+
+def test_the_model_page_cites_its_sources_by_title():
+    text = page("model")
+    for source in (
+        "Louge",
+        "A simple wind-pump analysis",
+        "2010",
+        "Work of a Ski Lift",
+        "Newton-Raphson Method: Application",
+    ):
+        assert source in text
+    assert "∂F₂/∂θ₃ = −r₃ cos θ₃" in text and "2.778 m/s" in text  # the seed's slips, corrected
+    assert "h = 3 m and θ̇₀ = 3 rad/s" in text  # how the paper's example is read
+    assert "seeds/" not in text and ".txt" not in text  # no file outside the repository
+
+
+def sections(text: str) -> set[str]:
+    """The section titles of a reStructuredText page (a line underlined by -, = or ~)."""
+    lines = text.splitlines()
+    return {
+        lines[i].strip()
+        for i in range(len(lines) - 1)
+        if lines[i].strip() and re.fullmatch(r"([-=~])\1{2,}", lines[i + 1].strip())
+    }
+
+
+def test_citations_of_the_model_page_name_its_sections():
+    titles = sections(page("model"))
+    cited = []
+    for path in [
+        *(ROOT / "core").rglob("*.py"),
+        *(ROOT / "tests").glob("*.py"),
+        *(ROOT / "app").rglob("*.py"),
+    ]:
+        text = path.read_text(encoding="utf-8")
+        assert "model-notes.md" not in text or path.name == "test_docs.py", path
+        cited += re.findall(r'docs/model\.rst, "([^"]+)"', text)
+    assert cited and set(cited) <= titles, set(cited) - titles
+
+
+def test_the_measured_page_names_benchmarks_that_exist():
+    scripts = set(re.findall(r"benchmarks/(\w+\.py)", page("measured")))
+    assert len(scripts) >= 5
+    assert {s for s in scripts if not (ROOT / "benchmarks" / s).is_file()} == set()
+    assert not re.search(r"\bissue \d", page("measured"))  # what it does now, not a history
+
+
+def test_the_known_issues_say_what_to_do():
+    text = page("known-issues")
+    assert "PYTHONMALLOC=malloc" in text and text.count("*What to do*") >= 2

@@ -43,7 +43,15 @@ from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .maps import DesignMap, design_map
 from .playback import Playback, piston_table, playback_frames
-from .site import record_water, steady_flow, water_per_day, wind_thresholds
+from .site import (
+    WindEvents,
+    WindRun,
+    record_water,
+    run_in_wind,
+    steady_flow,
+    water_per_day,
+    wind_thresholds,
+)
 from .studies import Sweep, sweep
 from .windmill import (
     OperatingPoint,
@@ -75,6 +83,8 @@ __all__ = [
     "Status",
     "TorqueFit",
     "TorqueTable",
+    "WindEvents",
+    "WindRun",
     "averaged_stall_time",
     "delivering_faces",
     "design_map",
@@ -100,6 +110,7 @@ __all__ = [
     "record_water",
     "revolution_marks",
     "rod_angle",
+    "run_in_wind",
     "simulate",
     "spinup",
     "startup_power",

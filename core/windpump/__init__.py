@@ -29,7 +29,7 @@ from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
 from .energy import PowerBudget, StartupPower, power_budget, startup_power
 from .errors import DesignFileError, NoClosure, ParameterError, StallError
-from .exploration import Exploration, Status, explore
+from .exploration import Exploration, NotStarted, Status, explore
 from .kinematics import (
     delivering_faces,
     f2,
@@ -72,6 +72,7 @@ __all__ = [
     "Intermittency",
     "LabDataError",
     "NoClosure",
+    "NotStarted",
     "OperatingPoint",
     "ParameterError",
     "Playback",

@@ -716,7 +716,7 @@ class Explorer(pn.viewable.Viewer):
             self._refuse_lab_file(error)
             return
         self.show_views()
-        self.operating.show_lab_data(table.omega, table.torque)
+        self.operating.show_lab_data(table.omega, table.power)
         summary = (
             f"Fitted Eq. (11) to {len(table.omega)} points: Tₘ = {fit.T_m:.3f} N·m, "
             f"ωₘ = {fit.omega_m:.1f} rad/s (rms residual {fit.rms_residual:.3g} N·m, "

@@ -42,7 +42,7 @@ from .kinematics import (
 from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .maps import DesignMap, design_map
-from .playback import Playback, piston_table, playback_frames
+from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
 from .site import (
     WindEvents,
     WindRun,
@@ -65,6 +65,7 @@ from .windmill import (
 
 __all__ = [
     "MAX_SAMPLES",
+    "CrankTable",
     "Design",
     "DesignFileError",
     "DesignMap",
@@ -88,6 +89,7 @@ __all__ = [
     "WindRun",
     "averaged_stall_time",
     "delivering_faces",
+    "crank_table",
     "design_map",
     "energy",
     "explore",

@@ -572,9 +572,9 @@ class Explorer(pn.viewable.Viewer):
             )
         if seen.status is Status.STALLED:
             return f"**Stalled** at t = {run.t_stall:.2f} s (stall margin {seen.margin:.3f})."
-        if seen.theta_dot0 == 0.0 and seen.design.T_0 == 0.0:
+        if seen.not_started is windpump.NotStarted.NO_KICK:
             return "**Never started.** With no kick (θ̇₀ = 0) this windmill has no torque at rest: give it a kick."
-        if run.t_stall == 0.0:
+        if seen.not_started is windpump.NotStarted.HELD_AT_REST:
             return "**Never started.** From rest, the torque at rest cannot beat the load at θ₀: give it a kick or raise T₀."
         need = (
             f"α₋ = {seen.alpha_minus:.2f} rad/s"
@@ -716,7 +716,7 @@ class Explorer(pn.viewable.Viewer):
             self._refuse_lab_file(error)
             return
         self.show_views()
-        self.operating.show_lab_data(table.omega, table.torque)
+        self.operating.show_lab_data(table.omega, table.power)
         summary = (
             f"Fitted Eq. (11) to {len(table.omega)} points: Tₘ = {fit.T_m:.3f} N·m, "
             f"ωₘ = {fit.omega_m:.1f} rad/s (rms residual {fit.rms_residual:.3g} N·m, "

@@ -1,8 +1,9 @@
 """The machine, animated: rotor, chain, sprockets, crank, rod, piston and the water it delivers.
 
 Drawn to the design's proportions (the rotor's blades excepted: they would dwarf the pump). The
-server sends the run's frames once per run (``windpump.playback_frames``) with the piston's travel
-over a revolution (``windpump.piston_table``, Eq. 1); ``player.js`` plays them in the browser.
+server sends the run's frames once per run (``windpump.playback_frames``: angles, volume, tank
+level) with every crank pin and piston over a revolution (``windpump.crank_table``); ``player.js``
+interpolates in them and draws, in the browser.
 """
 
 from __future__ import annotations
@@ -31,7 +32,8 @@ from views import View, refill
 import windpump
 
 PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
-MAX_FRAMES = 3000  # ~48 kB a run: 4 float32 columns
+MAX_FRAMES = 3000  # ~84 kB a run: 7 float32 columns
+FRAME_COLUMNS = ("t", "theta", "theta_dot", "volume", "rotor_angle", "rotor_speed", "tank_level")
 SPEEDS = [
     ("0.1", "0.1× slow motion"),
     ("0.25", "0.25×"),
@@ -65,6 +67,16 @@ def fit_aspect(left, right, bottom, top, aspect):
     return left, right, bottom, top
 
 
+def crank_columns(table: windpump.CrankTable) -> dict:
+    """The table's columns as the player reads them: ``theta``, then cylinder k's ``pin_xk``,
+    ``pin_yk`` and ``piston_yk``; and ``x``, the first piston's travel (Eq. 1)."""
+    columns = {"theta": table.theta, "x": table.piston[0]}
+    for k in range(len(table.piston)):
+        for name in ("pin_x", "pin_y", "piston_y"):
+            columns[f"{name}{k}"] = getattr(table, name)[k]
+    return columns
+
+
 def tangents(c0, r0, c1, r1):
     """The two outer tangent segments of two circles: the chain's straight runs."""
     (x0, y0), (x1, y1) = c0, c1
@@ -95,8 +107,8 @@ class MachineView(View):
         s, c = self.sources, self.colors
         moving = moving_colors(dark)
         link_colors = [moving["blade"]] * 4 + [moving["crank"], moving["rod"]]
-        s["frames"] = empty("t", "theta", "theta_dot", "volume")
-        s["piston_table"] = empty("theta", "x")
+        s["frames"] = empty(*FRAME_COLUMNS)
+        s["piston_table"] = empty("theta", "x")  # and each cylinder's parts: crank_columns
         s["machine_geometry"] = ColumnDataSource({})
         s["machine_static"] = empty("xs", "ys")
         s["machine_circles"] = empty("x", "y", "radius")
@@ -234,8 +246,7 @@ class MachineView(View):
 
     def set_design(self, d: windpump.Design) -> None:
         """The drawing's fixed parts, for a new design (nothing is sent when they are unchanged)."""
-        theta, x = windpump.piston_table(d)
-        refill(self.sources["piston_table"], {"theta": theta, "x": x})
+        refill(self.sources["piston_table"], crank_columns(windpump.crank_table(d)))
         blade = d.L + d.R
         c0 = (-(d.R1 + 1.15 * blade), 0.55 * blade)
         # Cylinder k stands pitch * k to the right, on its own throw of the one crankshaft.
@@ -274,10 +285,7 @@ class MachineView(View):
             {"x": [c0[0], 0.0], "y": [c0[1], 0.0], "radius": [d.R0, d.R1]},
         )
         self.geometry = dict(
-            R=d.R,
-            L=d.L,
             R0=d.R0,
-            R_dagger=d.R_dagger,
             bore=d.bore,
             blade=blade,
             c0x=c0[0],
@@ -300,11 +308,10 @@ class MachineView(View):
         self.label_at = (left, high)
 
     def update(self, seen, bins) -> None:
-        """A new run: its frames, and the tank's scale (full at the run's volume). The player stops."""
+        """A new run: its frames (the tank full at the run's volume). The player stops."""
         run = seen.run
         frames = windpump.playback_frames(run, max_frames=MAX_FRAMES)
-        geometry = {**self.geometry, "v_full": max(float(run.volume[-1]), 1e-12)}
-        self.sources["machine_geometry"].data = {k: [float(v)] for k, v in geometry.items()}
+        self.sources["machine_geometry"].data = {k: [float(v)] for k, v in self.geometry.items()}
         self.sources["machine_label"].data = {
             "x": [self.label_at[0]],
             "y": [self.label_at[1]],
@@ -312,6 +319,5 @@ class MachineView(View):
         }
         self.scrubber.update(end=max(float(run.t[-1]), 1e-6), value=0.0)
         self.sources["frames"].data = {
-            name: np.asarray(getattr(frames, name), dtype=np.float32)
-            for name in ("t", "theta", "theta_dot", "volume")
+            name: np.asarray(getattr(frames, name), dtype=np.float32) for name in FRAME_COLUMNS
         }

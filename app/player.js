@@ -7,50 +7,60 @@ const P = frames._player || (frames._player = {playing: false, t: 0, raf: 0, wal
 
 function col(source, name) { return source.data[name] }
 
-// The crank angle and volume at time t: cubic Hermite between frames, with the crank speed.
+// Cubic Hermite between frames lo and hi = lo + 1 at fraction s, with the values' rates.
+function hermite(values, rates, lo, h, s) {
+  const h00 = 2 * s ** 3 - 3 * s ** 2 + 1, h10 = s ** 3 - 2 * s ** 2 + s
+  const h01 = -2 * s ** 3 + 3 * s ** 2, h11 = s ** 3 - s ** 2
+  return h00 * values[lo] + h10 * h * rates[lo] + h01 * values[lo + 1] + h11 * h * rates[lo + 1]
+}
+
+// The run at time t, from the core's frames: both angles by cubic Hermite with their speeds,
+// the volume and the tank's level linearly.
 function state_at(t) {
-  const T = col(frames, "t"), TH = col(frames, "theta"), W = col(frames, "theta_dot"), V = col(frames, "volume")
-  const n = T.length
+  const T = col(frames, "t"), n = T.length
   if (n == 0) return null
-  if (t <= T[0] || n == 1) return {theta: TH[0], volume: V[0]}
-  if (t >= T[n - 1]) return {theta: TH[n - 1], volume: V[n - 1]}
+  const TH = col(frames, "theta"), W = col(frames, "theta_dot"), V = col(frames, "volume")
+  const ROTOR = col(frames, "rotor_angle"), RW = col(frames, "rotor_speed"), LEVEL = col(frames, "tank_level")
+  const at = (k) => ({theta: TH[k], rotor: ROTOR[k], volume: V[k], level: LEVEL[k]})
+  if (t <= T[0] || n == 1) return at(0)
+  if (t >= T[n - 1]) return at(n - 1)
   let lo = 0, hi = n - 1
   while (hi - lo > 1) { const mid = (lo + hi) >> 1; if (T[mid] <= t) lo = mid; else hi = mid }
   const h = T[hi] - T[lo], s = (t - T[lo]) / h
-  const h00 = 2 * s ** 3 - 3 * s ** 2 + 1, h10 = s ** 3 - 2 * s ** 2 + s
-  const h01 = -2 * s ** 3 + 3 * s ** 2, h11 = s ** 3 - s ** 2
-  const theta = h00 * TH[lo] + h10 * h * W[lo] + h01 * TH[hi] + h11 * h * W[hi]
-  return {theta, volume: V[lo] + s * (V[hi] - V[lo])}
+  const linear = (X) => X[lo] + s * (X[hi] - X[lo])
+  return {theta: hermite(TH, W, lo, h, s), rotor: hermite(ROTOR, RW, lo, h, s),
+          volume: linear(V), level: linear(LEVEL)}
 }
 
-// The piston's distance from TDC at a crank angle: the core's Eq. (1) table, interpolated.
-function piston_x(theta) {
-  const A = col(table, "theta"), X = col(table, "x"), n = A.length
+// Cylinder k's crank pin and piston pin at a crank angle: the core's table over one revolution
+// (windpump.crank_table), interpolated.
+function parts_at(theta, k) {
+  const A = col(table, "theta"), n = A.length
   const a = ((theta % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI)
-  const k = Math.min(n - 2, Math.floor(a / A[n - 1] * (n - 1)))
-  const s = (a - A[k]) / (A[k + 1] - A[k])
-  return X[k] + s * (X[k + 1] - X[k])
+  const i = Math.min(n - 2, Math.floor(a / A[n - 1] * (n - 1)))
+  const s = (a - A[i]) / (A[i + 1] - A[i])
+  const at = (name) => { const X = col(table, name + k); return X[i] + s * (X[i + 1] - X[i]) }
+  return {pin: [at("pin_x"), at("pin_y")], top: at("piston_y")}
 }
 
 function draw(t) {
   const here = state_at(t)
   if (here == null) return
   const g = Object.fromEntries(Object.entries(geometry.data).map(([k, v]) => [k, v[0]]))
-  const th = here.theta, rotor = g.R_dagger * th
+  const th = here.theta, rotor = here.rotor
   const xs = [], ys = [], colors = []
-  for (let k = 0; k < 3; k++) {  // blades on the small sprocket's shaft, turning R+ times faster
+  for (let k = 0; k < 3; k++) {  // blades on the small sprocket's shaft
     const a = rotor + 2 * Math.PI * k / 3
     xs.push([g.c0x, g.c0x - g.blade * Math.sin(a)]); ys.push([g.c0y, g.c0y + g.blade * Math.cos(a)])
   }
   xs.push([g.c0x, g.c0x - 0.8 * g.R0 * Math.sin(rotor)]); ys.push([g.c0y, g.c0y + 0.8 * g.R0 * Math.cos(rotor)])
   colors.push(...Array(4).fill(palette.blade))
-  // Cylinder k on its own throw, pitch * k to the right, sees the crank angle theta - 2 pi k / n.
+  // Cylinder k stands pitch * k to the right, on its own throw.
   const n = g.cylinders || 1, joint = {x: [], y: []}, body = {x: [], y: [], width: [], height: []}
   let top0 = 0
   for (let k = 0; k < n; k++) {
-    const phi = th - 2 * Math.PI * k / n, cx = k * (g.pitch || 0)
-    const pin = [cx - g.R * Math.sin(phi), g.R * Math.cos(phi)]
-    const top = g.L + g.R - piston_x(phi)  // piston pin height above the crank centre
+    const cx = k * (g.pitch || 0), parts = parts_at(th, k)
+    const pin = [cx + parts.pin[0], parts.pin[1]], top = parts.top
     if (k == 0) top0 = top
     xs.push([cx, pin[0]]); ys.push([0, pin[1]]); colors.push(palette.crank)  // crank
     xs.push([pin[0], cx]); ys.push([pin[1], top]); colors.push(palette.rod)  // rod
@@ -60,8 +70,7 @@ function draw(t) {
   links.setv({data: {xs, ys, color: colors}}, {sync: false})
   joints.setv({data: joint}, {sync: false})
   piston.setv({data: body}, {sync: false})
-  const full = g.v_full > 0 ? Math.min(1, here.volume / g.v_full) : 0
-  const depth = Math.max(full * g.tank_h, 1e-9)
+  const depth = Math.max(here.level * g.tank_h, 1e-9)
   water.setv({data: {x: [g.tank_x + g.tank_w / 2], y: [g.tank_y + depth / 2], width: [g.tank_w], height: [depth]}}, {sync: false})
   label.setv({data: {x: [label.data.x[0]], y: [label.data.y[0]],
     text: [`t = ${t.toFixed(1)} s   V = ${(1e3 * here.volume).toFixed(1)} L`]}}, {sync: false})

@@ -444,9 +444,7 @@ class OperatingView(View):
             self.items[label].visible = op is not None
         self.items["lab data"].visible = len(s["data"].data["omega"]) > 0
 
-    def show_lab_data(self, omega, torque) -> None:
-        self.sources["data"].data = {
-            "omega": np.asarray(omega),
-            "power": np.asarray(omega) * torque,
-        }
+    def show_lab_data(self, omega, power) -> None:
+        """Measured speeds [rad/s] and shaft powers [W] (``windpump.TorqueTable.power``)."""
+        self.sources["data"].data = {"omega": np.asarray(omega), "power": np.asarray(power)}
         self.items["lab data"].visible = len(omega) > 0

@@ -250,21 +250,17 @@ class WindTab:
 
     def _update_day(self, design, inputs) -> None:
         record = self.record(inputs)
-        duration = float(record.t[-1])
-        kick = 0.0 if windpump.starts_from_rest(design) else inputs.theta_dot0
-        run_of = (design, record, inputs.theta0, kick)
+        run_of = (design, record, inputs.theta0, inputs.theta_dot0)
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         try:
-            run = windpump.simulate(
-                design, duration, inputs.theta0, kick, wind=record,
-                sample_dt=max(1.0, duration / DAY),
-            )  # fmt: skip
+            day = windpump.run_in_wind(design, record, inputs.theta0, inputs.theta_dot0)
         except ValueError as error:
             self.error.object = f"The day cannot be run: {error}"
             self.error.visible = True
             return
         self.error.visible = False
+        run, duration = day.run, day.duration
         self.last_run, self._drawn_day = run, run_of
         hours = run.t / 3600.0
         self.day_wind.x_range.end = self.day_wind.x_range.start + duration / 3600.0
@@ -274,20 +270,15 @@ class WindTab:
             refill(self.sources[name], {"t": x, "lower": lower, "upper": upper})
         x, _, lifted = band(hours, 1e3 * run.volume, bins)
         refill(self.sources["litres"], {"t": x, "litres": lifted})
-        for kind, times in (("stops", run.stops), ("starts", run.starts)):
-            at = np.asarray(times)
+        for kind, events in (("stops", day.stops), ("starts", day.starts)):
+            refill(self.sources[f"{kind}_wind"], {"t": events.t / 3600.0, "y": events.V})
             refill(
-                self.sources[f"{kind}_wind"],
-                {"t": at / 3600.0, "y": np.interp(at, record.t, record.V)},
+                self.sources[f"{kind}_litres"], {"t": events.t / 3600.0, "y": 1e3 * events.volume}
             )
-            refill(
-                self.sources[f"{kind}_litres"],
-                {"t": at / 3600.0, "y": 1e3 * np.interp(at, run.t, run.volume)},
-            )
-            self.marker_items[kind].visible = len(at) > 0
-        lifted = 1e3 * float(run.volume[-1])
-        per_day = lifted * DAY / duration
-        self.readouts["day_litres"].show(*record_water_text(lifted, per_day, duration))
+            self.marker_items[kind].visible = len(events) > 0
+        self.readouts["day_litres"].show(
+            *record_water_text(1e3 * day.volume, 1e3 * day.per_day, duration)
+        )
         low, high = windpump.record_water(design, record)
         a_day = is_a_day(duration)
         self.readouts["record_bounds"].show(
@@ -299,11 +290,10 @@ class WindTab:
             if self.measured is not None
             else f"a gusty day (seed {int(round(inputs.seed))})"
         )
-        start = "starts on its own" if kick == 0.0 else f"is kicked at {kick:g} rad/s"
+        start = "starts on its own" if day.kick == 0.0 else f"is kicked at {day.kick:g} rad/s"
         self.day_note.object = (
-            f"Integrated in full over {source}: the pump {start}, stops {len(run.stops)} "
-            f"time(s) and starts {len(run.starts)} time(s); mean wind "
-            f"{np.mean(run.wind_speed):.2f} m/s."
+            f"Integrated in full over {source}: the pump {start}, stops {len(day.stops)} "
+            f"time(s) and starts {len(day.starts)} time(s); mean wind {day.mean_wind:.2f} m/s."
         )
 
     # -- a measured record -------------------------------------------------------------------

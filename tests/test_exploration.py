@@ -93,3 +93,22 @@ def test_fit_of_noisy_data_is_the_least_squares_optimum():
 def test_fit_rejects_data_it_cannot_fit(omega, torque, name):
     with pytest.raises(windpump.ParameterError, match=f"^{name} = "):
         windpump.fit_torque_curve(omega, torque)
+
+
+def test_why_a_run_never_started():
+    """Each reason against what the run shows: no torque at rest and no kick; a load at theta0
+    heavier than R+ T_0 (the crank never moves); a kick below alpha- (it turns, then rests)."""
+    left = windpump.explore(SEED, 60.0, theta_dot0=0.0)
+    assert SEED.T_0 == 0.0 and left.not_started is windpump.NotStarted.NO_KICK
+    # At 3 pi / 2 the lever arm is -1 (Eq. 12): the load is rho_w g h A R; give R+ T_0 half that.
+    load = SEED.rho_w * SEED.g * SEED.h * math.pi * SEED.bore**2 / 4 * SEED.R
+    held_design = SEED.replace(T_0=0.5 * load / SEED.R_dagger)
+    held = windpump.explore(held_design, 60.0, 3 * math.pi / 2, 0.0)
+    assert np.all(held.run.theta == 3 * math.pi / 2)
+    assert held.not_started is windpump.NotStarted.HELD_AT_REST
+    gentle = windpump.explore(SEED, 600.0, theta_dot0=1.0)
+    assert 1.0 < gentle.alpha_minus and gentle.run.t_stall > 0.0
+    assert gentle.not_started is windpump.NotStarted.KICK_TOO_SMALL
+    slowing = SEED.replace(h=3.0 * SEED_MARGIN / 0.95)
+    for started in (windpump.explore(SEED, 60.0), windpump.explore(slowing, 1500.0, 0.5, 12.0)):
+        assert started.status is not Status.NEVER_STARTED and started.not_started is None

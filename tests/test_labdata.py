@@ -143,3 +143,15 @@ def test_a_swapped_file_fits_poorly_and_a_good_one_well():
     except windpump.ParameterError:
         return  # refused outright: just as good
     assert swapped.poor
+
+
+def test_a_table_s_power_is_speed_times_torque():
+    table = read_torque_csv(b"speed,torque\n10,0.25\n40,0.5\n80,0.125\n")
+    assert table.power.tolist() == [2.5, 20.0, 10.0]  # W, by hand
+    # Measurements on Eq. (11) itself give the windmill's power curve (Eq. 5's left side).
+    design = windpump.Design.seed_example()
+    omega = np.linspace(5.0, 150.0, 30)
+    torque = windpump.windmill_torque(design, omega)
+    rows = "\n".join(f"{w:.17g},{t:.17g}" for w, t in zip(omega, torque, strict=True))
+    measured = read_torque_csv(rows.encode())
+    np.testing.assert_allclose(measured.power, windpump.windmill_power(design, omega), rtol=1e-14)

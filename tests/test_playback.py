@@ -111,3 +111,65 @@ def test_the_slider_crank_pose_is_closed_once_and_matches_eq_1():
             pin, piston
         ) == pytest.approx(SEED.L)
         assert piston[1] == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("cylinders", [1, 2, 3, 5])
+def test_the_crank_table_is_each_cylinder_s_slider_crank_at_its_own_lag(cylinders):
+    d = SEED.replace(cylinders=cylinders)
+    table = windpump.crank_table(d, 361)
+    assert table.piston.shape == table.pin_x.shape == (cylinders, 361)
+    for k in range(cylinders):
+        # Geometry, not Eq. (1): the pin on the crank circle at the cylinder's own angle, the
+        # piston pin on the axis one rod length from it.
+        pin_x, pin_y, top = table.pin_x[k], table.pin_y[k], table.piston_y[k]
+        np.testing.assert_allclose(np.hypot(pin_x, pin_y), d.R, rtol=1e-14)
+        own = np.arctan2(-pin_x, pin_y)
+        lag = table.theta - 2 * math.pi * k / cylinders
+        np.testing.assert_allclose(np.remainder(own - lag + math.pi, 2 * math.pi), math.pi)
+        np.testing.assert_allclose(np.hypot(pin_x, top - pin_y), d.L, rtol=1e-14)
+        assert np.all(top > pin_y)  # the piston above its crank
+        np.testing.assert_allclose(table.piston[k], d.L + d.R - top, atol=1e-15)
+    with pytest.raises(ParameterError, match="points"):
+        windpump.crank_table(d, 1)
+
+
+def test_frames_carry_what_the_machine_draws():
+    d = SEED.replace(cylinders=3, h=2.0)
+    run = windpump.simulate(d, 120.0)
+    frames = windpump.playback_frames(run, max_frames=500)
+    np.testing.assert_allclose(frames.rotor_angle, d.R_dagger * frames.theta, rtol=1e-15)
+    np.testing.assert_allclose(frames.rotor_speed, np.interp(frames.t, run.t, run.omega))
+    np.testing.assert_allclose(frames.tank_level, frames.volume / run.volume[-1], rtol=1e-15)
+    assert frames.tank_level[0] == 0.0 and frames.tank_level[-1] == 1.0
+    for k in range(3):
+        phi = frames.theta - 2 * math.pi * k / 3
+        eq1 = d.L + d.R - (np.sqrt(d.L**2 - (d.R * np.sin(phi)) ** 2) + d.R * np.cos(phi))
+        np.testing.assert_allclose(frames.pistons[k], eq1, atol=1e-15)
+    for name in ("theta", "piston", "pin_x", "pin_y", "piston_y"):
+        np.testing.assert_array_equal(
+            getattr(frames.table, name), getattr(windpump.crank_table(d), name)
+        )
+    dry = windpump.playback_frames(windpump.simulate(SEED, 10.0, theta_dot0=0.0))
+    assert np.all(dry.tank_level == 0.0)  # nothing pumped: an empty tank, not 0/0
+
+
+def test_between_frames_the_table_puts_each_part_where_the_run_has_it(run):
+    """What player.js does at a time between frames, in numpy: the crank angle by Hermite, then
+    each part linearly in the table; against the run's own angle through Eq. (1)."""
+    frames = windpump.playback_frames(run, max_frames=3000)
+    table = frames.table
+    t = np.linspace(1.0, 599.0, 2001)
+    k = np.clip(np.searchsorted(frames.t, t) - 1, 0, len(frames.t) - 2)
+    h = frames.t[k + 1] - frames.t[k]
+    s = (t - frames.t[k]) / h
+    theta = (
+        (2 * s**3 - 3 * s**2 + 1) * frames.theta[k]
+        + (s**3 - 2 * s**2 + s) * h * frames.theta_dot[k]
+        + (-2 * s**3 + 3 * s**2) * frames.theta[k + 1]
+        + (s**3 - s**2) * h * frames.theta_dot[k + 1]
+    )
+    drawn = np.interp(np.mod(theta, 2 * math.pi), table.theta, table.piston_y[0])
+    exact = (
+        SEED.L + SEED.R - windpump.piston_position(np.interp(t, run.t, run.theta), SEED.R, SEED.L)
+    )
+    assert np.max(np.abs(drawn - exact)) < 1e-3 * SEED.R  # well under a pixel, as drawn

@@ -420,3 +420,62 @@ def test_weibull_density_is_scipys():
     for mean, k in ((5.0, 2.0), (3.0, 1.4), (8.0, 3.5)):
         expected = stats.weibull_min(k, scale=weibull_scale(mean, k)).pdf(V)
         np.testing.assert_allclose(weibull_density(V, mean, k), expected, rtol=1e-12, atol=1e-300)
+
+
+# A light rotor whose torque at rest beats the load at any angle: it starts on its own.
+SELF_STARTING = LIGHT.replace(T_0=0.4)
+
+
+def test_a_run_in_wind_lets_a_self_starting_pump_go_from_rest_and_kicks_any_other():
+    assert windpump.starts_from_rest(SELF_STARTING) and not windpump.starts_from_rest(LIGHT)
+    day = windpump.run_in_wind(SELF_STARTING, STEPS, kick=3.0)
+    assert day.kick == 0.0 and day.run.theta_dot[0] == 0.0 and day.starts.t[0] == 0.0
+    kicked = windpump.run_in_wind(LIGHT, STEPS, kick=2.5)
+    assert kicked.kick == 2.5 and kicked.run.theta_dot[0] == 2.5
+
+
+def test_a_run_in_wind_has_its_stops_and_starts_with_the_wind_and_water_at_each():
+    day = windpump.run_in_wind(SELF_STARTING, STEPS)
+    _, stops, starts = wind_reference_run(SELF_STARTING, 60.5, math.pi / 2, 0.0, *STEPS)
+    assert len(day.stops) == len(stops) == 1 and len(day.starts) == len(starts) == 2
+    np.testing.assert_allclose(day.stops.t, stops, atol=1e-5)
+    np.testing.assert_allclose(day.starts.t, starts, atol=1e-6)
+    # The stop falls in the lull (0.4 m/s from 20.5 s to 60 s); the restart on the ramp to 6 m/s.
+    assert 20.5 < day.stops.t[0] < 60.0 and day.stops.V[0] == pytest.approx(0.4, rel=1e-12)
+    restart = day.starts.t[1]
+    assert 60.0 < restart < 60.5
+    assert day.starts.V[1] == pytest.approx(0.4 + 5.6 * (restart - 60.0) / 0.5, rel=1e-9)
+    assert day.starts.V[0] == 5.0 and day.starts.volume[0] == 0.0
+    # Stops are samples of the run; at rest it pumps nothing: the restart finds the stop's water.
+    at_stop = day.run.volume[day.run.t == day.stops.t[0]]
+    assert len(at_stop) == 1 and day.stops.volume[0] == at_stop[0] > 0.0
+    assert day.starts.volume[1] == pytest.approx(day.stops.volume[0], rel=1e-12)
+
+
+def test_a_run_in_wind_is_a_day_of_water_at_the_record_s_rate_sampled_once_a_second():
+    day = windpump.run_in_wind(SELF_STARTING, STEPS)
+    direct = simulate(SELF_STARTING, 60.5, math.pi / 2, 0.0, wind=STEPS, sample_dt=1.0)
+    assert day.volume == direct.volume[-1] and day.duration == 60.5
+    assert day.per_day == pytest.approx(direct.volume[-1] * 86_400.0 / 60.5, rel=1e-15)
+    assert np.max(np.diff(day.run.t)) <= 1.0 + 1e-9
+    assert day.mean_wind == pytest.approx(np.mean(np.interp(day.run.t, *STEPS)), rel=1e-12)
+
+
+def test_a_record_longer_than_a_day_gives_a_day_s_samples():
+    calm = ([0.0, 2 * 86_400.0], [0.0, 0.0])  # kicked, it stops at once and rests two days
+    day = windpump.run_in_wind(LIGHT, calm)
+    assert day.duration == 2 * 86_400.0 and len(day.stops) == 1
+    assert np.max(np.diff(day.run.t)) == pytest.approx(2.0, rel=1e-9)
+    assert len(day.run.t) <= 86_400 + 3 + len(day.stops) + len(day.starts)
+    assert day.per_day == pytest.approx(day.volume / 2, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("record", "kick", "name"),
+    [(STEPS, -1.0, "kick"), (STEPS, math.nan, "kick"), (([0.0], [5.0]), 3.0, "record"),
+     (([0.0, 1.0], [5.0, -1.0]), 3.0, "record"), ("gusty", 3.0, "record")],
+)  # fmt: skip
+def test_a_run_in_wind_refuses_bad_input_by_name(record, kick, name):
+    with pytest.raises(ParameterError) as error:
+        windpump.run_in_wind(LIGHT, record, kick=kick)
+    assert error.value.name == name

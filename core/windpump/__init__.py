@@ -29,7 +29,7 @@ from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
 from .energy import PowerBudget, StartupPower, power_budget, startup_power
 from .errors import DesignFileError, NoClosure, ParameterError, StallError
-from .exploration import Exploration, Status, explore
+from .exploration import Exploration, NotStarted, Status, explore
 from .kinematics import (
     delivering_faces,
     f2,
@@ -42,8 +42,16 @@ from .kinematics import (
 from .labdata import LabDataError, TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
 from .maps import DesignMap, design_map
-from .playback import Playback, piston_table, playback_frames
-from .site import record_water, steady_flow, water_per_day, wind_thresholds
+from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
+from .site import (
+    WindEvents,
+    WindRun,
+    record_water,
+    run_in_wind,
+    steady_flow,
+    water_per_day,
+    wind_thresholds,
+)
 from .studies import Sweep, sweep
 from .windmill import (
     OperatingPoint,
@@ -57,6 +65,7 @@ from .windmill import (
 
 __all__ = [
     "MAX_SAMPLES",
+    "CrankTable",
     "Design",
     "DesignFileError",
     "DesignMap",
@@ -64,6 +73,7 @@ __all__ = [
     "Intermittency",
     "LabDataError",
     "NoClosure",
+    "NotStarted",
     "OperatingPoint",
     "ParameterError",
     "Playback",
@@ -75,8 +85,11 @@ __all__ = [
     "Status",
     "TorqueFit",
     "TorqueTable",
+    "WindEvents",
+    "WindRun",
     "averaged_stall_time",
     "delivering_faces",
+    "crank_table",
     "design_map",
     "energy",
     "explore",
@@ -100,6 +113,7 @@ __all__ = [
     "record_water",
     "revolution_marks",
     "rod_angle",
+    "run_in_wind",
     "simulate",
     "spinup",
     "startup_power",

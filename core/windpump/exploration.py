@@ -35,6 +35,17 @@ class Status(enum.Enum):
     """It could not get going: stuck at rest from the start, or kicked below alpha- (Eq. 21)."""
 
 
+class NotStarted(enum.Enum):
+    """Why a run never started (:attr:`Exploration.not_started`)."""
+
+    NO_KICK = "no kick, and no torque at rest"
+    """Left at rest (theta_dot0 = 0) with a windmill that has no torque at rest (T_0 = 0)."""
+    HELD_AT_REST = "held at rest by the load"
+    """Left at rest, the windmill's torque at rest R+ T_0 could not beat the load at theta0."""
+    KICK_TOO_SMALL = "kicked too gently"
+    """Kicked below alpha- (Eq. 21), or with no running speed at all: it came to rest."""
+
+
 @dataclasses.dataclass(frozen=True)
 class Exploration:
     """A design run in full (Eq. 12) beside the averaged theory (Eqs. 19-25) and the operating point.
@@ -86,6 +97,26 @@ class Exploration:
     @property
     def design(self) -> Design:
         return self.run.design
+
+    @property
+    def not_started(self) -> NotStarted | None:
+        """Why the run never started; None when it did (any status but ``NEVER_STARTED``).
+
+        Examples
+        --------
+        >>> from windpump import Design, explore
+        >>> explore(Design.seed_example(), 60.0, theta_dot0=0.0).not_started.value
+        'no kick, and no torque at rest'
+        >>> explore(Design.seed_example(), 60.0).not_started is None
+        True
+        """
+        if self.status is not Status.NEVER_STARTED:
+            return None
+        if self.theta_dot0 == 0.0 and self.design.T_0 == 0.0:
+            return NotStarted.NO_KICK
+        if self.run.t_stall == 0.0:
+            return NotStarted.HELD_AT_REST
+        return NotStarted.KICK_TOO_SMALL
 
     @property
     def pumped_volume(self) -> float:

@@ -37,6 +37,17 @@ class TorqueTable:
     torque: np.ndarray
     header: tuple[str, ...] | None
 
+    @property
+    def power(self) -> np.ndarray:
+        """The measured shaft power T omega at each measurement [W] (Eq. 5's windmill side).
+
+        Examples
+        --------
+        >>> read_torque_csv(b"10,0.2\\n50,0.6\\n90,0.2\\n").power.tolist()
+        [2.0, 30.0, 18.0]
+        """
+        return self.omega * self.torque
+
 
 def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTES) -> TorqueTable:
     """Read a CSV of windmill speed [rad/s] and torque [N m], one measurement per line.

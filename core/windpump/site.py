@@ -8,17 +8,20 @@ the running speed alpha+(V) = p s + delta(s) and the thresholds below have close
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
 
 from .averaged import stall_margin
 from .design import Design
+from .dynamics import SimulationResult, simulate
 from .errors import ParameterError
-from .loads import peak_load_torque
-from .wind import shape, weibull_scale
+from .loads import peak_load_torque, starts_from_rest
+from .validation import non_negative
+from .wind import WindRecord, as_record, shape, weibull_scale
 
-SECONDS_PER_DAY = 86_400.0
+SECONDS_PER_DAY = 86_400.0  # [s/day]; to move to the units module (issue 21)
 
 
 def wind_thresholds(design: Design) -> tuple[float, float | None]:
@@ -188,3 +191,142 @@ def record_water(design: Design, record) -> tuple[float, float]:
         return float(SECONDS_PER_DAY * np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(t)) / duration)
 
     return (0.0 if V_start is None else daily(V >= V_start)), daily(V > V_stop)
+
+
+@dataclasses.dataclass(frozen=True)
+class WindEvents:
+    """Moments of a run in a wind record (its stops, or its starts): when, the wind then, and the
+    water pumped so far.
+
+    Attributes
+    ----------
+    t : ndarray
+        Times [s].
+    V : ndarray
+        The record's wind speed at those times [m/s] (linear between its samples).
+    volume : ndarray
+        Water pumped since the run's start at those times [m^3].
+    """
+
+    t: np.ndarray
+    V: np.ndarray
+    volume: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+
+@dataclasses.dataclass(frozen=True)
+class WindRun:
+    """A design run in full through a wind record (:func:`run_in_wind`).
+
+    Attributes
+    ----------
+    run : SimulationResult
+        The full integration (Eq. 12 with the rotor following the wind), over the whole record.
+    record : WindRecord
+        The wind it ran in: times [s] from the run's start, speeds [m/s].
+    kick : float
+        The crank speed it was given at t = 0 [rad/s]: 0 when the windmill starts on its own.
+    stops, starts : WindEvents
+        When the turning crank came to rest and when a resting one began to turn, with the wind
+        speed and the water pumped at each.
+    """
+
+    run: SimulationResult
+    record: WindRecord
+    kick: float
+    stops: WindEvents
+    starts: WindEvents
+
+    @property
+    def duration(self) -> float:
+        """The record's length, and the run's [s]."""
+        return float(self.run.t[-1])
+
+    @property
+    def volume(self) -> float:
+        """Water pumped over the whole record [m^3]."""
+        return float(self.run.volume[-1])
+
+    @property
+    def per_day(self) -> float:
+        """Water pumped at the record's mean rate, a day's worth [m^3/day]: the record's water for a
+        record of a day, scaled by a day over its length for a shorter or longer one."""
+        return self.volume * SECONDS_PER_DAY / self.duration
+
+    @property
+    def mean_wind(self) -> float:
+        """The mean of the wind speed at the run's samples [m/s]."""
+        return float(np.mean(self.run.wind_speed))
+
+
+def run_in_wind(design: Design, record, theta0: float = math.pi / 2, kick: float = 3.0) -> WindRun:
+    """Run a design in full through a whole wind record: what the pump does on a real day.
+
+    The rotor is given at V_ref by ``design`` and follows the record's wind by similarity
+    (:func:`windpump.simulate` with ``wind=record``). A windmill that starts from rest on its
+    own (:func:`windpump.starts_from_rest`) is let go from rest; any other is given ``kick``.
+    The run is sampled once a second (each stop and start too), and for a record longer than a
+    day once every ``length / 1 day`` seconds, so that no record gives more than a day's samples.
+
+    Parameters
+    ----------
+    design : Design
+        The pump, its rotor at V_ref.
+    record : WindRecord or (t, V) pair
+        Times [s] from the run's start, increasing, the last > 0, and wind speeds [m/s].
+    theta0 : float, default pi/2
+        Crank angle at t = 0 [rad].
+    kick : float, default 3.0
+        Crank speed given at t = 0 to a windmill that cannot start on its own [rad/s], >= 0.
+
+    Returns
+    -------
+    WindRun
+        The run, its water a day, and its stops and starts with the wind and water at each.
+
+    Raises
+    ------
+    ParameterError
+        For a bad record or argument, or a run :func:`windpump.simulate` refuses.
+
+    Examples
+    --------
+    An hour of 5 m/s wind, an hour of calm, an hour of 5 m/s again, for a windmill that starts on
+    its own:
+
+    >>> from windpump import Design, run_in_wind
+    >>> wind = ([0, 3600, 3660, 7200, 7260, 10800], [5, 5, 0, 0, 5, 5])
+    >>> day = run_in_wind(Design.seed_example().replace(T_0=0.4), wind)
+    >>> day.kick, len(day.stops), len(day.starts)
+    (0.0, 1, 2)
+    >>> round(float(day.stops.t[0])), float(day.stops.V[0])  # it coasts into the calm [s], [m/s]
+    (4323, 0.0)
+    >>> round(float(day.starts.V[1]), 2), round(day.per_day, 1)  # back with the wind [m/s], [m^3/day]
+    (4.65, 27.8)
+    """
+    kick = non_negative("kick", kick, "rad/s")
+    try:
+        checked = as_record(record, 1.0)
+    except ParameterError as error:  # named as this function's argument, not simulate's
+        raise ParameterError("record", error.value, error.allowed, error.unit, error.why) from None
+    duration = float(checked.t[-1])
+    if not duration > 0.0:
+        raise ParameterError("record", f"last time {duration!r} s", "a record ending after t = 0")
+    if starts_from_rest(design):
+        kick = 0.0
+    run = simulate(
+        design,
+        duration,
+        theta0,
+        kick,
+        wind=checked,
+        sample_dt=max(1.0, duration / SECONDS_PER_DAY),
+    )
+
+    def events(times) -> WindEvents:
+        at = np.asarray(times, dtype=float)
+        return WindEvents(at, np.interp(at, checked.t, checked.V), np.interp(at, run.t, run.volume))
+
+    return WindRun(run, checked, kick, events(run.stops), events(run.starts))

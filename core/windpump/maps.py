@@ -166,7 +166,9 @@ def design_map(
     >>> m = design_map(Design.seed_example(), np.linspace(0.5, 30, 200), [3.0, 10.0])
     >>> [round(float(r), 3) for r in m.best_gear_ratio]  # margin 9/8 at the best gear
     [0.883, 2.943]
-    >>> [round(float(q) * 86400) for q in m.best_flow]  # m^3/day (32.8 at the paper's R+ = 4)
+    >>> from windpump.units import SECONDS_PER_DAY
+    >>> per_day = m.best_flow * SECONDS_PER_DAY  # m^3/day (32.8 at the paper's R+ = 4)
+    >>> [round(float(q)) for q in per_day]
     [104, 31]
     """
     if not isinstance(design, Design):

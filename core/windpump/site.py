@@ -68,7 +68,9 @@ def steady_flow(design: Design, V):
     Examples
     --------
     >>> from windpump import Design, steady_flow
-    >>> [round(float(q) * 1e3, 3) for q in steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])]
+    >>> from windpump.units import LITRES_PER_M3
+    >>> flows = steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])
+    >>> [round(float(q) * LITRES_PER_M3, 3) for q in flows]  # [L/s]
     [0.0, 0.379, 0.627]
     """
     speeds = np.asarray(V, dtype=float)

@@ -40,6 +40,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 import windpump  # noqa: E402
+from windpump.units import LITRES_PER_M3  # noqa: E402
 
 from served import (  # noqa: E402
     CHROMIUM,
@@ -58,7 +59,7 @@ READOUT = f"() => ({DEEP_TEXT})('[data-name=mean_flow]')"
 
 
 def readout_text(seen: windpump.Exploration) -> str:
-    return f"{1e3 * seen.mean_flow:.4f} L/s"
+    return f"{LITRES_PER_M3 * seen.mean_flow:.4f} L/s"
 
 
 def expected_readout(head: float) -> str:
@@ -125,7 +126,10 @@ def slider_moves(browser, url):
         received.clear()
         page.keyboard.press(key)
         page.wait_for_function(
-            ARRIVED, arg=[readout_text(seen), 1e3 * seen.mean_flow], polling="raf", timeout=60_000
+            ARRIVED,
+            arg=[readout_text(seen), LITRES_PER_M3 * seen.mean_flow],
+            polling="raf",
+            timeout=60_000,
         )
         to_readout, to_plots = page.evaluate(ELAPSED)
         readouts.append(to_readout / 1e3)

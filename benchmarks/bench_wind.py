@@ -26,13 +26,14 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import windpump
+from windpump.units import SECONDS_PER_DAY
 from windpump.wind import gusty
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from reference import summed_load, wind_reference_run, wind_rhs  # noqa: E402
 
 DESIGN = windpump.Design.seed_example().replace(T_0=0.3)
-MEAN_WIND, DAY = 5.0, 86_400.0
+MEAN_WIND, DAY = 5.0, SECONDS_PER_DAY
 
 
 def scipy_port(design, t_end, theta0, theta_dot0, wind_t, wind_V):

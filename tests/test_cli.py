@@ -18,6 +18,7 @@ import pytest
 
 import windpump
 from windpump import Design
+from windpump.units import SECONDS_PER_DAY
 
 SEED = Design.seed_example()
 
@@ -117,7 +118,7 @@ def test_the_map_png_has_a_log_colour_scale_with_labelled_contours():
     from windpump.cli import map_figure
 
     result = windpump.design_map(SEED, np.linspace(0.5, 8, 200), np.linspace(0, 9, 200))
-    per_day = result.mean_flow[result.mean_flow > 0] * 86400
+    per_day = result.mean_flow[result.mean_flow > 0] * SECONDS_PER_DAY
     low, high = per_day.min(), per_day.max()  # 16 to 276 m³/day
     nice = [m * 10.0**k for k in range(-1, 5) for m in (1, 2, 5) if low <= m * 10.0**k <= high]
     assert nice == [20, 50, 100, 200]

@@ -40,8 +40,8 @@ from windpump._kernels import dopri5, driver, grid, model, stepping
 signatures = {}
 for module in (dopri5, driver, grid, model, stepping):
     for name, value in vars(module).items():
-        if isinstance(value, numba.core.dispatcher.Dispatcher) and value.__module__ == module.__name__:
-            signatures[f"{module.__name__}.{name}"] = len(value.signatures)
+        if isinstance(value, numba.core.dispatcher.Dispatcher):  # named where it is defined
+            signatures[f"{value.py_func.__module__}.{name}"] = len(value.signatures)
 cached = [cached_before, solver_is_cached(windpump.Design.seed_example())]
 json.dump({"signatures": signatures, "compiled": compiled, "cached": cached}, sys.stdout)
 """

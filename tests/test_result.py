@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import windpump
+from windpump.units import LITRES_PER_M3
 
 from conftest import SEED
 from reference import reference_run
@@ -100,8 +101,9 @@ def test_the_csv_header_records_every_parameter_and_litres_on_request(run):
     assert recorded == pytest.approx(run.design.as_dict(), rel=1e-11)
     comments = sum(line.startswith("#") for line in text.splitlines())
     table = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=comments + 1)
-    np.testing.assert_allclose(table[:, 3], 1e3 * run.volume, rtol=1e-11, atol=1e-300)
-    np.testing.assert_allclose(table[:, 4], 1e3 * run.flow, rtol=1e-11, atol=1e-300)
+    litres = LITRES_PER_M3  # the CSV's volume [L] and flow [L/s]
+    np.testing.assert_allclose(table[:, 3], litres * run.volume, rtol=1e-11, atol=1e-300)
+    np.testing.assert_allclose(table[:, 4], litres * run.flow, rtol=1e-11, atol=1e-300)
     assert "volume [L],flow [L/s]" in text and "t_end = 600 s, ran to its end" in text
 
 

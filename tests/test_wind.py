@@ -14,6 +14,7 @@ from scipy import integrate, special, stats
 import windpump
 from windpump import Design, ParameterError, simulate
 from windpump.labdata import LabDataError
+from windpump.units import SECONDS_PER_DAY
 from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
 from reference import wind_reference_run
@@ -127,12 +128,14 @@ def test_a_callable_wind_is_the_record_of_its_samples():
 
 
 def test_a_day_at_one_sample_a_second_holds_a_day_of_samples():
-    record = gusty(5.0, 86_400.0, seed=11)
-    run = simulate(SEED.replace(T_0=0.3), 86_400.0, theta_dot0=0.0, wind=record, sample_dt=1.0)
+    record = gusty(5.0, SECONDS_PER_DAY, seed=11)
+    run = simulate(
+        SEED.replace(T_0=0.3), SECONDS_PER_DAY, theta_dot0=0.0, wind=record, sample_dt=1.0
+    )
     on_grid = np.isclose(run.t, np.round(run.t), rtol=0.0, atol=1e-9)
     assert on_grid.sum() == 86_401
     assert len(run.t) - 86_401 <= 2 * (len(run.stops) + len(run.starts))
-    assert run.t[-1] == 86_400.0 and np.all(np.diff(run.t) > 0.0)
+    assert run.t[-1] == SECONDS_PER_DAY and np.all(np.diff(run.t) > 0.0)
 
 
 def test_the_stroke_grid_still_serves_a_wind_run():
@@ -175,7 +178,7 @@ def test_a_bad_output_grid_is_refused_by_name(options, name):
 
 def test_a_day_on_the_stroke_grid_is_refused_with_the_way_out():
     with pytest.raises(ParameterError, match="sample_dt"):
-        simulate(SEED, 86_400.0, wind=([0.0], [5.0]))
+        simulate(SEED, SECONDS_PER_DAY, wind=([0.0], [5.0]))
 
 
 # The averaged site figures.
@@ -230,7 +233,9 @@ def test_water_per_day_against_an_independent_quadrature(mean, k):
             integrate.quad(integrand, a, b, epsabs=0, epsrel=1e-13, limit=500)[0]
             for a, b in zip(edges[:-1], edges[1:], strict=True)
         )
-        return 86_400 * (total + integrate.quad(integrand, edges[-1], np.inf, epsrel=1e-13)[0])
+        return SECONDS_PER_DAY * (
+            total + integrate.quad(integrand, edges[-1], np.inf, epsrel=1e-13)[0]
+        )
 
     assert high == pytest.approx(expected(V_stop), rel=1e-8)
     assert low == pytest.approx(expected(V_start), rel=1e-8)
@@ -245,7 +250,7 @@ def test_water_per_day_against_a_monte_carlo_of_the_weibull():
     flow = windpump.steady_flow(d, V)
     V_stop, V_start = windpump.wind_thresholds(d)
     for bound, kept in ((high, V > V_stop), (low, V >= V_start)):
-        daily = 86_400 * np.where(kept, flow, 0.0)
+        daily = SECONDS_PER_DAY * np.where(kept, flow, 0.0)
         error = daily.std() / math.sqrt(len(V))
         assert abs(daily.mean() - bound) < 4 * error
 
@@ -259,8 +264,8 @@ def test_the_full_day_lies_between_the_bounds_of_its_own_slow_wind():
     """A wind that varies slowly against the spin-up time (tau ~ 80 s): the full run lifts what
     the averaged bounds over the same record say, between the low and the high."""
     d = SEED.replace(T_0=0.3)
-    record = gusty(4.0, 86_400.0, time_scale=7200.0, dt=10.0, seed=2)
-    run = simulate(d, 86_400.0, theta_dot0=0.0, wind=record, sample_dt=10.0)
+    record = gusty(4.0, SECONDS_PER_DAY, time_scale=7200.0, dt=10.0, seed=2)
+    run = simulate(d, SECONDS_PER_DAY, theta_dot0=0.0, wind=record, sample_dt=10.0)
     V_stop, V_start = windpump.wind_thresholds(d)
     flow = windpump.steady_flow(d, record.V)
     dt = np.diff(record.t)
@@ -308,7 +313,7 @@ def test_gusty_correlation_time_is_the_time_scale():
      ({"dt": 1e-6}, "dt"), ({"duration": math.nan}, "duration")],
 )  # fmt: skip
 def test_gusty_refuses_bad_input_by_name(options, name):
-    arguments = {"mean": 5.0, "duration": 86_400.0} | options
+    arguments = {"mean": 5.0, "duration": SECONDS_PER_DAY} | options
     with pytest.raises(ParameterError, match=name):
         gusty(**arguments)
 

@@ -9,7 +9,10 @@ crank speed [rad/s] it reads
 
 with ``p = omega_m / R+`` (the crank speed at the windmill's peak torque) and
 ``delta^2 = p^2 (R+ T_m - M) / (R+ (T_m - T_0))``: the roots ``p +- delta`` are alpha+- omega_m of
-Eq. (21), which these reduce to when m = 1 and T_0 = 0. Every function below uses this one form.
+Eq. (21), which these reduce to when m = 1 and T_0 = 0. Every function below takes its numbers from
+that one form, written once (broadcasting over gear ratios, heads and winds) in
+:mod:`windpump.theory`; this module adds the checks, the ``StallError`` and the solution in time
+(Eqs. 23-24).
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ import numpy as np
 from .design import Design
 from .errors import StallError
 from .kinematics import lever_arm
+from .theory import cycle_mean
 from .validation import non_negative, rod_ratio
 
 
@@ -73,9 +77,7 @@ def stall_margin(design: Design) -> float:
     """
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
-    if design.load_torque == 0.0:
-        return math.inf
-    return design.R_dagger * design.T_m / design.mean_load_torque
+    return float(cycle_mean(design).margin)
 
 
 def stall_sides(design: Design) -> tuple[float, float]:
@@ -97,11 +99,8 @@ def stall_sides(design: Design) -> tuple[float, float]:
 
 def _riccati(design: Design) -> tuple[float, float, float]:
     """(k [1/rad], p [rad/s], delta^2 [rad^2/s^2]) of the averaged equation in crank speed."""
-    k = design.R_dagger**3 * (design.T_m - design.T_0) / (design.I_eff * design.omega_m**2)
-    p = design.omega_m / design.R_dagger
-    peak = design.R_dagger * design.T_m  # the windmill's peak torque on the crank [N m]
-    spare = (peak - design.mean_load_torque) / (design.R_dagger * (design.T_m - design.T_0))
-    return k, p, p * p * spare
+    mean = cycle_mean(design)
+    return float(mean.k), float(mean.p), float(mean.delta2)
 
 
 def steady_speeds(design: Design) -> tuple[float, float]:
@@ -128,13 +127,8 @@ def steady_speeds(design: Design) -> tuple[float, float]:
     margin = stall_margin(design)
     if margin <= 1.0:
         raise StallError(margin, "a steady speed")
-    k, p, delta2 = _riccati(design)
-    plus = p + math.sqrt(delta2)
-    # minus from the product of the roots, p^2 - delta^2: the difference cancels when the load
-    # is light.
-    product = p * p * (design.mean_load_torque - design.R_dagger * design.T_0)
-    minus = product / (design.R_dagger * (design.T_m - design.T_0)) / plus
-    return plus, minus
+    mean = cycle_mean(design)
+    return float(mean.alpha_plus), float(mean.alpha_minus)
 
 
 def time_constant(design: Design) -> float:
@@ -158,8 +152,7 @@ def time_constant(design: Design) -> float:
     margin = stall_margin(design)
     if margin <= 1.0:
         raise StallError(margin, "a spin-up time constant")
-    k, _, delta2 = _riccati(design)
-    return 1.0 / (2.0 * k * math.sqrt(delta2))
+    return float(cycle_mean(design).tau)
 
 
 def _g(t, k: float, delta2: float):

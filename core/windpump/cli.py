@@ -26,6 +26,7 @@ from .design import UNITS, Design
 from .errors import StallError
 from .maps import DesignMap, design_map
 from .studies import FIGURES, INPUTS, sweep
+from .units import LITRES_PER_M3, SECONDS_PER_DAY
 
 SERVE_OPTIONS = """\
 options of panel serve, passed on (all of them: its own help follows), e.g.:
@@ -197,9 +198,11 @@ def summary(design: Design, run) -> list[str]:
     if not run.stalled and turns >= 1.0:
         flow = run.intermittency(10).mean_flow
         lines.append(
-            f"mean flow, last revolutions  {flow * 1e3:.6g} L/s ({flow * 86400:.4g} m^3/day)"
+            f"mean flow, last revolutions  {flow * LITRES_PER_M3:.6g} L/s "
+            f"({flow * SECONDS_PER_DAY:.4g} m^3/day)"
         )
-    lines.append(f"volume pumped                {run.volume[-1] * 1e3:.6g} L in {run.t[-1]:.6g} s")
+    litres = run.volume[-1] * LITRES_PER_M3
+    lines.append(f"volume pumped                {litres:.6g} L in {run.t[-1]:.6g} s")
     if run.stalled:
         lines.append(f"stalled                      at t = {run.t_stall:.6g} s")
     else:
@@ -271,7 +274,7 @@ def map_figure(result: DesignMap):
     from matplotlib.ticker import FuncFormatter
 
     figure, axes = plt.subplots(figsize=(8, 5.5), dpi=120)
-    per_day = result.mean_flow * 86400  # m^3/day
+    per_day = result.mean_flow * SECONDS_PER_DAY  # m^3/day
     flowing = np.isfinite(per_day) & (per_day > 0)
     if flowing.any():
         low, high = float(per_day[flowing].min()), float(per_day[flowing].max())

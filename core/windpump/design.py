@@ -7,6 +7,7 @@ import json
 import math
 import typing
 
+from . import theory
 from .errors import DesignFileError, ParameterError
 from .validation import LARGEST, flag, magnitude, non_negative, positive, rod_ratio, whole
 
@@ -304,7 +305,7 @@ class Design:
     @property
     def I_eff(self) -> float:
         """Inertia reflected to the crank, I1 + I0 (R1/R0)^2 [kg m^2] (Eq. 12)."""
-        return self.I1 + self.I0 * self.R_dagger**2
+        return theory.effective_inertia(self.I1, self.I0, self.R_dagger)
 
     @property
     def Tm_dagger(self) -> float:
@@ -319,7 +320,7 @@ class Design:
     @property
     def load_torque(self) -> float:
         """Piston force times crank radius, rho_w g h A R [N m] (the load scale of Eq. 12)."""
-        return self.rho_w * self.g * self.h * self.A * self.R
+        return theory.load_torque(self.rho_w, self.g, self.h, self.A, self.R)
 
     @property
     def stroke_volume(self) -> float:
@@ -339,7 +340,13 @@ class Design:
     @property
     def mean_load_torque(self) -> float:
         """Cycle-mean load torque on the crank, m rho_w g h A R / pi [N m] (Eq. 18 for m faces)."""
-        return self.deliveries * self.load_torque / math.pi
+        return theory.mean_load_torque(self.deliveries, self.load_torque)
+
+    @property
+    def rest_torque_on_crank(self) -> float:
+        """The windmill's torque at rest reflected to the crank, R+ T_0 [N m]: a resting pump
+        starts where it beats the load on the crank (:func:`windpump.starts_from_rest`)."""
+        return theory.rest_torque_on_crank(self.R_dagger, self.T_0)
 
     @property
     def runaway_speed(self) -> float:

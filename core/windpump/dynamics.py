@@ -17,6 +17,7 @@ from .averaged import steady_speeds
 from .design import UNITS, Design
 from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
+from .units import LITRES_PER_M3
 from .validation import non_negative, positive, real, whole
 from .wind import WindRecord, as_record
 
@@ -215,7 +216,7 @@ class SimulationResult:
         >>> text.splitlines()[len(UNITS) + 2]
         't [s],theta [rad],theta_dot [rad/s],volume [L],flow [L/s],shaft_work [J]'
         """
-        scale, volume_unit = (1e3, "L") if litres else (1.0, "m^3")
+        scale, volume_unit = (LITRES_PER_M3, "L") if litres else (1.0, "m^3")
         columns = {
             "t [s]": self.t,
             "theta [rad]": self.theta,
@@ -386,7 +387,8 @@ def simulate(
 
     >>> d = Design.seed_example().replace(cylinders=2, T_0=0.4)
     >>> run = simulate(d, 600.0, theta_dot0=0.0)
-    >>> run.stalled, round(float(run.volume[-1]) * 1e3)  # litres
+    >>> from windpump.units import LITRES_PER_M3
+    >>> run.stalled, round(float(run.volume[-1]) * LITRES_PER_M3)  # litres
     (False, 230)
 
     The same pump through a lull: the wind drops to 1 m/s for half an hour, then comes back. The

@@ -65,7 +65,8 @@ def startup_power(
     The seed's ski lift: 50 chairs of 250 kg, 10 km/h in 5 s, 200 m of rise over 1 km.
 
     >>> power = startup_power(50 * 250.0, 10 / 3.6, 5.0, 200 / 1000)
-    >>> [round(p / 1e3, 1) for p in power]  # kW: accelerate, lift, total
+    >>> from windpump.units import WATTS_PER_KW
+    >>> [round(p / WATTS_PER_KW, 1) for p in power]  # kW: accelerate, lift, total
     [9.6, 34.1, 43.7]
     """
     mass = positive("mass", mass, "kg")

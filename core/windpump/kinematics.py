@@ -2,7 +2,8 @@
 
 The crank angle ``theta`` is measured from top dead centre (TDC). The cylinder takes water in on
 0 < theta mod 2 pi < pi and exhausts it on pi < theta mod 2 pi < 2 pi. All functions accept numpy
-arrays and broadcast. (Plain numpy: the compiled kernels have their own scalar copies.)
+arrays and broadcast. Eq. (1) and its derivative are the functions the compiled kernels run
+(:mod:`windpump._kernels.equations`, called here with arrays).
 
 With several cylinders (``Design.cylinders = n``) cylinder k sees ``theta - 2 pi k / n``;
 :func:`face_flows` gives every delivering face's flow.
@@ -14,17 +15,9 @@ import math
 
 import numpy as np
 
+from ._kernels.equations import lever_arm as _lever
+from ._kernels.equations import piston_over_R as _x_over_R
 from .validation import finite_array, positive, rod_ratio
-
-
-def _x_over_R(theta, ratio):
-    s = np.sin(theta)
-    return ratio + 1.0 - (np.sqrt(ratio * ratio - s * s) + np.cos(theta))
-
-
-def _lever(theta, ratio):
-    s = np.sin(theta)
-    return s * (1.0 + np.cos(theta) / np.sqrt(ratio * ratio - s * s))
 
 
 def _exhaust_strokes(theta, ratio):

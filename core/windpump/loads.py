@@ -86,4 +86,4 @@ def starts_from_rest(design: Design) -> bool:
     >>> starts_from_rest(d), starts_from_rest(d.replace(T_0=0.4))
     (False, True)
     """
-    return design.R_dagger * design.T_0 > peak_load_torque(design)
+    return design.rest_torque_on_crank > peak_load_torque(design)

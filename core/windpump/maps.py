@@ -21,10 +21,10 @@ import math
 
 import numpy as np
 
-from .averaged import steady_speeds
 from .design import WIDEST_RATIO, Design
 from .errors import ParameterError
 from .progress import Progress, reporter
+from .theory import cycle_mean, effective_inertia, load_torque
 from .validation import LARGEST, SMALLEST
 
 MAX_POINTS = 4_000_000
@@ -87,7 +87,7 @@ class DesignMap:
     def stall_gear_ratio(self) -> np.ndarray:
         """For each head, the gear ratio where the stall margin is 1 (Eq. 22) [-]: the averaged
         theory's stall boundary; the pump runs at larger ratios."""
-        return _mean_load(self.design, self.heads) / self.design.T_m
+        return cycle_mean(self.design, head=self.heads).mean_load / self.design.T_m
 
     def design_at(self, row: int, column: int) -> Design:
         """The design at heads[row] and gear_ratios[column]."""
@@ -166,7 +166,9 @@ def design_map(
     >>> m = design_map(Design.seed_example(), np.linspace(0.5, 30, 200), [3.0, 10.0])
     >>> [round(float(r), 3) for r in m.best_gear_ratio]  # margin 9/8 at the best gear
     [0.883, 2.943]
-    >>> [round(float(q) * 86400) for q in m.best_flow]  # m^3/day (32.8 at the paper's R+ = 4)
+    >>> from windpump.units import SECONDS_PER_DAY
+    >>> per_day = m.best_flow * SECONDS_PER_DAY  # m^3/day (32.8 at the paper's R+ = 4)
+    >>> [round(float(q)) for q in per_day]
     [104, 31]
     """
     if not isinstance(design, Design):
@@ -182,9 +184,8 @@ def design_map(
         best_ratio, best_flow = _refined_best(ratios, mean_flow)
     else:
         best_ratio = _best_gear_ratio(design, ratios, heads)
-        best_flow = np.array(
-            [_averaged_flow(design, r, h) for r, h in zip(best_ratio, heads, strict=True)]
-        )
+        best = cycle_mean(design, gear_ratio=best_ratio, head=heads)
+        best_flow = design.volume_per_revolution * best.alpha_plus / (2 * math.pi)
     return DesignMap(
         design=design,
         gear_ratios=ratios,
@@ -232,29 +233,11 @@ def _check_corners(design: Design, ratios: np.ndarray, heads: np.ndarray) -> Non
     design.replace(h=float(heads[-1]))
 
 
-def _mean_load(design: Design, heads: np.ndarray) -> np.ndarray:
-    """Mean load torque on the crank at each head, m rho_w g h A R / pi [N m] (Eq. 18)."""
-    load_torque = design.rho_w * design.g * heads * design.A * design.R
-    return design.deliveries * load_torque / math.pi
-
-
 def _averaged_grid(design: Design, ratios: np.ndarray, heads: np.ndarray):
-    """margin, alpha+ [rad/s] and tau [s] on the grid (rows: heads), NaN where margin <= 1.
-
-    The expressions of :mod:`windpump.averaged`, broadcast: margin R+ T_m / M;
-    ``k = R+^3 (T_m - T_0) / (I_eff omega_m^2)``, ``p = omega_m / R+``,
-    ``delta^2 = p^2 (R+ T_m - M) / (R+ (T_m - T_0))``; alpha+ = p + delta, tau = 1 / (2 k delta).
-    """
-    x = ratios[np.newaxis, :]
-    M = _mean_load(design, heads)[:, np.newaxis]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        margin = np.where(M > 0.0, x * design.T_m / M, np.inf)
-        runs = margin > 1.0
-        c = design.T_m - design.T_0
-        k = x**3 * c / ((design.I1 + design.I0 * x**2) * design.omega_m**2)
-        p = design.omega_m / x
-        delta = np.sqrt(np.where(runs, p * p * (x * design.T_m - M) / (x * c), np.nan))
-        return margin, p + delta, 1.0 / (2.0 * k * delta)
+    """margin, alpha+ [rad/s] and tau [s] on the grid (rows: heads), NaN where margin <= 1: the
+    averaged equation of :mod:`windpump.theory`, broadcast."""
+    mean = cycle_mean(design, gear_ratio=ratios[np.newaxis, :], head=heads[:, np.newaxis])
+    return mean.margin, mean.alpha_plus, mean.tau
 
 
 def _best_gear_ratio(design: Design, ratios: np.ndarray, heads: np.ndarray) -> np.ndarray:
@@ -262,17 +245,9 @@ def _best_gear_ratio(design: Design, ratios: np.ndarray, heads: np.ndarray) -> n
     largest ratio in the range cannot carry the load (the margin grows with R+)."""
     c = design.T_m - design.T_0
     s = (math.sqrt(1.0 + 3.0 * design.T_m / c) - 1.0) / 3.0
-    M = _mean_load(design, heads)
+    M = cycle_mean(design, head=heads).mean_load
     best = np.clip(M / (design.T_m - c * s * s), ratios[0], ratios[-1])
     return np.where(ratios[-1] * design.T_m > M, best, np.nan)
-
-
-def _averaged_flow(design: Design, ratio: float, head: float) -> float:
-    """Mean flow m 2 R A alpha+ / 2 pi [m^3/s] of one design (Eq. 21); NaN when it cannot run."""
-    if math.isnan(ratio):
-        return math.nan
-    alpha_plus, _ = steady_speeds(design.replace(R1=design.R0 * ratio, h=float(head)))
-    return design.volume_per_revolution * alpha_plus / (2 * math.pi)
 
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
@@ -282,12 +257,12 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
 
     shape = alpha_plus.shape
     x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
-    load_torque = design.rho_w * design.g * heads * design.A * design.R
-    load = np.broadcast_to(load_torque[:, np.newaxis], shape).ravel()
+    loads = load_torque(design.rho_w, design.g, heads, design.A, design.R)
+    load = np.broadcast_to(loads[:, np.newaxis], shape).ravel()
     kick = np.nan_to_num(alpha_plus.ravel(), nan=0.0)
     turns = np.clip(SETTLE_TAUS * tau.ravel() * kick / (2 * math.pi), FEWEST_TURNS, MOST_TURNS)
     t_end = np.where(kick > 0.0, turns * 2 * math.pi / np.where(kick > 0.0, kick, 1.0), 0.0)
-    inv_I_eff = 1.0 / (design.I1 + design.I0 * x**2)
+    inv_I_eff = 1.0 / effective_inertia(design.I1, design.I0, x)
     # Runs differ in cost (slow stalls, many fast turns): a shuffled order balances the cores.
     order = np.random.default_rng(0).permutation(x.size)
     speed = np.full(x.size, np.nan)

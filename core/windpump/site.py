@@ -1,9 +1,10 @@
 """From a site's wind to water, by the averaged theory: thresholds, flow against wind, water a day.
 
 A design's curve describes its rotor at V_ref; by similarity (``Design.in_wind``) torques scale as
-V^2 and speeds as V. In the averaged equation (module :mod:`windpump.averaged`) with s = V/V_ref the
-rate k is unchanged, p scales as s and ``delta^2 = p^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0))``, so
-the running speed alpha+(V) = p s + delta(s) and the thresholds below have closed forms.
+V^2 and speeds as V. In the averaged equation (:mod:`windpump.theory`, which evaluates it) with
+s = V/V_ref the rate k is unchanged, p scales as s and
+``delta^2 = (omega_m/R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0))``, so the running speed
+alpha+(V) = p + delta and the thresholds below have closed forms.
 """
 
 from __future__ import annotations
@@ -18,10 +19,10 @@ from .design import Design
 from .dynamics import SimulationResult, simulate
 from .errors import ParameterError
 from .loads import peak_load_torque, starts_from_rest
+from .theory import cycle_mean
+from .units import SECONDS_PER_DAY
 from .validation import non_negative
 from .wind import WindRecord, as_record, shape, weibull_scale
-
-SECONDS_PER_DAY = 86_400.0  # [s/day]; to move to the units module (issue 21)
 
 
 def wind_thresholds(design: Design) -> tuple[float, float | None]:
@@ -45,9 +46,7 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     V_stop = design.V_ref / math.sqrt(stall_margin(design))
     if design.T_0 == 0.0:
         return V_stop, None
-    return V_stop, design.V_ref * math.sqrt(
-        peak_load_torque(design) / (design.R_dagger * design.T_0)
-    )
+    return V_stop, design.V_ref * math.sqrt(peak_load_torque(design) / design.rest_torque_on_crank)
 
 
 def steady_flow(design: Design, V):
@@ -72,7 +71,9 @@ def steady_flow(design: Design, V):
     Examples
     --------
     >>> from windpump import Design, steady_flow
-    >>> [round(float(q) * 1e3, 3) for q in steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])]
+    >>> from windpump.units import LITRES_PER_M3
+    >>> flows = steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])
+    >>> [round(float(q) * LITRES_PER_M3, 3) for q in flows]  # [L/s]
     [0.0, 0.379, 0.627]
     """
     speeds = np.asarray(V, dtype=float)
@@ -85,12 +86,8 @@ def steady_flow(design: Design, V):
 
 def _running_speed(design: Design, V: np.ndarray) -> np.ndarray:
     """alpha+ [rad/s] of the averaged equation in winds V, 0 where the pump cannot run."""
-    s = V / design.V_ref
-    p = design.omega_m / design.R_dagger
-    spare = design.R_dagger * design.T_m * s**2 - design.mean_load_torque  # [N m]
-    runs = spare > 0.0
-    delta2 = p * p * np.where(runs, spare, 0.0) / (design.R_dagger * (design.T_m - design.T_0))
-    return np.where(runs, p * s + np.sqrt(delta2), 0.0)
+    mean = cycle_mean(design, V=V)
+    return np.where(mean.runs, mean.alpha_plus, 0.0)
 
 
 def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[float, float]:
@@ -134,10 +131,11 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
     from scipy import integrate, special
 
     V_stop = design.V_ref / math.sqrt(stall_margin(design))
-    p = design.omega_m / design.R_dagger
+    mean = cycle_mean(design)  # at V_ref
+    p = float(mean.p)
     per_radian = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
-    # alpha+ = p s + g sqrt(V^2 - V_stop^2), s = V / V_ref.
-    g = p / design.V_ref * math.sqrt(design.T_m / (design.T_m - design.T_0))
+    # alpha+ = p s + g sqrt(V^2 - V_stop^2), s = V / V_ref (theory.CycleMean.delta2_per_s2).
+    g = math.sqrt(mean.delta2_per_s2) / design.V_ref
     # E[V; V > a] = c Gamma(1 + 1/k, (a/c)^k), the upper incomplete gamma function.
     linear = c * math.gamma(1.0 + 1.0 / k) * special.gammaincc(1.0 + 1.0 / k, (V_from / c) ** k)
 

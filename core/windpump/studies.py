@@ -183,7 +183,9 @@ def sweep(
     >>> from windpump import Design, sweep
     >>> d = Design.seed_example()
     >>> table = sweep([d.replace(h=h) for h in (1.0, 3.0, 9.0)], 600.0)
-    >>> [round(float(q) * 86400, 1) for q in table.mean_flow]  # m^3/day; 9 m stalls from a kick of 3
+    >>> from windpump.units import SECONDS_PER_DAY
+    >>> per_day = table.mean_flow * SECONDS_PER_DAY  # m^3/day; 9 m stalls from a kick of 3
+    >>> [round(float(q), 1) for q in per_day]
     [33.9, 32.6, 0.0]
     """
     designs = tuple(designs)

@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 
+from ._kernels.equations import windmill_torque as _torque_curve
 from .averaged import steady_speeds
 from .design import Design
 from .errors import ParameterError
@@ -32,7 +33,7 @@ def windmill_torque(design: Design, omega):
     0.2
     """
     x = finite_array("omega", omega, "rad/s", minimum=0.0) / design.omega_m
-    return design.T_0 + (design.T_m - design.T_0) * x * (2.0 - x)
+    return _torque_curve(x, 1.0, design.T_m, design.T_0)
 
 
 def windmill_power(design: Design, omega):

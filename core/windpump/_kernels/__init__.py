@@ -22,19 +22,32 @@ round-off, sub-step by sub-step. Samples on the uniform output grid come from th
 continuous extension. Near rest and for the stretch that ends at ``t_end`` the same tableau
 integrates in time, with state ``(theta, theta_dot)``; a stop is located by Newton's method on the
 step length.
+
+Importing this package loads no numba: the numpy side imports :mod:`.equations` (the pointwise
+equations both sides share) without the compiler; the names below load it on first use.
 """
 
 from __future__ import annotations
 
+import importlib
 import typing
 
-import numba
 import numpy as np
 
-from . import driver
-from .model import Machine
-from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED, START, STOP
-from .wind import Wind
+if typing.TYPE_CHECKING:
+    from .model import Machine
+    from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED
+    from .wind import Wind
+
+# name -> the module that defines it, imported (with numba) on first use.
+LAZY = {
+    "Machine": "model",
+    "Wind": "wind",
+    "OVER_BUDGET": "stepping",
+    "REACHED_T_END": "stepping",
+    "RESTING": "stepping",
+    "STALLED": "stepping",
+}
 
 __all__ = [
     "OVER_BUDGET",
@@ -64,6 +77,12 @@ class KernelRun(typing.NamedTuple):
     starts: np.ndarray  # times a resting crank began to turn [s]
 
 
+def __getattr__(name: str) -> typing.Any:
+    if name in LAZY:
+        return getattr(importlib.import_module(f".{LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 def run(
     machine: Machine,
     theta0: float,
@@ -81,6 +100,9 @@ def run(
     sample_dt [s]. ``capacity`` is a first guess of the sample count; the output grows
     (doubling) past it.
     """
+    from . import driver
+    from .stepping import START, STOP
+
     out, n, outcome, steps, events, count = driver.integrate(
         machine,
         theta0,
@@ -112,6 +134,10 @@ def is_cached(machine: Machine, sample_dt: float | None) -> bool:
     """Whether numba's on-disk cache holds :func:`run`'s driver compiled for these argument types
     (the machine's, and a sample_dt or None), from the cache's index alone; False when it does
     not, or when caching is off or numba's private cache API has changed."""
+    import numba
+
+    from . import driver
+
     dispatcher = driver.integrate
     arguments = (machine, 0.0, 0.0, 1.0, 1, sample_dt, 1e-8, 1, 1)  # typed as run() passes them
     try:

@@ -1,5 +1,11 @@
 """The model the kernels integrate: Eq. (1), the loads of every delivering face, Eq. (11) with T_0.
 
+Eq. (1), its derivative (the lever arm) and Eq. (11) are :mod:`.equations`' functions, compiled:
+the numpy side (:mod:`windpump.kinematics`, :mod:`windpump.windmill`) calls the same definitions.
+What is only here (which faces deliver in a segment, their sums, the closed-form work) has a numpy
+twin in :mod:`windpump.kinematics` and :mod:`windpump.loads`; tests/test_kernel_twins.py holds
+each pair together to 1e-12.
+
 Crank angles are split into *segments* of width ``pi / cylinders`` between consecutive switches:
 cylinder k sees ``phi = theta - 2 pi k / n`` (2k segments behind cylinder 0), its top face delivers
 while ``pi < phi mod 2 pi < 2 pi`` and, double-acting, its bottom face delivers during the other
@@ -11,6 +17,7 @@ from __future__ import annotations
 import math
 import typing
 
+from . import equations
 from .jit import kernel
 from .wind import Wind
 
@@ -33,18 +40,9 @@ class Machine(typing.NamedTuple):
 TOP, BOTTOM, NEITHER = 1, -1, 0  # which face of a cylinder delivers in a segment
 
 
-@kernel
-def piston_over_R(phi, L_over_R):
-    """Piston position from top dead centre over the crank radius, x/R, Eq. (1) [-]."""
-    s = math.sin(phi)
-    return L_over_R + 1.0 - (math.sqrt(L_over_R * L_over_R - s * s) + math.cos(phi))
-
-
-@kernel
-def lever_arm(phi, L_over_R):
-    """sin(phi + theta_c)/cos(theta_c) = (dx/dphi)/R, from Eq. (1) [-]."""
-    s = math.sin(phi)
-    return s * (1.0 + math.cos(phi) / math.sqrt(L_over_R * L_over_R - s * s))
+piston_over_R = kernel(equations.piston_over_R)  # x/R, Eq. (1) [-]
+lever_arm = kernel(equations.lever_arm)  # (dx/dphi)/R = sin(phi + theta_c)/cos(theta_c) [-]
+windmill_torque = kernel(equations.windmill_torque)  # Eq. (11) with T_0, in the wind s [N m]
 
 
 @kernel
@@ -117,9 +115,7 @@ def windmill_torque_on_crank(theta_dot, s, machine):
     s^2 and speeds by s; at s = 1 it is that curve to the last bit. Reflected to the crank.
     """
     x = machine.R_dagger * theta_dot / machine.omega_m
-    return machine.R_dagger * (
-        s * s * machine.T_0 + (machine.T_m - machine.T_0) * x * (2.0 * s - x)
-    )
+    return machine.R_dagger * windmill_torque(x, s, machine.T_m, machine.T_0)
 
 
 @kernel

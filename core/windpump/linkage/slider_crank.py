@@ -130,9 +130,9 @@ def slider_crank(
     Returns
     -------
     x : float
-        The piston's position [m].
+        Piston position from TDC [m].
     theta_c : float
-        The rod's angle [rad].
+        Rod angle to the cylinder axis [rad].
 
     Examples
     --------

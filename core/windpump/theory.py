@@ -1,0 +1,272 @@
+"""The averaged theory written once: the cycle-mean equation of the crank speed, its roots and its
+time constant (paper Eqs. 18-25), broadcasting over arrays of gear ratios, heads and wind speeds.
+
+Averaging the load over a revolution (Eq. 18) turns Eq. (12) into the Riccati equation (19) for the
+cycle-mean crank speed. Generalised to m = cylinders x (2 if double-acting else 1) deliveries per
+revolution (mean load torque ``M = m rho_w g h A R / pi``), a windmill torque at rest T_0 and a
+wind V (by similarity the windmill's torques scale as s^2 and its speeds as s, ``s = V / V_ref``),
+in crank speed [rad/s] it reads
+
+    d theta_dot / dt = -k [(theta_dot - p)^2 - delta^2],
+    k = R+^3 (T_m - T_0) / (I_eff omega_m^2),   p = s omega_m / R+,
+    delta^2 = (omega_m / R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0)),
+
+with T_m, T_0 and omega_m the curve's at V_ref and ``I_eff = I1 + I0 R+^2``; k does not depend on
+the wind. The roots ``p +- delta`` are alpha+- omega_m of Eq. (21), which these reduce to when
+m = 1, T_0 = 0 and s = 1; delta^2 > 0 exactly when the stall margin ``R+ T_m s^2 / M`` exceeds 1
+(Eq. 22), and the relaxation time at alpha+ is ``tau = 1 / (2 k delta)`` (Eq. 25).
+
+:mod:`windpump.averaged` (one design, with its checks and ``StallError``), :mod:`windpump.maps`
+(a grid of gear ratios and heads) and :mod:`windpump.site` (wind speeds) all evaluate these
+expressions here, through :func:`cycle_mean`. This module imports nothing of the package at run
+time, so :class:`~windpump.Design` takes its groups (I_eff, the load torques) from it too.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import typing
+
+import numpy as np
+
+if typing.TYPE_CHECKING:
+    from .design import Design
+
+Array = typing.Any  # a float or an ndarray: every expression broadcasts
+
+
+def effective_inertia(I1: Array, I0: Array, R_dagger: Array) -> Array:
+    """Inertia reflected to the crank, ``I1 + I0 R+^2`` [kg m^2] (Eq. 12).
+
+    Parameters
+    ----------
+    I1, I0 : float or ndarray
+        Inertias of the crank side and of the windmill side [kg m^2].
+    R_dagger : float or ndarray
+        Gear ratio R1/R0 [-].
+
+    Examples
+    --------
+    >>> effective_inertia(1.0, 0.5, 4.0)
+    9.0
+    """
+    return I1 + I0 * R_dagger**2
+
+
+def load_torque(rho_w: Array, g: Array, h: Array, A: Array, R: Array) -> Array:
+    """Piston force times crank radius, ``rho_w g h A R`` [N m]: the load scale of Eq. (12).
+
+    Parameters
+    ----------
+    rho_w : float or ndarray
+        Water density [kg/m^3].
+    g : float or ndarray
+        Gravity [m/s^2].
+    h : float or ndarray
+        Head [m].
+    A : float or ndarray
+        Piston cross-section [m^2].
+    R : float or ndarray
+        Crank radius [m].
+
+    Examples
+    --------
+    >>> round(load_torque(1000.0, 9.81, 3.0, 1e-3, 0.04), 4)
+    1.1772
+    """
+    return rho_w * g * h * A * R
+
+
+def mean_load_torque(deliveries: Array, load: Array) -> Array:
+    """Cycle-mean load torque on the crank, ``m rho_w g h A R / pi`` [N m] (Eq. 18 for m faces).
+
+    Parameters
+    ----------
+    deliveries : int or ndarray
+        Deliveries per crank revolution m [-].
+    load : float or ndarray
+        The load scale ``rho_w g h A R`` [N m] (:func:`load_torque`).
+
+    Examples
+    --------
+    >>> mean_load_torque(2, math.pi)
+    2.0
+    """
+    return deliveries * load / math.pi
+
+
+def rest_torque_on_crank(R_dagger: Array, T_0: Array, s: Array = 1.0) -> Array:
+    """The windmill's torque at rest reflected to the crank, ``R+ T_0 s^2`` [N m] (Eq. 11 with
+    T_0 at omega = 0, in the wind s = V / V_ref).
+
+    Parameters
+    ----------
+    R_dagger : float or ndarray
+        Gear ratio R1/R0 [-].
+    T_0 : float or ndarray
+        Torque at rest at V_ref [N m].
+    s : float or ndarray, default 1.0
+        Wind speed over V_ref [-].
+
+    Examples
+    --------
+    >>> rest_torque_on_crank(4.0, 0.25, s=2.0)
+    4.0
+    """
+    return R_dagger * T_0 * s**2
+
+
+@dataclasses.dataclass(frozen=True)
+class CycleMean:
+    """The averaged equation of designs that differ in gear ratio, head and wind (module
+    docstring); every attribute broadcasts over the shapes of the arrays it was made from.
+
+    Made by :func:`cycle_mean`. Where the pump cannot run (margin <= 1) the speeds and tau are
+    NaN.
+
+    Attributes
+    ----------
+    R_dagger : float or ndarray
+        Gear ratio R1/R0 [-].
+    T_m, T_0 : float
+        The windmill's peak torque and torque at rest at V_ref [N m].
+    omega_m : float
+        The windmill speed of the peak at V_ref [rad/s].
+    I_eff : float or ndarray
+        Inertia reflected to the crank [kg m^2].
+    mean_load : float or ndarray
+        Cycle-mean load torque M [N m].
+    s : float or ndarray
+        Wind speed over V_ref [-].
+    """
+
+    R_dagger: Array
+    T_m: float
+    T_0: float
+    omega_m: float
+    I_eff: Array
+    mean_load: Array
+    s: Array = 1.0
+
+    @property
+    def margin(self) -> Array:
+        """Stall margin ``R+ T_m s^2 / M`` [-] (Eq. 22); inf where there is no load."""
+        peak = self.R_dagger * self.T_m * self.s**2  # the windmill's peak torque on the crank
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            return np.where(self.mean_load > 0.0, np.divide(peak, self.mean_load), math.inf)
+
+    @property
+    def runs(self) -> Array:
+        """Whether the pump can run: the margin exceeds 1 [bool]."""
+        return self.margin > 1.0
+
+    @property
+    def k(self) -> Array:
+        """Rate of the averaged equation, ``R+^3 (T_m - T_0) / (I_eff omega_m^2)`` [1/rad]."""
+        return self.R_dagger**3 * (self.T_m - self.T_0) / (self.I_eff * self.omega_m**2)
+
+    @property
+    def p(self) -> Array:
+        """Crank speed at the windmill's peak torque in this wind, ``s omega_m / R+`` [rad/s]."""
+        return self.omega_m / self.R_dagger * self.s
+
+    @property
+    def delta2(self) -> Array:
+        """``delta^2 = (omega_m/R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0))`` [rad^2/s^2]."""
+        at_peak = self.omega_m / self.R_dagger  # p at V_ref
+        spare = self.R_dagger * self.T_m * self.s**2 - self.mean_load  # [N m]
+        return at_peak * at_peak * spare / (self.R_dagger * (self.T_m - self.T_0))
+
+    @property
+    def delta2_per_s2(self) -> Array:
+        """How delta^2 grows with the wind, ``(omega_m/R+)^2 T_m / (T_m - T_0)`` [rad^2/s^2]: by
+        the wind similarity ``delta^2 = delta2_per_s2 (s^2 - 1/margin(V_ref))``."""
+        at_peak = self.omega_m / self.R_dagger
+        return at_peak * at_peak * self.T_m / (self.T_m - self.T_0)
+
+    @property
+    def delta(self) -> Array:
+        """Half the distance between the roots, ``sqrt(delta^2)`` [rad/s]; NaN where it cannot
+        run."""
+        return np.sqrt(np.where(self.runs, np.maximum(self.delta2, 0.0), math.nan))
+
+    @property
+    def alpha_plus(self) -> Array:
+        """Stable cycle-mean running speed ``p + delta`` [rad/s] (Eq. 21); NaN where it cannot
+        run."""
+        return self.p + self.delta
+
+    @property
+    def alpha_minus(self) -> Array:
+        """Unstable steady speed ``p - delta`` [rad/s] (Eq. 21), from the product of the roots
+        ``(omega_m/R+)^2 (M - R+ T_0 s^2) / (R+ (T_m - T_0))`` over alpha+ (the difference cancels
+        when the load is light); <= 0 when the torque at rest beats the mean load. NaN where it
+        cannot run."""
+        at_peak = self.omega_m / self.R_dagger
+        product = at_peak * at_peak * (self.mean_load - self.rest_torque)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return product / (self.R_dagger * (self.T_m - self.T_0)) / self.alpha_plus
+
+    @property
+    def tau(self) -> Array:
+        """Spin-up time constant ``1 / (2 k delta)`` [s] (Eq. 25); NaN where it cannot run."""
+        with np.errstate(divide="ignore"):
+            return 1.0 / (2.0 * self.k * self.delta)
+
+    @property
+    def rest_torque(self) -> Array:
+        """The windmill's torque at rest reflected to the crank, ``R+ T_0 s^2`` [N m]."""
+        return rest_torque_on_crank(self.R_dagger, self.T_0, self.s)
+
+
+def cycle_mean(
+    design: Design,
+    *,
+    gear_ratio: Array | None = None,
+    head: Array | None = None,
+    V: Array | None = None,
+) -> CycleMean:
+    """The averaged equation (Eqs. 19-25, generalised) of ``design`` varied in gear ratio, head
+    and wind, broadcasting.
+
+    The gear ratio R+ is varied through R1 with R0 fixed (so ``I_eff = I1 + I0 R+^2`` changes
+    with it); every other field is the design's.
+
+    Parameters
+    ----------
+    design : Design
+    gear_ratio : float or array_like, optional
+        R+ = R1/R0 [-]; the design's by default.
+    head : float or array_like, optional
+        h [m]; the design's by default.
+    V : float or array_like, optional
+        Wind speeds [m/s] (by similarity from the curve at V_ref); V_ref by default.
+
+    Returns
+    -------
+    CycleMean
+        Whose attributes (margin, alpha_plus, alpha_minus, tau, ...) have the broadcast shape of
+        the arguments.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> mean = cycle_mean(Design.seed_example(), gear_ratio=[3.0, 4.0], head=[[2.0], [3.0]])
+    >>> mean.alpha_plus.round(2).tolist()  # rows: heads, columns: gear ratios
+    [[31.81, 24.15], [30.99, 23.71]]
+    >>> float(cycle_mean(Design.seed_example()).tau.round(1))
+    78.6
+    """
+    R_dagger = design.R_dagger if gear_ratio is None else np.asarray(gear_ratio, dtype=float)
+    h = design.h if head is None else np.asarray(head, dtype=float)
+    load = load_torque(design.rho_w, design.g, h, design.A, design.R)
+    return CycleMean(
+        R_dagger=R_dagger,
+        T_m=design.T_m,
+        T_0=design.T_0,
+        omega_m=design.omega_m,
+        I_eff=effective_inertia(design.I1, design.I0, R_dagger),
+        mean_load=mean_load_torque(design.deliveries, load),
+        s=1.0 if V is None else np.asarray(V, dtype=float) / design.V_ref,
+    )

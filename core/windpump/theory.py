@@ -239,7 +239,7 @@ def cycle_mean(
     gear_ratio : float or array_like, optional
         R+ = R1/R0 [-]; the design's by default.
     head : float or array_like, optional
-        h [m]; the design's by default.
+        Head h [m]; the design's by default.
     V : float or array_like, optional
         Wind speeds [m/s] (by similarity from the curve at V_ref); V_ref by default.
 

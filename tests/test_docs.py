@@ -8,6 +8,7 @@ that the pages keep what moved there from the README.
 from __future__ import annotations
 
 import doctest
+import inspect
 import re
 import runpy
 from pathlib import Path
@@ -147,3 +148,20 @@ def test_the_measured_page_names_benchmarks_that_exist():
 def test_the_known_issues_say_what_to_do():
     text = page("known-issues")
     assert "PYTHONMALLOC=malloc" in text and text.count("*What to do*") >= 2
+
+
+def test_the_api_reference_lists_every_public_name():
+    """Every function and class ``windpump`` exposes is on the API reference's topic lists, and
+    nothing else is (its modules and constants are under Modules): a name added to one and not the
+    other fails."""
+    import windpump
+
+    page = (DOCS / "api" / "index.rst").read_text()
+    listed = set(re.findall(r"^   (\w+)$", page, flags=re.M)) - {"modules"}  # the toctree
+    public = {
+        name
+        for name in windpump.__all__
+        if inspect.isclass(getattr(windpump, name)) or inspect.isfunction(getattr(windpump, name))
+    }
+    assert public - listed == set()
+    assert listed - set(windpump.__all__) == set()

@@ -15,7 +15,7 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 (78.6, False)
 """
 
-from . import energy, labdata, linkage, playback, wind
+from . import energy, labdata, linkage, playback, theory, units, wind
 from .averaged import (
     averaged_stall_time,
     mean_lever_arm,
@@ -63,71 +63,30 @@ from .windmill import (
     windmill_torque,
 )
 
+# The public names by topic, as the API reference (docs/api/index.rst) groups them.
 __all__ = [
-    "MAX_SAMPLES",
-    "CrankTable",
-    "Design",
-    "DesignFileError",
-    "DesignMap",
-    "Exploration",
-    "Intermittency",
-    "LabDataError",
-    "NoClosure",
-    "NotStarted",
-    "OperatingPoint",
-    "ParameterError",
-    "Playback",
-    "PowerBudget",
-    "SimulationResult",
-    "StallError",
-    "StartupPower",
-    "Sweep",
-    "Status",
-    "TorqueFit",
-    "TorqueTable",
-    "WindEvents",
-    "WindRun",
-    "averaged_stall_time",
-    "delivering_faces",
-    "crank_table",
-    "design_map",
-    "energy",
-    "explore",
-    "f2",
-    "face_flows",
-    "fit_torque_curve",
-    "labdata",
-    "lever_arm",
-    "linkage",
-    "load_power",
-    "load_torque_on_crank",
-    "mean_lever_arm",
-    "operating_point",
-    "peak_load_torque",
-    "piston_position",
-    "piston_table",
-    "playback",
-    "playback_frames",
-    "power_budget",
-    "read_torque_csv",
-    "record_water",
-    "revolution_marks",
-    "rod_angle",
-    "run_in_wind",
-    "simulate",
-    "spinup",
-    "startup_power",
-    "starts_from_rest",
-    "stall_margin",
-    "stall_sides",
-    "steady_flow",
-    "steady_speeds",
-    "sweep",
-    "swept_strokes",
-    "time_constant",
-    "water_per_day",
-    "wind",
-    "wind_thresholds",
-    "windmill_power",
-    "windmill_torque",
-]
+    # designs and errors
+    "Design", "ParameterError", "StallError", "DesignFileError", "NoClosure", "LabDataError",
+    # the full equation of motion (Eq. 12) and what is read off a run
+    "simulate", "SimulationResult", "Intermittency", "revolution_marks", "MAX_SAMPLES",
+    "explore", "Exploration", "Status", "NotStarted",
+    # the averaged theory (Eqs. 18-25)
+    "stall_margin", "stall_sides", "steady_speeds", "time_constant", "spinup",
+    "averaged_stall_time", "mean_lever_arm",
+    # kinematics (Eq. 1) and loads
+    "piston_position", "rod_angle", "f2", "lever_arm", "delivering_faces", "face_flows",
+    "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest",
+    # the windmill (Eq. 11) and lab data
+    "windmill_torque", "windmill_power", "load_power", "operating_point", "OperatingPoint",
+    "fit_torque_curve", "TorqueFit", "read_torque_csv", "TorqueTable",
+    # wind and site
+    "wind_thresholds", "steady_flow", "water_per_day", "record_water", "run_in_wind",
+    "WindRun", "WindEvents",
+    # studies
+    "design_map", "DesignMap", "sweep", "Sweep",
+    # energy and playback
+    "startup_power", "StartupPower", "power_budget", "PowerBudget", "playback_frames",
+    "Playback", "piston_table", "crank_table", "CrankTable",
+    # modules of their own
+    "energy", "labdata", "linkage", "playback", "theory", "units", "wind",
+]  # fmt: skip

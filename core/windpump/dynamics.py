@@ -401,33 +401,13 @@ def simulate(
     """
     if not isinstance(design, Design):
         raise TypeError(f"design must be a windpump.Design, not {type(design).__name__}")
-    t_end = positive("t_end", t_end, "s")
-    # Reduced first: a huge angle leaves no digits for the steps (1e15 rad has an ulp of 0.125).
-    theta0 = real("theta0", theta0, "rad") % (2 * math.pi)
-    theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    if 0.0 < theta_dot0 < SMALLEST_KICK:
-        raise ParameterError(
-            "theta_dot0",
-            theta_dot0,
-            f"0 or >= {SMALLEST_KICK:g} rad/s",
-            "rad/s",
-            why="a smaller kick is below double precision's normal range",
-        )
+    t_end, theta0, theta_dot0 = _checked_start(t_end, theta0, theta_dot0)
     samples_per_stroke = whole("samples_per_stroke", samples_per_stroke, 1, 1024)
     if sample_dt is not None:
         sample_dt = positive("sample_dt", sample_dt, "s")
     record = None if wind is None else as_record(wind, t_end)
     bound = sample_bound(design, t_end, theta_dot0, samples_per_stroke, sample_dt, record)
-    if bound > MAX_SAMPLES:
-        longest = t_end * (MAX_SAMPLES - 3) / (bound - 3)
-        raise ParameterError(
-            "t_end",
-            t_end,
-            f"<= {longest:.6g} s for this design, theta_dot0 and output grid",
-            "s",
-            why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}"
-            " (fewer samples_per_stroke, or a sample_dt, make room)",
-        )
+    _refuse_too_many_samples(t_end, bound)
     from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
 
     run = _kernels.run(
@@ -448,18 +428,51 @@ def simulate(
             "a rotor heavy enough to spin up over more than a crank revolution (increase I0 or I1)",
             why=f"the integration needed more than {MAX_STEPS} steps: the design is too stiff",
         )
+    return _simulation_result(design, run, record)
+
+
+def _checked_start(t_end, theta0, theta_dot0) -> tuple[float, float, float]:
+    """:func:`simulate`'s t_end [s], theta0 [rad] (reduced to [0, 2 pi)) and theta_dot0 [rad/s],
+    checked; a ParameterError names the first out of range."""
+    t_end = positive("t_end", t_end, "s")
+    # Reduced first: a huge angle leaves no digits for the steps (1e15 rad has an ulp of 0.125).
+    theta0 = real("theta0", theta0, "rad") % (2 * math.pi)
+    theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
+    if 0.0 < theta_dot0 < SMALLEST_KICK:
+        raise ParameterError(
+            "theta_dot0",
+            theta_dot0,
+            f"0 or >= {SMALLEST_KICK:g} rad/s",
+            "rad/s",
+            why="a smaller kick is below double precision's normal range",
+        )
+    return t_end, theta0, theta_dot0
+
+
+def _refuse_too_many_samples(t_end: float, bound: float) -> None:
+    """Raise a ParameterError naming t_end [s] when a run could need ``bound`` samples, more than
+    MAX_SAMPLES (:func:`sample_bound`)."""
+    if bound > MAX_SAMPLES:
+        longest = t_end * (MAX_SAMPLES - 3) / (bound - 3)
+        raise ParameterError(
+            "t_end",
+            t_end,
+            f"<= {longest:.6g} s for this design, theta_dot0 and output grid",
+            "s",
+            why=f"the run could need {bound:.3g} samples; the bound is {MAX_SAMPLES}"
+            " (fewer samples_per_stroke, or a sample_dt, make room)",
+        )
+
+
+def _simulation_result(design: Design, run, record: WindRecord | None) -> SimulationResult:
+    """The kernels' run (a ``_kernels.KernelRun``) as a :class:`SimulationResult`: volume and flow
+    (Eq. 16, every face) from the strokes and flow factor, every array read-only."""
+    from . import _kernels
+
     volume = design.stroke_volume * (run.strokes - run.strokes[0])
     flow = design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16), every face
-    for array in (
-        run.t,
-        run.theta,
-        run.theta_dot,
-        volume,
-        flow,
-        run.shaft_work,
-        run.stops,
-        run.starts,
-    ):
+    arrays = (run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work, run.stops, run.starts)
+    for array in arrays:
         array.flags.writeable = False
     stalled = run.outcome in (_kernels.STALLED, _kernels.RESTING)
     t_stall = None

@@ -13,17 +13,21 @@ from urllib.parse import urlencode
 import panel as pn
 import param
 from bokeh.models import ColumnDataSource, Range1d
-from buttons import ActionButton
-from figures import present
-from inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text, on_grid
-from keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
-from machine import MachineView
-from map_tab import MapTab
-from mechanisms import Mechanisms
-from readouts import Readout, StatusAlert
-from styles import COMPACT, TEXT, ZOOM_JS, px, zoom_css
-from uploads import RefusedUploads, Reveal
-from views import (
+
+import windpump
+from windpump import Status
+
+from .buttons import ActionButton
+from .figures import present
+from .inputs import FORMATS, PRESETS, SEED, SWITCHES, PumpInputs, clipped, link_text, on_grid
+from .keyboard import FOCUS_CSS, PAGE_FOCUS_CSS, TAB_FOCUS_CSS
+from .machine import MachineView
+from .map_tab import MapTab
+from .mechanisms import Mechanisms
+from .readouts import Readout, StatusAlert
+from .styles import COMPACT, TEXT, ZOOM_JS, px, zoom_css
+from .uploads import RefusedUploads, Reveal
+from .views import (
     BINS,
     CloseupView,
     EnergyView,
@@ -32,10 +36,7 @@ from views import (
     SpeedView,
     StallView,
 )
-from wind_tab import WIND_DAY_NOTE, WIND_MESSAGE, WindTab
-
-import windpump
-from windpump import Status
+from .wind_tab import WIND_DAY_NOTE, WIND_MESSAGE, WindTab
 
 log = logging.getLogger("windpump.app")
 

@@ -23,12 +23,13 @@ from bokeh.models import (
     Slider,
 )
 from bokeh.plotting import figure
-from figures import LABEL, empty, palette
-from keyboard import FOCUS_CSS
-from styles import CAPTION_CSS, px
-from views import View, refill
 
 import windpump
+
+from .figures import LABEL, empty, palette
+from .keyboard import FOCUS_CSS
+from .styles import CAPTION_CSS, px
+from .views import View, refill
 
 PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
 MAX_FRAMES = 3000  # ~48 kB a run: 4 float32 columns

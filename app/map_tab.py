@@ -24,11 +24,12 @@ from bokeh.models import (
 )
 from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
-from figures import TICKS, empty, legend, new_figure, palette
-from styles import CAPTION_CSS, TEXT
-from views import refill
 
 import windpump
+
+from .figures import TICKS, empty, legend, new_figure, palette
+from .styles import CAPTION_CSS, TEXT
+from .views import refill
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
 PER_DAY = 86_400.0  # m^3/s to m^3/day

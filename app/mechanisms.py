@@ -8,12 +8,13 @@ import re
 
 import numpy as np
 import panel as pn
-from figures import LINKS, linkage_view, slider_crank_views
-from styles import TEXT
 
 import windpump
 from windpump import linkage
 from windpump.linkage import NoClosure
+
+from .figures import LINKS, linkage_view, slider_crank_views
+from .styles import TEXT
 
 STEP = math.radians(2.0)  # a dragged input is followed in steps of at most this
 LINKED = ("r1", "r2", "r3", "r4", "r5")  # the links drawn in a colour of their own

@@ -15,17 +15,18 @@ import math
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
-from buttons import ActionButton
-from envelope import band
-from figures import TICKS, draw_band, empty, legend, line, new_figure, palette
-from readouts import Readout
-from styles import CAPTION_CSS, TEXT
-from uploads import WIND_CLASS, WIND_MAX_BYTES
-from views import refill
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
 from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
+
+from .buttons import ActionButton
+from .envelope import band
+from .figures import TICKS, draw_band, empty, legend, line, new_figure, palette
+from .readouts import Readout
+from .styles import CAPTION_CSS, TEXT
+from .uploads import WIND_CLASS, WIND_MAX_BYTES
+from .views import refill
 
 DAY = 86_400.0
 WIND_READOUTS = {

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
-import sys
 from decimal import Decimal
-from pathlib import Path
 
 import numpy as np
 import param
@@ -15,14 +13,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from envelope import band  # noqa: E402
-from explorer import Explorer, design_filename  # noqa: E402
-from figures import WIDTH  # noqa: E402
-from inputs import PRESETS, PumpInputs  # noqa: E402
-from readouts import PRESENTATION_CSS  # noqa: E402
-from views import BINS  # noqa: E402
+from windpump_app.envelope import band
+from windpump_app.explorer import Explorer, design_filename
+from windpump_app.figures import WIDTH
+from windpump_app.inputs import PRESETS, PumpInputs
+from windpump_app.readouts import PRESENTATION_CSS
+from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
 
@@ -461,7 +457,7 @@ def test_presentation_mode_enlarges_text_and_lines(app):
 @pytest.mark.parametrize("cylinders", [1, 6])
 def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
     """Every fixed part (the tank's top included) inside the ranges, whose aspect is the figure's."""
-    from machine import ASPECT
+    from windpump_app.machine import ASPECT
 
     app = Explorer(query={"cylinders": [str(cylinders).encode()]})
     app.show_views()
@@ -479,7 +475,7 @@ def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
 def test_a_page_built_while_the_solver_compiles_runs_its_link_on_start():
     """start=False (a first start's pages): controls and a word on the compile, no run; start()
     runs the link's design and names what it ignored, as a page built ready does."""
-    from explorer import COMPILING
+    from windpump_app.explorer import COMPILING
 
     query = {"h": [b"5"], "foo": [b"1"]}
     waiting = Explorer(query=query, start=False)
@@ -579,7 +575,8 @@ def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
     from bokeh.document import Document
     from bokeh.models import ImportedStyleSheet
     from panel.io.state import set_curdoc
-    from serving import stylesheets_from_this_server
+
+    from windpump_app.serving import stylesheets_from_this_server
 
     document = Document()
     with set_curdoc(document):

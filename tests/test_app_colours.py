@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from pathlib import Path
 
 import pytest
@@ -37,9 +36,8 @@ from bokeh.models import (
 from bokeh.models.glyphs import HArea, Line, Patch, Patches, VArea
 from panel.theme.bootstrap import BootstrapDarkTheme
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from mechanisms import SIX_BAR  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.mechanisms import SIX_BAR
 
 APP = Path(__file__).resolve().parents[1] / "app"
 MINIMUM = 3.0

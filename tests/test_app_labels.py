@@ -3,15 +3,11 @@
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 from bokeh.models import Axis, ColorBar, Legend
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
+from windpump_app.explorer import Explorer
 
 
 def every_figure(app: Explorer) -> list:

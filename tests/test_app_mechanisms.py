@@ -4,19 +4,15 @@ windpump and against the closed forms of test_linkage."""
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 from test_linkage import half_angle
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from mechanisms import SIX_BAR  # noqa: E402
-from views import BINS  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.mechanisms import SIX_BAR
+from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
 

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,11 +10,9 @@ from scipy import special, stats
 
 import windpump
 from windpump.wind import gusty, read_csv
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from views import BINS  # noqa: E402
-from wind_tab import DAY  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.views import BINS
+from windpump_app.wind_tab import DAY
 
 SEED = windpump.Design.seed_example()
 

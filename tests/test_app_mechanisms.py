@@ -58,7 +58,7 @@ def test_the_energy_view_splits_the_windmills_power(app):
 def test_the_energy_view_follows_the_sliders(app):
     app.reset()
     before = list(app.sources["power_split"].data["hydraulic"])
-    app.sliders["h"].value = 6.0
+    app.sidebar.sliders["h"].value = 6.0
     run = windpump.simulate(SEED.replace(h=6.0), 600.0)
     lift = windpump.power_budget(run).lift_work[-1]
     assert list(app.sources["power_split"].data["hydraulic"]) != before
@@ -72,7 +72,7 @@ def test_the_energy_view_follows_the_sliders(app):
 @pytest.mark.parametrize("angle", [0.0, 37.0, 90.0, 200.0, 359.0])
 def test_the_slider_crank_is_drawn_where_eq_1_puts_it(app, angle):
     app.reset()
-    app.mechanisms.crank_angle.value = angle
+    app.mechanisms.slider_crank.crank_angle.value = angle
     R, L = SEED.R, SEED.L
     x = float(windpump.piston_position(math.radians(angle), R, L))
     (centre,) = points(app.sources["crank_pivots"], "x", "y")
@@ -83,13 +83,13 @@ def test_the_slider_crank_is_drawn_where_eq_1_puts_it(app, angle):
     assert math.dist(centre, pin) == pytest.approx(R) and math.dist(pin, piston) == pytest.approx(L)
     assert bar_lengths(app.sources["crank_links"]) == pytest.approx([R, L])
     theta_c = math.degrees(float(windpump.rod_angle(math.radians(angle), SEED.L_over_R)))
-    note = app.mechanisms.crank_note.object
+    note = app.mechanisms.slider_crank.crank_note.object
     assert f"x = {1e3 * x:.2f} mm" in note and f"θc = {theta_c:.1f}°" in note
     assert app.sources["travel_point"].data == {"angle": [angle], "x": [pytest.approx(1e3 * x)]}
 
 
 def test_the_slider_crank_follows_the_pumps_rod(app):
-    app.sliders["L_over_R"].value = 2.0
+    app.sidebar.sliders["L_over_R"].value = 2.0
     pin, piston = points(app.sources["crank_joints"], "x", "y")
     assert math.dist(pin, piston) == pytest.approx(2 * SEED.R)
     assert max(app.sources["travel"].data["x"]) == pytest.approx(2e3 * SEED.R)

@@ -10,13 +10,14 @@ import threading
 import time
 
 from bokeh.server.tornado import DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
-from serving import SOLVER_READY
 from tornado import httputil
 from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
 
 import windpump
 from windpump.dynamics import solver_is_cached
+
+from .serving import SOLVER_READY
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too

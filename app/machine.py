@@ -24,12 +24,13 @@ from bokeh.models import (
     Slider,
 )
 from bokeh.plotting import figure
-from figures import LABEL, empty, palette
-from keyboard import FOCUS_CSS
-from styles import CAPTION_CSS, px
-from views import View, refill
 
 import windpump
+
+from .figures import LABEL, empty, palette
+from .keyboard import FOCUS_CSS
+from .styles import CAPTION_CSS, px
+from .views import View, refill
 
 PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
 MAX_FRAMES = 3000  # ~84 kB a run: 7 float32 columns
@@ -104,7 +105,7 @@ class MachineView(View):
 
     def __init__(self, cursor: ColumnDataSource, dark: bool = False):
         super().__init__(dark)
-        s, c = self.sources, self.colors
+        s = self.sources
         moving = moving_colors(dark)
         link_colors = [moving["blade"]] * 4 + [moving["crank"], moving["rod"]]
         s["frames"] = empty(*FRAME_COLUMNS)
@@ -132,6 +133,12 @@ class MachineView(View):
             y_range=Range1d(0.0, 1.0),
             min_border=0,
         )
+        self._draw_machine(fig)
+        self._controls(cursor)
+
+    def _draw_machine(self, fig) -> None:
+        """The machine's glyphs, drawn from the sources ``set_design`` and the player fill."""
+        s, c = self.sources, self.colors
         fig.axis.visible = False
         fig.grid.visible = False
         fig.outline_line_color = None
@@ -185,7 +192,6 @@ class MachineView(View):
             text_baseline="top",
             text_color=c["ink"],
         )
-        self._controls(cursor)
 
     def _controls(self, cursor) -> None:
         s = self.sources

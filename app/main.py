@@ -8,9 +8,10 @@ import logging
 from functools import partial
 
 import panel as pn
-from explorer import BINS, Explorer
-from keyboard import keyboard_and_screen_readers
-from serving import (
+
+from .explorer import BINS, Explorer
+from .keyboard import keyboard_and_screen_readers
+from .serving import (
     READOUTS_FIRST,
     SOLVER_READY,
     first_run_when_ready,
@@ -19,7 +20,7 @@ from serving import (
     without_mathjax,
     without_webgl,
 )
-from uploads import guard_uploads
+from .uploads import guard_uploads
 
 pn.extension(notifications=False)
 document = pn.state.curdoc

@@ -9,7 +9,6 @@ there. Every number comes from ``windpump``.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 
 import numpy as np
 import panel as pn
@@ -24,11 +23,14 @@ from bokeh.models import (
 )
 from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
-from figures import TICKS, empty, legend, new_figure, palette
-from styles import CAPTION_CSS, TEXT
-from views import refill
 
 import windpump
+
+from .figures import TICKS, empty, legend, new_figure, palette
+from .inputs import on_grid
+from .styles import CAPTION_CSS, TEXT
+from .tab import Tab
+from .views import refill
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
 PER_DAY = 86_400.0  # m^3/s to m^3/day
@@ -118,19 +120,20 @@ def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
     return align, baseline
 
 
-class MapTab:
-    """The Design map's figure, readout and ``update(design)``; a tap calls ``on_tap(ratio, h)``."""
+class MapTab(Tab):
+    """The Design map over the sliders' ranges of sprocket ratio and head, with this design
+    marked; a tap moves the design there (``inputs``: the page's)."""
 
-    def __init__(
-        self,
-        ratio_bounds: tuple[float, float],
-        head_bounds: tuple[float, float],
-        on_tap: Callable[[float, float], None],
-        dark: bool = False,
-    ):
-        self.colors = palette(dark)
-        self.ratios = np.linspace(*ratio_bounds, GRID)
-        self.heads = np.linspace(*head_bounds, GRID)
+    title, waiting = "Design map", "Mapping the design…"
+
+    def __init__(self, inputs, dark: bool = False):
+        super().__init__(dark)
+        self.inputs = inputs
+
+    def build(self) -> None:
+        self.colors = palette(self.dark)
+        self.ratios = np.linspace(*self.inputs.param["R_dagger"].bounds, GRID)
+        self.heads = np.linspace(*self.inputs.param["h"].bounds, GRID)
         self.sources: dict[str, ColumnDataSource] = {
             "flow": ColumnDataSource({"image": [np.full((2, 2), np.nan)]}),
             "stall": empty("ratio", "h"),
@@ -144,7 +147,7 @@ class MapTab:
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
         self.figure = self._figure()
         self.figure.name = "map_figure"  # a browser test finds it by name
-        self.figure.on_event(Tap, lambda event: on_tap(event.x, event.y))
+        self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
         self.mapped: windpump.DesignMap | None = None
         self._mapped_key: windpump.Design | None = None
@@ -176,6 +179,13 @@ class MapTab:
         )
         bar.title_text_font_size = bar.major_label_text_font_size = TICKS
         fig.add_layout(bar, "right")
+        self._add_contours(fig)
+        self._add_lines(fig, image)
+        return fig
+
+    def _add_contours(self, fig) -> None:
+        """Contours of the flow, their lines and labels filled in by ``_draw_contours``."""
+        s = self.sources
         # Each contour and its label in black or white, whichever stands out on its level's colour.
         self.contours = fig.contour(
             self.ratios, self.heads, np.zeros((GRID, GRID)), [0.5], fill_color=None,
@@ -193,7 +203,10 @@ class MapTab:
             text_font_size=TICKS, text_align="align", text_baseline="baseline",
             background_fill_color="background", background_fill_alpha=0.75,
         )  # fmt: skip
-        c = self.colors
+
+    def _add_lines(self, fig, image) -> None:
+        """The stall boundary, the best ratio at each head, this design, and the map's hover."""
+        s, c = self.sources, self.colors
         stall = fig.line("ratio", "h", source=s["stall"], color=c["load"], line_width=3)
         best = fig.line(
             "ratio", "h", source=s["best"], color=c["best"], line_width=3, line_dash="dashed"
@@ -220,10 +233,19 @@ class MapTab:
                 "this design": here,
             },
         )
-        return fig
 
-    def update(self, design: windpump.Design) -> None:
+    def move_to(self, ratio: float, h: float) -> None:
+        """A tap on the map: the sprocket ratio and head there, on the sliders' steps."""
+        values = {}
+        for name, value in (("R_dagger", ratio), ("h", h)):
+            low, high = self.inputs.param[name].bounds
+            step = self.inputs.param[name].step
+            values[name] = min(max(on_grid(value, step), low), high)
+        self.inputs.param.update(**values)
+
+    def draw(self, seen: windpump.Exploration) -> None:
         """Map the design (when anything but R₁ and h changed) and mark it."""
+        design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
         if key != self._mapped_key:
             self._draw_map(design)
@@ -293,6 +315,9 @@ class MapTab:
             f"lifting **{best_flow:.1f} m³/day** (averaged theory); this design, "
             f"R₁/R₀ = {design.R_dagger:.2f}: {now}."
         )
+
+    def failed(self, message: str) -> None:
+        self.readout.object = message
 
     def figures(self) -> list:
         return [self.figure]

@@ -10,12 +10,14 @@ import re
 
 import numpy as np
 import panel as pn
-from figures import LINKS, linkage_view, slider_crank_views
-from styles import TEXT
 
 import windpump
 from windpump import linkage
 from windpump.linkage import NoClosure
+
+from .figures import LINKS, linkage_view, slider_crank_views
+from .styles import TEXT
+from .tab import Tab
 
 LINKED = ("r1", "r2", "r3", "r4", "r5")  # the links drawn in a colour of their own
 FOUR_BAR = "Four-bar"
@@ -60,45 +62,15 @@ def xy(points) -> dict:
     return {"x": points[:, 0], "y": points[:, 1]}
 
 
-class Mechanisms:
-    """The tab's widgets, figures and data sources; ``set_design`` follows the pump's sliders."""
+class SliderCrank:
+    """The pump's slider-crank at a dragged crank angle; ``set_design`` follows the pump's sliders."""
 
     def __init__(self, slider, dark: bool = False):
         self.link_colors = dict(zip(LINKED, LINKS[dark], strict=True))
         self.crank_angle = slider("Crank angle θ [°]", 0.0, 360.0, 1.0, 90.0, "0")
         self.crank_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
-        self.crank_figure, self.travel_figure, crank_sources = slider_crank_views(dark)
-
-        self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
-        self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
-        self.links.update({name: slider(*spec, "0.00") for name, spec in SECOND_LOOP.items()})
-        self.links["beta"].format = "0"
-        self.input_angle = slider("Input angle θ₁ [°]", -360.0, 360.0, 1.0, 60.0, "0")
-        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1)
-        self.second_branch = pn.widgets.RadioButtonGroup(
-            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1
-        )
-        self.second_loop = pn.Column(
-            *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
-        )
-        self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
-        self.linkage_error = pn.pane.Alert(
-            "", alert_type="warning", visible=False, stylesheets=NOTE_CSS
-        )
-        self.linkage_figure, linkage_sources = linkage_view(dark)
-        self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
-        self.sources = {**crank_sources, **linkage_sources}
-
+        self.crank_figure, self.travel_figure, self.sources = slider_crank_views(dark)
         self.design: windpump.Design | None = None
-        self.position: dict | None = None  # the linkage's last closed position (rad, m)
-        self._quiet = False  # True while reset() sets many controls: one redraw at the end
-        self.crank_angle.param.watch(lambda _e: self._quiet or self.draw_slider_crank(), "value")
-        self.input_angle.param.watch(lambda _e: self._quiet or self.follow(), "value")
-        for widget in (self.kind, self.branch, self.second_branch, *self.links.values()):
-            widget.param.watch(lambda _e: self._quiet or self.assemble(), "value")
-        self.assemble()
-
-    # -- the pump's slider-crank -------------------------------------------------------------
 
     def set_design(self, design: windpump.Design) -> None:
         self.design = design
@@ -111,9 +83,9 @@ class Mechanisms:
         fig = self.crank_figure
         fig.x_range.start, fig.x_range.end = -span / 2, span / 2
         fig.y_range.start, fig.y_range.end = -1.6 * design.R, span - 1.6 * design.R
-        self.draw_slider_crank()
+        self.draw()
 
-    def draw_slider_crank(self) -> None:
+    def draw(self) -> None:
         d, theta = self.design, math.radians(self.crank_angle.value)
         pose = linkage.slider_crank_pose(theta, d.R, d.L)
         x, theta_c = pose.x, pose.theta_c
@@ -148,6 +120,61 @@ class Mechanisms:
             f"θc = {degrees(theta_c)}</span> · {stroke} · Newton-Raphson: "
             f"{pose.closure.iterations} iterations"
         )
+
+
+class Mechanisms(Tab):
+    """The Mechanisms tab: the pump's slider-crank (``slider_crank``), following the pump's
+    design, and a four-bar / Watt six-bar explorer of its own."""
+
+    title, waiting = "Mechanisms", "Loading the mechanisms…"
+
+    def __init__(self, slider, dark: bool = False):
+        super().__init__(dark)
+        self.slider = slider  # makes a slider: (label, start, end, step, value, format)
+        self.drawn_linkage: tuple | None = None  # the pump's links the slider-crank shows
+
+    def build(self) -> None:
+        slider, dark = self.slider, self.dark
+        self.slider_crank = SliderCrank(slider, dark)
+        self.link_colors = self.slider_crank.link_colors
+        self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
+        self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
+        self.links.update({name: slider(*spec, "0.00") for name, spec in SECOND_LOOP.items()})
+        self.links["beta"].format = "0"
+        self.input_angle = slider("Input angle θ₁ [°]", -360.0, 360.0, 1.0, 60.0, "0")
+        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1)
+        self.second_branch = pn.widgets.RadioButtonGroup(
+            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1
+        )
+        self.second_loop = pn.Column(
+            *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
+        )
+        self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
+        self.linkage_error = pn.pane.Alert(
+            "", alert_type="warning", visible=False, stylesheets=NOTE_CSS
+        )
+        self.linkage_figure, linkage_sources = linkage_view(dark)
+        self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
+        self.sources = {**self.slider_crank.sources, **linkage_sources}
+
+        self.position: dict | None = None  # the linkage's last closed position (rad, m)
+        self._quiet = False  # True while reset() sets many controls: one redraw at the end
+        crank_angle = self.slider_crank.crank_angle
+        crank_angle.param.watch(lambda _e: self._quiet or self.slider_crank.draw(), "value")
+        self.input_angle.param.watch(lambda _e: self._quiet or self.follow(), "value")
+        for widget in (self.kind, self.branch, self.second_branch, *self.links.values()):
+            widget.param.watch(lambda _e: self._quiet or self.assemble(), "value")
+        self.assemble()
+
+    def draw(self, seen: windpump.Exploration) -> None:
+        """The pump's slider-crank, redrawn when its links (R, L, A, R₀, R₁) moved."""
+        d = seen.design
+        if self.drawn_linkage != (d.R, d.L, d.A, d.R0, d.R1):
+            self.drawn_linkage = (d.R, d.L, d.A, d.R0, d.R1)
+            self.slider_crank.set_design(d)
+
+    def failed(self, message: str) -> None:
+        self.slider_crank.crank_note.object = message
 
     # -- the four-bar / Watt six-bar explorer ------------------------------------------------
 
@@ -259,7 +286,7 @@ class Mechanisms:
         """Every control of the tab back to its default."""
         self._quiet = True
         try:
-            self.crank_angle.value = 90.0
+            self.slider_crank.crank_angle.value = 90.0
             self.input_angle.value = 60.0
             self.kind.value = FOUR_BAR
             self.branch.value = self.second_branch.value = 1
@@ -268,26 +295,28 @@ class Mechanisms:
         finally:
             self._quiet = False
         self.assemble()
-        if self.design is not None:
-            self.draw_slider_crank()
+        if self.slider_crank.design is not None:
+            self.slider_crank.draw()
 
     # -- layout ------------------------------------------------------------------------------
 
     def figures(self) -> list:
-        return [self.crank_figure, self.travel_figure, self.linkage_figure]
+        crank = self.slider_crank
+        return [crank.crank_figure, crank.travel_figure, self.linkage_figure]
 
     def layout(self) -> pn.Column:
+        crank = self.slider_crank
         figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)
         flex = {"flex": "1 1 320px"}
         return pn.Column(
             pn.pane.Markdown(
                 "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
             ),
-            self.crank_angle,
-            self.crank_note,
+            crank.crank_angle,
+            crank.crank_note,
             pn.FlexBox(
-                pn.pane.Bokeh(self.crank_figure, styles=flex, **figure),
-                pn.pane.Bokeh(self.travel_figure, styles=flex, **figure),
+                pn.pane.Bokeh(crank.crank_figure, styles=flex, **figure),
+                pn.pane.Bokeh(crank.travel_figure, styles=flex, **figure),
                 sizing_mode="stretch_width",
             ),
             pn.pane.Markdown(

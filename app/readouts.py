@@ -10,11 +10,23 @@ from __future__ import annotations
 
 import panel as pn
 
+import windpump
+from windpump import Status
+
+from .styles import COMPACT
+
 READOUT_CSS = """
 .readout {border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}
 .readout .label {font-size: 14px; color: inherit; opacity: 0.85}
 .readout .value {font-size: 20px; font-weight: bold}
 """
+READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
+STATUS_STYLE = {
+    Status.RUNNING: "success",
+    Status.SLOWING: "warning",
+    Status.STALLED: "danger",
+    Status.NEVER_STARTED: "warning",
+}
 PRESENTATION_CSS = """
 @media (min-width: 701px) {  /* a phone keeps its sizes (styles.zoom_css) */
 :host { font-size: 20px; }
@@ -56,3 +68,111 @@ class Readout(TextOnlyUpdates, pn.pane.HTML):
     def present(self, large: bool) -> None:
         """Presentation mode: larger values and labels."""
         self.stylesheets = [READOUT_CSS, PRESENTATION_CSS] if large else [READOUT_CSS]
+
+
+class Readouts(pn.viewable.Viewer):
+    """The row of readouts (``readouts[name]``) and the status line under it."""
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        self.readouts = {name: Readout(name) for name in READOUTS}
+        self.row = pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width")
+        self.status = StatusAlert(
+            "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
+        )
+
+    def __getitem__(self, name: str) -> Readout:
+        return self.readouts[name]
+
+    def show(self, seen: windpump.Exploration) -> None:
+        """The run's readouts, then its verdict."""
+        figures = seen.intermittency
+        started = seen.status is not Status.NEVER_STARTED
+        values = {
+            "mean_flow": ("Mean flow", f"{1e3 * seen.mean_flow:.4f} L/s"),
+            "volume": ("Volume pumped", f"{1e3 * seen.pumped_volume:.1f} L"),
+            "tau": (
+                "Spin-up time τ, Eq. (25)",
+                f"{seen.tau:.1f} s" if seen.tau and started else "–",
+            ),
+            "margin": ("Stall margin, Eq. (22)", f"{seen.margin:.3f}"),
+            "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
+            "ripple": ("Speed ripple", f"{100 * figures.speed_ripple:.3f} %" if figures else "–"),
+            "energy": energy_readout(seen),
+        }
+        for name, (label, value) in values.items():
+            self.readouts[name].show(label, value)
+        self.status.object, self.status.alert_type = (
+            f"{status_text(seen)} {start_text(seen)}",
+            STATUS_STYLE[seen.status],
+        )
+
+    def present(self, large: bool) -> None:
+        for readout in self.readouts.values():
+            readout.present(large)
+
+    def mark_stale(self, styles: dict) -> None:
+        self.row.styles = styles
+        self.status.styles = styles
+
+    def __panel__(self) -> pn.Column:
+        return pn.Column(self.row, self.status, sizing_mode="stretch_width")
+
+
+def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
+    """The run's energy balance in words that keep the sign: a slowing rotor gives energy back."""
+    budget = windpump.power_budget(seen.run)
+    work, kinetic, lift = (
+        float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
+    )
+    if kinetic >= 0:
+        return (
+            "Windmill's work = gained speed + lifted water",
+            f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
+        )
+    return (
+        "Windmill's work + speed given back = lifted water",
+        f"{work:,.0f} J + {-kinetic:,.0f} J = {lift:,.0f} J",
+    )
+
+
+def start_text(seen: windpump.Exploration) -> str:
+    """Whether the rotor starts on its own: R+ T_0 against the largest load on the crank."""
+    d = seen.design
+    if d.T_0 == 0.0:
+        return "From rest it needs a kick (no torque at rest, T₀ = 0)."
+    at_rest = d.rest_torque_on_crank
+    peak = windpump.peak_load_torque(d)
+    if seen.starts_from_rest:
+        return f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m > peak load {peak:.2f} N·m)."
+    return f"It does not start on its own from every angle (R†T₀ = {at_rest:.2f} N·m ≤ peak load {peak:.2f} N·m)."
+
+
+def status_text(seen: windpump.Exploration) -> str:
+    run = seen.run
+    if seen.status is Status.RUNNING:
+        return (
+            f"**Running.** It settles at α₊ = {seen.alpha_plus:.2f} rad/s on the crank "
+            f"(windmill {seen.operating_point.omega:.1f} rad/s) with τ = {seen.tau:.1f} s."
+        )
+    if seen.status is Status.SLOWING:
+        when = seen.averaged_t_stall
+        return (
+            f"**Slowing to a stall.** Margin {seen.margin:.3f} ≤ 1: the windmill cannot carry the "
+            f"load; the averaged theory stalls at {when:.0f} s."
+            if when
+            else "**Slowing to a stall.**"
+        )
+    if seen.status is Status.STALLED:
+        return f"**Stalled** at t = {run.t_stall:.2f} s (stall margin {seen.margin:.3f})."
+    if seen.not_started is windpump.NotStarted.NO_KICK:
+        return "**Never started.** With no kick (θ̇₀ = 0) this windmill has no torque at rest: give it a kick."
+    if seen.not_started is windpump.NotStarted.HELD_AT_REST:
+        return "**Never started.** From rest, the torque at rest cannot beat the load at θ₀: give it a kick or raise T₀."
+    need = (
+        f"α₋ = {seen.alpha_minus:.2f} rad/s" if seen.alpha_minus is not None else "a running margin"
+    )
+    return (
+        f"**Never started.** The kick θ̇₀ = {seen.theta_dot0:.2f} rad/s is below {need}: "
+        f"it came to rest at t = {run.t_stall:.2f} s."
+    )

@@ -97,3 +97,11 @@ class Reveal(pn.widgets.TextInput):
     def show(self, css_class: str) -> None:
         self._count += 1
         self.value = f"{css_class}\t{self._count}"
+
+
+def chosen(upload: pn.widgets.FileInput) -> bytes | None:
+    """The chosen file's content, or None before one is chosen: Panel reports an empty file as
+    None (the value it had), so only its name tells that one was chosen."""
+    if upload.value is None and upload.filename:
+        return b""
+    return upload.value

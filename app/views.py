@@ -11,11 +11,12 @@ import math
 import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
-from envelope import band, bin_means
-from figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
-from styles import CAPTION_CSS
 
 import windpump
+
+from .envelope import band, bin_means
+from .figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
+from .styles import CAPTION_CSS
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
 CLOSEUP_REVOLUTIONS = 3

@@ -14,18 +14,21 @@ import math
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColumnDataSource, HoverTool, LinearAxis, Range1d, Span
-from buttons import ActionButton
-from envelope import band
-from figures import TICKS, draw_band, empty, legend, line, new_figure, palette
-from readouts import Readout
-from styles import CAPTION_CSS, TEXT
-from uploads import WIND_CLASS, WIND_MAX_BYTES
-from views import refill
+from bokeh.models import ColumnDataSource
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
 from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
+
+from .buttons import ActionButton
+from .envelope import band
+from .figures import palette
+from .readouts import Readout
+from .styles import CAPTION_CSS, TEXT
+from .tab import Tab
+from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen
+from .views import refill
+from .wind_figures import curve_figure, day_figures
 
 DAY = 86_400.0
 WIND_READOUTS = {
@@ -76,13 +79,21 @@ def _same_day(a: tuple, b: tuple) -> bool:
     return len(a) == len(b) == 4 and a[0] == b[0] and a[1] is b[1] and a[2:] == b[2:]
 
 
-class WindTab:
-    """The Wind tab's widgets, figures and ``update(design_at_v_ref, inputs)``."""
+class WindTab(Tab):
+    """The Wind tab: the design at V_ref (its sliders' curve) under the wind inputs; the design
+    in the steady wind is ``design.in_wind(inputs.V)``."""
 
-    def __init__(self, sliders: dict, bins: int | None, dark: bool = False):
-        self.bins = bins
-        self.colors = palette(dark)
+    title, waiting = "Wind", "Running a day of wind…"
+
+    def __init__(self, inputs, sliders: dict, bins: int | None, reveal: Reveal, dark=False):
+        super().__init__(dark)
+        self.inputs = inputs
         self.sliders = sliders
+        self.bins = bins
+        self.reveal = reveal  # scrolls an upload's outcome into view
+
+    def build(self) -> None:
+        self.colors = palette(self.dark)
         self.measured: windpump.wind.WindRecord | None = None
         self.measured_name = ""
         self.sources: dict[str, ColumnDataSource] = {}
@@ -106,120 +117,33 @@ class WindTab:
             "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[WIND_DAY_NOTE]
         )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
-        self.curve = self._curve_figure()
-        self.day_wind, self.day_speed, self.day_litres = self._day_figures()
+        self.curve, self.stop_span, self.start_span = curve_figure(self.sources, self.colors)
+        self.day_wind, self.day_speed, self.day_litres, self.marker_items = day_figures(
+            self.sources, self.colors
+        )
         for name, source in self.sources.items():
             source.name = f"windtab_{name}"  # for a browser: get_model_by_name
         self.last_run: windpump.SimulationResult | None = None
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
-
-    # -- figures -----------------------------------------------------------------------------
-
-    def _curve_figure(self):
-        s, c = self.sources, self.colors
-        s["curve"] = empty("V", "flow")
-        s["density"] = empty("V", "density")
-        s["here"] = empty("V", "flow")
-        fig = new_figure("Water against steady wind", "wind speed V [m/s]", "mean flow [L/s]")
-        fig.extra_y_ranges = {"density": Range1d(0, 1)}
-        axis = LinearAxis(y_range_name="density", axis_label="Weibull density [s/m]")
-        axis.axis_label_text_font_size = axis.major_label_text_font_size = TICKS
-        fig.add_layout(axis, "right")
-        curve = line(fig, "V", "flow", s["curve"], c["flow"], 3)
-        density = fig.varea(
-            "V", 0, "density", source=s["density"], y_range_name="density", color=c["site"],
-            alpha=0.3,
-        )  # fmt: skip
-        # The faint area's outline, so that it stands out of the background.
-        density_edge = fig.line(
-            "V",
-            "density",
-            source=s["density"],
-            y_range_name="density",
-            color=c["site"],
-            line_width=1.5,
+        self.upload.param.watch(
+            lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
         )
-        here = fig.scatter("V", "flow", source=s["here"], size=12, color=c["mean"])
-        self.stop_span = Span(location=0, dimension="height", line_color=c["load"], line_width=2)
-        self.start_span = Span(
-            location=0,
-            dimension="height",
-            line_color=c["windmill"],
-            line_width=2,
-            line_dash="dashed",
-        )
-        fig.add_layout(self.stop_span)
-        fig.add_layout(self.start_span)
-        fig.add_tools(
-            HoverTool(
-                renderers=[curve],
-                tooltips=[("V", "@V{0.0} m/s"), ("flow", "@flow{0.000} L/s")],
-                mode="vline",
-            )
-        )
-        self.curve_items = legend(
-            fig,
-            {
-                "averaged flow (α₊)": curve,
-                "site's wind (Weibull)": [density, density_edge],
-                "steady wind V": here,
-            },
-        )
-        return fig
-
-    def _day_figures(self):
-        s, c = self.sources, self.colors
-        s["wind"] = empty("t", "lower", "upper")
-        s["speed"] = empty("t", "lower", "upper")
-        s["litres"] = empty("t", "litres")
-        for kind in ("stops", "starts"):
-            s[f"{kind}_wind"] = empty("t", "y")
-            s[f"{kind}_litres"] = empty("t", "y")
-        shared = Range1d(0, 24)
-        wind = new_figure("The day's wind", "time [h]", "wind speed V [m/s]", x_range=shared)
-        draw_band(wind, s["wind"], c["wind"])
-        speed = new_figure("Crank speed", "time [h]", "crank speed θ̇ [rad/s]", x_range=shared)
-        draw_band(speed, s["speed"], c["integrated"])
-        litres = new_figure("Water lifted", "time [h]", "water since dawn [L]", x_range=shared)
-        lifted = line(litres, "t", "litres", s["litres"], c["flow"], 3)
-        markers = {}
-        for fig, suffix in ((wind, "wind"), (litres, "litres")):
-            markers[suffix] = (
-                fig.scatter("t", "y", source=s[f"stops_{suffix}"], marker="inverted_triangle",
-                            size=11, color=c["load"]),
-                fig.scatter("t", "y", source=s[f"starts_{suffix}"], marker="triangle", size=11,
-                            color=c["windmill"]),
-            )  # fmt: skip
-        # Items only for what the day has: no empty swatches on a day without stops.
-        self.marker_items = legend(
-            wind, {"stops": markers["wind"][0], "starts": markers["wind"][1]}
-        )
-        for item in self.marker_items.values():
-            item.visible = False
-        litres.add_tools(
-            HoverTool(
-                renderers=[lifted],
-                tooltips=[("t", "@t{0.00} h"), ("water", "@litres{0} L")],
-                mode="vline",
-            )
-        )
-        for fig, what in ((wind, "V"), (speed, "θ̇")):
-            fig.add_tools(
-                HoverTool(
-                    tooltips=[("t", "@t{0.00} h"), (what, "@lower{0.00} to @upper{0.00}")],
-                    mode="vline",
-                    renderers=[fig.renderers[0]],
-                )
-            )
-        return wind, speed, litres
+        self.use_gusty.on_click(lambda _e: self.forget_data())
 
     # -- updates -----------------------------------------------------------------------------
 
-    def update(self, design: windpump.Design, inputs) -> None:
-        """Redraw for the design at V_ref (its sliders' curve) and the wind inputs; the design
-        in the steady wind is ``design.in_wind(inputs.V)``."""
-        self._update_curve(design, inputs)
-        self._update_day(design, inputs)
+    def draw(self, seen: windpump.Exploration) -> None:
+        """Redraw the curve and the day, run in full (about a second), for the wind inputs."""
+        try:
+            design = self.inputs.design_at_v_ref()
+            self._update_curve(design, self.inputs)
+            self._update_day(design, self.inputs)
+        except ValueError as error:
+            self.failed(f"The wind cannot be run: {error}")
+
+    def failed(self, message: str) -> None:
+        self.error.object = message
+        self.error.visible = True
 
     def _update_curve(self, design, inputs) -> None:
         c = weibull_scale(inputs.mean_wind, inputs.k)
@@ -332,6 +256,22 @@ class WindTab:
     def forget(self) -> None:
         self.measured, self.measured_name = None, ""
         self.use_gusty.visible = False
+
+    def load_data(self, data: bytes | None) -> None:
+        """A measured wind CSV for the day; a bad file is refused and the day stays as it was.
+        Either outcome is scrolled into view."""
+        if data is None:
+            return
+        if self.load(data, self.upload.filename or ""):
+            self.redraw()
+            self.reveal.show(WIND_DAY_NOTE)
+        else:
+            self.reveal.show(WIND_MESSAGE)
+
+    def forget_data(self) -> None:
+        """Back to the gusty day."""
+        self.forget()
+        self.redraw()
 
     # -- layout ------------------------------------------------------------------------------
 

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
-import sys
 from decimal import Decimal
-from pathlib import Path
 
 import numpy as np
 import param
@@ -15,14 +13,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from envelope import band  # noqa: E402
-from explorer import Explorer, design_filename  # noqa: E402
-from figures import WIDTH  # noqa: E402
-from inputs import PRESETS, PumpInputs  # noqa: E402
-from readouts import PRESENTATION_CSS  # noqa: E402
-from views import BINS  # noqa: E402
+from windpump_app.envelope import band
+from windpump_app.explorer import Explorer, design_filename
+from windpump_app.figures import WIDTH
+from windpump_app.inputs import PRESETS, PumpInputs
+from windpump_app.readouts import PRESENTATION_CSS
+from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
 
@@ -52,12 +48,15 @@ def test_the_default_is_the_papers_example(app):
     assert f"{1e3 * seen.pumped_volume:.1f} L" in readout_text(app, "volume")
     assert f"{seen.tau:.1f} s" in readout_text(app, "tau")
     assert f"{seen.margin:.3f}" in readout_text(app, "margin")
-    assert "Running" in app.status.object and f"{seen.alpha_plus:.2f}" in app.status.object
+    assert (
+        "Running" in app.readouts.status.object
+        and f"{seen.alpha_plus:.2f}" in app.readouts.status.object
+    )
     assert not app.error.visible and not app.stale
 
 
 def test_a_slider_move_recomputes_everything(app):
-    app.sliders["h"].value = 6.0
+    app.sidebar.sliders["h"].value = 6.0
     seen = expected(SEED.replace(h=6.0))
     assert max(app.sources["flow"].data["upper"]) == pytest.approx(
         1e3 * seen.run.flow.max(), rel=1e-12
@@ -95,7 +94,7 @@ def test_the_closeup_holds_every_sample_of_the_last_revolutions(app):
 def test_a_stalled_run_shares_its_time_axis_and_shows_its_last_turns(app):
     app.inputs.h = 21.0
     run = expected(SEED.replace(h=21.0)).run
-    assert run.stalled and app.time_range.end == pytest.approx(run.t_stall)
+    assert run.stalled and app.pump.time_range.end == pytest.approx(run.t_stall)
     for name in ("speed", "flow", "power_split"):
         assert max(app.sources[name].data["t"]) <= run.t_stall
     closeup = app.sources["closeup"].data["t"]
@@ -119,23 +118,23 @@ def test_no_more_points_than_pixels(app):
 )
 def test_status_reads_at_a_glance(app, changes, status):
     app.set_values(**changes)
-    assert app.status.object.startswith(f"**{status}")
+    assert app.readouts.status.object.startswith(f"**{status}")
     if (
         "h" in changes
     ):  # no steady state past the stall criterion: no alpha lines, no operating point
         assert (
             app.sources["alpha_plus"].data["t"] == [] and app.sources["stable"].data["omega"] == []
         )
-        assert not app.speed.items["α₊, Eq. (21)"].visible
-        assert not app.operating.items["operating point"].visible
+        assert not app.pump.speed.items["α₊, Eq. (21)"].visible
+        assert not app.pump.operating.items["operating point"].visible
     if status == "Never started":
         assert "–" in readout_text(app, "tau")  # no time constant for a run that never started
 
 
 def test_no_kick_draws_a_time_axis_from_zero(app):
     app.inputs.theta_dot0 = 0.0
-    assert (app.time_range.start, app.time_range.end) == (0.0, 600.0)
-    assert "no kick" in app.status.object
+    assert (app.pump.time_range.start, app.pump.time_range.end) == (0.0, 600.0)
+    assert "no kick" in app.readouts.status.object
 
 
 def test_a_rejected_value_marks_the_plots_stale_and_the_next_move_redraws(app):
@@ -144,10 +143,13 @@ def test_a_rejected_value_marks_the_plots_stale_and_the_next_move_redraws(app):
     assert app.error.visible and app.stale
     assert app.error.object.startswith("L/R, rod / crank = 1 cannot be run: ")
     assert "L_over_R = 1.0 is not allowed" in app.error.object and "> 1" in app.error.object
-    assert app.results.styles["opacity"] == "0.35" and app.readout_row.styles["opacity"] == "0.35"
+    assert (
+        app.pump.results.styles["opacity"] == "0.35"
+        and app.readouts.row.styles["opacity"] == "0.35"
+    )
     assert app.sources["speed"].data["upper"] is before["upper"]  # the last good plot stays
     app.inputs.L_over_R = 2.0
-    assert not app.error.visible and not app.stale and app.results.styles["opacity"] == "1"
+    assert not app.error.visible and not app.stale and app.pump.results.styles["opacity"] == "1"
     seen = expected(SEED.replace(L=2 * SEED.R))
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(
         seen.run.theta_dot.max(), rel=1e-12
@@ -172,20 +174,23 @@ def test_an_unexpected_exception_is_shown_logged_and_survived(app, monkeypatch, 
     assert any("update failed" in record.message for record in caplog.records)
     monkeypatch.undo()
     app.inputs.h = 5.0
-    assert not app.error.visible and "Running" in app.status.object
+    assert not app.error.visible and "Running" in app.readouts.status.object
 
 
 def test_reset_brings_back_everything(app):
     app.set_values(h=12.0, T_m=2.0, t_end=100.0, I0=5.0)
     app.pin()
-    app.mechanisms.crank_angle.value = 200.0
+    app.mechanisms.slider_crank.crank_angle.value = 200.0
     app.mechanisms.links["r2"].value = 4.0
     app.mechanisms.kind.value = app.mechanisms.kind.options[1]
-    app.reset_button.clicks += 1
+    app.sidebar.reset_button.clicks += 1
     assert app.inputs.design() == SEED and app.inputs.t_end == 600.0
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(expected().run.theta_dot.max())
     assert app.sources["speed_ghost"].data["t"] == []
-    assert app.mechanisms.crank_angle.value == 90.0 and app.mechanisms.links["r2"].value == 3.0
+    assert (
+        app.mechanisms.slider_crank.crank_angle.value == 90.0
+        and app.mechanisms.links["r2"].value == 3.0
+    )
     assert app.mechanisms.kind.value == app.mechanisms.kind.options[0]
 
 
@@ -217,18 +222,18 @@ def test_a_slowing_rotor_gives_power_back_below_zero(app):
 @pytest.mark.parametrize("name", list(PRESETS))
 def test_every_preset_runs_and_says_what_to_look_at(app, name):
     values, sentence = PRESETS[name]
-    app.preset.value = name
+    app.sidebar.preset.value = name
     assert app.inputs.values() == {**PumpInputs().defaults(), **values}
-    assert sentence in app.preset_note.object and app.preset_note.visible
+    assert sentence in app.sidebar.preset_note.object and app.sidebar.preset_note.visible
     assert not app.error.visible
 
 
 def test_presets_show_what_they_promise(app):
-    app.preset.value = "A stalled pump"
-    assert app.status.object.startswith("**Stalled")
-    app.preset.value = "Kicked below α₋"
-    assert app.status.object.startswith("**Never started")
-    app.preset.value = "Near the stall boundary"
+    app.sidebar.preset.value = "A stalled pump"
+    assert app.readouts.status.object.startswith("**Stalled")
+    app.sidebar.preset.value = "Kicked below α₋"
+    assert app.readouts.status.object.startswith("**Never started")
+    app.sidebar.preset.value = "Near the stall boundary"
     assert 1.0 < expected(app.inputs.design()).margin < 1.1
 
 
@@ -237,10 +242,10 @@ def test_a_pinned_run_stays_as_a_ghost_until_cleared(app):
     app.pin()
     app.inputs.h = 6.0
     np.testing.assert_array_equal(app.sources["speed_ghost"].data["upper"], speed["upper"])
-    assert app.speed.items["pinned run"].visible and not app.clear_button.disabled
+    assert app.pump.speed.items["pinned run"].visible and not app.sidebar.clear_button.disabled
     app.clear_pinned()
     assert app.sources["speed_ghost"].data["t"] == [] and app.sources["flow_ghost"].data["t"] == []
-    assert not app.speed.items["pinned run"].visible
+    assert not app.pump.speed.items["pinned run"].visible
 
 
 # -- state in the link ----------------------------------------------------------------------------
@@ -275,7 +280,7 @@ def _query_pairs(query: str):
 def test_a_tampered_link_is_ignored_with_a_notice(key, raw, words):
     app = Explorer(query={key: [raw], "h": [b"4"]} if key != "h" else {key: [raw]})
     assert app.notices.visible and words in app.notices.object
-    assert not app.error.visible and "Running" in app.status.object
+    assert not app.error.visible and "Running" in app.readouts.status.object
     if key != "h":
         assert app.inputs.h == 4.0  # the valid values in the same link still apply
 
@@ -286,11 +291,13 @@ def test_a_tampered_link_is_ignored_with_a_notice(key, raw, words):
 def test_lab_data_sets_the_windmill_curve(app):
     omega = np.linspace(5, 95, 10)
     torque = 0.8 * (omega / 45) * (2 - omega / 45)
-    app.lab_data.value = "".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode()
+    app.sidebar.lab.upload.value = "".join(
+        f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)
+    ).encode()
     assert app.inputs.T_m == pytest.approx(0.8) and app.inputs.omega_m == pytest.approx(45.0)
     np.testing.assert_allclose(app.sources["data"].data["power"], omega * torque)
-    assert "Tₘ = 0.800 N·m" in app.lab_note.object
-    assert app.operating.items["lab data"].visible
+    assert "Tₘ = 0.800 N·m" in app.sidebar.lab.note.object
+    assert app.pump.operating.items["lab data"].visible
 
 
 def test_lab_data_in_a_european_spreadsheet_is_read(app):
@@ -317,22 +324,27 @@ def test_lab_data_in_a_european_spreadsheet_is_read(app):
 def test_lab_data_that_cannot_be_used_is_explained_and_changes_nothing(app, content, words):
     before = app.inputs.values()
     app.load_lab_data(content)
-    assert app.lab_message.visible and words in app.lab_message.object
-    assert "Nothing was changed" in app.lab_message.object
+    assert app.sidebar.lab.message.visible and words in app.sidebar.lab.message.object
+    assert "Nothing was changed" in app.sidebar.lab.message.object
     assert app.inputs.values() == before
 
 
 def test_a_file_the_page_refused_for_its_size_is_explained_and_changes_nothing(app):
     """The page stops a file over the limit before sending it and reports its size."""
     before = app.inputs.values()
-    app.refused_upload.value = "52428800\t1700000000000\tbig.csv"
-    assert app.lab_message.visible and "Nothing was changed" in app.lab_message.object
-    assert "The file has 52,428,800 bytes; at most 1,000,000 are read" in app.lab_message.object
+    app.sidebar.refused_upload.value = "52428800\t1700000000000\tbig.csv"
+    assert (
+        app.sidebar.lab.message.visible and "Nothing was changed" in app.sidebar.lab.message.object
+    )
+    assert (
+        "The file has 52,428,800 bytes; at most 1,000,000 are read"
+        in app.sidebar.lab.message.object
+    )
     assert app.inputs.values() == before
-    app.lab_message.visible = False
+    app.sidebar.lab.message.visible = False
     for tampered in ("abc", "999\t1\tsmall.csv", ""):  # not a refusal the page would send
-        app.refused_upload.value = tampered
-        assert not app.lab_message.visible
+        app.sidebar.refused_upload.value = tampered
+        assert not app.sidebar.lab.message.visible
 
 
 def test_a_poor_fit_outside_the_sliders_is_explained_and_not_offered(app):
@@ -343,12 +355,12 @@ def test_a_poor_fit_outside_the_sliders_is_explained_and_not_offered(app):
     fit = windpump.fit_torque_curve(torque, omega)
     assert fit.poor and not 0.05 <= fit.T_m <= 5.0 and not 5.0 <= fit.omega_m <= 150.0
     app.load_lab_data(swapped)
-    message = app.lab_message.object
-    assert app.lab_message.visible and "A poor fit" in message
+    message = app.sidebar.lab.message.object
+    assert app.sidebar.lab.message.visible and "A poor fit" in message
     assert f"Windmill torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
     assert f"Windmill peak speed ωₘ [rad/s] = {fit.omega_m:.3g} is outside 5–150" in message
     assert "cannot be applied" in message and "Nothing was changed" in message
-    assert not app.apply_fit.visible  # only what can be applied is offered
+    assert not app.sidebar.lab.apply_fit.visible  # only what can be applied is offered
     assert app.inputs.T_m == SEED.T_m and app.inputs.omega_m == SEED.omega_m
 
 
@@ -358,27 +370,27 @@ def test_a_poor_fit_inside_the_sliders_is_applied_only_on_request(app):
     fit = windpump.fit_torque_curve(omega, torque)
     assert fit.poor and 0.05 <= fit.T_m <= 5.0 and 5.0 <= fit.omega_m <= 150.0
     app.load_lab_data("".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode())
-    assert app.lab_message.visible and "A poor fit" in app.lab_message.object
-    assert "cannot be applied" not in app.lab_message.object
-    assert app.apply_fit.visible and app.inputs.T_m == SEED.T_m
-    app.apply_fit.clicks += 1
+    assert app.sidebar.lab.message.visible and "A poor fit" in app.sidebar.lab.message.object
+    assert "cannot be applied" not in app.sidebar.lab.message.object
+    assert app.sidebar.lab.apply_fit.visible and app.inputs.T_m == SEED.T_m
+    app.sidebar.lab.apply_fit.clicks += 1
     assert app.inputs.T_m == pytest.approx(fit.T_m) and app.inputs.omega_m == pytest.approx(
         fit.omega_m
     )
-    assert app.lab_note.visible and not app.apply_fit.visible
+    assert app.sidebar.lab.note.visible and not app.sidebar.lab.apply_fit.visible
 
 
 def test_an_empty_lab_file_is_explained(app):
     """Panel reports a chosen 0-byte file as its name with no content (value stays None)."""
     before = app.inputs.values()
-    app.lab_data.filename = "empty.csv"
-    assert app.lab_message.visible and "The file is empty" in app.lab_message.object
+    app.sidebar.lab.upload.filename = "empty.csv"
+    assert app.sidebar.lab.message.visible and "The file is empty" in app.sidebar.lab.message.object
     assert app.inputs.values() == before
 
 
 def revealed(app) -> str:
     """The CSS class of what the page was last told to scroll into view."""
-    return app.reveal.value.split("\t")[0]
+    return app.sidebar.reveal.value.split("\t")[0]
 
 
 def test_every_lab_upload_outcome_is_scrolled_into_view(app):
@@ -388,13 +400,15 @@ def test_every_lab_upload_outcome_is_scrolled_into_view(app):
     rows = "".join(f"{w},{q}\n" for w, q in zip(omega, good, strict=True))
     outcomes = []
     for content in (rows.encode(), b"10,0.216x\n", (rows + "5,9\n").encode(), rows.encode()):
-        app.lab_data.param.update(value=content, filename="lab.csv")  # as the page sends it
-        shown = [pane for pane in (app.lab_message, app.lab_note) if pane.visible]
+        app.sidebar.lab.upload.param.update(
+            value=content, filename="lab.csv"
+        )  # as the page sends it
+        shown = [pane for pane in (app.sidebar.lab.message, app.sidebar.lab.note) if pane.visible]
         assert revealed(app) in shown[0].css_classes
-        outcomes.append(app.reveal.value)
+        outcomes.append(app.sidebar.reveal.value)
     assert len(set(outcomes)) == 4  # the same outcome twice is scrolled to twice
-    app.refused_upload.value = "52428800\t1700000000000\tlab\tbig.csv"
-    assert revealed(app) in app.lab_message.css_classes and app.lab_message.visible
+    app.sidebar.refused_upload.value = "52428800\t1700000000000\tlab\tbig.csv"
+    assert revealed(app) in app.sidebar.lab.message.css_classes and app.sidebar.lab.message.visible
 
 
 def test_download_is_the_run_in_litres_with_its_design(app):
@@ -402,7 +416,7 @@ def test_download_is_the_run_in_litres_with_its_design(app):
     assert text == expected().run.to_csv(litres=True)
     assert "# h = 3 m" in text and "flow [L/s]" in text
     assert (
-        app.download.filename
+        app.sidebar.download.filename
         == design_filename(SEED)
         == ("windpump_h3m_LR3.75_Rdagger4_Tm0.6_omegam50.csv")
     )
@@ -418,7 +432,7 @@ def test_the_machine_gets_the_runs_frames_once_per_run(app):
     np.testing.assert_allclose(frames["theta"], np.interp(frames["t"], run.t, run.theta), rtol=1e-6)
     table = app.sources["piston_table"].data
     np.testing.assert_allclose(table["x"], windpump.piston_position(table["theta"], SEED.R, SEED.L))
-    assert app.machine.scrubber.end == pytest.approx(600.0)
+    assert app.pump.machine.scrubber.end == pytest.approx(600.0)
     app.inputs.t_end = 100.0
     assert app.sources["frames"].data["t"][-1] == pytest.approx(100.0)
 
@@ -441,31 +455,35 @@ def test_band_keeps_each_bins_extremes():
 
 
 def test_presentation_mode_enlarges_text_and_lines(app):
-    title = app.speed.figure.title.text_font_size
+    title = app.pump.speed.figure.title.text_font_size
     widths = [
-        r.glyph.line_width for r in app.speed.figure.renderers if hasattr(r.glyph, "line_width")
+        r.glyph.line_width
+        for r in app.pump.speed.figure.renderers
+        if hasattr(r.glyph, "line_width")
     ]
-    app.present_toggle.value = True
+    app.sidebar.present_toggle.value = True
     assert app.presentation
-    assert float(app.speed.figure.title.text_font_size[:-2]) > float(title[:-2])
+    assert float(app.pump.speed.figure.title.text_font_size[:-2]) > float(title[:-2])
     larger = [
-        r.glyph.line_width for r in app.speed.figure.renderers if hasattr(r.glyph, "line_width")
+        r.glyph.line_width
+        for r in app.pump.speed.figure.renderers
+        if hasattr(r.glyph, "line_width")
     ]
     assert all(b > a for a, b in zip(widths, larger, strict=True))
     assert PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets
-    app.present_toggle.value = False
+    app.sidebar.present_toggle.value = False
     assert PRESENTATION_CSS not in app.readouts["mean_flow"].stylesheets
-    assert app.speed.figure.title.text_font_size == title
+    assert app.pump.speed.figure.title.text_font_size == title
 
 
 @pytest.mark.parametrize("cylinders", [1, 6])
 def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
     """Every fixed part (the tank's top included) inside the ranges, whose aspect is the figure's."""
-    from machine import ASPECT
+    from windpump_app.machine import ASPECT
 
     app = Explorer(query={"cylinders": [str(cylinders).encode()]})
     app.show_views()
-    fig, data = app.machine.figure, app.sources["machine_static"].data
+    fig, data = app.pump.machine.figure, app.sources["machine_static"].data
     xs, ys = np.concatenate(data["xs"]), np.concatenate(data["ys"])
     assert fig.x_range.start < xs.min() and xs.max() < fig.x_range.end
     assert fig.y_range.start < ys.min() and ys.max() < fig.y_range.end
@@ -479,11 +497,11 @@ def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
 def test_a_page_built_while_the_solver_compiles_runs_its_link_on_start():
     """start=False (a first start's pages): controls and a word on the compile, no run; start()
     runs the link's design and names what it ignored, as a page built ready does."""
-    from explorer import COMPILING
+    from windpump_app.explorer import COMPILING
 
     query = {"h": [b"5"], "foo": [b"1"]}
     waiting = Explorer(query=query, start=False)
-    assert waiting.seen is None and waiting.status.object == COMPILING
+    assert waiting.seen is None and waiting.readouts.status.object == COMPILING
     assert readout_text(waiting, "mean_flow") == ""
     waiting.inputs.T_m = 0.8  # a move before the first run is in it
     waiting.start()
@@ -516,23 +534,23 @@ def test_presentation_mode_enlarges_every_canvas_text_and_back(app):
     """Titles, axes, legends and the machine's label, in every tab opened, not only titles."""
     assert app.mechanisms.figures()  # the Mechanisms tab, as if opened
     before = canvas_text_sizes(app)
-    app.present_toggle.value = True
+    app.sidebar.present_toggle.value = True
     after = canvas_text_sizes(app)
     assert len(after) == len(before) > 20
     assert all(b >= 1.2 * a for a, b in zip(before, after, strict=True)), (before, after)
-    app.present_toggle.value = False
+    app.sidebar.present_toggle.value = False
     assert canvas_text_sizes(app) == before
 
 
 def test_presentation_mode_gives_the_views_below_the_first_screen_more_height(app):
     """Their text grows, so their plots would shrink; the crank speed and the machine keep the
     first screen's layout."""
-    heights = {view: view.figure.height for view in app.views}
-    app.present_toggle.value = True
-    grown = {view for view in app.views if view.figure.height > 1.2 * heights[view]}
-    assert grown == set(app.views) - {app.speed, app.machine}
-    app.present_toggle.value = False
-    assert {view: view.figure.height for view in app.views} == heights
+    heights = {view: view.figure.height for view in app.pump.views}
+    app.sidebar.present_toggle.value = True
+    grown = {view for view in app.pump.views if view.figure.height > 1.2 * heights[view]}
+    assert grown == set(app.pump.views) - {app.pump.speed, app.pump.machine}
+    app.sidebar.present_toggle.value = False
+    assert {view: view.figure.height for view in app.pump.views} == heights
 
 
 def test_the_dark_theme_comes_from_the_link():
@@ -564,7 +582,7 @@ def test_the_dark_theme_comes_from_the_link():
 def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(query, words, runs):
     app = Explorer(query=query)
     assert app.notices.visible and words in app.notices.object
-    assert not app.error.visible and not app.stale and app.results.styles["opacity"] == "1"
+    assert not app.error.visible and not app.stale and app.pump.results.styles["opacity"] == "1"
     assert app.inputs.design() == runs
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(
         expected(runs).run.theta_dot.max(), rel=1e-12
@@ -579,7 +597,8 @@ def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
     from bokeh.document import Document
     from bokeh.models import ImportedStyleSheet
     from panel.io.state import set_curdoc
-    from serving import stylesheets_from_this_server
+
+    from windpump_app.serving import stylesheets_from_this_server
 
     document = Document()
     with set_curdoc(document):
@@ -595,24 +614,26 @@ def test_a_served_page_gets_its_readouts_first_and_its_views_when_loaded():
     app = Explorer(defer_views=True, query={"h": [b"5"]})
     seen = expected(SEED.replace(h=5.0))
     assert f"{1e3 * seen.mean_flow:.4f} L/s" in readout_text(app, "mean_flow")
-    assert app.views == [] and "speed" not in app.sources
+    assert app.pump.views == [] and "speed" not in app.sources
     app.inputs.T_m = 0.8  # moves before the views exist still reach them
-    app.present_toggle.value = True
+    app.sidebar.present_toggle.value = True
     app.show_views()
     seen = expected(SEED.replace(h=5.0, T_m=0.8))
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(seen.run.theta_dot.max())
-    assert float(app.speed.figure.title.text_font_size[:-2]) > 16
-    assert len(app.results.objects) == len(app.views) + 1  # and the card about the machine
+    assert float(app.pump.speed.figure.title.text_font_size[:-2]) > 16
+    assert (
+        len(app.pump.results.objects) == len(app.pump.views) + 1
+    )  # and the card about the machine
     app.show_views()  # once only
-    assert len(app.results.objects) == len(app.views) + 1
+    assert len(app.pump.results.objects) == len(app.pump.views) + 1
 
 
 def test_pinning_before_the_views_exist_builds_them():
     app = Explorer(defer_views=True)
     app.pin()
-    assert app.views and not app.clear_button.disabled
+    assert app.pump.views and not app.sidebar.clear_button.disabled
     app.clear_pinned()
-    assert app.clear_button.disabled
+    assert app.sidebar.clear_button.disabled
 
 
 @pytest.mark.parametrize(
@@ -621,9 +642,9 @@ def test_pinning_before_the_views_exist_builds_them():
 )
 def test_presentation_mode_comes_from_the_link(raw, presentation, notice):
     app = Explorer(query={"presentation": [raw]})
-    assert app.presentation is presentation and app.present_toggle.value is presentation
+    assert app.presentation is presentation and app.sidebar.present_toggle.value is presentation
     assert (PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets) is presentation
-    assert (float(app.speed.figure.title.text_font_size[:-2]) > 16) is presentation
+    assert (float(app.pump.speed.figure.title.text_font_size[:-2]) > 16) is presentation
     assert app.notices.visible is notice
     if notice:
         assert "Presentation mode (presentation) = “maybe” ignored" in app.notices.object
@@ -646,14 +667,20 @@ def test_cylinders_double_acting_and_torque_at_rest_reach_every_view(app):
     flow = np.asarray(app.sources["closeup"].data["flow"])
     np.testing.assert_allclose(total, flow, rtol=1e-9, atol=1e-9 * flow.max())
     peak = windpump.peak_load_torque(design)
-    assert f"peak load {peak:.2f} N·m" in app.status.object
+    assert f"peak load {peak:.2f} N·m" in app.readouts.status.object
 
 
 def test_a_start_from_rest_needs_torque_at_rest(app):
     app.set_values(theta_dot0=0.0)
-    assert "Never started" in app.status.object and "needs a kick" in app.status.object
+    assert (
+        "Never started" in app.readouts.status.object
+        and "needs a kick" in app.readouts.status.object
+    )
     app.set_values(cylinders=2.0, T_0=0.4)
-    assert "Running" in app.status.object and "starts on its own" in app.status.object
+    assert (
+        "Running" in app.readouts.status.object
+        and "starts on its own" in app.readouts.status.object
+    )
     seen = expected(SEED.replace(cylinders=2, T_0=0.4), theta_dot0=0.0)
     assert f"{1e3 * seen.pumped_volume:.1f} L" in readout_text(app, "volume")
 
@@ -733,8 +760,8 @@ def test_the_defaults_make_an_empty_link_and_reset_clears_it(app):
     assert app.inputs.query() == "" and app.link_query() == ""
     app.set_values(h=6.0, cylinders=2.0, T_0=0.25, double_acting=True)
     assert app.link_query() == "h=6&cylinders=2&T_0=0.25&double_acting=true"
-    app.present_toggle.value = True
-    app.reset_button.clicks += 1
+    app.sidebar.present_toggle.value = True
+    app.sidebar.reset_button.clicks += 1
     assert app.link_query() == "presentation=true"  # a mode, not an input: Reset keeps it
     assert Explorer(query={"theme": [b"dark"]}).link_query() == "theme=dark"
 
@@ -742,15 +769,15 @@ def test_the_defaults_make_an_empty_link_and_reset_clears_it(app):
 def test_a_slider_moved_in_the_browser_is_linked_as_it_shows(app):
     """The browser adds a slider's step in floating point; the page keeps the value it sent (a
     value sent back would move a slider still being moved) and links what the slider shows."""
-    app.sliders["h"]._process_events({"value": 3.0999999999999996})  # an ArrowRight press
+    app.sidebar.sliders["h"]._process_events({"value": 3.0999999999999996})  # an ArrowRight press
     assert app.link_query() == "h=3.1"
     assert readout_text(app, "mean_flow") == readout_text(
         Explorer(query={"h": [b"3.1"]}), "mean_flow"
     )
-    app.sliders["T_m"]._process_events({"value": 0.7000000000000001})
+    app.sidebar.sliders["T_m"]._process_events({"value": 0.7000000000000001})
     assert app.link_query() == "h=3.1&T_m=0.7"
-    app.sliders["h"]._process_events({"value": 3.0000000000000004})  # and back
-    app.sliders["T_m"]._process_events({"value": 0.6000000000000001})
+    app.sidebar.sliders["h"]._process_events({"value": 3.0000000000000004})  # and back
+    app.sidebar.sliders["T_m"]._process_events({"value": 0.6000000000000001})
     assert app.link_query() == ""
 
 
@@ -770,9 +797,9 @@ def test_the_page_writes_its_link_and_drops_what_it_ignored():
     assert location.search == "?h=3.1&T_m=0.8"
     app.inputs.h = 4.0
     assert location.search == "?h=4&T_m=0.8"
-    app.present_toggle.value = True
+    app.sidebar.present_toggle.value = True
     assert location.search == "?h=4&T_m=0.8&presentation=true"
-    app.present_toggle.value = False
+    app.sidebar.present_toggle.value = False
     app.reset()
     assert location.search == ""
     assert "“foo” is not a parameter" in app.notices.object  # the notice stays
@@ -786,10 +813,10 @@ def test_a_count_that_is_not_whole_is_refused_and_the_run_follows_the_slider(raw
         f"Cylinders n (phase lag 2π/n) (cylinders) = “{text}” ignored: it must be a whole "
         "number from 1 to 6." in app.notices.object
     )
-    assert app.sliders["cylinders"].value == app.inputs.cylinders == 1
+    assert app.sidebar.sliders["cylinders"].value == app.inputs.cylinders == 1
     assert app.inputs.design() == SEED.replace(h=2.0)  # the slider's count is the run's
     again = Explorer(query={"cylinders": [b"3"]})
-    assert again.sliders["cylinders"].value == 3 and again.inputs.design().cylinders == 3
+    assert again.sidebar.sliders["cylinders"].value == 3 and again.inputs.design().cylinders == 3
 
 
 def test_a_key_given_twice_says_which_value_is_used():
@@ -823,4 +850,6 @@ def test_notices_are_bounded_however_long_the_link():
     assert "The link was too long (98 KB; at most 64 KB): its parameters were ignored." in (
         huge.notices.object
     )
-    assert huge.inputs.values() == PumpInputs().values() and "Running" in huge.status.object
+    assert (
+        huge.inputs.values() == PumpInputs().values() and "Running" in huge.readouts.status.object
+    )

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from pathlib import Path
 
 import pytest
@@ -37,9 +36,8 @@ from bokeh.models import (
 from bokeh.models.glyphs import HArea, Line, Patch, Patches, VArea
 from panel.theme.bootstrap import BootstrapDarkTheme
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from mechanisms import SIX_BAR  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.mechanisms import SIX_BAR
 
 APP = Path(__file__).resolve().parents[1] / "app"
 MINIMUM = 3.0
@@ -98,12 +96,16 @@ def themed(app: Explorer, dark: bool) -> list:
     app.pin()
     app.set_values(h=3.5, cylinders=6, double_acting=True)  # every face's colour drawn
     app.mechanisms.kind.value = SIX_BAR  # every link's colour drawn
-    figures = [view.figure for view in app.views]
+    figures = [view.figure for view in app.pump.views]
     wind, design_map, mechanisms = app.wind, app.design_map, app.mechanisms
     figures += [wind.curve, wind.day_wind, wind.day_speed, wind.day_litres]
-    design_map.update(app.inputs.design())
+    design_map.update(app.seen)
     figures += [design_map.figure]
-    figures += [mechanisms.crank_figure, mechanisms.travel_figure, mechanisms.linkage_figure]
+    figures += [
+        mechanisms.slider_crank.crank_figure,
+        mechanisms.slider_crank.travel_figure,
+        mechanisms.linkage_figure,
+    ]
     if dark:
         theme = BootstrapDarkTheme.bokeh_theme
         for fig in figures:
@@ -280,9 +282,9 @@ def test_the_machines_player_draws_in_the_themes_colours(dark):
     assert re.findall(r"#[0-9a-fA-F]{3,8}\b|\"(?:black|white|gr[ae]y)\"", code) == []
     app = Explorer(query={"theme": [b"dark"]} if dark else {})
     themed(app, dark)
-    fig = app.machine.figure
+    fig = app.pump.machine.figure
     plot = fig.background_fill_color
-    callback = next(iter(app.machine.button.js_event_callbacks["button_click"]))
+    callback = next(iter(app.pump.machine.button.js_event_callbacks["button_click"]))
     assert isinstance(callback, CustomJS)
     palette = callback.args["palette"]
     assert set(palette) == {"blade", "crank", "rod"}
@@ -298,7 +300,7 @@ def test_the_dotted_alpha_plus_line_is_visible():
         app = Explorer(query={"theme": [b"dark"]} if dark else {})
         figures = themed(app, dark)
         plot = figures[0].background_fill_color
-        line = app.speed.items["α₊, Eq. (21)"].renderers[0].glyph
+        line = app.pump.speed.items["α₊, Eq. (21)"].renderers[0].glyph
         dash = list(line.line_dash)  # Bokeh's "dotted": [2, 4], on and off [px]
         assert len(dash) == 2 and dash[0] / sum(dash) >= 1 / 3  # dots, not a faint scatter
         assert line.line_width >= 2

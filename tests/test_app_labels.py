@@ -3,30 +3,26 @@
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 from bokeh.models import Axis, ColorBar, Legend
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
+from windpump_app.explorer import Explorer
 
 
 def every_figure(app: Explorer) -> list:
     app.main().active = 2  # the Wind tab runs its day once opened
     wind, design_map, mechanisms = app.wind, app.design_map, app.mechanisms
-    design_map.update(app.inputs.design())
+    design_map.update(app.seen)
     return [
-        *(view.figure for view in app.views),
+        *(view.figure for view in app.pump.views),
         wind.curve,
         wind.day_wind,
         wind.day_speed,
         wind.day_litres,
         design_map.figure,
-        mechanisms.crank_figure,
-        mechanisms.travel_figure,
+        mechanisms.slider_crank.crank_figure,
+        mechanisms.slider_crank.travel_figure,
         mechanisms.linkage_figure,
     ]
 
@@ -51,9 +47,9 @@ def test_no_label_shows_a_caret():
         assert [label for label in labels if "^" in label] == []
     power = math.floor(math.log10(max(windpump.stall_sides(app.inputs.design()))))
     written = "".join(dict(zip("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹", strict=True))[c] for c in str(power))
-    assert app.stall.figure.xaxis[0].axis_label.endswith(f"×10{written}]")
+    assert app.pump.stall.figure.xaxis[0].axis_label.endswith(f"×10{written}]")
 
 
 def test_the_theme_button_offers_the_other_theme():
-    assert Explorer(query={"theme": [b"dark"]}).dark_toggle.label == "Light theme"
-    assert Explorer().dark_toggle.label == "Dark theme"
+    assert Explorer(query={"theme": [b"dark"]}).sidebar.dark_toggle.label == "Light theme"
+    assert Explorer().sidebar.dark_toggle.label == "Dark theme"

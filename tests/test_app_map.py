@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,10 +10,8 @@ from bokeh.events import Tap
 from bokeh.models import ColorBar
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from map_tab import GRID, PER_DAY, colour_range, contour_levels  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.map_tab import GRID, PER_DAY, colour_range, contour_levels
 
 SEED = windpump.Design.seed_example()
 

@@ -4,19 +4,15 @@ windpump and against the closed forms of test_linkage."""
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 from test_linkage import half_angle
 
 import windpump
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from mechanisms import SIX_BAR  # noqa: E402
-from views import BINS  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.mechanisms import SIX_BAR
+from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
 
@@ -62,7 +58,7 @@ def test_the_energy_view_splits_the_windmills_power(app):
 def test_the_energy_view_follows_the_sliders(app):
     app.reset()
     before = list(app.sources["power_split"].data["hydraulic"])
-    app.sliders["h"].value = 6.0
+    app.sidebar.sliders["h"].value = 6.0
     run = windpump.simulate(SEED.replace(h=6.0), 600.0)
     lift = windpump.power_budget(run).lift_work[-1]
     assert list(app.sources["power_split"].data["hydraulic"]) != before
@@ -76,7 +72,7 @@ def test_the_energy_view_follows_the_sliders(app):
 @pytest.mark.parametrize("angle", [0.0, 37.0, 90.0, 200.0, 359.0])
 def test_the_slider_crank_is_drawn_where_eq_1_puts_it(app, angle):
     app.reset()
-    app.mechanisms.crank_angle.value = angle
+    app.mechanisms.slider_crank.crank_angle.value = angle
     R, L = SEED.R, SEED.L
     x = float(windpump.piston_position(math.radians(angle), R, L))
     (centre,) = points(app.sources["crank_pivots"], "x", "y")
@@ -87,13 +83,13 @@ def test_the_slider_crank_is_drawn_where_eq_1_puts_it(app, angle):
     assert math.dist(centre, pin) == pytest.approx(R) and math.dist(pin, piston) == pytest.approx(L)
     assert bar_lengths(app.sources["crank_links"]) == pytest.approx([R, L])
     theta_c = math.degrees(float(windpump.rod_angle(math.radians(angle), SEED.L_over_R)))
-    note = app.mechanisms.crank_note.object
+    note = app.mechanisms.slider_crank.crank_note.object
     assert f"x = {1e3 * x:.2f} mm" in note and f"θc = {theta_c:.1f}°" in note
     assert app.sources["travel_point"].data == {"angle": [angle], "x": [pytest.approx(1e3 * x)]}
 
 
 def test_the_slider_crank_follows_the_pumps_rod(app):
-    app.sliders["L_over_R"].value = 2.0
+    app.sidebar.sliders["L_over_R"].value = 2.0
     pin, piston = points(app.sources["crank_joints"], "x", "y")
     assert math.dist(pin, piston) == pytest.approx(2 * SEED.R)
     assert max(app.sources["travel"].data["x"]) == pytest.approx(2e3 * SEED.R)

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,11 +10,9 @@ from scipy import special, stats
 
 import windpump
 from windpump.wind import gusty, read_csv
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from explorer import Explorer  # noqa: E402
-from views import BINS  # noqa: E402
-from wind_tab import DAY  # noqa: E402
+from windpump_app.explorer import Explorer
+from windpump_app.views import BINS
+from windpump_app.wind_tab import DAY
 
 SEED = windpump.Design.seed_example()
 
@@ -124,12 +120,12 @@ def test_every_wind_upload_outcome_is_scrolled_into_view(app):
     rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
     app.wind.upload.param.update(value=rows.encode(), filename="mast.csv")
     assert "mast.csv" in app.wind.day_note.object
-    assert app.reveal.value.split("\t")[0] in app.wind.day_note.css_classes
+    assert app.sidebar.reveal.value.split("\t")[0] in app.wind.day_note.css_classes
     app.wind.upload.param.update(value=b"0,5x\n10,6\n", filename="typo.csv")
     assert "line 1, column 2" in app.wind.upload_message.object
-    assert app.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
-    app.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
-    assert app.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
+    assert app.sidebar.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
+    app.sidebar.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
+    assert app.sidebar.reveal.value.split("\t")[0] in app.wind.upload_message.css_classes
 
 
 def test_a_design_the_day_cannot_run_is_said_and_the_tab_lives(app):
@@ -141,11 +137,11 @@ def test_a_design_the_day_cannot_run_is_said_and_the_tab_lives(app):
 
 
 def test_a_wind_file_the_page_refused_is_reported_in_the_wind_tab(app):
-    app.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
+    app.sidebar.refused_upload.value = f"{12_000_000}\t1\twind\tyear.csv"
     assert app.wind.upload_message.visible and "12,000,000 bytes" in app.wind.upload_message.object
-    assert not app.lab_message.visible
+    assert not app.sidebar.lab.message.visible
     app.wind.upload_message.visible = False
-    app.refused_upload.value = f"{5_000}\t2\twind\tsmall.csv"  # not a size the page refuses
+    app.sidebar.refused_upload.value = f"{5_000}\t2\twind\tsmall.csv"  # not a size the page refuses
     assert not app.wind.upload_message.visible
 
 

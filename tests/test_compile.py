@@ -96,8 +96,7 @@ def test_the_cache_says_whether_a_first_run_compiles(first_start):
 def test_the_server_says_when_it_compiles(monkeypatch, caplog):
     """`panel serve app/` says it is compiling, and for about how long, before it does; and how
     long it took once done (an empty cache is told by solver_is_cached, forced here)."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-    import app_hooks
+    from windpump_app import app_hooks
 
     for cached, done in [(False, "solver compiled in"), (True, "loaded from numba's cache in")]:
         caplog.clear()

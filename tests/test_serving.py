@@ -2,11 +2,7 @@
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "app"))
-from serving import ReadoutsFirst  # noqa: E402
+from windpump_app.serving import ReadoutsFirst
 
 
 class Document:
@@ -71,7 +67,7 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready():
     import asyncio
     import threading
 
-    import serving
+    from windpump_app import serving
 
     started, shown = [], []
 

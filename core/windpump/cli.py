@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import importlib.util
 import io
 import json
 import math
@@ -406,6 +407,18 @@ def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
     return 0
 
 
+def explorer_folder() -> Path:
+    """The installed explorer's folder (the package ``windpump_app``, the repository's app/),
+    which ``panel serve`` serves; found without importing it (the core never imports the app)."""
+    spec = importlib.util.find_spec("windpump_app")
+    folders = list(spec.submodule_search_locations or []) if spec is not None else []
+    if not folders or not (Path(folders[0]) / "main.py").is_file():
+        raise OSError(
+            'the explorer (the package windpump_app) is not installed: pip install -e ".[app]"'
+        )
+    return Path(folders[0]).resolve()  # an editable install's is app/: the page's URL is /app
+
+
 def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump serve [panel serve options]``: the explorer, as ``panel serve app/``."""
     if args.help:
@@ -416,10 +429,7 @@ def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
             shown.stdout if shown.returncode == 0 else "(panel is not installed: pip install panel)"
         )
         return 0
-    app = Path(__file__).resolve().parents[2] / "app"
-    if not (app / "main.py").is_file():
-        raise OSError(f"the explorer's app/ folder is not beside this install ({app})")
-    command = [sys.executable, "-m", "panel", "serve", str(app), *extra]
+    command = [sys.executable, "-m", "panel", "serve", str(explorer_folder()), *extra]
     if os.name == "posix":  # become the server: a signal to this process reaches it
         os.execv(sys.executable, command)
     return subprocess.call(command)

@@ -1,0 +1,82 @@
+"""The page's link: the URL query it opens from, and the query it keeps in step with its state."""
+
+from __future__ import annotations
+
+from urllib.parse import urlencode
+
+from .inputs import clipped
+
+MAX_NOTICES = 5  # the link's ignored values listed; the rest counted
+MAX_QUERY = 64 * 1024  # [characters] a longer link's parameters are ignored (app_hooks.py)
+
+
+def readable(query: dict) -> tuple[dict, list[str]]:
+    """``query``, or nothing and a notice if it is longer than MAX_QUERY characters (a link of
+    this page is a few hundred)."""
+    size = sum(len(key) + sum(len(v) + 2 for v in _listed(raw)) for key, raw in query.items())
+    if size <= MAX_QUERY:
+        return query, []
+    return {}, [
+        f"The link was too long ({size / 1024:.0f} KB; at most {MAX_QUERY // 1024} KB): "
+        "its parameters were ignored."
+    ]
+
+
+def _listed(raw) -> list:
+    return list(raw) if isinstance(raw, list | tuple) else [raw]
+
+
+def text(raw) -> str:
+    """A query value as text (the last one, if it is given several times)."""
+    raw = raw[-1] if isinstance(raw, list | tuple) and raw else raw
+    return raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw or "")
+
+
+def presentation_from(query: dict, notices: list[str]) -> bool | None:
+    """``?presentation=true`` opens the page in presentation mode (kept in the link, so the
+    theme switch, which reloads the page, keeps it too); None: not given, or ignored."""
+    raw = text(query.get("presentation", [b""]))
+    if raw in ("true", "false"):
+        return raw == "true"
+    if raw:
+        notices.append(
+            f"Presentation mode (presentation) = “{clipped(raw)}” ignored: true or false."
+        )
+    return None
+
+
+def notices_text(notices: list[str]) -> str:
+    """The link's ignored values, MAX_NOTICES at most (a link may carry thousands)."""
+    listed = [f"- {notice}" for notice in notices[:MAX_NOTICES]]
+    if len(notices) > MAX_NOTICES:
+        listed.append(f"- … and {len(notices) - MAX_NOTICES} more ignored.")
+    return "**Some values in the link were ignored:**\n\n" + "\n".join(listed)
+
+
+def page_query(inputs, presentation: bool, dark: bool, full: bool) -> str:
+    """The page's query as its link carries it: the inputs that differ from the defaults, each
+    as its slider shows it, then presentation mode, the dark theme and full resolution if on.
+    Nothing else: a key the page ignored is not carried on."""
+    page = {"presentation": "true"} if presentation else {}
+    if dark:
+        page["theme"] = "dark"
+    if full:
+        page["resolution"] = "full"
+    return "&".join(part for part in (inputs.query(), urlencode(page)) if part)
+
+
+class PageLink:
+    """Keeps a served page's address (``pn.state.location``) on ``query()``: written on every
+    change (``write``), and written again when the browser reports the address it opened."""
+
+    def __init__(self, location, query):
+        self.location = location
+        self.query = query
+        location.param.watch(self.write, "search")
+        self.write()
+
+    def write(self, *_events) -> None:
+        query = self.query()
+        search = f"?{query}" if query else ""
+        if self.location.search != search:
+            self.location.search = search

@@ -1,0 +1,123 @@
+"""One page's state: its inputs, the exploration they gave, and whether the page shows an earlier
+one (``stale``: the last input was refused)."""
+
+from __future__ import annotations
+
+import logging
+
+import panel as pn
+import param
+
+import windpump
+
+from .inputs import FORMATS, SEED, PumpInputs, link_text
+from .styles import TEXT
+
+log = logging.getLogger("windpump.app")
+
+
+class Session(param.Parameterized):
+    """The inputs → exploration half of a page; the page (``explorer.Explorer``) draws it."""
+
+    inputs = param.ClassSelector(class_=PumpInputs)
+    stale = param.Boolean(
+        False, doc="The plots show an earlier design: the last input was rejected."
+    )
+
+    def __init__(self, **params):
+        super().__init__(inputs=PumpInputs(), **params)
+        self.seen: windpump.Exploration | None = None  # the run on the screen
+        self.error = pn.pane.Alert(
+            "", alert_type="danger", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
+        )
+
+    # -- what the page does with it (explorer.Explorer) ----------------------------------------
+
+    def _draw(self, seen: windpump.Exploration) -> None:
+        """Show ``seen``."""
+        raise NotImplementedError
+
+    def _mark_stale(self, stale: bool) -> None:
+        """Show that the screen holds an earlier run than the inputs (or no longer)."""
+        raise NotImplementedError
+
+    def _followed(self, seen: windpump.Exploration) -> None:
+        """``seen`` is on the screen: what follows it (the tabs) may follow too."""
+        raise NotImplementedError
+
+    # -- the one path from inputs to screen --------------------------------------------------
+
+    def update(self, seen: windpump.Exploration | None = None) -> None:
+        """Run the core on the current inputs (``seen``: that run, done already) and redraw; a
+        rejected input shows its message."""
+        try:
+            seen = self.explore() if seen is None else seen
+            with pn.io.hold():
+                self._draw(seen)
+        except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
+            self._show_error(f"{self.culprit(error)}cannot be run: {error}")
+        except Exception as error:  # a bug: say so, log it, keep the session alive
+            log.exception("update failed")
+            self._show_error(
+                f"Something went wrong ({type(error).__name__}: {error}); it has been logged."
+            )
+        else:
+            self.seen = seen
+            self.error.visible = False
+            self.stale = False
+            self._mark_stale(False)
+            self._followed(seen)
+
+    def _show_error(self, message: str) -> None:
+        self.error.object = message
+        self.error.visible = True
+        if self.seen is None:  # nothing drawn yet (a link's design was rejected): show the paper's
+            self.seen = windpump.explore(SEED, 600.0)  # example behind it, marked not current
+            with pn.io.hold():
+                self._draw(self.seen)
+        self.stale = True
+        self._mark_stale(True)
+
+    def explore(self) -> windpump.Exploration:
+        i = self.inputs
+        return windpump.explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
+
+    def run_link(self, values: dict, notices: list[str]) -> windpump.Exploration | None:
+        """The run of the link's values. A value the core refuses with the others (``T_0=0.9``
+        with the default T_m = 0.6) is ignored with the core's reason, as a value refused on
+        reading is, and the page opens on the rest. None: nothing ran (update() says why)."""
+        values = dict(values)
+        while True:
+            try:
+                return self.explore()
+            except ValueError as error:
+                name = input_name(error)
+                if name not in values:
+                    return None
+                label = self.inputs.param[name].label
+                notices.append(
+                    f"{label} ({name}) = “{link_text(name, values.pop(name))}” ignored: "
+                    f"{sentence(error)}"
+                )
+                setattr(self.inputs, name, self.inputs.param[name].default)
+            except Exception:  # a bug: update() shows and logs it
+                return None
+
+    def culprit(self, error: ValueError) -> str:
+        """The control behind a rejected parameter, as the student sees it: "L/R, rod / crank = 1 "."""
+        name = input_name(error)
+        if name in FORMATS:
+            return f"{self.inputs.param[name].label} = {getattr(self.inputs, name):g} "
+        return "This design "
+
+
+def input_name(error: Exception) -> str | None:
+    """The input behind a parameter the core refused (the core names R1 and L, the page R† and
+    L/R)."""
+    name = getattr(error, "name", None)
+    return {"L": "L_over_R", "R1": "R_dagger"}.get(name, name)
+
+
+def sentence(error: Exception) -> str:
+    text = str(error)
+    return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")

@@ -1,0 +1,168 @@
+"""The page's sidebar: the pump's sliders and switches, presets, pin and reset, the link, the
+theme and presentation mode, lab data and the run's download."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import panel as pn
+
+import windpump
+
+from .buttons import ActionButton
+from .inputs import FORMATS, PRESETS, SWITCHES, PumpInputs
+from .keyboard import FOCUS_CSS
+from .lab import LabData
+from .styles import TEXT, ZOOM_JS
+from .uploads import RefusedUploads, Reveal
+
+# Two buttons share a row of the sidebar: in presentation mode a label wraps inside its button.
+BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4px; }"
+PRESET_PROMPT = "Choose a preset…"
+
+
+class PromptSlider(pn.widgets.FloatSlider):
+    """Panel's float slider without its 50 ms wait for further moves before the server reacts
+    (``Syncable._debounce``): a key press or a drag's first move starts the run at once, a third
+    of the way to a readout within 100 ms. Moves that arrive while a run is under way are still
+    gathered by Panel and the latest applied, so a drag never queues runs."""
+
+    _debounce = 0
+
+
+def slider(label, start, end, step, value, fmt) -> PromptSlider:
+    """A slider of the page's kind that no input parameter stands behind (the Mechanisms tab's)."""
+    return PromptSlider(
+        label=label,
+        start=start,
+        end=end,
+        step=step,
+        value=value,
+        format=fmt,
+        stylesheets=[*TEXT, FOCUS_CSS],
+        sizing_mode="stretch_width",
+    )
+
+
+def design_filename(design: windpump.Design) -> str:
+    return (
+        f"windpump_h{design.h:g}m_LR{design.L_over_R:.3g}_Rdagger{design.R_dagger:.3g}"
+        f"_Tm{design.T_m:g}_omegam{design.omega_m:g}.csv"
+    )
+
+
+def card_header(title: str) -> pn.pane.HTML:
+    """A card's title at the page's text size (Panel's own title keeps a fixed size)."""
+    return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
+
+
+class Sidebar(pn.viewable.Viewer):
+    """The controls. Their actions are the page's: it wires the buttons (``reset_button``,
+    ``pin_button``, ``clear_button``, ``preset``) to itself; ``run_csv()`` is the file to download
+    and ``show_points`` draws lab data."""
+
+    def __init__(self, inputs: PumpInputs, dark: bool, run_csv: Callable, show_points: Callable):
+        super().__init__()
+        self.sliders = {
+            name: PromptSlider.from_param(
+                inputs.param[name],
+                format=fmt,
+                stylesheets=[*TEXT, FOCUS_CSS],
+                sizing_mode="stretch_width",
+            )
+            for name, (fmt, _main) in FORMATS.items()
+        }
+        self.switches = {
+            name: pn.widgets.Checkbox.from_param(
+                inputs.param[name], stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
+            )
+            for name in SWITCHES
+        }
+        button = dict(stylesheets=[*TEXT, BUTTON_CSS, FOCUS_CSS], sizing_mode="stretch_width")
+        self._page_buttons(button, dark)
+        self.refused_upload = RefusedUploads()  # the page's word that it refused a large file
+        self.reveal = Reveal()  # scrolls an upload's outcome into view
+        self.lab = LabData(inputs, self.reveal, show_points, button)
+        self.download = pn.widgets.FileDownload(
+            callback=run_csv,
+            filename="windpump_run.csv",
+            label="Download this run (CSV)",
+            color="light",
+            **button,
+        )
+
+    def _page_buttons(self, button: dict, dark: bool) -> None:
+        self.reset_button = ActionButton(
+            label="Reset to the paper's example", color="primary", **button
+        )
+        self.preset = pn.widgets.Select(
+            label="Presets", options=[PRESET_PROMPT, *PRESETS], **button
+        )
+        self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
+        self.pin_button = ActionButton(label="Pin this run", **button)
+        self.clear_button = ActionButton(label="Clear pinned", disabled=True, **button)
+        self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
+        self.present_toggle.jscallback(value=ZOOM_JS)
+        self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
+        self.copy_link.js_on_click(code=COPY_LINK_JS)
+        self.dark_toggle = pn.widgets.Button(
+            label="Light theme" if dark else "Dark theme", **button
+        )
+        self.dark_toggle.js_on_click(code=DARK_JS)
+
+    def show_design(self, design: windpump.Design) -> None:
+        self.download.filename = design_filename(design)
+
+    def __panel__(self) -> pn.Column:
+        main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]
+        more = pn.Card(
+            *(self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "more"),
+            header=card_header("More parameters"),
+            collapsed=True,
+            sizing_mode="stretch_width",
+            stylesheets=TEXT,
+        )
+        lab = self.lab
+        return pn.Column(
+            self.preset,
+            self.preset_note,
+            *main,
+            *self.switches.values(),
+            more,
+            pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),
+            self.reset_button,
+            self.copy_link,
+            pn.Row(self.present_toggle, self.dark_toggle, sizing_mode="stretch_width"),
+            pn.pane.Markdown(
+                "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
+            ),
+            lab.upload,
+            self.refused_upload,
+            self.reveal,
+            lab.message,
+            lab.apply_fit,
+            lab.note,
+            self.download,
+            sizing_mode="stretch_width",
+        )
+
+
+COPY_LINK_JS = """
+const url = window.location.href
+const done = () => { cb_obj.label = 'Link copied' ; setTimeout(() => { cb_obj.label = 'Copy link to this state' }, 2500) }
+if (navigator.clipboard && window.isSecureContext) {
+  navigator.clipboard.writeText(url).then(done, () => window.prompt('Copy this link:', url))
+} else {
+  const area = document.createElement('textarea'); area.value = url; document.body.appendChild(area)
+  area.select(); const ok = document.execCommand('copy'); area.remove()
+  if (ok) done(); else window.prompt('Copy this link:', url)
+}
+"""
+
+# The template's theme is set when the page is built: switch it through the link, keeping the state.
+DARK_JS = """
+const url = new URL(window.location.href)
+if (url.searchParams.get('theme') === 'dark') url.searchParams.delete('theme')
+else url.searchParams.set('theme', 'dark')
+window.location.href = url.toString()
+"""

@@ -25,6 +25,7 @@ from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
 
 import windpump
+from windpump.units import SECONDS_PER_DAY
 
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
@@ -33,7 +34,6 @@ from .tab import Tab
 from .views import refill
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
-PER_DAY = 86_400.0  # m^3/s to m^3/day
 DECADES = 2
 
 
@@ -254,7 +254,7 @@ class MapTab(Tab):
 
     def _draw_map(self, design: windpump.Design) -> None:
         mapped = windpump.design_map(design, self.ratios, self.heads)
-        flow = mapped.mean_flow * PER_DAY
+        flow = mapped.mean_flow * SECONDS_PER_DAY
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
         self.ticker.ticks = colour_ticks(self.mapper.low, self.mapper.high)
@@ -299,10 +299,10 @@ class MapTab(Tab):
         }
 
     def _mark(self, design: windpump.Design) -> None:
-        here = float(windpump.steady_flow(design, design.V_ref)) * PER_DAY
+        here = float(windpump.steady_flow(design, design.V_ref)) * SECONDS_PER_DAY
         refill(self.sources["here"], {"ratio": [design.R_dagger], "h": [design.h], "flow": [here]})
         row = windpump.design_map(design, self.ratios, [design.h])
-        best_ratio, best_flow = row.best_gear_ratio[0], row.best_flow[0] * PER_DAY
+        best_ratio, best_flow = row.best_gear_ratio[0], row.best_flow[0] * SECONDS_PER_DAY
         if np.isnan(best_ratio):
             self.readout.object = (
                 f"At h = {design.h:.1f} m no sprocket ratio on this map carries the load: "

@@ -14,6 +14,7 @@ import panel as pn
 import windpump
 from windpump import linkage
 from windpump.linkage import NoClosure
+from windpump.units import MM_PER_M
 
 from .figures import LINKS, linkage_view, slider_crank_views
 from .styles import TEXT
@@ -77,7 +78,7 @@ class SliderCrank:
         theta = np.linspace(0.0, 2 * math.pi, 181)
         self.sources["travel"].data = {
             "angle": np.degrees(theta),
-            "x": 1e3 * windpump.piston_position(theta, design.R, design.L),
+            "x": MM_PER_M * windpump.piston_position(theta, design.R, design.L),
         }
         span = design.L + 4 * design.R  # equal spans on a square figure: a circle stays round
         fig = self.crank_figure
@@ -109,14 +110,14 @@ class SliderCrank:
         }
         bottom, top = d.L - d.R - 0.4 * bore, d.L + d.R + 1.2 * bore
         s["cylinder"].data = {"xs": [[-bore / 2] * 2, [bore / 2] * 2], "ys": [[bottom, top]] * 2}
-        s["travel_point"].data = {"angle": [self.crank_angle.value], "x": [1e3 * x]}
+        s["travel_point"].data = {"angle": [self.crank_angle.value], "x": [MM_PER_M * x]}
         stroke = (
             "exhausting (lifting water)"
             if windpump.f2(theta, d.L_over_R) > 0
             else "taking water in"
         )
         self.crank_note.object = (
-            f'<span data-name="slider_crank">x = {1e3 * x:.2f} mm from TDC, '
+            f'<span data-name="slider_crank">x = {MM_PER_M * x:.2f} mm from TDC, '
             f"θc = {degrees(theta_c)}</span> · {stroke} · Newton-Raphson: "
             f"{pose.closure.iterations} iterations"
         )

@@ -86,7 +86,9 @@ class PumpViews:
         run = seen.run
         span = float(run.t[-1]) if run.t[-1] > 0 else float(t_end)
         self.time_range.update(start=0.0, end=span)
-        if self._drawn_linkage != _linkage_of(seen.design):  # R, L, A or the sprockets moved
+        if self._drawn_linkage != _linkage_of(
+            seen.design
+        ):  # R, L, A, the sprockets or the cylinders changed
             self._drawn_linkage = _linkage_of(seen.design)
             self.machine.set_design(seen.design)
         for view in self.views:
@@ -121,7 +123,15 @@ def name_sources(sources: dict[str, ColumnDataSource]) -> None:
 
 def _linkage_of(design: windpump.Design) -> tuple[float, ...]:
     """What the machine's fixed drawing depends on."""
-    return (design.R, design.L, design.A, design.R0, design.R1)
+    return (
+        design.R,
+        design.L,
+        design.A,
+        design.R0,
+        design.R1,
+        design.cylinders,
+        design.double_acting,
+    )
 
 
 ABOUT = """

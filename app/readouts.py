@@ -12,6 +12,7 @@ import panel as pn
 
 import windpump
 from windpump import Status
+from windpump.units import LITRES_PER_M3
 
 from .styles import COMPACT
 
@@ -89,8 +90,8 @@ class Readouts(pn.viewable.Viewer):
         figures = seen.intermittency
         started = seen.status is not Status.NEVER_STARTED
         values = {
-            "mean_flow": ("Mean flow", f"{1e3 * seen.mean_flow:.4f} L/s"),
-            "volume": ("Volume pumped", f"{1e3 * seen.pumped_volume:.1f} L"),
+            "mean_flow": ("Mean flow", f"{LITRES_PER_M3 * seen.mean_flow:.4f} L/s"),
+            "volume": ("Volume pumped", f"{LITRES_PER_M3 * seen.pumped_volume:.1f} L"),
             "tau": (
                 "Spin-up time τ, Eq. (25)",
                 f"{seen.tau:.1f} s" if seen.tau and started else "–",

@@ -13,6 +13,7 @@ import panel as pn
 from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
 
 import windpump
+from windpump.units import LITRES_PER_M3
 
 from .envelope import band, bin_means
 from .figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
@@ -204,8 +205,11 @@ class FlowView(TimeView):
 
     def update(self, seen, bins):
         run, s = seen.run, self.sources
-        refill(s["flow"], band_data(run.t, 1e3 * run.flow, bins))
-        refill(s["mean_flow"], {"t": [0.0, float(run.t[-1])], "flow": [1e3 * seen.mean_flow] * 2})
+        refill(s["flow"], band_data(run.t, LITRES_PER_M3 * run.flow, bins))
+        refill(
+            s["mean_flow"],
+            {"t": [0.0, float(run.t[-1])], "flow": [LITRES_PER_M3 * seen.mean_flow] * 2},
+        )
         self.show_ghost()
 
 
@@ -244,7 +248,7 @@ class CloseupView(View):
         run = seen.run
         window = run.last_revolutions(CLOSEUP_REVOLUTIONS)
         t = run.t[window]
-        refill(self.sources["closeup"], {"t": t, "flow": 1e3 * run.flow[window]})
+        refill(self.sources["closeup"], {"t": t, "flow": LITRES_PER_M3 * run.flow[window]})
         faces = run.face_flows()[:, window] if run.design.deliveries > 1 else np.empty((0, 0))
         delivering = [k for k in range(len(faces)) if faces[k].any()]
         faces_colors = FACES[self.dark]
@@ -252,7 +256,7 @@ class CloseupView(View):
             self.sources["closeup_faces"],
             {
                 "xs": [t] * len(delivering),
-                "ys": [1e3 * faces[k] for k in delivering],
+                "ys": [LITRES_PER_M3 * faces[k] for k in delivering],
                 "color": [faces_colors[(k // 2) % len(faces_colors)] for k in delivering],
             },
         )

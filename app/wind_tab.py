@@ -18,6 +18,7 @@ from bokeh.models import ColumnDataSource
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
+from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY, SECONDS_PER_HOUR
 from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
 from .buttons import ActionButton
@@ -30,7 +31,6 @@ from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen
 from .views import refill
 from .wind_figures import curve_figure, day_figures
 
-DAY = 86_400.0
 WIND_READOUTS = {
     "day_litres": "This day, in full [L/day]",
     "record_bounds": "Averaged over this day's wind [L/day]",
@@ -44,21 +44,21 @@ WIND_MESSAGE, WIND_DAY_NOTE = "wind-message", "wind-day-note"
 @functools.lru_cache(maxsize=8)
 def gusty_day(mean_wind: float, k: float, time_scale: float, seed: int):
     """A day of gusty wind at one sample a second (kept: a pump slider move reuses it)."""
-    return gusty(mean_wind, DAY, k=k, time_scale=time_scale, seed=seed)
+    return gusty(mean_wind, SECONDS_PER_DAY, k=k, time_scale=time_scale, seed=seed)
 
 
 def duration_text(seconds: float) -> str:
     """A record's length as a person says it: "3 h 0 min", "45 min", "12.5 days"."""
     minutes = round(seconds / 60.0)
     if minutes >= 2 * 24 * 60:
-        return f"{seconds / DAY:.1f} days"
+        return f"{seconds / SECONDS_PER_DAY:.1f} days"
     hours, minutes = divmod(minutes, 60)
     return f"{hours} h {minutes} min" if hours else f"{minutes} min"
 
 
 def is_a_day(duration: float) -> bool:
     """Whether a record [s] is a day long (to the minute): its litres are then a day's."""
-    return math.isclose(duration, DAY, abs_tol=60.0)
+    return math.isclose(duration, SECONDS_PER_DAY, abs_tol=60.0)
 
 
 def record_water_text(litres: float, per_day: float, duration: float) -> tuple[str, str]:
@@ -149,11 +149,13 @@ class WindTab(Tab):
         c = weibull_scale(inputs.mean_wind, inputs.k)
         top = max(20.0, 2.5 * c)
         V = np.linspace(0.0, top, 400)
-        refill(self.sources["curve"], {"V": V, "flow": 1e3 * windpump.steady_flow(design, V)})
+        refill(
+            self.sources["curve"], {"V": V, "flow": LITRES_PER_M3 * windpump.steady_flow(design, V)}
+        )
         density = weibull_density(V, inputs.mean_wind, inputs.k)
         refill(self.sources["density"], {"V": V, "density": density})
         self.curve.extra_y_ranges["density"].end = 1.1 * float(np.max(density))
-        here = 1e3 * windpump.steady_flow(design, inputs.V)
+        here = LITRES_PER_M3 * windpump.steady_flow(design, inputs.V)
         refill(self.sources["here"], {"V": [inputs.V], "flow": [here]})
         V_stop, V_start = windpump.wind_thresholds(design)
         self.stop_span.location = V_stop
@@ -163,7 +165,8 @@ class WindTab(Tab):
         self.readouts["thresholds"].show(WIND_READOUTS["thresholds"], f"{V_stop:.1f} · {start}")
         low, high = windpump.water_per_day(design, inputs.mean_wind, inputs.k)
         self.readouts["site_bounds"].show(
-            WIND_READOUTS["site_bounds"], f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+            WIND_READOUTS["site_bounds"],
+            f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
         )
 
     def record(self, inputs) -> windpump.wind.WindRecord:
@@ -186,31 +189,32 @@ class WindTab(Tab):
         self.error.visible = False
         run, duration = day.run, day.duration
         self.last_run, self._drawn_day = run, run_of
-        hours = run.t / 3600.0
-        self.day_wind.x_range.end = self.day_wind.x_range.start + duration / 3600.0
+        hours = run.t / SECONDS_PER_HOUR
+        self.day_wind.x_range.end = self.day_wind.x_range.start + duration / SECONDS_PER_HOUR
         bins = self.bins
         for name, values in (("wind", run.wind_speed), ("speed", run.theta_dot)):
             x, lower, upper = band(hours, values, bins)
             refill(self.sources[name], {"t": x, "lower": lower, "upper": upper})
-        x, _, lifted = band(hours, 1e3 * run.volume, bins)
+        x, _, lifted = band(hours, LITRES_PER_M3 * run.volume, bins)
         refill(self.sources["litres"], {"t": x, "litres": lifted})
         for kind, events in (("stops", day.stops), ("starts", day.starts)):
-            refill(self.sources[f"{kind}_wind"], {"t": events.t / 3600.0, "y": events.V})
+            refill(self.sources[f"{kind}_wind"], {"t": events.t / SECONDS_PER_HOUR, "y": events.V})
             refill(
-                self.sources[f"{kind}_litres"], {"t": events.t / 3600.0, "y": 1e3 * events.volume}
+                self.sources[f"{kind}_litres"],
+                {"t": events.t / SECONDS_PER_HOUR, "y": LITRES_PER_M3 * events.volume},
             )
             self.marker_items[kind].visible = len(events) > 0
         self.readouts["day_litres"].show(
-            *record_water_text(1e3 * day.volume, 1e3 * day.per_day, duration)
+            *record_water_text(LITRES_PER_M3 * day.volume, LITRES_PER_M3 * day.per_day, duration)
         )
         low, high = windpump.record_water(design, record)
         a_day = is_a_day(duration)
         self.readouts["record_bounds"].show(
             WIND_READOUTS["record_bounds"] if a_day else "Averaged over this record's wind [L/day]",
-            f"{1e3 * low:,.0f} … {1e3 * high:,.0f}",
+            f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
         )
         source = (
-            f"the measured record *{self.measured_name}* ({duration / 3600:.1f} h)"
+            f"the measured record *{self.measured_name}* ({duration / SECONDS_PER_HOUR:.1f} h)"
             if self.measured is not None
             else f"a gusty day (seed {int(round(inputs.seed))})"
         )
@@ -234,7 +238,7 @@ class WindTab(Tab):
             self.upload_message.object = f"This wind file cannot be used: {error}"
             self.upload_message.visible = True
             return False
-        if record.t[-1] > 400 * DAY:
+        if record.t[-1] > 400 * SECONDS_PER_DAY:
             self.upload_message.object = "This wind file is longer than 400 days; cut it shorter."
             self.upload_message.visible = True
             return False

@@ -437,6 +437,14 @@ def test_the_machine_gets_the_runs_frames_once_per_run(app):
     assert app.sources["frames"].data["t"][-1] == pytest.approx(100.0)
 
 
+def test_the_machine_redraws_when_the_cylinders_change(app):
+    """The fixed drawing (one cylinder head each) and the crank table follow a new count."""
+    app.show_views()
+    app.set_values(cylinders=3)
+    assert app.sources["machine_geometry"].data["cylinders"] == [3.0]
+    assert {f"pin_x{k}" for k in range(3)} <= set(app.sources["piston_table"].data)
+
+
 def test_band_keeps_each_bins_extremes():
     rng = np.random.default_rng(3)
     x = np.sort(rng.uniform(0, 100, 20_000))

@@ -10,8 +10,9 @@ from bokeh.events import Tap
 from bokeh.models import ColorBar
 
 import windpump
+from windpump.units import SECONDS_PER_DAY
 from windpump_app.explorer import Explorer
-from windpump_app.map_tab import GRID, PER_DAY, colour_range, contour_levels
+from windpump_app.map_tab import GRID, colour_range, contour_levels
 
 SEED = windpump.Design.seed_example()
 
@@ -31,7 +32,7 @@ def test_the_map_is_the_cores_over_the_sliders_ranges(app):
     tab = app.design_map
     image = tab.sources["flow"].data["image"][0]
     np.testing.assert_array_equal(np.isnan(image), np.isnan(expected.mean_flow))
-    np.testing.assert_allclose(image, expected.mean_flow * PER_DAY, rtol=1e-12)
+    np.testing.assert_allclose(image, expected.mean_flow * SECONDS_PER_DAY, rtol=1e-12)
     np.testing.assert_allclose(tab.sources["best"].data["ratio"], expected.best_gear_ratio)
     np.testing.assert_allclose(tab.sources["stall"].data["ratio"], expected.stall_gear_ratio)
     assert image.shape == (GRID, GRID)  # no more cells than the figure has pixels
@@ -46,7 +47,7 @@ def test_the_marker_and_readout_follow_the_sliders_without_remapping(app):
     design = SEED.with_ratios(R_dagger=6.0, h=5.0)
     assert (here["ratio"], here["h"]) == ([6.0], [5.0])
     alpha_plus, _ = windpump.steady_speeds(design)
-    flow = design.volume_per_revolution * alpha_plus / (2 * math.pi) * PER_DAY
+    flow = design.volume_per_revolution * alpha_plus / (2 * math.pi) * SECONDS_PER_DAY
     assert here["flow"][0] == pytest.approx(flow, rel=1e-12)
     best = windpump.design_map(design, np.linspace(0.5, 10.0, GRID), [5.0])
     assert f"R₁/R₀ = {best.best_gear_ratio[0]:.2f}" in tab.readout.object

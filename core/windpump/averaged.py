@@ -21,7 +21,7 @@ import numpy as np
 from .design import Design
 from .errors import StallError
 from .kinematics import lever_arm
-from .validation import non_negative, rod_ratio
+from .validation import finite_array, non_negative, rod_ratio
 
 
 def mean_lever_arm(L_over_R: float) -> float:
@@ -73,7 +73,7 @@ def stall_margin(design: Design) -> float:
     """
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
-    if design.load_torque == 0.0:
+    if design.mean_load_torque == 0.0:  # h = 0, or a load too small for a double
         return math.inf
     return design.R_dagger * design.T_m / design.mean_load_torque
 
@@ -230,9 +230,7 @@ def spinup(design: Design, t, theta_dot0: float):
     [3.0, 5.41, 23.58]
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    t = np.asarray(t, dtype=float)
-    if not np.all(np.isfinite(t)) or np.any(t < 0.0):
-        raise ValueError(f"t must hold finite times >= 0 s; got min {np.min(t)!r}")
+    t = finite_array("t", t, "s", minimum=0.0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)
     running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)

@@ -9,10 +9,10 @@ import pytest
 from scipy import special, stats
 
 import windpump
+from windpump.units import SECONDS_PER_DAY as DAY
 from windpump.wind import gusty, read_csv
 from windpump_app.explorer import Explorer
 from windpump_app.views import BINS
-from windpump_app.wind_tab import DAY
 
 SEED = windpump.Design.seed_example()
 

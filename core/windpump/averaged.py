@@ -25,7 +25,7 @@ from .design import Design
 from .errors import StallError
 from .kinematics import lever_arm
 from .theory import cycle_mean
-from .validation import non_negative, rod_ratio
+from .validation import finite_array, non_negative, rod_ratio
 
 
 def mean_lever_arm(L_over_R: float) -> float:
@@ -223,9 +223,7 @@ def spinup(design: Design, t, theta_dot0: float):
     [3.0, 5.41, 23.58]
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    t = np.asarray(t, dtype=float)
-    if not np.all(np.isfinite(t)) or np.any(t < 0.0):
-        raise ValueError(f"t must hold finite times >= 0 s; got min {np.min(t)!r}")
+    t = finite_array("t", t, "s", minimum=0.0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)
     running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)

@@ -17,15 +17,19 @@ import math
 import os
 import subprocess
 import sys
+import time
+import warnings
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from .averaged import stall_margin, steady_speeds, time_constant
-from .design import UNITS, Design
-from .errors import StallError
-from .maps import DesignMap, design_map
+from .design import UNITS, Design, read_json
+from .errors import StallError, cut, shown
+from .labdata import read_file
+from .maps import MAX_POINTS, DesignMap, design_map
+from .progress import Progress, reporter
 from .studies import FIGURES, INPUTS, sweep
 from .units import LITRES_PER_M3, SECONDS_PER_DAY
 
@@ -50,12 +54,25 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     try:
         return args.run(args, extra)
-    except (ValueError, OSError, ImportError) as error:
-        print(f"windpump {args.command}: error: {error}", file=sys.stderr)
-        return 1
     except KeyboardInterrupt:
         print(f"windpump {args.command}: interrupted", file=sys.stderr)
         return 130
+    except Exception as error:  # every failure: one line, exit 1, never a traceback
+        print(f"windpump {args.command}: error: {one_line(error)}", file=sys.stderr)
+        return 1
+
+
+def one_line(error: BaseException, limit: int = 2000) -> str:
+    """An error as one line of bounded length; its type too when it is not one of the messages
+    windpump writes for people (a ValueError or an OSError)."""
+    text = " ".join(str(error).split()) or type(error).__name__
+    if len(text) > limit:
+        text = text[: limit - 1] + "…"
+    if isinstance(error, ValueError | OSError | ImportError):
+        return text
+    if isinstance(error, MemoryError):
+        return f"out of memory ({text})"
+    return f"{type(error).__name__}: {text}"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -139,33 +156,36 @@ def parse_setting(text: str) -> tuple[str, object]:
     name, value = name.strip(), value.strip()
     if not equals or name not in (*UNITS, *RATIOS):
         known = ", ".join((*UNITS, *RATIOS))
-        raise ValueError(f"--set {text!r}: expected NAME=VALUE with NAME one of {known}")
+        raise ValueError(f"--set {shown(text)}: expected NAME=VALUE with NAME one of {known}")
     return name, typed(name, value)
 
 
-def typed(name: str, value: str) -> object:
+def typed(name: str, value: str) -> float | int | bool:
     """A field's value from text: double_acting true/false, cylinders whole, else a float."""
     if name == "double_acting":
         if value.lower() in ("true", "1", "yes"):
             return True
         if value.lower() in ("false", "0", "no"):
             return False
-        raise ValueError(f"double_acting = {value!r} is not allowed: it must be true or false")
+        raise ValueError(f"double_acting = {shown(value)} is not allowed: it must be true or false")
     try:
         number = float(value)
     except ValueError:
-        raise ValueError(f"{name} = {value!r} is not allowed: {name} must be a number") from None
-    if name == "cylinders" and number == int(number):
+        raise ValueError(
+            f"{name} = {shown(value)} is not allowed: {name} must be a number"
+        ) from None
+    if name == "cylinders" and number.is_integer():  # (inf and NaN are refused by name later)
         return int(number)
     return number
 
 
 def read_text(path: str) -> str:
     """A file's text, refusing one too large to be a design or a table of them."""
-    file = Path(path)
-    if file.stat().st_size > MAX_FILE_BYTES:
-        raise ValueError(f"{path}: larger than {MAX_FILE_BYTES // 1_000_000} MB")
-    return file.read_text(encoding="utf-8")
+    data = read_file(path, MAX_FILE_BYTES)  # a regular file only, at most the limit + 1 bytes
+    try:
+        return data.decode("utf-8-sig")  # a spreadsheet's byte-order mark is not a column name
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{cut(path)}: not UTF-8 text (byte {error.start + 1})") from None
 
 
 def simulate_command(args: argparse.Namespace, extra: list[str]) -> int:
@@ -220,9 +240,13 @@ def grid_option(text: str | None, default: tuple[float, float, int], name: str) 
         try:
             start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
         except (IndexError, ValueError):
-            raise ValueError(f"--{name} {text!r}: expected FROM:TO:N, e.g. 1:10:200") from None
-        if len(parts) != 3 or count < 1:
-            raise ValueError(f"--{name} {text!r}: expected FROM:TO:N with N >= 1")
+            raise ValueError(f"--{name} {shown(text)}: expected FROM:TO:N, e.g. 1:10:200") from None
+        if len(parts) != 3 or not 1 <= count <= MAX_POINTS:
+            raise ValueError(
+                f"--{name} {shown(text)}: expected FROM:TO:N with N from 1 to {MAX_POINTS:,}"
+            )
+        if not (math.isfinite(start) and math.isfinite(stop)):
+            raise ValueError(f"--{name} {shown(text)}: FROM and TO must be finite numbers")
     return np.linspace(start, stop, count)
 
 
@@ -235,12 +259,46 @@ def map_command(args: argparse.Namespace, extra: list[str]) -> int:
     heads = grid_option(args.heads, (0.0, 3 * design.h if design.h > 0 else 10.0, 200), "heads")
     if args.png:
         import_matplotlib()  # before the work: a missing plotter is found at once
-    result = design_map(design, ratios, heads, numeric=args.numeric)
+    progress = TimeLeft(ratios.size * heads.size) if args.numeric else None
+    result = design_map(design, ratios, heads, numeric=args.numeric, progress=progress)
     write(result.to_csv(), args.csv)
     if args.png:
         plot_map(result, args.png)
         print(f"map drawn in {args.png}", file=sys.stderr)
     return 0
+
+
+class TimeLeft:
+    """A numeric map's progress: says up front how many full simulations it runs, and once the
+    first batch is done how long the rest will take (on stderr; a bar too in a terminal)."""
+
+    SAY_FROM = 10.0
+    """Remaining times [s] worth saying."""
+
+    def __init__(self, runs: int):
+        print(f"windpump map: {runs:,} full simulations", file=sys.stderr)
+        self.started, self.said = time.monotonic(), False
+        self.bar: Progress | None = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.bar is None:
+            self.bar = reporter(None, total, "design map")
+        self.bar(done, total)
+        if self.said or not 0 < done < total:
+            return
+        self.said = True
+        left = (time.monotonic() - self.started) / done * (total - done)
+        if left >= self.SAY_FROM:
+            print(f"windpump map: about {duration(left)} left", file=sys.stderr)
+
+
+def duration(seconds: float) -> str:
+    """``seconds`` in words: ``"40 s"``, ``"12 min"``, ``"3.5 h"``."""
+    if seconds < 90:
+        return f"{seconds:.0f} s"
+    if seconds < 5400:
+        return f"{seconds / 60:.0f} min"
+    return f"{seconds / 3600:.1f} h"
 
 
 def import_matplotlib():
@@ -328,9 +386,9 @@ def write(text: str, path: str | None) -> None:
 def read_json_designs(path: str, text: str) -> list[Design]:
     """A JSON design document, or a list of them; an error names the file and the design."""
     try:
-        documents = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise ValueError(f"{path}: not JSON: {error}") from None
+        documents = read_json(text)
+    except ValueError as error:
+        raise ValueError(f"{cut(path)}: {error}") from None
     if not isinstance(documents, list):
         documents = [documents]
     designs = []
@@ -338,7 +396,7 @@ def read_json_designs(path: str, text: str) -> list[Design]:
         try:
             designs.append(Design.from_json(json.dumps(document)))
         except ValueError as error:
-            raise ValueError(f"{path}, design {number}: {error}") from None
+            raise ValueError(f"{cut(path)}, design {number}: {error}") from None
     return designs
 
 
@@ -348,21 +406,23 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
     text = read_text(path)
     if path.endswith(".json"):
         return read_json_designs(path, text), {}
-    rows = list(csv.reader(io.StringIO(text)))
+    rows = csv_rows(text)
     if not rows:
-        raise ValueError(f"{path}: empty")
+        raise ValueError(f"{cut(path)}: empty")
     names = [cell.split("[")[0].strip() for cell in rows[0]]
     known = set(UNITS) | set(RATIOS) | set(INPUTS) | set(FIGURES)  # (a sweep's table reads back)
     unknown = [name for name in names if name not in known]
     if unknown:
-        raise ValueError(f"{path}: unknown column(s) {unknown}; columns are fields of Design")
+        raise ValueError(
+            f"{cut(path)}: unknown column(s) {shown(unknown)}; columns are fields of Design"
+        )
     designs: list[Design] = []
     inputs: dict[str, list[float]] = {name: [] for name in INPUTS if name in names}
     for line, row in enumerate(rows[1:], start=2):
         if not row:
             continue
         if len(row) != len(names):
-            raise ValueError(f"{path}, line {line}: {len(row)} cells for {len(names)} columns")
+            raise ValueError(f"{cut(path)}, line {line}: {len(row)} cells for {len(names)} columns")
         values = dict(zip(names, row, strict=True))
         try:
             changes: dict[str, Any] = {
@@ -371,10 +431,22 @@ def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[
             ratios = {n: changes.pop(n) for n in RATIOS if n in changes}
             designs.append(base.with_ratios(**ratios, **changes))
             for name in inputs:
-                inputs[name].append(float(values[name]))
+                inputs[name].append(float(typed(name, values[name])))
         except ValueError as error:
-            raise ValueError(f"{path}, line {line}: {error}") from None
+            raise ValueError(f"{cut(path)}, line {line}: {error}") from None
     return designs, inputs
+
+
+def csv_rows(text: str) -> list[list[str]]:
+    """A CSV's rows of cells, separated by tabs, semicolons or commas as the header row is (a
+    spreadsheet in a locale with decimal commas writes ``;`` and ``2,5``: read as 2.5)."""
+    lines = text.splitlines()
+    header = next((line for line in lines if line.strip()), "")
+    separator = next((s for s in ("\t", ";") if s in header), ",")
+    rows = list(csv.reader(io.StringIO(text), delimiter=separator))
+    if separator != ",":
+        rows = [[cell.replace(",", ".") for cell in row] for row in rows]
+    return rows
 
 
 def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
@@ -387,24 +459,35 @@ def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
         "theta0": inputs.get("theta0", args.theta0),
         "theta_dot0": inputs.get("theta_dot0", args.theta_dot0),
     }
-    if args.scheduler:
+    with warnings.catch_warnings():  # the runs that failed: a line each, below
+        warnings.filterwarnings("ignore", r"\d+ of \d+ runs failed", RuntimeWarning)
+        table = run_sweep(designs, runs, args.scheduler, args.workers)
+    write(table.without_failures().to_csv(), args.csv)
+    for index, reason in table.failed.items():
+        print(
+            f"windpump sweep: error: design {index + 1} of {cut(args.file)}: {reason}",
+            file=sys.stderr,
+        )
+    return 1 if table.failed else 0
+
+
+def run_sweep(designs: list[Design], runs: dict, scheduler: str | None, workers: int):
+    """The sweep on a dask scheduler, on ``workers`` processes, or here."""
+    if scheduler:
         try:
             from distributed import Client
         except ImportError:
             raise ImportError(
                 "--scheduler needs dask.distributed: pip install distributed"
             ) from None
-        with Client(args.scheduler) as client:
-            table = sweep(designs, **runs, executor=client.get_executor())
-    elif args.workers > 1:
+        with Client(scheduler) as client:
+            return sweep(designs, **runs, executor=client.get_executor())
+    if workers > 1:
         from concurrent.futures import ProcessPoolExecutor
 
-        with ProcessPoolExecutor(args.workers) as pool:
-            table = sweep(designs, **runs, executor=pool)
-    else:
-        table = sweep(designs, **runs)
-    write(table.to_csv(), args.csv)
-    return 0
+        with ProcessPoolExecutor(workers) as pool:
+            return sweep(designs, **runs, executor=pool)
+    return sweep(designs, **runs)
 
 
 def explorer_folder() -> Path:

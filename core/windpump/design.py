@@ -8,8 +8,11 @@ import math
 import typing
 
 from . import theory
-from .errors import DesignFileError, ParameterError
-from .validation import LARGEST, flag, magnitude, non_negative, positive, rod_ratio, whole
+from .errors import DesignFileError, ParameterError, shown
+from .validation import LARGEST as LARGEST
+from .validation import SMALLEST as SMALLEST
+from .validation import flag, magnitude, positive, rod_ratio, whole
+from .wind import MAX_WIND
 
 # Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
 UNITS = {
@@ -48,10 +51,11 @@ class Design:
     The defaults of the last three fields are the paper's machine: one single-acting cylinder and a
     windmill with no torque at rest.
 
-    Every field is checked on construction (numbers from ``SMALLEST`` to ``LARGEST`` in SI units;
-    h and T_0 from 0); a bad value raises
-    :class:`~windpump.ParameterError` (a ``ValueError``) naming the field, its value and the
-    allowed range.
+    Every field is checked on construction: numbers from ``SMALLEST`` = 1e-12 to ``LARGEST`` =
+    1e12 in SI units (h and T_0 from 0; V_ref is at most 150 m/s, the fastest wind a
+    record holds), far past any machine and the range where every figure of the model stays
+    finite. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
+    field, its value (cut to a bounded length) and the allowed range.
 
     Parameters
     ----------
@@ -127,10 +131,10 @@ class Design:
                 value = whole(name, value, 1, MAX_CYLINDERS)
             elif name == "double_acting":
                 value = flag(name, value)
-            elif name in ("h", "T_0"):  # any size down to 0 (T_0 is held below T_m below)
-                value = non_negative(name, value, UNITS[name])
-                if value > LARGEST:
-                    raise ParameterError(name, value, f"<= {LARGEST:g}", UNITS[name])
+            elif name in ("h", "T_0"):  # 0 too (T_0 is held below T_m below)
+                value = magnitude(name, value, UNITS[name], zero=True)
+            elif name == "V_ref":  # a wind speed, as a record's
+                value = magnitude(name, value, UNITS[name], highest=MAX_WIND)
             else:
                 value = magnitude(name, value, UNITS[name])
             object.__setattr__(self, name, value)
@@ -185,7 +189,9 @@ class Design:
         """
         unknown = set(changes) - {f.name for f in dataclasses.fields(self)}
         if unknown:
-            raise TypeError(f"Design has no parameter(s) {sorted(unknown)}; fields: {list(UNITS)}")
+            raise TypeError(
+                f"Design has no parameter(s) {shown(sorted(unknown))}; fields: {list(UNITS)}"
+            )
         return dataclasses.replace(self, **changes)
 
     def with_ratios(
@@ -230,7 +236,8 @@ class Design:
         ------
         ParameterError
             Naming ``V`` unless it is a finite number > 0 (in calm air the rotor has no curve;
-            :func:`windpump.simulate` takes V = 0 inside a wind record).
+            :func:`windpump.simulate` takes V = 0 inside a wind record) in the range where the
+            scaled fields stay in theirs (:meth:`wind_range`).
 
         Examples
         --------
@@ -239,10 +246,37 @@ class Design:
         (2.4, 100.0, 10.0)
         """
         V = positive("V", V, "m/s")
+        lowest, highest = self.wind_range()
+        allowed = f"a wind speed from {lowest:.6g} to {highest:.6g} m/s for this design"
+        why = "where T_m, omega_m and T_0 scaled by similarity stay in their ranges"
+        if not lowest <= V <= highest:
+            raise ParameterError("V", V, allowed, "m/s", why=why)
         s = V / self.V_ref
-        return self.replace(
-            T_m=self.T_m * s**2, omega_m=self.omega_m * s, T_0=self.T_0 * s**2, V_ref=V
+        try:
+            return self.replace(
+                T_m=self.T_m * s**2, omega_m=self.omega_m * s, T_0=self.T_0 * s**2, V_ref=V
+            )
+        except ParameterError:  # a range's edge, by rounding
+            raise ParameterError("V", V, allowed, "m/s", why=why) from None
+
+    def wind_range(self) -> tuple[float, float]:
+        """The wind speeds [m/s] :meth:`in_wind` takes: where ``T_m (V/V_ref)^2``,
+        ``omega_m V/V_ref``, ``T_0 (V/V_ref)^2`` and V itself stay in the fields' ranges (up to
+        150 m/s, the fastest wind a record holds).
+
+        Examples
+        --------
+        >>> Design.seed_example().wind_range()
+        (6.4549722436790284e-06, 150.0)
+        """
+        squared = [self.T_m] + ([self.T_0] if self.T_0 > 0.0 else [])
+        lowest = max(
+            [SMALLEST / self.omega_m, SMALLEST / self.V_ref]
+            + [math.sqrt(SMALLEST / x) for x in squared]
         )
+        highest = min([LARGEST / self.omega_m, MAX_WIND / self.V_ref]
+                      + [math.sqrt(LARGEST / x) for x in squared])  # fmt: skip
+        return self.V_ref * lowest, self.V_ref * highest
 
     def to_json(self) -> str:
         """The design as JSON text: every field with its unit, under a schema name and version.
@@ -281,11 +315,7 @@ class Design:
         ParameterError
             For a field out of range, as the constructor.
         """
-        try:
-            document = json.loads(text)
-        except (json.JSONDecodeError, UnicodeDecodeError) as error:
-            raise DesignFileError(f"not JSON: {error}") from None
-        fields = _design_fields(document)
+        fields = _design_fields(read_json(text))
         return cls(**fields)
 
     def as_dict(self) -> dict[str, float | int | bool]:
@@ -360,16 +390,33 @@ class Design:
         return math.sqrt(4.0 * self.A / math.pi)
 
 
+def read_json(text: str | bytes) -> object:
+    """JSON text as Python objects, or a :class:`DesignFileError` saying why not (nesting too deep
+    for Python's recursion included)."""
+    if not isinstance(text, str | bytes | bytearray):
+        raise DesignFileError(
+            f"a design file is JSON text (str or bytes), not a {type(text).__name__}"
+        )
+    try:
+        return json.loads(text)
+    except (json.JSONDecodeError, UnicodeDecodeError) as error:
+        raise DesignFileError(f"not JSON: {error}") from None
+    except ValueError as error:  # an integer of more digits than Python converts (4300)
+        raise DesignFileError(f"not a design file: {error}") from None
+    except RecursionError:
+        raise DesignFileError("not a design file: its JSON is nested too deeply to read") from None
+
+
 def _design_fields(document: object) -> dict[str, typing.Any]:
     """The ``fields`` of a design document, checked against this version's layout."""
     if not isinstance(document, dict) or document.get("schema") != SCHEMA:
         raise DesignFileError(f'not a design file: it needs "schema": "{SCHEMA}"')
     version = document.get("version")
     if isinstance(version, bool) or not isinstance(version, int) or version < 1:
-        raise DesignFileError(f'"version" = {version!r} is not allowed: it must be 1')
+        raise DesignFileError(f'"version" = {shown(version)} is not allowed: it must be 1')
     if version > SCHEMA_VERSION:
         raise DesignFileError(
-            f"version {version} was written by a newer windpump; this one reads version "
+            f"version {shown(version)} was written by a newer windpump; this one reads version "
             f"{SCHEMA_VERSION}"
         )
     fields = document.get("fields")
@@ -377,7 +424,7 @@ def _design_fields(document: object) -> dict[str, typing.Any]:
         raise DesignFileError('"fields" must be an object of field names and values')
     unknown = sorted(set(fields) - set(UNITS))
     if unknown:
-        raise DesignFileError(f"unknown field(s) {unknown}; the fields are {list(UNITS)}")
+        raise DesignFileError(f"unknown field(s) {shown(unknown)}; the fields are {list(UNITS)}")
     required = [f.name for f in dataclasses.fields(Design) if f.default is dataclasses.MISSING]
     missing = [name for name in required if name not in fields]
     if missing:
@@ -388,6 +435,11 @@ def _design_fields(document: object) -> dict[str, typing.Any]:
     for name, unit in units.items():
         if name in UNITS and unit != UNITS[name]:
             raise DesignFileError(
-                f'the unit of {name} is "{unit}"; design files use SI units: "{UNITS[name]}"'
+                f'the unit of {name} is {_quoted(unit)}; design files use SI units: "{UNITS[name]}"'
             )
     return fields
+
+
+def _quoted(text: object) -> str:
+    """A short text in double quotes, as a file writes it; anything else as :func:`shown`."""
+    return f'"{text}"' if isinstance(text, str) and len(text) <= 40 else shown(text)

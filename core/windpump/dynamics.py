@@ -141,7 +141,7 @@ class SimulationResult:
 
         Raises ``ValueError`` when the run has no complete revolution.
         """
-        revolutions = int(positive("revolutions", revolutions))
+        revolutions = whole("revolutions", revolutions, 1, MAX_SAMPLES)
         marks, times = revolution_marks(self.t, self.theta)
         if len(marks) < 2:
             raise ValueError("the run has no complete crank revolution to measure")
@@ -191,7 +191,7 @@ class SimulationResult:
         >>> 3 <= float(run.theta[window][-1] - run.theta[window][0]) / (2 * math.pi) < 4
         True
         """
-        revolutions = int(positive("revolutions", revolutions))
+        revolutions = whole("revolutions", revolutions, 1, MAX_SAMPLES)
         start, _ = self.revolutions()
         if len(start) == 0:
             return slice(0, len(self.t))
@@ -312,6 +312,41 @@ def sample_bound(
     return fastest * t_end / (math.pi / samples_per_stroke) + 3
 
 
+def estimated_steps(design: Design, t_end: float, record: WindRecord | None = None) -> float:
+    """About how many integration steps a run takes: one at every switch (every pi/n of crank
+    angle, at the averaged running speed in each wind: :func:`windpump.steady_flow`) and one at
+    every sample of the record where the wind bends. A float: it may be too large for an int."""
+    from .site import steady_flow
+
+    per_speed = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
+    switches_per_radian = design.cylinders / math.pi
+    if record is None:
+        return switches_per_radian * steady_flow(design, design.V_ref) / per_speed * t_end
+    t, V = record.t, record.V
+    inside = t < t_end
+    bends = int(np.count_nonzero(inside[:-1] & (np.diff(V) != 0.0)))
+    times = np.concatenate(([0.0], t[inside], [t_end]))
+    speed = steady_flow(design, np.interp(times, t, V)) / per_speed
+    radians = float(np.sum(0.5 * (speed[1:] + speed[:-1]) * np.diff(times)))
+    return bends + switches_per_radian * radians
+
+
+def check_work(design: Design, t_end: float, record: WindRecord | None = None) -> None:
+    """Refuse, before any work, a run whose :func:`estimated_steps` exceed ``MAX_STEPS``: it
+    would stop there, after minutes and gigabytes, as if the design were too stiff."""
+    steps = estimated_steps(design, t_end, record)
+    if steps <= MAX_STEPS:
+        return
+    cause = "" if record is None else f" ({len(record.t):,} wind samples)"
+    raise ParameterError(
+        "t_end" if record is None else "wind",
+        f"{t_end:g} s of running{cause}",
+        f"a run of at most {MAX_STEPS:,} integration steps",
+        why=f"this one would take about {steps:.3g}: one at every switch (every pi/n of crank "
+        "angle) and at every sample where the wind bends; a shorter t_end or a coarser record",
+    )
+
+
 def simulate(
     design: Design,
     t_end: float,
@@ -408,6 +443,7 @@ def simulate(
     record = None if wind is None else as_record(wind, t_end)
     bound = sample_bound(design, t_end, theta_dot0, samples_per_stroke, sample_dt, record)
     _refuse_too_many_samples(t_end, bound)
+    check_work(design, t_end, record)
     from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
 
     run = _kernels.run(

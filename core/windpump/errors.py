@@ -3,7 +3,56 @@ a process pool running :func:`windpump.simulate` over many designs gets them bac
 
 from __future__ import annotations
 
+import reprlib
 from collections.abc import Mapping
+
+SHOWN = 80
+"""Most characters of an input an error message echoes (a 100 MB string gives a short message)."""
+
+
+def shown(value: object, limit: int = SHOWN) -> str:
+    """``repr(value)`` cut to about ``limit`` characters, saying how long it was: what every error
+    message shows of an input. Long text, huge integers and long lists are never written out in
+    full, not even on the way.
+
+    Examples
+    --------
+    >>> shown(2.5)
+    '2.5'
+    >>> shown("x" * 1000, 20)
+    "'xxxxxxxxxxxxxxxxxx… (1,000 characters)"
+    >>> shown(10**400)
+    'an integer of 401 digits'
+    """
+    if isinstance(value, str | bytes | bytearray) and len(value) > limit:
+        return f"{repr(value[: limit - 2])[:-1]}… ({len(value):,} characters)"
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 3 * limit:
+        digits = len(str(abs(value))) if value.bit_length() < 10_000 else None
+        return f"an integer of {digits or f'about {int(value.bit_length() * 0.30103):,}'} digits"
+    try:
+        text = _SHORT.repr(value)
+    except Exception:  # a repr that fails still gives a message
+        text = f"<a {type(value).__name__}>"
+    if "\n" in text:  # a numpy array's repr: one line
+        text = " ".join(text.split())
+    return text if len(text) <= limit else f"{text[: limit - 1]}…"
+
+
+def cut(text: str, limit: int = SHOWN) -> str:
+    """``text`` as it is (a path, a cell of a file), cut to about ``limit`` characters.
+
+    Examples
+    --------
+    >>> cut("lab.csv"), cut("0.216" * 10, 12)
+    ('lab.csv', '0.2160.2160… (50 characters)')
+    """
+    return text if len(text) <= limit else f"{text[: limit - 1]}… ({len(text):,} characters)"
+
+
+_SHORT = reprlib.Repr()
+_SHORT.maxlist = _SHORT.maxtuple = _SHORT.maxdict = _SHORT.maxset = 8
+_SHORT.maxstring = _SHORT.maxother = SHOWN
+_SHORT.maxlong = SHOWN
 
 
 class ParameterError(ValueError):
@@ -30,8 +79,8 @@ class ParameterError(ValueError):
 
     def __init__(self, name: str, value: object, allowed: str, unit: str = "", why: str = ""):
         self.name, self.value, self.allowed, self.unit, self.why = name, value, allowed, unit, why
-        shown = f"{value!r} {unit}".rstrip()
-        message = f"{name} = {shown} is not allowed: {name} must be {allowed}"
+        echoed = f"{shown(value)} {unit}".rstrip()
+        message = f"{name} = {echoed} is not allowed: {name} must be {allowed}"
         super().__init__(f"{message} ({why})" if why else message)
 
     def __reduce__(self):

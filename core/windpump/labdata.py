@@ -11,8 +11,11 @@ import dataclasses
 import math
 import os
 import re
+import stat
 
 import numpy as np
+
+from .errors import cut, shown
 
 MAX_BYTES = 1_000_000
 """Largest lab file read [bytes]; a larger one is refused before it is parsed."""
@@ -59,7 +62,9 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     Parameters
     ----------
     source : bytes, str or path
-        The file's content (bytes, or text) or its path.
+        The file's content (bytes, or text with a line break) or its path (a ``str`` without a
+        line break, or a path object); only a regular file is read, at most ``max_bytes`` + 1
+        bytes of it.
     max_bytes : int, default MAX_BYTES
         A longer file is refused before it is parsed.
 
@@ -197,13 +202,45 @@ def check_file_size(size: int, max_bytes: int = MAX_BYTES, what: str = "a torque
 def _read_bytes(source, max_bytes: int) -> bytes:
     if isinstance(source, bytes | bytearray):
         data = bytes(source)
-    elif isinstance(source, str) and ("\n" in source or not os.path.exists(source)):
+    elif isinstance(source, str) and "\n" in source:
         data = source.encode("utf-8")
+    elif isinstance(source, str | os.PathLike):
+        data = read_file(source, max_bytes)
     else:
-        check_file_size(os.path.getsize(source), max_bytes)
-        with open(source, "rb") as f:
-            data = f.read()
+        raise LabDataError(
+            f"source = {shown(source)}: the file's content (bytes or text) or its path is needed"
+        )
     check_file_size(len(data), max_bytes)
+    return data
+
+
+def read_file(path: str | os.PathLike, max_bytes: int) -> bytes:
+    """The bytes of the regular file at ``path``, reading at most ``max_bytes`` + 1 of them.
+
+    A device, a pipe or a folder is refused before it is read (``/dev/zero`` never ends, and its
+    size reads as 0), and so is a file longer than ``max_bytes``, whatever its size claims.
+
+    Raises
+    ------
+    LabDataError
+        (a ValueError) for a path that does not exist, is not a regular file, cannot be read,
+        or holds more than ``max_bytes`` bytes; naming the path (cut to a bounded length).
+    """
+    name = f"'{cut(os.fsdecode(path))}'"
+    try:  # not blocking: opening a pipe would wait for a writer
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with open(descriptor, "rb") as file:
+            status = os.fstat(descriptor)
+            if not stat.S_ISREG(status.st_mode):
+                raise LabDataError(f"{name} is not a regular file (a device, pipe or folder)")
+            check_file_size(status.st_size, max_bytes)
+            data = file.read(max_bytes + 1)  # and no more, should it grow meanwhile
+    except FileNotFoundError:
+        raise LabDataError(f"there is no file {name}") from None
+    except OSError as error:  # a folder, no permission...
+        raise LabDataError(f"{name} cannot be read: {error.strerror or error}") from None
+    if len(data) > max_bytes:
+        raise LabDataError(f"{name} has more than {max_bytes:,} bytes; at most that many are read")
     return data
 
 
@@ -239,7 +276,7 @@ def _check_header(line: int, names: tuple[str, ...]) -> None:
     lowered = [name.lower() for name in names]
     if len(lowered) >= 2 and "torque" in lowered[0] and "torque" not in lowered[1]:
         raise LabDataError(
-            f"the header names torque first ({', '.join(names)}); the file needs {COLUMNS}",
+            f"the header names torque first ({cut(', '.join(names))}); the file needs {COLUMNS}",
             line,
         )
 
@@ -251,10 +288,9 @@ def _row(line: int, cells: list[str]) -> tuple[float, float]:
         try:
             value = float(cell)
         except ValueError:
-            shown = cell if len(cell) <= 20 else cell[:20] + "…"
-            raise LabDataError(f"'{shown}' is not a number", line, column) from None
+            raise LabDataError(f"'{cut(cell, 20)}' is not a number", line, column) from None
         if not math.isfinite(value):
-            raise LabDataError(f"'{cell}' is not a finite number", line, column)
+            raise LabDataError(f"'{cut(cell, 20)}' is not a finite number", line, column)
         numbers.append(value)
     if numbers[0] < 0:
         raise LabDataError(f"the speed {numbers[0]:g} rad/s is negative", line, 1)

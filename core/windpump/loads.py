@@ -14,6 +14,7 @@ import numpy as np
 
 from .design import Design
 from .kinematics import face_flows
+from .validation import whole
 
 
 def load_torque_on_crank(design: Design, theta):
@@ -53,6 +54,7 @@ def peak_load_torque(design: Design, samples_per_segment: int = 512) -> float:
     >>> round(peak_load_torque(d) / d.load_torque, 4)  # L/R = 3.75: the rod adds 3.5 %
     1.0351
     """
+    samples_per_segment = whole("samples_per_segment", samples_per_segment, 1, 1_000_000)
     if design.load_torque == 0.0:
         return 0.0
     period = 2 * math.pi / design.cylinders

@@ -25,7 +25,7 @@ from .design import WIDEST_RATIO, Design
 from .errors import ParameterError
 from .progress import Progress, reporter
 from .theory import cycle_mean, effective_inertia, load_torque
-from .validation import LARGEST, SMALLEST
+from .validation import LARGEST, SMALLEST, real_array
 
 MAX_POINTS = 4_000_000
 """Largest design map (heads x gear ratios)."""
@@ -202,10 +202,7 @@ def design_map(
 
 def _grid(name: str, values, unit: str, lowest: float, highest: float) -> np.ndarray:
     """``values`` as a 1-D increasing float array in [lowest, highest], or a ParameterError."""
-    try:
-        array = np.atleast_1d(np.asarray(values, dtype=float))
-    except (TypeError, ValueError):
-        raise ParameterError(name, values, "a sequence of numbers", unit) from None
+    array = np.atleast_1d(real_array(name, values, unit))
     if array.ndim != 1 or array.size == 0:
         raise ParameterError(name, f"shape {array.shape}", "a non-empty 1-D sequence", unit)
     bad = ~np.isfinite(array) | (array < lowest) | (array > highest)
@@ -270,14 +267,34 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
     for start in range(0, x.size, POINTS_PER_REPORT):
         chunk = order[start : start + POINTS_PER_REPORT]
-        measured, _ = steady_runs(
+        measured, _, outcomes = steady_runs(
             x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
             design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS,
         )  # fmt: skip
         speed[chunk] = measured
+        _refuse_stiff(design, x[chunk], heads[chunk // ratios.size], outcomes, inv_I_eff[chunk])
         report(min(start + POINTS_PER_REPORT, x.size), x.size)
     speed = speed.reshape(shape)
     return speed, np.where(np.isnan(speed), np.nan, tau)
+
+
+def _refuse_stiff(design, ratios, heads, outcomes, inv_I_eff) -> None:
+    """Refuse a map where a run needed more than MAX_STEPS steps (as :func:`windpump.simulate`
+    refuses that design), rather than leave NaN there as if it stalled."""
+    from ._kernels import OVER_BUDGET
+
+    stiff = np.flatnonzero(outcomes == OVER_BUDGET)
+    if stiff.size:
+        i = stiff[0]
+        raise ParameterError(
+            "design",
+            f"I_eff = {1.0 / inv_I_eff[i]:.3g} kg m^2 at gear ratio {ratios[i]:.6g}, "
+            f"head {heads[i]:.6g} m",
+            "a rotor heavy enough to spin up over more than a crank revolution (increase I0 or "
+            "I1, or map other gear ratios and heads)",
+            why=f"{stiff.size} run(s) of this map needed more than the integrator's step "
+            "budget: the design is too stiff there",
+        )
 
 
 def _refined_best(ratios: np.ndarray, flow: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

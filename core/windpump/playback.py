@@ -22,6 +22,10 @@ from .validation import positive, whole
 MAX_FRAMES = 4000
 """Most frames :func:`playback_frames` returns by default."""
 
+MOST_FRAMES = 1_000_000
+"""Largest ``max_frames`` of :func:`playback_frames` and ``points`` of :func:`piston_table` (a
+run has at most ``windpump.MAX_SAMPLES`` samples to draw frames from)."""
+
 
 @dataclasses.dataclass(frozen=True)
 class CrankTable:
@@ -105,7 +109,7 @@ def playback_frames(
     ----------
     run : SimulationResult
     max_frames : int, default MAX_FRAMES
-        At least 2.
+        A whole number from 1 to ``MOST_FRAMES`` (1 gives 2 frames: the start and the end).
     max_turn : float, default pi/2
         Largest crank angle between frames when the frame budget allows [rad], > 0.
 
@@ -116,10 +120,8 @@ def playback_frames(
     >>> len(frames.t), float(frames.t[-1])
     (4000, 600.0)
     """
-    max_frames = int(positive("max_frames", max_frames))
+    max_frames = max(2, whole("max_frames", max_frames, 1, MOST_FRAMES))  # 1 gives 2, as ever
     max_turn = positive("max_turn", max_turn, "rad")
-    if max_frames < 2:
-        max_frames = 2
     # Frames dt apart turn at most max(theta_dot) dt: enough of them keep every gap <= max_turn.
     fastest_turn = float(np.max(run.theta_dot)) * float(run.t[-1])
     count = min(max_frames, max(2, math.ceil(fastest_turn / max_turn) + 1))
@@ -197,5 +199,5 @@ def piston_table(design: Design, points: int = 721) -> tuple[np.ndarray, np.ndar
     >>> [round(float(v), 4) for v in x]  # TDC, quarter turn, BDC, three quarters, TDC
     [0.0, 0.0454, 0.08, 0.0454, 0.0]
     """
-    theta = np.linspace(0.0, 2 * math.pi, int(positive("points", points)))
+    theta = np.linspace(0.0, 2 * math.pi, whole("points", points, 1, MOST_FRAMES))
     return theta, piston_position(theta, design.R, design.L)

@@ -21,8 +21,8 @@ from .errors import ParameterError
 from .loads import peak_load_torque, starts_from_rest
 from .theory import cycle_mean
 from .units import SECONDS_PER_DAY
-from .validation import non_negative
-from .wind import WindRecord, as_record, shape, weibull_scale
+from .validation import finite_array, non_negative
+from .wind import MAX_WIND, WindRecord, as_record, shape, weibull_scale
 
 
 def wind_thresholds(design: Design) -> tuple[float, float | None]:
@@ -32,7 +32,7 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     theory's stall criterion (Eq. 22, generalised) in the wind V. Above
     ``V_start = V_ref sqrt(peak load torque / (R+ T_0))`` a resting pump starts from any crank
     angle (:func:`windpump.starts_from_rest` in that wind); None when T_0 = 0 (it never starts on
-    its own). Between them a pump that runs goes on running, one at rest stays there.
+    its own), inf when R+ T_0 is too small for a double. Between them a pump that runs goes on running, one at rest stays there.
 
     Examples
     --------
@@ -46,7 +46,10 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     V_stop = design.V_ref / math.sqrt(stall_margin(design))
     if design.T_0 == 0.0:
         return V_stop, None
-    return V_stop, design.V_ref * math.sqrt(peak_load_torque(design) / design.rest_torque_on_crank)
+    at_rest = design.rest_torque_on_crank  # 0 when a tiny T_0 underflows: no wind starts it
+    if not at_rest:
+        return V_stop, math.inf
+    return V_stop, design.V_ref * math.sqrt(peak_load_torque(design) / at_rest)
 
 
 def steady_flow(design: Design, V):
@@ -61,7 +64,7 @@ def steady_flow(design: Design, V):
     ----------
     design : Design
     V : array_like
-        Wind speeds [m/s], finite and >= 0.
+        Wind speeds [m/s], from 0 to 150 (``windpump.wind.MAX_WIND``, as a record's).
 
     Returns
     -------
@@ -76,10 +79,9 @@ def steady_flow(design: Design, V):
     >>> [round(float(q) * LITRES_PER_M3, 3) for q in flows]  # [L/s]
     [0.0, 0.379, 0.627]
     """
-    speeds = np.asarray(V, dtype=float)
-    if not np.all(np.isfinite(speeds)) or np.any(speeds < 0.0):
-        bad = speeds[~(np.isfinite(speeds) & (speeds >= 0.0))].ravel()[0]
-        raise ParameterError("V", float(bad), "finite wind speeds >= 0", "m/s")
+    speeds = finite_array("V", V, "m/s", minimum=0.0)
+    if speeds.size and speeds.max() > MAX_WIND:  # as a record's (a flow of inf, otherwise)
+        raise ParameterError("V", float(speeds.max()), f"wind speeds from 0 to {MAX_WIND:g}", "m/s")
     flow = design.volume_per_revolution * _running_speed(design, speeds) / (2 * math.pi)
     return flow if flow.ndim else float(flow)
 
@@ -107,7 +109,7 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     ----------
     design : Design
     mean_wind : float
-        The site's mean wind speed [m/s], > 0.
+        The site's mean wind speed [m/s], > 0 and at most 150.
     k : float, default 2.0
         Weibull shape [-] (2: Rayleigh), 0.5 to 20.
 
@@ -121,9 +123,17 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     c = weibull_scale(mean_wind, k)
     k = shape(k)
     V_stop, V_start = wind_thresholds(design)
-    high = _expected_flow(design, V_stop, c, k)
-    low = 0.0 if V_start is None else _expected_flow(design, V_start, c, k)
+    high = _expected_flow(design, V_stop, c, k) if _ever_blows(V_stop, c, k) else 0.0
+    low = 0.0
+    if V_start is not None and _ever_blows(V_start, c, k):
+        low = _expected_flow(design, V_start, c, k)
     return float(SECONDS_PER_DAY * low), float(SECONDS_PER_DAY * high)
+
+
+def _ever_blows(V: float, c: float, k: float) -> bool:
+    """Whether winds above V come with a probability exp(-(V/c)^k) above exp(-700), the smallest
+    a double holds (beyond it the flow they bring is 0, and (V/c)^k may overflow)."""
+    return k * math.log(V / c) < math.log(700.0) if V > 0.0 else True
 
 
 def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import concurrent.futures
 import dataclasses
 import math
+import warnings
 from collections.abc import Iterable
 
 import numpy as np
@@ -20,7 +21,7 @@ from .design import UNITS, Design
 from .dynamics import simulate
 from .errors import ParameterError
 from .progress import Progress, reporter
-from .validation import finite_array
+from .validation import non_negative, positive, real, real_array
 
 FIGURES = {
     "margin": "-",
@@ -76,6 +77,10 @@ class Sweep:
         revolutions (:class:`windpump.Intermittency`); NaN when the run stalled.
     steps : ndarray of int
         Integration steps each run took.
+    failed : dict of int to str
+        The runs that failed, by their design's index, with the reason (the error's message):
+        their figures are NaN (``stalled`` False, ``steps`` 0). Empty when every run ran; see
+        :attr:`ok` and :meth:`without_failures`.
     """
 
     designs: tuple[Design, ...]
@@ -94,9 +99,24 @@ class Sweep:
     peak_to_mean: np.ndarray
     ripple: np.ndarray
     steps: np.ndarray
+    failed: dict[int, str] = dataclasses.field(default_factory=dict)
 
     def __len__(self) -> int:
         return len(self.designs)
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Whether each run ran (False where it failed: :attr:`failed` says why) [bool]."""
+        ok = np.ones(len(self.designs), dtype=bool)
+        ok[list(self.failed)] = False
+        return ok
+
+    def without_failures(self) -> Sweep:
+        """The table of the runs that ran, in order (the failed rows left out)."""
+        keep = self.ok
+        columns = {name: getattr(self, name)[keep] for name in (*INPUTS, *FIGURES)}
+        designs = tuple(d for d, kept in zip(self.designs, keep, strict=True) if kept)
+        return Sweep(designs, **columns)
 
     def columns(self) -> dict[str, np.ndarray]:
         """Every design field, the run's inputs and its figures, as columns by name."""
@@ -171,12 +191,16 @@ def sweep(
     Returns
     -------
     Sweep
+        Every run's figures; a run that fails (a ``ValueError``: a design too stiff, a per-design
+        t_end too long for its design...) does not stop the others: its row is NaN and
+        ``Sweep.failed`` holds its index and the reason, and a ``RuntimeWarning`` says how many
+        failed and why.
 
     Raises
     ------
     ParameterError
-        Naming t_end, theta0, theta_dot0 or chunksize when out of range; a run that fails raises
-        a ``ValueError`` naming its design's index.
+        Naming t_end, theta0, theta_dot0 or chunksize when out of range for every run (a value
+        given per design is checked with its run, which fails alone).
 
     Examples
     --------
@@ -193,11 +217,9 @@ def sweep(
         if not isinstance(design, Design):
             raise TypeError(f"designs[{index}] is a {type(design).__name__}, not a Design")
     count = len(designs)
-    t_end = _per_design("t_end", t_end, count, "s", 0.0)
-    theta0 = _per_design("theta0", theta0, count, "rad", None)
-    theta_dot0 = _per_design("theta_dot0", theta_dot0, count, "rad/s", 0.0)
-    if np.any(t_end <= 0.0):
-        raise ParameterError("t_end", float(t_end.min()), "a finite number > 0", "s")
+    t_end = _per_design("t_end", t_end, count, "s", positive)
+    theta0 = _per_design("theta0", theta0, count, "rad", real)
+    theta_dot0 = _per_design("theta_dot0", theta_dot0, count, "rad/s", non_negative)
     if chunksize is None:
         chunksize = max(1, math.ceil(count / MOST_CHUNKS))
     if isinstance(chunksize, bool) or not isinstance(chunksize, int) or chunksize < 1:
@@ -206,9 +228,11 @@ def sweep(
     tasks = [(designs[c], t_end[c], theta0[c], theta_dot0[c], c.start) for c in chunks]
     report = reporter(progress, count, "sweep")
     table = np.empty((count, len(FIGURES)))
+    failed: dict[int, str] = {}
     if executor is None:
         for chunk, task in zip(chunks, tasks, strict=True):
-            table[chunk] = run_chunk(*task)
+            table[chunk], failures = run_chunk(*task)
+            failed.update(failures)
             report(min(chunk.stop, count), count)
     else:
         futures = {
@@ -218,40 +242,54 @@ def sweep(
         done = 0
         for future in concurrent.futures.as_completed(futures):
             chunk = futures[future]
-            table[chunk] = future.result()
+            table[chunk], failures = future.result()
+            failed.update(failures)
             done += len(table[chunk])
             report(done, count)
     figures = dict(zip(FIGURES, table.T, strict=True))
-    figures["stalled"] = figures["stalled"].astype(bool)
-    figures["steps"] = figures["steps"].astype(np.int64)
-    return Sweep(designs, t_end, theta0, theta_dot0, **figures)
+    figures["stalled"] = figures["stalled"] == 1.0  # (NaN where a run failed: False)
+    figures["steps"] = np.nan_to_num(figures["steps"]).astype(np.int64)
+    failed = dict(sorted(failed.items()))
+    if failed:
+        warnings.warn(failure_summary(failed, count), RuntimeWarning, stacklevel=2)
+    return Sweep(designs, t_end, theta0, theta_dot0, **figures, failed=failed)
 
 
-def _per_design(name, value, count, unit, minimum) -> np.ndarray:
-    """A scalar or one value per design, as a float array of ``count`` values."""
-    array = finite_array(name, value, unit, minimum)
+def failure_summary(failed: dict[int, str], count: int, shown_runs: int = 3) -> str:
+    """One line: how many of ``count`` runs failed, and the first few with their reasons."""
+    first = "; ".join(f"designs[{i}]: {why}" for i, why in list(failed.items())[:shown_runs])
+    more = f"; and {len(failed) - shown_runs} more" if len(failed) > shown_runs else ""
+    return f"{len(failed)} of {count} runs failed (Sweep.failed lists them): {first}{more}"
+
+
+def _per_design(name, value, count, unit, check) -> np.ndarray:
+    """A scalar (``check``-ed: it holds for every run) or one real number per design (each
+    checked by its own run), as a float array of ``count`` values."""
+    array = real_array(name, value, unit)
     if array.ndim == 0:
-        return np.full(count, float(array))
+        return np.full(count, check(name, float(array), unit))
     if array.shape != (count,):
         raise ParameterError(name, f"shape {array.shape}", f"a number or {count} numbers", unit)
     return array
 
 
-def run_chunk(designs, t_end, theta0, theta_dot0, first: int) -> np.ndarray:
-    """The figures of a chunk of runs, a row per design (a task a worker runs; ``first`` is the
-    first design's index in the sweep, for error messages)."""
-    rows = np.empty((len(designs), len(FIGURES)))
+def run_chunk(designs, t_end, theta0, theta_dot0, first: int) -> tuple[np.ndarray, dict[int, str]]:
+    """The figures of a chunk of runs, a row per design (NaN where a run failed), and the runs
+    that failed by their index in the sweep (``first`` is the chunk's first) with the reason: a
+    task a worker runs."""
+    rows = np.full((len(designs), len(FIGURES)), np.nan)
+    failed = {}
     for i, design in enumerate(designs):
         try:
             rows[i] = figures_of(design, t_end[i], theta0[i], theta_dot0[i])
-        except ValueError as error:
-            raise ValueError(f"designs[{first + i}]: {error}") from error
-    return rows
+        except (ValueError, ArithmeticError) as error:
+            failed[first + i] = str(error) or type(error).__name__
+    return rows, failed
 
 
 def figures_of(design: Design, t_end: float, theta0: float, theta_dot0: float) -> list[float]:
     """One run's figures, in the order of FIGURES."""
-    run = simulate(design, float(t_end), float(theta0), float(theta_dot0))
+    run = simulate(design, float(t_end), theta0=float(theta0), theta_dot0=float(theta_dot0))
     margin = stall_margin(design)
     alpha_plus = alpha_minus = tau = math.nan
     if margin > 1.0:

@@ -16,7 +16,7 @@ import typing
 
 import numpy as np
 
-from .errors import ParameterError
+from .errors import ParameterError, cut, shown
 from .labdata import LabDataError, _is_number, check_columns, read_rows, split_header
 from .validation import positive
 
@@ -55,6 +55,8 @@ def weibull_scale(mean: float, k: float) -> float:
     5.6419
     """
     mean = positive("mean_wind", mean, "m/s")
+    if mean > MAX_WIND:
+        raise ParameterError("mean_wind", mean, f"a wind speed > 0 and <= {MAX_WIND:g}", "m/s")
     k = shape(k)
     return mean / math.gamma(1.0 + 1.0 / k)
 
@@ -113,7 +115,7 @@ def gusty(
     dt : float, default 1.0
         Sample spacing [s], > 0; at most ``MAX_RECORD`` samples.
     seed : int, numpy Generator or None
-        The same seed gives the same record.
+        A whole number >= 0; the same seed gives the same record.
 
     Returns
     -------
@@ -137,7 +139,7 @@ def gusty(
             "dt", dt, f">= {duration / (MAX_RECORD - 1):.6g} s for this duration", "s",
             why=f"the record would hold {count:.3g} samples; the bound is {MAX_RECORD}",
         )  # fmt: skip
-    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    rng = _generator(seed)
     from scipy import signal, special
 
     rho = math.exp(-dt / time_scale)
@@ -149,6 +151,18 @@ def gusty(
         z[1:], _ = signal.lfilter([math.sqrt(1.0 - rho * rho)], [1.0, -rho], shocks, zi=[rho * z0])
     V = c * (-special.log_ndtr(-z)) ** (1.0 / k)
     return _frozen(dt * np.arange(count), V)
+
+
+def _generator(seed: object) -> np.random.Generator:
+    """numpy's generator for ``seed``: None, a whole number >= 0, or a Generator itself."""
+    if isinstance(seed, np.random.Generator):
+        return seed
+    allowed = "None, a whole number >= 0 or a numpy Generator"
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)):
+        raise ParameterError("seed", seed, allowed)
+    if seed is not None and seed < 0:
+        raise ParameterError("seed", seed, allowed)
+    return np.random.default_rng(None if seed is None else int(seed))
 
 
 def as_record(wind: object, t_end: float) -> WindRecord:
@@ -216,8 +230,7 @@ def _frozen(t: np.ndarray, V: np.ndarray) -> WindRecord:
 
 
 def _short(value: object) -> str:
-    text = repr(value)
-    return text if len(text) <= 60 else text[:60] + "…"
+    return shown(value, 60)
 
 
 def read_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_CSV_BYTES) -> WindRecord:
@@ -312,4 +325,4 @@ def _speed(cell: str, line: int) -> float:
 
 
 def _cut(cell: str) -> str:
-    return cell if len(cell) <= 20 else cell[:20] + "…"
+    return cut(cell, 20)

@@ -12,7 +12,7 @@ from ._kernels.equations import windmill_torque as _torque_curve
 from .averaged import steady_speeds
 from .design import Design
 from .errors import ParameterError
-from .validation import finite_array
+from .validation import LARGEST, finite_array, flag
 
 
 def windmill_torque(design: Design, omega):
@@ -32,7 +32,7 @@ def windmill_torque(design: Design, omega):
     >>> float(windmill_torque(d.replace(T_0=0.2), 0.0))
     0.2
     """
-    x = finite_array("omega", omega, "rad/s", minimum=0.0) / design.omega_m
+    x = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST) / design.omega_m
     return _torque_curve(x, 1.0, design.T_m, design.T_0)
 
 
@@ -45,7 +45,9 @@ def windmill_power(design: Design, omega):
     >>> round(float(windmill_power(Design.seed_example(), 50.0)), 6)
     30.0
     """
-    return windmill_torque(design, omega) * finite_array("omega", omega, "rad/s", minimum=0.0)
+    return windmill_torque(design, omega) * finite_array(
+        "omega", omega, "rad/s", minimum=0.0, maximum=LARGEST
+    )
 
 
 def load_power(design: Design, omega):
@@ -60,7 +62,7 @@ def load_power(design: Design, omega):
     >>> round(float(load_power(Design.seed_example(), 40.0)), 3)
     4.709
     """
-    omega = finite_array("omega", omega, "rad/s", minimum=0.0)
+    omega = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST)
     return design.mean_load_torque / design.R_dagger * omega
 
 
@@ -216,6 +218,7 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
     >>> round(fit.T_0, 3), round(fit.T_m, 3), round(fit.omega_m, 1)
     (0.2, 0.6, 50.0)
     """
+    at_rest = flag("at_rest", at_rest)
     omega, torque = _checked_samples(omega, torque)
     fitted = 3 if at_rest else 2
     distinct = np.unique(omega if at_rest else omega[omega > 0]).size

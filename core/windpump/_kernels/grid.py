@@ -20,7 +20,8 @@ def steady_runs(
     rtol, max_steps,
 ):  # fmt: skip
     """Run every point from theta = 0 at its theta_dot0 to its t_end; return the cycle-mean crank
-    speed [rad/s] and the strokes delivered per second [1/s] over its last ``turns`` revolutions.
+    speed [rad/s] and the strokes delivered per second [1/s] over its last ``turns`` revolutions,
+    and how each run ended (the integrator's outcome; -1 for a point not run).
 
     ``base`` holds (T_m, T_0, omega_m, L_over_R), the fields every point shares. A point with
     theta_dot0 = 0, or that stalls, or that does not complete ``turns`` revolutions, gets NaN.
@@ -28,6 +29,7 @@ def steady_runs(
     points = R_dagger.size
     speed = np.full(points, np.nan)
     strokes_per_s = np.full(points, np.nan)
+    outcomes = np.full(points, -1, dtype=np.int64)
     T_m, T_0, omega_m, L_over_R = base
     for i in prange(points):
         if not theta_dot0[i] > 0.0:
@@ -40,6 +42,7 @@ def steady_runs(
         out, n, outcome, _, _, _ = integrate(
             machine, 0.0, theta_dot0[i], t_end[i], 1, None, rtol, max_steps, capacity
         )
+        outcomes[i] = outcome
         if outcome != REACHED_T_END:
             continue
         # Samples every pi from theta = 0, then the end (off the grid unless it fell on one).
@@ -52,4 +55,4 @@ def steady_runs(
         duration = out[TIME, last] - out[TIME, first]
         speed[i] = (out[THETA, last] - out[THETA, first]) / duration
         strokes_per_s[i] = (out[STROKES, last] - out[STROKES, first]) / duration
-    return speed, strokes_per_s
+    return speed, strokes_per_s, outcomes

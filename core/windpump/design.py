@@ -270,10 +270,8 @@ class Design:
         (6.4549722436790284e-06, 150.0)
         """
         squared = [self.T_m] + ([self.T_0] if self.T_0 > 0.0 else [])
-        lowest = max(
-            [SMALLEST / self.omega_m, SMALLEST / self.V_ref]
-            + [math.sqrt(SMALLEST / x) for x in squared]
-        )
+        # T_0 may shrink to 0 (its range starts there): only T_m bounds the wind from below
+        lowest = max(SMALLEST / self.omega_m, SMALLEST / self.V_ref, math.sqrt(SMALLEST / self.T_m))
         highest = min([LARGEST / self.omega_m, MAX_WIND / self.V_ref]
                       + [math.sqrt(LARGEST / x) for x in squared])  # fmt: skip
         return self.V_ref * lowest, self.V_ref * highest

@@ -10,7 +10,12 @@ from collections.abc import Iterable, Mapping, Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..validation import LARGEST, magnitude, real
+from ..validation import real
+
+# A linkage is geometry alone, so it takes a wider range than a pump's design (whose model
+# overflows past 1e12): the compass construction and Newton-Raphson hold for lengths to 1e+-100.
+SMALLEST, LARGEST = 1e-100, 1e100
+"""Link lengths [m] lie in [SMALLEST, LARGEST]; angles [rad] and signed lengths within +-LARGEST."""
 
 BOUNDED = f"a finite number from {-LARGEST:g} to {LARGEST:g}"
 """The range of an angle [rad] or a signed length [m]: past it, products of two overflow."""
@@ -18,7 +23,17 @@ BOUNDED = f"a finite number from {-LARGEST:g} to {LARGEST:g}"
 
 def link_lengths(**lengths: object) -> tuple[float, ...]:
     """The link lengths, each in [SMALLEST, LARGEST] [m], as floats in the order given."""
-    return tuple(magnitude(name, value, "m") for name, value in lengths.items())
+    return tuple(link_length(name, value) for name, value in lengths.items())
+
+
+def link_length(name: str, value: object) -> float:
+    """One link length [m] in [SMALLEST, LARGEST]."""
+    as_float = real(name, value, "m")
+    if not SMALLEST <= as_float <= LARGEST:
+        raise ParameterError(
+            name, value, f"a finite real number from {SMALLEST:g} to {LARGEST:g}", "m"
+        )
+    return as_float
 
 
 def bounded(name: str, value: object, unit: str = "") -> float:

@@ -16,8 +16,9 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..errors import NoClosure, ParameterError
-from ..validation import LARGEST, finite_array, positive
+from ..validation import finite_array, positive
 from . import _checks as check
+from ._checks import LARGEST
 from .newton import TOL, Closure, solve_loops
 from .vectors import Loop, Vector, _as_loops, names_in
 

@@ -303,10 +303,16 @@ class MachineView(View):
             cylinders=d.cylinders,
             pitch=pitch,
         )
-        left, right = c0[0] - blade * 1.05, tank_x + tank_w + 0.1 * blade
+        self._frame(d)
+
+    def _frame(self, d: windpump.Design) -> None:
+        """The figure's ranges around the whole machine, at the figure's aspect."""
+        g = self.geometry
+        blade, c0y = g["blade"], g["c0y"]
+        left, right = g["c0x"] - blade * 1.05, g["tank_x"] + g["tank_w"] + 0.1 * blade
         bottom, high = (
-            min(-d.R1, c0[1] - blade) - 0.05 * blade,
-            max(c0[1] + blade, tank_y + tank_h) + 0.4 * blade,  # room for the label
+            min(-d.R1, c0y - blade) - 0.05 * blade,
+            max(c0y + blade, g["tank_y"] + g["tank_h"]) + 0.4 * blade,  # room for the label
         )
         left, right, bottom, high = fit_aspect(left, right, bottom, high, ASPECT)
         self.figure.x_range.update(start=left, end=right)

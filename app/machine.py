@@ -26,6 +26,7 @@ from bokeh.models import (
 from bokeh.plotting import figure
 
 import windpump
+from windpump.units import LITRES_PER_M3
 
 from .figures import LABEL, empty, palette
 from .keyboard import FOCUS_CSS
@@ -34,7 +35,7 @@ from .views import View, refill
 
 PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
 MAX_FRAMES = 3000  # ~84 kB a run: 7 float32 columns
-FRAME_COLUMNS = ("t", "theta", "theta_dot", "volume", "rotor_angle", "rotor_speed", "tank_level")
+FRAME_COLUMNS = ("t", "theta", "theta_dot", "rotor_angle", "rotor_speed", "tank_level")
 SPEEDS = [
     ("0.1", "0.1× slow motion"),
     ("0.25", "0.25×"),
@@ -108,7 +109,7 @@ class MachineView(View):
         s = self.sources
         moving = moving_colors(dark)
         link_colors = [moving["blade"]] * 4 + [moving["crank"], moving["rod"]]
-        s["frames"] = empty(*FRAME_COLUMNS)
+        s["frames"] = empty(*FRAME_COLUMNS, "litres")
         s["piston_table"] = empty("theta", "x")  # and each cylinder's parts: crank_columns
         s["machine_geometry"] = ColumnDataSource({})
         s["machine_static"] = empty("xs", "ys")
@@ -332,4 +333,4 @@ class MachineView(View):
         self.scrubber.update(end=max(float(run.t[-1]), 1e-6), value=0.0)
         self.sources["frames"].data = {
             name: np.asarray(getattr(frames, name), dtype=np.float32) for name in FRAME_COLUMNS
-        }
+        } | {"litres": np.asarray(LITRES_PER_M3 * frames.volume, dtype=np.float32)}

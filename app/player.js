@@ -15,13 +15,13 @@ function hermite(values, rates, lo, h, s) {
 }
 
 // The run at time t, from the core's frames: both angles by cubic Hermite with their speeds,
-// the volume and the tank's level linearly.
+// the litres pumped and the tank's level linearly.
 function state_at(t) {
   const T = col(frames, "t"), n = T.length
   if (n == 0) return null
-  const TH = col(frames, "theta"), W = col(frames, "theta_dot"), V = col(frames, "volume")
+  const TH = col(frames, "theta"), W = col(frames, "theta_dot"), V = col(frames, "litres")
   const ROTOR = col(frames, "rotor_angle"), RW = col(frames, "rotor_speed"), LEVEL = col(frames, "tank_level")
-  const at = (k) => ({theta: TH[k], rotor: ROTOR[k], volume: V[k], level: LEVEL[k]})
+  const at = (k) => ({theta: TH[k], rotor: ROTOR[k], litres: V[k], level: LEVEL[k]})
   if (t <= T[0] || n == 1) return at(0)
   if (t >= T[n - 1]) return at(n - 1)
   let lo = 0, hi = n - 1
@@ -29,7 +29,7 @@ function state_at(t) {
   const h = T[hi] - T[lo], s = (t - T[lo]) / h
   const linear = (X) => X[lo] + s * (X[hi] - X[lo])
   return {theta: hermite(TH, W, lo, h, s), rotor: hermite(ROTOR, RW, lo, h, s),
-          volume: linear(V), level: linear(LEVEL)}
+          litres: linear(V), level: linear(LEVEL)}
 }
 
 // Cylinder k's crank pin and piston pin at a crank angle: the core's table over one revolution
@@ -73,7 +73,7 @@ function draw(t) {
   const depth = Math.max(here.level * g.tank_h, 1e-9)
   water.setv({data: {x: [g.tank_x + g.tank_w / 2], y: [g.tank_y + depth / 2], width: [g.tank_w], height: [depth]}}, {sync: false})
   label.setv({data: {x: [label.data.x[0]], y: [label.data.y[0]],
-    text: [`t = ${t.toFixed(1)} s   V = ${(1e3 * here.volume).toFixed(1)} L`]}}, {sync: false})
+    text: [`t = ${t.toFixed(1)} s   V = ${here.litres.toFixed(1)} L`]}}, {sync: false})
   cursor.setv({data: {t: [t]}}, {sync: false})
   if (Math.abs(scrubber.value - t) > 1e-9) { P.from_player = true; scrubber.setv({value: t}, {sync: false}); P.from_player = false }
   P.t = t; P.drawn += 1; P.theta = th; P.top = top0

@@ -430,6 +430,8 @@ def test_the_machine_gets_the_runs_frames_once_per_run(app):
     frames = app.sources["frames"].data
     assert frames["t"][0] == 0 and frames["t"][-1] == pytest.approx(600.0)
     np.testing.assert_allclose(frames["theta"], np.interp(frames["t"], run.t, run.theta), rtol=1e-6)
+    litres = 1e3 * np.interp(frames["t"], run.t, run.volume)  # the label's, in L
+    np.testing.assert_allclose(frames["litres"], litres, rtol=1e-6, atol=1e-3)
     table = app.sources["piston_table"].data
     np.testing.assert_allclose(table["x"], windpump.piston_position(table["theta"], SEED.R, SEED.L))
     assert app.pump.machine.scrubber.end == pytest.approx(600.0)

@@ -18,6 +18,7 @@ from bokeh.models import ColumnDataSource
 
 import windpump
 from windpump.labdata import LabDataError, check_file_size
+from windpump.site import kick_in_wind
 from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY, SECONDS_PER_HOUR
 from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
@@ -177,7 +178,13 @@ class WindTab(Tab):
 
     def _update_day(self, design, inputs) -> None:
         record = self.record(inputs)
-        run_of = (design, record, inputs.theta0, inputs.theta_dot0)
+        # keyed by the kick the day gets: a windmill that starts on its own ignores the slider's
+        run_of = (
+            design,
+            record,
+            inputs.theta0,
+            kick_in_wind(design, inputs.theta_dot0),
+        )
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         try:

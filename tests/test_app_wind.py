@@ -192,3 +192,15 @@ def test_the_stops_and_starts_legend_lists_only_what_the_day_has(app):
     run = app.wind.last_run
     assert len(run.stops) >= 1 and len(run.starts) >= 1
     assert legend_labels(app.wind.day_wind) == ["stops", "starts"]
+
+
+def test_the_kick_slider_does_not_rerun_the_day_of_a_windmill_that_starts_on_its_own(app):
+    """Such a windmill is let go from rest (windpump.site.kick_in_wind): the day is the same run."""
+    app.set_values(T_0=0.4)
+    assert windpump.starts_from_rest(app.inputs.design())
+    day = app.wind.last_run
+    assert day.theta_dot[0] == 0.0
+    app.set_values(theta_dot0=5.0)
+    assert app.wind.last_run is day
+    app.set_values(T_0=0.0)  # now it needs the kick: a new day, kicked at 5 rad/s
+    assert app.wind.last_run.theta_dot[0] == 5.0

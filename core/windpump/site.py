@@ -269,6 +269,28 @@ class WindRun:
         return float(np.mean(self.run.wind_speed))
 
 
+def kick_in_wind(design: Design, kick: float) -> float:
+    """The crank speed [rad/s] a day in the wind starts with (:func:`run_in_wind`'s policy): 0
+    for a windmill that starts from rest on its own (:func:`windpump.starts_from_rest`), else
+    ``kick``.
+
+    Parameters
+    ----------
+    design : Design
+        The pump, its rotor at V_ref.
+    kick : float
+        Crank speed offered at t = 0 [rad/s], >= 0.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> kick_in_wind(Design.seed_example(), 3.0), kick_in_wind(Design.seed_example().replace(T_0=0.4), 3.0)
+    (3.0, 0.0)
+    """
+    kick = non_negative("kick", kick, "rad/s")
+    return 0.0 if starts_from_rest(design) else kick
+
+
 def run_in_wind(design: Design, record, theta0: float = math.pi / 2, kick: float = 3.0) -> WindRun:
     """Run a design in full through a whole wind record: what the pump does on a real day.
 
@@ -322,8 +344,7 @@ def run_in_wind(design: Design, record, theta0: float = math.pi / 2, kick: float
     duration = float(checked.t[-1])
     if not duration > 0.0:
         raise ParameterError("record", f"last time {duration!r} s", "a record ending after t = 0")
-    if starts_from_rest(design):
-        kick = 0.0
+    kick = kick_in_wind(design, kick)
     run = simulate(
         design,
         duration,

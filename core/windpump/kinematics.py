@@ -130,6 +130,20 @@ def delivering_faces(segment, cylinders: int, double_acting: bool):
     return np.where(behind >= cylinders, 1, -1 if double_acting else 0)
 
 
+def cylinder_angles(theta, cylinders: int) -> np.ndarray:
+    """Each cylinder's own crank angle [rad], shape ``(cylinders,) + theta.shape``: cylinder k
+    runs ``2 pi k/n`` behind the first (n = cylinders), as the kernels' faces have it.
+
+    Examples
+    --------
+    >>> import math
+    >>> (cylinder_angles(math.pi, 2) / math.pi).tolist()
+    [1.0, 0.0]
+    """
+    lags = 2 * math.pi * np.arange(cylinders) / cylinders
+    return np.asarray(theta)[None, ...] - lags.reshape((cylinders,) + (1,) * np.ndim(theta))
+
+
 def face_flows(theta, theta_dot, design):
     """Flow of every face of every cylinder [m^3/s], shape ``(faces, samples)``.
 
@@ -150,8 +164,8 @@ def face_flows(theta, theta_dot, design):
     theta_dot = finite_array("theta_dot", theta_dot, "rad/s")
     n = design.cylinders
     flows = np.zeros((2 * n,) + theta.shape)
-    for k in range(n):
-        phi = np.mod(theta - 2 * math.pi * k / n, 2 * math.pi)
+    for k, own in enumerate(cylinder_angles(theta, n)):
+        phi = np.mod(own, 2 * math.pi)
         rate = design.A * design.R * np.abs(_lever(phi, design.L_over_R)) * theta_dot
         flows[2 * k] = np.where(phi > math.pi, rate, 0.0)
         if design.double_acting:

@@ -16,7 +16,7 @@ import numpy as np
 
 from .design import Design
 from .dynamics import SimulationResult
-from .kinematics import piston_position
+from .kinematics import cylinder_angles, piston_position
 from .validation import positive, whole
 
 MAX_FRAMES = 4000
@@ -140,16 +140,9 @@ def playback_frames(
         rotor_angle=design.R_dagger * theta,
         rotor_speed=design.R_dagger * theta_dot,
         tank_level=tank_level,
-        pistons=piston_position(_cylinder_angles(theta, design.cylinders), design.R, design.L),
+        pistons=piston_position(cylinder_angles(theta, design.cylinders), design.R, design.L),
         table=crank_table(design),
     )
-
-
-def _cylinder_angles(theta: np.ndarray, cylinders: int) -> np.ndarray:
-    """Each cylinder's own crank angle [rad], shape (cylinders,) + theta.shape: cylinder k runs
-    2 pi k / n behind the first (as :func:`windpump.face_flows` has it)."""
-    lags = 2 * math.pi * np.arange(cylinders) / cylinders
-    return np.asarray(theta)[None, ...] - lags.reshape((cylinders,) + (1,) * np.ndim(theta))
 
 
 def crank_table(design: Design, points: int = 721) -> CrankTable:
@@ -177,7 +170,7 @@ def crank_table(design: Design, points: int = 721) -> CrankTable:
     (-0.04, 0.19)
     """
     angles = np.linspace(0.0, 2 * math.pi, whole("points", points, 2, 100_000))
-    own = _cylinder_angles(angles, design.cylinders)
+    own = cylinder_angles(angles, design.cylinders)
     piston = piston_position(own, design.R, design.L)
     return CrankTable(
         theta=angles,

@@ -8,10 +8,11 @@ import math
 import typing
 
 from . import theory
+from ._kernels import equations
 from .errors import DesignFileError, ParameterError, shown
 from .validation import LARGEST as LARGEST
 from .validation import SMALLEST as SMALLEST
-from .validation import flag, magnitude, positive, rod_ratio, whole
+from .validation import flag, fraction, magnitude, positive, rod_ratio, whole
 from .wind import MAX_WIND
 
 # Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
@@ -32,13 +33,28 @@ UNITS = {
     "double_acting": "",
     "T_0": "N m",
     "V_ref": "m/s",
+    "m_r": "kg",
+    "eta_t": "",
+    "L_main": "m",
+    "D_main": "m",
+    "f_main": "",
+    "d_leak": "m",
+    "Cd_leak": "",
 }
+
+REAL_MACHINE = ("m_r", "eta_t", "L_main", "D_main", "f_main", "d_leak", "Cd_leak")
+"""The fields of the real machine (beyond the paper): their defaults are its ideal machine."""
+
+MAX_FRICTION_FACTOR = 0.2
+"""Largest Darcy friction factor f_main [-]: past the roughest pipe of a Moody chart (~0.1)."""
 
 MAX_CYLINDERS = 6
 
 SCHEMA = "windpump.design"
-SCHEMA_VERSION = 1
-"""What a design file says it is, and the version of its layout (:meth:`Design.to_json`)."""
+SCHEMA_VERSION = 2
+"""What a design file says it is, and the version of its layout (:meth:`Design.to_json`).
+Version 2 added the real machine's fields (``REAL_MACHINE``); a version 1 file is still read (its
+design is the ideal machine)."""
 
 WIDEST_RATIO = 1e50
 """Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
@@ -95,6 +111,28 @@ class Design:
         Windmill torque at rest [N m], 0 <= T_0 < T_m: the torque curve becomes
         ``T = T_0 + (T_m - T_0) x (2 - x)`` (Eq. 11 when T_0 = 0; the paper's footnote 7 notes a
         real windmill has torque at rest, which decides whether it starts on its own).
+    V_ref : float, default 5.0
+        Wind speed the curve (T_m, omega_m, T_0) is measured at [m/s], at most 150.
+    m_r : float, default 0.0
+        Reciprocating mass per cylinder: piston, rod and pump rod [kg], >= 0. The pump stands
+        vertical: the mass adds ``m_r sum x_c'^2`` to the inertia on the crank and its weight
+        ``m_r g sum x_c'`` to the torque (docs/model.rst, "The real machine").
+    eta_t : float, default 1.0
+        Transmission efficiency of the chain and sprockets [-], 0 < eta_t <= 1: the crank gets
+        ``eta_t R+ T``.
+    L_main : float, default 0.0
+        Length of the rising main [m], >= 0; 0: no pipe friction.
+    D_main : float, default 0.05
+        Inner diameter of the rising main [m], > 0.
+    f_main : float, default 0.02
+        Darcy friction factor of the rising main [-], 0 to 0.2: the friction head is
+        ``h_f = f_main (L_main / D_main) (Q / a_main)^2 / (2 g)``.
+    d_leak : float, default 0.0
+        Diameter of a leak hole through each piston face [m], 0 (none) up to, not including, the
+        bore: it passes up to ``q_L = Cd_leak (pi d_leak^2 / 4) sqrt(2 g h)``, so a slow piston
+        delivers nothing and loads the crank little (the pump can start).
+    Cd_leak : float, default 0.6
+        The leak hole's discharge coefficient [-], 0 < Cd_leak <= 1.
 
     Examples
     --------
@@ -122,6 +160,13 @@ class Design:
     double_acting: bool = False
     T_0: float = 0.0
     V_ref: float = 5.0
+    m_r: float = 0.0
+    eta_t: float = 1.0
+    L_main: float = 0.0
+    D_main: float = 0.05
+    f_main: float = 0.02
+    d_leak: float = 0.0
+    Cd_leak: float = 0.6
 
     def __post_init__(self) -> None:
         for field in dataclasses.fields(self):
@@ -131,8 +176,12 @@ class Design:
                 value = whole(name, value, 1, MAX_CYLINDERS)
             elif name == "double_acting":
                 value = flag(name, value)
-            elif name in ("h", "T_0"):  # 0 too (T_0 is held below T_m below)
+            elif name in ("h", "T_0", "m_r", "L_main", "d_leak"):  # 0 too (see below)
                 value = magnitude(name, value, UNITS[name], zero=True)
+            elif name in ("eta_t", "Cd_leak"):  # a fraction
+                value = fraction(name, value)
+            elif name == "f_main":
+                value = magnitude(name, value, zero=True, highest=MAX_FRICTION_FACTOR)
             elif name == "V_ref":  # a wind speed, as a record's
                 value = magnitude(name, value, UNITS[name], highest=MAX_WIND)
             else:
@@ -155,6 +204,14 @@ class Design:
                 f"< T_m = {self.T_m!r} N m",
                 "N m",
                 why="the torque at rest must lie below the peak torque",
+            )
+        if self.d_leak >= self.bore:
+            raise ParameterError(
+                "d_leak",
+                self.d_leak,
+                f"from 0 to below the bore = {self.bore!r} m",
+                "m",
+                why="the leak hole goes through the piston",
             )
 
     @classmethod
@@ -287,7 +344,7 @@ class Design:
         >>> import json
         >>> file = json.loads(d.to_json())
         >>> file["schema"], file["version"], file["fields"]["h"], file["units"]["h"]
-        ('windpump.design', 1, 3.0, 'm')
+        ('windpump.design', 2, 3.0, 'm')
         """
         document = {
             "schema": SCHEMA,
@@ -302,7 +359,7 @@ class Design:
         """A design from the JSON text :meth:`to_json` writes.
 
         ``fields`` must name every field without a default (R0 ... h); those with one (rho_w,
-        g, cylinders, double_acting, T_0, V_ref) may be left out. ``units``, when present, must
+        g, cylinders, double_acting, T_0, V_ref and the real machine's fields) may be left out. ``units``, when present, must
         be this version's (SI units throughout).
 
         Raises
@@ -383,6 +440,31 @@ class Design:
         return self.omega_m * (1.0 + math.sqrt(self.T_m / (self.T_m - self.T_0)))
 
     @property
+    def is_ideal(self) -> bool:
+        """Whether this is the paper's ideal machine: no reciprocating mass, a lossless chain, no
+        pipe friction (L_main or f_main 0) and a tight piston (the real machine's defaults)."""
+        return (
+            self.m_r == 0.0
+            and self.eta_t == 1.0
+            and (self.L_main == 0.0 or self.f_main == 0.0)
+            and self.d_leak == 0.0
+        )
+
+    @property
+    def leak_capacity(self) -> float:
+        """Most the leak hole passes against the static head, q_L = Cd_leak (pi d_leak^2 / 4)
+        sqrt(2 g h) [m^3/s]; 0 without a hole."""
+        return float(equations.leak_capacity(self.d_leak, self.Cd_leak, self.g, self.h))
+
+    @property
+    def friction_coefficient(self) -> float:
+        """The rising main's friction head per flow squared, h_f / Q^2 = f_main (L_main / D_main)
+        / (2 g a_main^2) [s^2/m^5], a_main = pi D_main^2 / 4; 0 without a pipe."""
+        return float(
+            equations.friction_coefficient(self.f_main, self.L_main, self.D_main, self.g)
+        )
+
+    @property
     def bore(self) -> float:
         """Piston diameter sqrt(4 A / pi) [m], from its cross-section A."""
         return math.sqrt(4.0 * self.A / math.pi)
@@ -411,7 +493,9 @@ def _design_fields(document: object) -> dict[str, typing.Any]:
         raise DesignFileError(f'not a design file: it needs "schema": "{SCHEMA}"')
     version = document.get("version")
     if isinstance(version, bool) or not isinstance(version, int) or version < 1:
-        raise DesignFileError(f'"version" = {shown(version)} is not allowed: it must be 1')
+        raise DesignFileError(
+            f'"version" = {shown(version)} is not allowed: it must be 1 to {SCHEMA_VERSION}'
+        )
     if version > SCHEMA_VERSION:
         raise DesignFileError(
             f"version {shown(version)} was written by a newer windpump; this one reads version "
@@ -420,9 +504,12 @@ def _design_fields(document: object) -> dict[str, typing.Any]:
     fields = document.get("fields")
     if not isinstance(fields, dict):
         raise DesignFileError('"fields" must be an object of field names and values')
-    unknown = sorted(set(fields) - set(UNITS))
+    known = [name for name in UNITS if version > 1 or name not in REAL_MACHINE]
+    unknown = sorted(set(fields) - set(known))
     if unknown:
-        raise DesignFileError(f"unknown field(s) {shown(unknown)}; the fields are {list(UNITS)}")
+        raise DesignFileError(
+            f"unknown field(s) {shown(unknown)}; the fields of version {version} are {known}"
+        )
     required = [f.name for f in dataclasses.fields(Design) if f.default is dataclasses.MISSING]
     missing = [name for name in required if name not in fields]
     if missing:

@@ -135,6 +135,17 @@ rho_w g h A R multiplies five of them; tests/test_edges.py probes the corners). 
 overflowed to inf and the wind thresholds divided by zero."""
 
 
+def fraction(name: str, value: object, unit: str = "") -> float:
+    """Return ``value`` as a float if it lies in (0, 1]: an efficiency or a coefficient."""
+    allowed = "a real number above 0 and at most 1"
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(name, value, allowed, unit)
+    as_float = _float(value)
+    if not 0.0 < as_float <= 1.0:
+        raise ParameterError(name, value, allowed, unit)
+    return as_float
+
+
 def magnitude(
     name: str, value: object, unit: str = "", zero: bool = False, highest: float = LARGEST
 ) -> float:

@@ -36,7 +36,7 @@ def steady_runs(
             continue
         machine = Machine(
             R_dagger[i], T_m, T_0, omega_m, inv_I_eff[i], load_torque[i], L_over_R, cylinders,
-            double_acting, None,
+            double_acting, None, None,
         )  # fmt: skip
         capacity = int(1.1 * theta_dot0[i] * t_end[i] / math.pi) + 64
         out, n, outcome, _, _, _ = integrate(

@@ -539,8 +539,8 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     swept = design.stroke_volume * (run.strokes - run.strokes[0])
     volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16)
     friction = leak = np.zeros_like(run.t)
-    if run.delivered is not None:  # the real machine
-        volume = swept if design.leak_capacity == 0.0 else run.delivered
+    if run.leaked is not None:  # the real machine
+        volume = swept if design.leak_capacity == 0.0 else swept - run.leaked
         flow = face_flows(run.theta, run.theta_dot, design).sum(axis=0)
         friction = run.friction_loss
         # The kernel integrates the load's excess over the static head; the static head's work

@@ -78,7 +78,7 @@ class KernelRun(typing.NamedTuple):
     stops: np.ndarray  # times the crank came to rest and waited for the wind [s]
     starts: np.ndarray  # times a resting crank began to turn [s]
     # The real machine's quadratures (None for the ideal machine's run):
-    delivered: np.ndarray | None = None  # volume delivered into the rising main [m^3]
+    leaked: np.ndarray | None = None  # volume swept but leaked back through the holes [m^3]
     friction_loss: np.ndarray | None = None  # work lost to the rising main's friction [J]
     leak_loss: np.ndarray | None = None  # the rest of the load's work: the leak hole's [J]
 
@@ -134,7 +134,7 @@ def run(
         int(steps),
         stops=times[kinds == STOP].copy(),
         starts=times[kinds == START].copy(),
-        delivered=real[0] if real else None,
+        leaked=real[0] if real else None,
         friction_loss=real[1] if real else None,
         leak_loss=real[2] if real else None,
     )

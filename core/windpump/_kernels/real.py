@@ -14,7 +14,7 @@ and Lambda the closed-form work of the weights and of the static head ``rho_w g 
 every face in its delivering half (as the ideal machine's): what is left to integrate is the
 windmill's transmitted work less the *excess* of the load over the static head (the rising main's
 friction; a leak hole's relief, negative, where a slow face delivers nothing). The quadratures
-``W = (shaft work, delivered volume, friction loss, excess load work)`` are integrated with it, so
+``W = (shaft work, volume leaked back, friction loss, excess load work)`` are integrated with it, so
 a Runge-Kutta step keeps their linear relation exactly and the energy balance closes to round-off
 as the ideal machine's does; the leak's loss is the static head's work on the swept volume plus
 the excess, less the water lifted and the friction (:func:`windpump.power_budget`).
@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import functools
 import math
+import typing
 
 from numba import types
 from numba.extending import overload
@@ -47,14 +48,14 @@ from .model import (
 )
 from .wind import wind_scale
 
-JIT_OPTIONS: dict = OPTIONS
+JIT_OPTIONS: typing.Any = OPTIONS  # (numba's stubs type the options narrower than it takes)
 
 lever_arm_slope = kernel(equations.lever_arm_slope)  # (d^2x/dphi^2)/R [-]
 delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 
 ROW = 8  # a stage's row: the inertia ratio j, then |lever arm| of each cylinder's delivering face
-WORKS = 4  # the real machine's quadratures: shaft work, delivered volume, friction, excess load
+WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
 # -- Typed entry points: the ideal machine's expression, or the real machine's. -----------------
@@ -183,12 +184,9 @@ def _real_angle_rates(x0, t, aux, row, machine):
     # relief) is integrated, and so is the water lifted and the friction.
     excess = load - machine.load_torque * arms
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
-    return (
-        rate,
-        per_radian,
-        per_radian,
-        (drive, Q * per_radian, real.rho_g * h_f * Q * per_radian, excess),
-    )
+    leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
+    friction = real.rho_g * h_f * Q * per_radian
+    return rate, per_radian, per_radian, (drive, leaked, friction, excess)
 
 
 def _real_time_rates(t, theta, theta_dot, row, segment, machine):
@@ -200,7 +198,9 @@ def _real_time_rates(t, theta, theta_dot, row, segment, machine):
     j_slope = 2.0 * real.mass_ratio * sum_slope  # dj/dtheta
     acceleration = (torque * machine.inv_I_eff - 0.5 * j_slope * theta_dot * theta_dot) / row[0]
     excess = (load - machine.load_torque * arms) * theta_dot
-    return theta_dot, acceleration, 0.0, (drive * theta_dot, Q, real.rho_g * h_f * Q, excess)
+    leaked = real.AR * arms * theta_dot - Q
+    works = (drive * theta_dot, leaked, real.rho_g * h_f * Q, excess)
+    return theta_dot, acceleration, 0.0, works
 
 
 @kernel

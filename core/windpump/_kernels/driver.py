@@ -433,7 +433,8 @@ def integrate(
             if at_kink:  # past it, up to round-off in its time: on from here in a new split
                 if at_wind_kink:
                     kink = next_kink(max(t, kink), machine.wind)
-                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+                    m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+                # (a leak's kink keeps m: the split before it may be a segment's short tail)
                 landed = True
                 break
         if i == m_seg and not landed:  # the segment is done: size the next one's sub-steps

@@ -368,22 +368,31 @@ def next_leak_kink(theta, theta_dot, segment, machine):
 
 
 @kernel
-def _leak_kink_near(base, guess, target, sign, L_over_R):
-    """The angle psi in (0, pi) past the dead centre ``base`` where sign * a(base + psi) = target,
-    by Newton's method from ``guess``; NaN when it does not converge there."""
-    psi = guess
-    for _ in range(12):
-        residual = sign * lever_arm(base + psi, L_over_R) - target
-        slope = sign * lever_arm_slope(base + psi, L_over_R)
-        if slope == 0.0:
-            return math.nan
-        step = residual / slope
-        psi -= step
-        if not 0.0 < psi < math.pi:
-            return math.nan
-        if abs(step) <= 1e-15 * psi:
+def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
+    """The angle psi past a dead centre (0 or pi) where the face's |lever arm|
+    ``sign * a(dead_centre + psi)`` reaches ``target``: on its rising side (psi < pi/2) or its
+    falling side. Newton's method inside a shrinking bracket (|a| is 1 at pi/2 and 0 at the dead
+    centres); NaN when the arm never reaches the target."""
+    if target >= 1.0:
+        return math.nan
+    lo, hi = (0.0, 0.5 * math.pi) if rising else (0.5 * math.pi, math.pi)
+    psi = target if rising else math.pi - target
+    for _ in range(100):
+        residual = sign * lever_arm(dead_centre + psi, L_over_R) - target
+        if residual == 0.0:
             return psi
-    return psi if abs(residual) <= 1e-12 * target else math.nan
+        if (residual < 0.0) == rising:
+            lo = psi
+        else:
+            hi = psi
+        slope = sign * lever_arm_slope(dead_centre + psi, L_over_R)
+        guess = psi - residual / slope if slope != 0.0 else -1.0
+        if not lo < guess < hi:
+            guess = 0.5 * (lo + hi)
+        if abs(guess - psi) <= 4e-16 * guess or hi - lo <= 4e-16 * hi:
+            return guess
+        psi = guess
+    return psi
 
 
 @kernel
@@ -400,11 +409,12 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
         if delivering_face(segment, k, machine) == NEITHER:
             continue
         lag = phase(k, machine)
-        base = math.floor((middle - lag) / math.pi) * math.pi  # the face's dead centre
+        half = math.floor((middle - lag) / math.pi)  # the face's half turn: it began at half pi
+        dead_centre = math.pi * (half % 2)  # reduced: Newton's iterates keep their digits
         sign = 1.0 if lever_arm(middle - lag, machine.L_over_R) > 0.0 else -1.0
-        for guess in (target, math.pi - target):  # near the dead centre it leaves, and the next
-            psi = _leak_kink_near(base, guess, target, sign, machine.L_over_R)
-            kink = lag + base + psi
+        for rising in (True, False):  # near the dead centre it left, and near the next
+            psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
+            kink = lag + half * math.pi + psi
             if theta + 1e-9 * width < kink < end - 1e-9 * width and kink < best:
                 best = kink
     return best

@@ -540,8 +540,9 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16)
     friction = leak = np.zeros_like(run.t)
     if run.leaked is not None:  # the real machine
-        volume = swept if design.leak_capacity == 0.0 else swept - run.leaked
-        flow = face_flows(run.theta, run.theta_dot, design).sum(axis=0)
+        if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
+            volume = swept - run.leaked
+            flow = face_flows(run.theta, run.theta_dot, design).sum(axis=0)
         friction = run.friction_loss
         # The kernel integrates the load's excess over the static head; the static head's work
         # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's.

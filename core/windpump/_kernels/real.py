@@ -142,8 +142,9 @@ def _entry(function):
 
 
 @kernel
-def _sums(row, theta, segment, machine):
-    """Fill ``row`` at theta; return (sum a_c, sum a_c a_c') over every cylinder."""
+def _sums(row, theta, segment, machine, slopes):
+    """Fill ``row`` at theta; return (sum a_c, sum a_c a_c') over every cylinder (the second
+    only with ``slopes``: the time domain's J')."""
     real = machine.real
     squares = sum_a = sum_slope = 0.0
     for k in range(machine.cylinders):
@@ -151,7 +152,8 @@ def _sums(row, theta, segment, machine):
         a = lever_arm(phi, machine.L_over_R)
         squares += a * a
         sum_a += a
-        sum_slope += a * lever_arm_slope(phi, machine.L_over_R)
+        if slopes and real.mass_ratio != 0.0:
+            sum_slope += a * lever_arm_slope(phi, machine.L_over_R)
         row[1 + k] = abs(a) if delivering_face(segment, k, machine) != NEITHER else 0.0
     row[0] = 1.0 + real.mass_ratio * squares
     return sum_a, sum_slope
@@ -166,6 +168,8 @@ def _face_loads(theta_dot, row, machine):
     for k in range(machine.cylinders):
         Q += delivered_flow(real.AR * row[1 + k] * theta_dot, real.q_L)
         arms += row[1 + k]
+    if real.q_L == 0.0 and real.friction == 0.0:  # a tight piston, no pipe: the static head
+        return machine.load_torque * arms, Q, 0.0, arms
     h_f = real.friction * Q * Q
     load = 0.0
     for k in range(machine.cylinders):
@@ -191,7 +195,7 @@ def _real_angle_rates(x0, t, aux, row, machine):
 
 def _real_time_rates(t, theta, theta_dot, row, segment, machine):
     real = machine.real
-    sum_a, sum_slope = _sums(row, theta, segment, machine)
+    sum_a, sum_slope = _sums(row, theta, segment, machine, True)
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
     load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
     torque = real.eta_t * drive - load + real.weight_torque * sum_a
@@ -205,6 +209,8 @@ def _real_time_rates(t, theta, theta_dot, row, segment, machine):
 
 @kernel
 def _weight_work(theta, segment, machine):
+    if machine.real.weight_torque == 0.0:
+        return 0.0
     start = segment_start(segment, machine)
     total = 0.0
     for k in range(machine.cylinders):
@@ -217,6 +223,8 @@ def _weight_work(theta, segment, machine):
 
 @kernel
 def _weight_torque(theta, machine):
+    if machine.real.weight_torque == 0.0:
+        return 0.0
     total = 0.0
     for k in range(machine.cylinders):
         total += lever_arm(theta - phase(k, machine), machine.L_over_R)
@@ -225,6 +233,8 @@ def _weight_torque(theta, machine):
 
 @kernel
 def _inertia_ratio(theta, machine):
+    if machine.real.mass_ratio == 0.0:
+        return 1.0
     squares = 0.0
     for k in range(machine.cylinders):
         a = lever_arm(theta - phase(k, machine), machine.L_over_R)
@@ -283,7 +293,7 @@ def _no_row(row, theta, segment, machine):
 
 
 def _fill_row(row, theta, segment, machine):
-    _sums(row, theta, segment, machine)
+    _sums(row, theta, segment, machine, False)
 
 
 _entry(fill_row)(_no_row, _fill_row)

@@ -151,3 +151,38 @@ def test_any_real_machine_closes_its_energy_and_delivers_at_most_what_it_sweeps(
 def test_the_kernel_returns_no_real_rows_for_the_ideal_machine():
     run = _kernels.run(kernel_machine(SEED), math.pi / 2, 3.0, 1.0, 16, None, 1e-8, 10**6, 64)
     assert run.leaked is None and run.friction_loss is None
+
+
+def test_in_a_lull_a_leaky_pump_rests_and_starts_again_by_its_torque_at_rest():
+    from real_reference import torque_at_rest
+
+    design = SEED.replace(T_0=0.1, d_leak=0.004, m_r=0.5, cylinders=2)
+    lull = ([0.0, 600.0, 610.0, 2400.0, 2410.0], [5.0, 5.0, 0.0, 0.0, 6.0])  # calm air
+    run = windpump.simulate(design, 3600.0, theta_dot0=0.0, wind=lull, sample_dt=1.0)
+    assert len(run.stops) >= 1 and len(run.starts) >= 2 and not run.stalled
+    width = math.pi / design.cylinders
+    for times, moving in ((run.stops, False), (run.starts, True)):
+        for t in times:
+            theta = float(np.interp(t, run.t, run.theta))
+            V = float(np.interp(t, *lull))
+            mid = (math.floor(theta / width) + 0.5) * width
+            net = torque_at_rest(design.in_wind(max(V, 1e-3)), theta, mid)
+            assert (net > 0.0) == moving or abs(net) < 1e-9
+    assert windpump.power_budget(run).imbalance < 1e-9
+
+
+def test_a_design_maps_simulated_points_run_the_real_machine():
+    from windpump._kernels.grid import steady_runs
+    from windpump.dynamics import MAX_STEPS, RTOL, kernel_real_base
+
+    design = DESIGNS["every effect"]
+    base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
+    speed, _, _ = steady_runs(
+        np.array([design.R_dagger]), np.array([1 / design.I_eff]),
+        np.array([design.load_torque]), np.array([23.0]), np.array([300.0]), base, 1, False, 5,
+        RTOL, MAX_STEPS, kernel_real_base(design),
+    )  # fmt: skip
+    run = windpump.simulate(design, 300.0, theta_dot0=23.0)
+    marks, times = windpump.revolution_marks(run.t, run.theta)
+    expected = 5 * 2 * math.pi / (times[-1] - times[-6])
+    assert speed[0] == pytest.approx(expected, rel=1e-3)

@@ -599,17 +599,26 @@ def kernel_machine(design: Design, record: WindRecord | None = None):
 
 def kernel_real(design: Design):
     """The real machine's terms as the compiled integrator takes them (``_kernels.Real``)."""
-    from . import _kernels
+    from ._kernels.real import real_at
 
-    return _kernels.Real(
+    return real_at(kernel_real_base(design), 1.0 / design.I_eff, design.load_torque)
+
+
+def kernel_real_base(design: Design):
+    """The real machine's terms a design map's points share (``_kernels.real.RealBase``), or
+    None for the ideal machine."""
+    if design.is_ideal:
+        return None
+    from ._kernels.real import RealBase
+
+    return RealBase(
         eta_t=design.eta_t,
         weight_torque=design.m_r * design.g * design.R,
-        mass_ratio=design.m_r * design.R**2 / design.I_eff,
+        mass_inertia=design.m_r * design.R**2,
         AR=design.A * design.R,
-        q_L=design.leak_capacity,
+        leak_per_root_head=design.leak_capacity / math.sqrt(design.h) if design.h > 0 else 0.0,
         friction=design.friction_coefficient,
         rho_g=design.rho_w * design.g,
-        h=design.h,
     )
 
 

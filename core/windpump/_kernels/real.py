@@ -37,6 +37,7 @@ from .dopri5 import B1, B3, B4, B5, B6, D1, D3, D4, D5, D6, D7, dense_value
 from .jit import OPTIONS, kernel
 from .model import (
     NEITHER,
+    Real,
     delivering_face,
     lever_arm,
     load_on_crank,
@@ -431,6 +432,40 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
 
 
 _entry(next_leak_kink)(lambda theta, theta_dot, segment, machine: math.inf, _next_leak_kink)
+
+
+class RealBase(typing.NamedTuple):
+    """The real machine's terms that do not change with the gear ratio and the head (a design
+    map's points share them); :func:`real_at` completes them."""
+
+    eta_t: float  # [-]
+    weight_torque: float  # m_r g R [N m]
+    mass_inertia: float  # m_r R^2 [kg m^2]
+    AR: float  # A R [m^3/rad]
+    leak_per_root_head: float  # Cd a_L sqrt(2 g): q_L / sqrt(h) [m^2.5/s]
+    friction: float  # h_f / Q^2 [s^2/m^5]
+    rho_g: float  # rho_w g [N/m^3]
+
+
+def real_at(base, inv_I_eff, load_torque):
+    """The :class:`~.model.Real` of a design with this base, 1 / I_eff [1/(kg m^2)] and load
+    rho_w g h A R [N m]; None for the ideal machine's (None) base."""
+    if base is None:
+        return None
+    h = load_torque / (base.rho_g * base.AR)
+    return Real(
+        base.eta_t, base.weight_torque, base.mass_inertia * inv_I_eff, base.AR,
+        base.leak_per_root_head * math.sqrt(h), base.friction, base.rho_g, h,
+    )  # fmt: skip
+
+
+def _real_at_typer(base, inv_I_eff, load_torque):
+    if _ideal(base):
+        return lambda base, inv_I_eff, load_torque: None
+    return real_at
+
+
+overload(real_at, jit_options=JIT_OPTIONS)(_real_at_typer)
 
 
 def work_rows(machine):

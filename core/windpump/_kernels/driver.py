@@ -313,6 +313,8 @@ def integrate(
     # Whether theta is where the segment starts: tracked, not compared (fastmath may round
     # (j + 1) pi/n and j pi/n differently).
     full = theta == segment_start(segment, machine)
+    leak_kink = later_kink = math.inf
+    kink_segment = -1
     while True:
         end = segment_start(segment + 1, machine)
         parity = segment % 2
@@ -335,7 +337,13 @@ def integrate(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
         k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
-        leak_kink = next_leak_kink(theta, theta_dot, segment, machine)
+        # The next angles where a face starts or stops delivering through its hole: found for a
+        # segment at its first speed, used as the run passes them (a landing is up to round-off).
+        if kink_segment != segment:
+            leak_kink, later_kink = next_leak_kink(theta, theta_dot, segment, machine)
+            kink_segment = segment
+        elif theta >= leak_kink - 1e-9 * width:
+            leak_kink, later_kink = later_kink, math.inf
         worst = 0.0
         failed = landed = False
         i = 0

@@ -370,8 +370,9 @@ def _write_work(out, row, n, W):
 
 
 def next_leak_kink(theta, theta_dot, segment, machine):
-    """The first angle past theta in its segment where a delivering face's swept flow reaches the
-    leak hole's capacity at the present speed, ``A R |a_k| theta_dot = q_L`` [rad], or inf.
+    """The first two angles past theta in its segment where a delivering face's swept flow
+    reaches the leak hole's capacity at the present speed, ``A R |a_k| theta_dot = q_L`` [rad],
+    inf where there is none.
 
     There the face starts (or stops) delivering and the load has a kink: the driver ends a
     sub-step on it, as on a wind record's kink, for the step's error estimate does not see one.
@@ -410,12 +411,12 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
 def _next_leak_kink(theta, theta_dot, segment, machine):
     real = machine.real
     if real.q_L == 0.0 or not theta_dot > 0.0:
-        return math.inf
+        return math.inf, math.inf
     target = real.q_L / (real.AR * theta_dot)  # the |lever arm| where a face starts delivering
     width = math.pi / machine.cylinders
     end = segment_start(segment + 1, machine)
     middle = segment_start(segment, machine) + 0.5 * width
-    best = math.inf
+    best = second = math.inf
     for k in range(machine.cylinders):
         if delivering_face(segment, k, machine) == NEITHER:
             continue
@@ -426,12 +427,18 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
         for rising in (True, False):  # near the dead centre it left, and near the next
             psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
             kink = lag + half * math.pi + psi
-            if theta + 1e-9 * width < kink < end - 1e-9 * width and kink < best:
-                best = kink
-    return best
+            if not theta + 1e-9 * width < kink < end - 1e-9 * width:
+                continue
+            if kink < best:
+                best, second = kink, best
+            elif kink < second:
+                second = kink
+    return best, second
 
 
-_entry(next_leak_kink)(lambda theta, theta_dot, segment, machine: math.inf, _next_leak_kink)
+_entry(next_leak_kink)(
+    lambda theta, theta_dot, segment, machine: (math.inf, math.inf), _next_leak_kink
+)
 
 
 class RealBase(typing.NamedTuple):

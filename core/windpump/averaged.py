@@ -81,6 +81,8 @@ def stall_margin(design: Design) -> float:
     >>> stall_margin(Design.seed_example().replace(d_leak=0.004))
     inf
     """
+    if design.d_leak > 0.0:  # running_speeds' margin too, without its root finding
+        return math.inf
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
     return float(running_speeds(design).margin)
@@ -197,6 +199,8 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     113.3
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
+    if design.d_leak > 0.0:  # F > 0 just above rest: only a crank at rest with T_0 = 0 stays
+        return 0.0 if theta_dot0 == 0.0 and design.T_0 == 0.0 else None
     k, p, delta2 = _riccati(design)
     bend = delta2 + p * (theta_dot0 - p)
     if bend >= 0.0:
@@ -240,6 +244,10 @@ def spinup(design: Design, t, theta_dot0: float):
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     t = finite_array("t", t, "s", minimum=0.0)
+    if design.d_leak > 0.0:
+        from .revolution import leaky_spinup
+
+        return leaky_spinup(design, t, theta_dot0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)
     running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)

@@ -1,6 +1,6 @@
 """Revolution means of the real machine at a constant crank speed: the averaged theory's inertia
-I-bar, its load L-bar(alpha) and its flow Q-bar(alpha) (docs/model.rst, "The real machine:
-averaged theory").
+I-bar, its load L-bar(alpha) and its flow Q-bar(alpha)
+(docs/model.rst, "The real machine: averaged theory").
 
 ``I-bar = I_eff + m_r sum_c <x_c'^2>`` has a closed form (:func:`reciprocating_inertia`). The load
 and the flow are the revolution means of :func:`windpump.loads.faces_load` (the pointwise load
@@ -255,31 +255,37 @@ def leaky_running_speeds(design, *, gear_ratio=None, head=None, V=None):
     )
 
 
-def largest_roots(points: Points, upper):
-    """The largest root of F in (0, upper) where F falls, and the root below it where F rises
-    [rad/s] (NaN where there is none), of every point: F sampled at SCAN_POINTS speeds, the
-    brackets refined by :func:`_root`. F(upper) must be < 0."""
+def largest_roots(points: Points, upper, crawl: bool = False):
+    """The largest root of F in (0, upper) where F falls (alpha+), and the root below it where F
+    rises (alpha-) [rad/s], NaN where there is none, of every point: F sampled at SCAN_POINTS
+    speeds, the brackets refined by :func:`_root`. F(upper) must be < 0. With ``crawl`` also
+    the largest falling root below alpha- (where a pump started below alpha- settles)."""
     grid = np.concatenate([[1e-9], np.arange(1, SCAN_POINTS + 1) / SCAN_POINTS])
     alpha = np.asarray(upper)[:, None] * grid
     positive = points.net_torque(alpha) > 0.0
-    last = grid.size - 1 - np.argmax(positive[:, ::-1], axis=1)  # the last speed where F > 0
-    found = positive.any(axis=1) & (last < grid.size - 1)
-    last = np.where(found, last, 0)
-    # Below it, the last speed where F <= 0: F rises through 0 just above it.
-    below = np.arange(grid.size) < last[:, None]
-    dip = np.where(below & ~positive, np.arange(grid.size), -1).max(axis=1)
+    index = np.arange(grid.size)
+    # The last speed where F > 0 (F falls through 0 above it); below that the last one where
+    # F <= 0 (F rises through 0 above it); below that again the last where F > 0.
+    last = np.where(positive, index, -1).max(axis=1)
+    found = (last >= 0) & (last < grid.size - 1)
+    dip = np.where((index < last[:, None]) & ~positive, index, -1).max(axis=1)
+    lower = np.where((index < dip[:, None]) & positive, index, -1).max(axis=1)
+    starts = [np.where(found, last, 0), dip, lower][: 3 if crawl else 2]
+    actives = [found, found & (dip >= 0), found & (dip >= 0) & (lower >= 0)][: len(starts)]
     rows = np.arange(alpha.shape[0])
-    falling = _root(points, alpha[rows, last], alpha[rows, last + 1], found)
-    has_dip = found & (dip >= 0)
-    rising = _root(points, alpha[rows, dip], alpha[rows, dip + 1], has_dip)
-    return falling, rising
+    start = np.concatenate([np.maximum(j, 0) for j in starts])
+    every = np.tile(rows, len(starts))  # the roots of every point refined together
+    roots = _root(
+        points, alpha[every, start], alpha[every, start + 1], np.concatenate(actives), every
+    )
+    return tuple(roots[i * rows.size : (i + 1) * rows.size] for i in range(len(starts)))
 
 
-def _root(points: Points, lo, hi, active):
-    """The root of F between lo and hi (where F changes sign) of the active points [rad/s],
-    by the Illinois method; NaN elsewhere."""
-    which = np.flatnonzero(active)
-    a, b = lo[which], hi[which]
+def _root(points: Points, lo, hi, active, of):
+    """The root of F between lo and hi (where F changes sign) of the points ``of`` where
+    active [rad/s], by the Illinois method; NaN elsewhere."""
+    which = of[active]
+    a, b = lo[active], hi[active]
     fa, fb = points.net_torque(a, which), points.net_torque(b, which)
     for _ in range(ROOT_ITERATIONS):
         open_ = (np.abs(b - a) > 4e-16 * np.abs(b)) & (fb != 0.0)
@@ -294,7 +300,7 @@ def _root(points: Points, lo, hi, active):
         fa[i] = np.where(flipped, fb[i], 0.5 * fa[i])
         b[i], fb[i] = c, fc
     root = np.full(lo.shape, math.nan)
-    root[which] = b
+    root[active] = b
     return root
 
 
@@ -310,3 +316,101 @@ def slope(points: Points, alpha, active):
         12.0 * step
     )
     return result
+
+
+SPINUP_PANEL, SPINUP_NODES = 1.0, 8
+"""The spin-up's quadrature in sigma = -log|alpha* - alpha| (module :func:`leaky_spinup`): panel
+width [-] and Gauss-Legendre nodes per panel."""
+
+NEAR = 1e-7
+"""Within this fraction of its steady speed the spin-up follows the linearised equation
+(exponential with the time constant; error of order NEAR^2)."""
+
+
+def leaky_target(points: Points, theta_dot0: float) -> float:
+    """The steady speed [rad/s] the averaged equation carries theta_dot0 to (one point): alpha+
+    from above the rising root alpha- (or from anywhere when there is none), the largest
+    falling root below alpha- from below it; theta_dot0 itself at a root."""
+    falling, rising, crawl = largest_roots(points, points.runaway, crawl=True)
+    alpha_plus, alpha_minus = float(falling[0]), float(rising[0])
+    if math.isnan(alpha_minus) or theta_dot0 > alpha_minus:
+        return alpha_plus
+    return theta_dot0 if theta_dot0 == alpha_minus else float(crawl[0])
+
+
+def leaky_spinup(design, t: np.ndarray, theta_dot0: float) -> np.ndarray:
+    """Cycle-mean crank speed [rad/s] at times t [s] of ``I-bar alpha' = F(alpha)`` from
+    theta_dot0, F with a leak hole (by quadrature).
+
+    The equation is autonomous, so time is a quadrature of the speed: towards the steady speed
+    alpha* it approaches, with ``alpha = alpha* - (alpha* - theta_dot0) exp(-sigma)``,
+    ``t(sigma) = I-bar int_0^sigma (alpha* - alpha) / F(alpha) dsigma'``, whose integrand is
+    smooth and tends to ``-1/F'(alpha*)``. It is integrated by Gauss-Legendre panels up to
+    ``|alpha* - alpha| = NEAR alpha*`` and inverted for each t by Newton's method on the panels'
+    Legendre interpolants; beyond, the linearised equation's exponential.
+    """
+    points = Points(design, None, None, None)
+    target = leaky_target(points, theta_dot0)
+    gap = target - theta_dot0
+    if gap == 0.0 or not np.isfinite(target):
+        return np.full(t.shape, theta_dot0)
+    far = math.log(abs(gap) / (NEAR * target)) if abs(gap) > NEAR * target else 0.0
+    edges = _panel_edges(design, theta_dot0, target, far)
+    width = np.diff(edges)[:, None]
+    sigma = edges[:-1, None] + 0.5 * width * (_SX + 1.0)
+    speed = target - gap * np.exp(-sigma)
+    rate = (
+        points.I_bar[0]
+        * gap
+        * np.exp(-sigma)
+        / points.net_torque(speed.ravel()).reshape(sigma.shape)
+    )  # dt/dsigma [s]
+    coefficients = rate @ _TO_LEGENDRE.T  # each panel's Legendre series in its own x
+    # each panel's antiderivative from its left edge, in sigma: legint in x, times dsigma/dx
+    integral = np.polynomial.legendre.legint(coefficients, lbnd=-1, axis=1) * (0.5 * width)
+    ends = np.concatenate([[0.0], np.cumsum(integral.sum(axis=1))])  # P_j(1) = 1
+    tau = points.I_bar[0] / -float(slope(points, np.array([target]), np.array([True]))[0])
+    result = np.empty(t.shape)
+    tail = t >= ends[-1]
+    near_gap = gap * math.exp(-far)
+    result[tail] = target - near_gap * np.exp(-(t[tail] - ends[-1]) / tau)
+    inside = _invert(t[~tail], edges, ends, integral, coefficients)
+    result[~tail] = target - gap * np.exp(-inside)
+    return result
+
+
+def _panel_edges(design, theta_dot0: float, target: float, far: float) -> np.ndarray:
+    """sigma at the panels' edges [-] up to ``far``: SPINUP_PANEL apart up to 4, three times
+    that beyond (the integrand tends to a constant there as exp(-sigma)), finer near the start
+    (where a unit of sigma spans most of the way), and one where a face starts to deliver past
+    its hole (the load's mean has a kink there)."""
+    near = np.arange(0.0, min(far, 4.0), SPINUP_PANEL)
+    beyond = np.arange(4.0, far, 3.0 * SPINUP_PANEL)
+    start = [x for x in (1 / 16, 1 / 8, 1 / 4, 1 / 2) if x < far]
+    edges = list(near) + list(beyond) + start + [far]
+    peak = _branches(design.L_over_R)[1]
+    delivering = design.leak_capacity / (design.A * design.R * peak)  # the crank speed [rad/s]
+    fraction = (target - delivering) / (target - theta_dot0)
+    if 0.0 < fraction < 1.0 and -math.log(fraction) < far:
+        edges.append(-math.log(fraction))
+    return np.unique(edges)
+
+
+_SX, _SW = np.polynomial.legendre.leggauss(SPINUP_NODES)
+_TO_LEGENDRE = np.linalg.inv(np.polynomial.legendre.legvander(_SX, SPINUP_NODES - 1))
+
+
+def _invert(t, edges, ends, integral, coefficients):
+    """sigma [-] at times t inside the panels: where the panel's t(sigma) is t, by Newton's
+    method in the panel's x from the linear guess."""
+    panel = np.clip(np.searchsorted(ends, t, side="right") - 1, 0, len(ends) - 2)
+    start, span = ends[panel], ends[panel + 1] - ends[panel]
+    width = edges[panel + 1] - edges[panel]
+    x = np.clip(2.0 * (t - start) / np.where(span > 0.0, span, 1.0) - 1.0, -1.0, 1.0)
+    degree = integral.shape[1] - 1
+    for _ in range(8):
+        basis = np.polynomial.legendre.legvander(x, degree)
+        excess = start + (basis * integral[panel]).sum(axis=1) - t
+        derivative = 0.5 * width * (basis[:, :-1] * coefficients[panel]).sum(axis=1)
+        x = np.clip(x - excess / derivative, -1.0, 1.0)
+    return edges[panel] + 0.5 * (x + 1.0) * width

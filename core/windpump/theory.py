@@ -12,7 +12,17 @@ in crank speed [rad/s] it reads
     delta^2 = (omega_m / R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0)),
 
 with T_m, T_0 and omega_m the curve's at V_ref and ``I_eff = I1 + I0 R+^2``; k does not depend on
-the wind. The roots ``p +- delta`` are alpha+- omega_m of Eq. (21), which these reduce to when
+the wind.
+
+The real machine (docs/model.rst, "The real machine: averaged theory") averages to
+``I-bar alpha' = F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha)``, I-bar = I_eff + m_r sum_c
+<x_c'^2> (the weight averages out). Without a leak hole ``L-bar = M + c alpha^2`` (c: the rising
+main) and F is still a quadratic: with ``b = eta_t R+^3 (T_m - T_0) / omega_m^2`` and
+``kappa = b / (b + c)``, ``k = (b + c) / I-bar``, p is kappa times the above and
+``delta^2 = kappa (D - (1 - kappa) (s omega_m/R+)^2)``, D the above with R+ T_m and R+ T_0 times
+eta_t; the paper's ideal machine (eta_t = 1, c = 0, m_r = 0) is the above to the last bit. With a
+leak hole L-bar is a quadrature (:mod:`windpump.revolution`) and :func:`running_speeds` finds
+the roots numerically. The roots ``p +- delta`` are alpha+- omega_m of Eq. (21), which these reduce to when
 m = 1, T_0 = 0 and s = 1; delta^2 > 0 exactly when the stall margin ``R+ T_m s^2 / M`` exceeds 1
 (Eq. 22), and the relaxation time at alpha+ is ``tau = 1 / (2 k delta)`` (Eq. 25).
 

@@ -435,3 +435,13 @@ def test_bad_input_names_the_parameter():
         windpump.face_flows([math.nan], [1.0], SEED)
     with pytest.raises(ParameterError, match="t"):
         windpump.spinup(SEED.replace(d_leak=HOLE), [-1.0], 3.0)
+
+
+@pytest.mark.parametrize("design", [SEED.replace(eta_t=0.7), CLOSED[2], HOLED[0]], ids=range(3))
+def test_stall_sides_keep_the_margin_as_their_ratio(design):
+    windmill, load = windpump.stall_sides(design)
+    assert windmill == pytest.approx(design.eta_t * design.Tm_dagger, rel=1e-15)
+    if load:
+        assert windmill / load == pytest.approx(windpump.stall_margin(design), rel=1e-12)
+    else:
+        assert windpump.stall_margin(design) == math.inf

@@ -93,7 +93,9 @@ def stall_sides(design: Design) -> tuple[float, float]:
 
     The windmill's characteristic torque (Eq. 14) and the mean load it must carry (Eq. 15 times
     m R+ / pi, m deliveries per revolution); it can run when the first exceeds the second. Their
-    ratio is :func:`stall_margin`.
+    ratio is :func:`stall_margin`. For the real machine the first is ``eta_t T_m+`` (through
+    the chain) and the second that over the stall margin: with a rising main the load the
+    windmill carries at its best speed, 0 with a leak hole.
 
     Examples
     --------
@@ -101,8 +103,14 @@ def stall_sides(design: Design) -> tuple[float, float]:
     >>> windmill, load = stall_sides(Design.seed_example())
     >>> round(windmill / load, 2)
     5.1
+    >>> stall_sides(Design.seed_example().replace(d_leak=0.004))[1]
+    0.0
     """
-    return design.Tm_dagger, design.deliveries * design.R_dagger * design.L_dagger / math.pi
+    load = design.deliveries * design.R_dagger * design.L_dagger / math.pi
+    if design.d_leak == 0.0 and design.friction_coefficient == 0.0:
+        return design.eta_t * design.Tm_dagger, load
+    windmill = design.eta_t * design.Tm_dagger
+    return windmill, windmill / stall_margin(design)
 
 
 def _riccati(design: Design) -> tuple[float, float, float]:

@@ -41,7 +41,7 @@ from .kinematics import (
     swept_strokes,
 )
 from .labdata import LabDataError, TorqueTable, read_torque_csv
-from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
+from .loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
 from .maps import DesignMap, design_map
 from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
 from .site import (
@@ -76,7 +76,7 @@ __all__ = [
     "averaged_stall_time", "mean_lever_arm",
     # kinematics (Eq. 1) and loads
     "piston_position", "rod_angle", "f2", "lever_arm", "delivering_faces", "face_flows",
-    "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest",
+    "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest", "rest_torque",
     # the windmill (Eq. 11) and lab data
     "windmill_torque", "windmill_power", "load_power", "operating_point", "OperatingPoint",
     "fit_torque_curve", "TorqueFit", "read_torque_csv", "TorqueTable",

@@ -121,7 +121,7 @@ def test_the_kernels_masses_are_the_numpy_sides(theta, m_r, cylinders, ratio):
     j = real._inertia_ratio(theta, machine) * design.I_eff
     assert j == pytest.approx(float(reciprocating.crank_inertia(design, theta)), rel=1e-12)
     torque = real._weight_torque(theta, machine)
-    expected = float(reciprocating.weight_torque(design, theta))
+    expected = float(windpump.loads.weight_torque(design, theta))
     assert torque == pytest.approx(expected, rel=1e-12, abs=1e-12 * m_r * design.g * design.R)
 
 
@@ -145,7 +145,8 @@ def test_any_real_machine_closes_its_energy_and_delivers_at_most_what_it_sweeps(
     budget = windpump.power_budget(run)
     assert budget.imbalance < 1e-9
     assert np.all(run.volume <= run.swept_volume * (1 + 1e-9) + 1e-15)
-    assert np.all(np.diff(run.volume) >= -1e-15)
+    assert np.all(run.volume >= -1e-7 * run.swept_volume[-1])
+    assert np.all(np.diff(run.volume) >= -1e-7 * run.swept_volume[-1])  # to its accuracy
 
 
 def test_the_kernel_returns_no_real_rows_for_the_ideal_machine():

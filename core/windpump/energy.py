@@ -15,8 +15,8 @@ import numpy as np
 
 from .dynamics import SimulationResult, revolution_marks
 from .errors import ParameterError
-from .loads import load_torque_on_crank
-from .reciprocating import weight_potential, weight_torque
+from .loads import load_torque_on_crank, weight_torque
+from .reciprocating import weight_potential
 from .validation import non_negative, positive, real
 from .windmill import windmill_power
 

@@ -7,6 +7,9 @@ centre at the top, so x grows downward and (docs/model.rst, "The real machine")
     J(theta) = I_eff + m_r sum_c x_c'^2,      weight torque = + m_r g sum_c x_c',
     potential energy change = - m_r g sum_c (x_c - x_c(theta_0)).
 
+The weights' torque is :func:`windpump.loads.weight_torque` (the torque at rest needs it); their
+revolution-mean inertia is :func:`windpump.revolution.reciprocating_inertia`.
+
 The compiled integrator keeps its own copy of these sums for speed (``_kernels.real``);
 tests/test_kernel_twins.py holds the two together.
 """
@@ -39,22 +42,6 @@ def crank_inertia(design: Design, theta):
     """
     arms = equations.lever_arm(cylinder_angles(theta, design.cylinders), design.L_over_R)
     return design.I_eff + design.m_r * design.R**2 * np.sum(arms * arms, axis=0)
-
-
-def weight_torque(design: Design, theta):
-    """The reciprocating weights' torque on the crank, ``m_r g sum_c x_c'`` [N m]: negative while
-    they rise (the delivering upstroke), positive while they fall.
-
-    Examples
-    --------
-    >>> import math
-    >>> from windpump import Design
-    >>> d = Design.seed_example().replace(m_r=2.0)
-    >>> round(float(weight_torque(d, math.pi / 2)), 4)  # falling, x' = R: m_r g R
-    0.7848
-    """
-    arms = equations.lever_arm(cylinder_angles(theta, design.cylinders), design.L_over_R)
-    return design.m_r * design.g * design.R * np.sum(arms, axis=0)
 
 
 def weight_potential(design: Design, theta):

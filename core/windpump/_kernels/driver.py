@@ -23,6 +23,7 @@ from .real import (
     conservative_work,
     fill_row,
     inertia_ratio,
+    leak_scale,
     next_leak_kink,
     work_at,
     work_rows,
@@ -387,6 +388,7 @@ def integrate(
             scaled = max(
                 abs(err[0]) / (rtol * u),
                 abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
+                abs(err[3]) / (rtol * leak_scale(width, machine)),  # (0 for the ideal machine)
             )
             if y[2] > t_end:
                 break  # the sub-step would pass t_end: go on in time

@@ -33,7 +33,26 @@ from numba import types
 from numba.extending import overload
 
 from . import equations
-from .dopri5 import B1, B3, B4, B5, B6, D1, D3, D4, D5, D6, D7, dense_value
+from .dopri5 import (
+    B1,
+    B3,
+    B4,
+    B5,
+    B6,
+    D1,
+    D3,
+    D4,
+    D5,
+    D6,
+    D7,
+    E1,
+    E3,
+    E4,
+    E5,
+    E6,
+    E7,
+    dense_value,
+)  # fmt: skip
 from .jit import OPTIONS, kernel
 from .model import (
     NEITHER,
@@ -473,6 +492,30 @@ def _real_at_typer(base, inv_I_eff, load_torque):
 
 
 overload(real_at, jit_options=JIT_OPTIONS)(_real_at_typer)
+
+
+def leak_error(h, a, c, d, e, f, g):
+    """The step's error estimate of the volume leaked back [m^3]: 0.0 for the ideal machine."""
+
+
+@overload(leak_error, jit_options=JIT_OPTIONS)
+def _leak_error(h, a, c, d, e, f, g):
+    if isinstance(a, types.Float):
+        return lambda h, a, c, d, e, f, g: 0.0
+
+    def error(h, a, c, d, e, f, g):
+        return h * (E1 * a[1] + E3 * c[1] + E4 * d[1] + E5 * e[1] + E6 * f[1] + E7 * g[1])
+
+    return error
+
+
+def leak_scale(width, machine):
+    """What a step's leaked volume is measured against, A R width [m^3]: about what a face sweeps
+    over a segment (inf for the ideal machine, which leaks nothing), so that the run's leaked
+    volume is good to about rtol of its swept volume."""
+
+
+_entry(leak_scale)(lambda width, machine: math.inf, lambda width, machine: machine.real.AR * width)
 
 
 def work_rows(machine):

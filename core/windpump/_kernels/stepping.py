@@ -59,6 +59,7 @@ from .real import (
     advance_work,
     angle_rates,
     dense_work,
+    leak_error,
     time_rates,
     torque_at_rest,
     transmitted,
@@ -137,7 +138,8 @@ def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, extra, segment, machine):
         dense_work(h, a3, c3, d3, e3, f3, g3),
     )
     valid = math.isfinite(err0) and math.isfinite(err2)  # a stage at u <= 0 makes them NaN or inf
-    return valid, (n0, n1, m0, m1), k7, (err0, err1, err2), dense
+    err3 = leak_error(h, a3, c3, d3, e3, f3, g3)
+    return valid, (n0, n1, m0, m1), k7, (err0, err1, err2, err3), dense
 
 
 @kernel

@@ -187,3 +187,14 @@ def test_a_design_maps_simulated_points_run_the_real_machine():
     marks, times = windpump.revolution_marks(run.t, run.theta)
     expected = 5 * 2 * math.pi / (times[-1] - times[-6])
     assert speed[0] == pytest.approx(expected, rel=1e-3)
+
+
+def test_a_numeric_design_map_of_a_real_machine_measures_its_real_runs():
+    design = SEED.replace(eta_t=0.8, L_main=20.0, D_main=0.02)  # a lossy chain, a thin main
+    ratios, heads = [3.0, 4.0], [2.0, 3.0]
+    averaged = windpump.design_map(design, ratios, heads)
+    numeric = windpump.design_map(design, ratios, heads, numeric=True)
+    ideal = windpump.design_map(SEED, ratios, heads, numeric=True)
+    # The runs' steady speeds are the real averaged theory's to its ripple, well off the ideal's.
+    assert np.allclose(numeric.alpha_plus, averaged.alpha_plus, rtol=2e-3)
+    assert np.all(numeric.alpha_plus < 0.97 * ideal.alpha_plus)

@@ -213,7 +213,10 @@ def summary(design: Design, run) -> list[str]:
         lines.append("alpha+, alpha-, tau           none: the windmill cannot carry this load")
     else:
         lines.append(f"alpha+ (Eq. 21)              {alpha_plus:.6g} rad/s")
-        lines.append(f"alpha- (Eq. 21)              {alpha_minus:.6g} rad/s")
+        if alpha_minus is None:  # a leak hole: no speed below which it stalls
+            lines.append("alpha- (Eq. 21)              none: it never stalls from a kick")
+        else:
+            lines.append(f"alpha- (Eq. 21)              {alpha_minus:.6g} rad/s")
         lines.append(f"tau (Eq. 25)                 {tau:.6g} s")
     turns = (run.theta[-1] - run.theta[0]) / (2 * math.pi)
     if not run.stalled and turns >= 1.0:

@@ -275,7 +275,7 @@ def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarr
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     """alpha+ measured in full simulations of every running point, and tau where they ran."""
     from ._kernels.grid import steady_runs  # here: numba loads on the first numeric map
-    from .dynamics import MAX_STEPS, RTOL
+    from .dynamics import MAX_STEPS, RTOL, kernel_real_base
 
     shape = alpha_plus.shape
     x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
@@ -295,6 +295,7 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
         measured, _, outcomes = steady_runs(
             x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
             design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS,
+            kernel_real_base(design),
         )  # fmt: skip
         speed[chunk] = measured
         _refuse_stiff(design, x[chunk], heads[chunk // ratios.size], outcomes, inv_I_eff[chunk])

@@ -49,8 +49,11 @@ def faces_load(levers, theta_dot, design: Design, h=None):
 
     Returns
     -------
-    load, Q : ndarray
-        The shape of ``levers[0]`` broadcast with theta_dot and h.
+    load : ndarray
+        The load torque on the crank [N m], the shape of ``levers[0]`` broadcast with theta_dot
+        and h.
+    Q : ndarray
+        The delivered flow [m^3/s], of the same shape.
 
     Examples
     --------

@@ -139,8 +139,10 @@ def mean_load(design, alpha, h=None):
 
     Returns
     -------
-    load, flow : ndarray
-        L-bar [N m] and Q-bar [m^3/s], the broadcast shape of alpha and h.
+    load : ndarray
+        L-bar [N m], the broadcast shape of alpha and h.
+    flow : ndarray
+        Q-bar [m^3/s], of the same shape.
 
     Examples
     --------

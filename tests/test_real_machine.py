@@ -198,3 +198,23 @@ def test_a_numeric_design_map_of_a_real_machine_measures_its_real_runs():
     # The runs' steady speeds are the real averaged theory's to its ripple, well off the ideal's.
     assert np.allclose(numeric.alpha_plus, averaged.alpha_plus, rtol=2e-3)
     assert np.all(numeric.alpha_plus < 0.97 * ideal.alpha_plus)
+
+
+def test_each_power_of_the_budget_integrates_to_its_work():
+    from scipy.integrate import cumulative_trapezoid
+
+    run = windpump.simulate(DESIGNS["every effect"], 20.0, samples_per_stroke=512)
+    budget = windpump.power_budget(run)
+    W = budget.shaft_work[-1]
+    pairs = [
+        (budget.shaft_power, budget.shaft_work),
+        (budget.transmission_power, budget.transmission_loss),
+        (budget.friction_power, budget.friction_loss),
+        (budget.leak_power, budget.leak_loss),
+        (budget.weight_power, budget.potential_energy),
+        (budget.kinetic_power, budget.kinetic_energy),
+        (budget.hydraulic_power, budget.lift_work),
+    ]
+    for power, work in pairs:
+        integrated = cumulative_trapezoid(power, run.t, initial=0.0)
+        assert np.max(np.abs(integrated - work)) < 1e-5 * W  # the trapezoid rule: ~6e-7

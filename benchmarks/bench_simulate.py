@@ -23,6 +23,8 @@ from scipy.integrate import solve_ivp
 import windpump
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from real_reference import real_reference_run  # noqa: E402
+
 from reference import general_reference_run, reference_run  # noqa: E402
 
 T_END, THETA0, THETA_DOT0 = 600.0, math.pi / 2, 3.0
@@ -89,6 +91,8 @@ def main():
     print(f"speed-up: {slow / fast:.0f}x")
     print()
     configurations(design, fast)
+    print()
+    real_machine(design)
 
 
 def configurations(seed: windpump.Design, seed_time: float):
@@ -115,6 +119,37 @@ def configurations(seed: windpump.Design, seed_time: float):
         ]
         print(
             f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / seed_time:8.2f}{run.steps:8d}"
+            + "".join(f"{e:10.1e}" for e in errors)
+        )
+
+
+def real_machine(seed: windpump.Design):
+    """The seed example with every effect of the real machine on, against the ideal machine timed
+    in this process (the issue asks at most 2x), each effect alone, and each against
+    tests/real_reference.py (DOP853 of the issue's equations, rtol 1e-11)."""
+    effects = {
+        "m_r = 1 kg": {"m_r": 1.0},
+        "eta_t = 0.9": {"eta_t": 0.9},
+        "main 10 m x 25 mm": {"L_main": 10.0, "D_main": 0.025},
+        "leak hole 1.5 mm": {"d_leak": 0.0015},
+    }
+    every = seed.replace(**{k: v for change in effects.values() for k, v in change.items()})
+    windpump.simulate(seed, T_END), windpump.simulate(every, T_END)
+    ideal, _ = median_time(lambda: windpump.simulate(seed, T_END), 51)
+    print(f"real machine, 600 s from the kick      (the ideal machine: {ideal * 1e3:.2f} ms)")
+    print(f"{'':32s}{'median time':>14s}{'x ideal':>9s}{'steps':>8s}{'speed':>10s}{'volume':>10s}")
+    for name, design in [("every effect on", every)] + [
+        (name, seed.replace(**change)) for name, change in effects.items()
+    ]:
+        windpump.simulate(design, T_END)
+        seconds, run = median_time(lambda design=design: windpump.simulate(design, T_END), 21)
+        ref = real_reference_run(design, T_END, THETA0, THETA_DOT0)
+        errors = [
+            abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
+            abs(run.volume[-1] - ref.volume) / ref.volume,
+        ]
+        print(
+            f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / ideal:9.2f}{run.steps:8d}"
             + "".join(f"{e:10.1e}" for e in errors)
         )
 

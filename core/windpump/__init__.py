@@ -4,7 +4,8 @@ The model is M. Louge, *A simple wind-pump analysis* (2010): a windmill drives, 
 two sprockets, a slider-crank and a single-acting piston lifting water by a head h. Equation numbers
 in the docstrings are that paper's. Beyond it: several cylinders with their phase lags,
 double-acting pistons and a windmill with torque at rest (``Design.cylinders``, ``double_acting``,
-``T_0``), the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
+``T_0``), the real machine's reciprocating mass, lossy chain, rising main and leak hole
+(``Design.m_r``, ``eta_t``, ``L_main``, ``d_leak``, ...), the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
 :func:`water_per_day`), and studies: the design map over gear ratio and head (:func:`design_map`)
 and many runs on any executor, a dask cluster's included (:func:`sweep`).
 
@@ -15,7 +16,7 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 (78.6, False)
 """
 
-from . import energy, labdata, linkage, playback, theory, units, wind
+from . import energy, labdata, linkage, playback, reciprocating, theory, units, wind
 from .averaged import (
     averaged_stall_time,
     mean_lever_arm,
@@ -27,7 +28,7 @@ from .averaged import (
 )
 from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
-from .energy import PowerBudget, StartupPower, power_budget, startup_power
+from .energy import EnergyTotals, PowerBudget, StartupPower, power_budget, startup_power
 from .errors import DesignFileError, NoClosure, ParameterError, StallError
 from .exploration import Exploration, NotStarted, Status, explore
 from .kinematics import (
@@ -40,7 +41,7 @@ from .kinematics import (
     swept_strokes,
 )
 from .labdata import LabDataError, TorqueTable, read_torque_csv
-from .loads import load_torque_on_crank, peak_load_torque, starts_from_rest
+from .loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
 from .maps import DesignMap, design_map
 from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
 from .site import (
@@ -75,7 +76,7 @@ __all__ = [
     "averaged_stall_time", "mean_lever_arm",
     # kinematics (Eq. 1) and loads
     "piston_position", "rod_angle", "f2", "lever_arm", "delivering_faces", "face_flows",
-    "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest",
+    "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest", "rest_torque",
     # the windmill (Eq. 11) and lab data
     "windmill_torque", "windmill_power", "load_power", "operating_point", "OperatingPoint",
     "fit_torque_curve", "TorqueFit", "read_torque_csv", "TorqueTable",
@@ -85,8 +86,9 @@ __all__ = [
     # studies
     "design_map", "DesignMap", "sweep", "Sweep",
     # energy and playback
-    "startup_power", "StartupPower", "power_budget", "PowerBudget", "playback_frames",
+    "startup_power", "StartupPower", "power_budget", "PowerBudget", "EnergyTotals",
+    "playback_frames",
     "Playback", "piston_table", "crank_table", "CrankTable",
     # modules of their own
-    "energy", "labdata", "linkage", "playback", "theory", "units", "wind",
+    "energy", "labdata", "linkage", "playback", "reciprocating", "theory", "units", "wind",
 ]  # fmt: skip

@@ -24,7 +24,7 @@ import numpy as np
 from .design import Design
 from .errors import StallError
 from .kinematics import lever_arm
-from .theory import cycle_mean
+from .theory import cycle_mean, running_speeds
 from .validation import finite_array, non_negative, rod_ratio
 
 
@@ -60,12 +60,16 @@ def mean_lever_arm(L_over_R: float) -> float:
 
 
 def stall_margin(design: Design) -> float:
-    """Stall margin R+ T_m / M [-]: above 1 the windmill can carry the load (Eq. 22 when m = 1).
+    """Stall margin [-]: above 1 the windmill can carry the load (Eq. 22 when m = 1).
 
-    The windmill's peak torque reflected to the crank over the mean load torque
-    ``M = m rho_w g h A R / pi`` of m deliveries per revolution (``Design.mean_load_torque``); for
-    the paper's one single-acting cylinder it is Eq. (22)'s ``T_m+ pi / (R+ L+)``. Infinite when
-    h = 0.
+    The largest ratio of the windmill's torque on the crank to the mean load over the crank
+    speeds, ``max eta_t R+ T(R+ alpha) / L-bar(alpha)``. For the ideal machine it is the peak
+    torque reflected to the crank over the mean load torque ``M = m rho_w g h A R / pi`` of m
+    deliveries per revolution (``Design.mean_load_torque``), ``R+ T_m / M``; for the paper's one
+    single-acting cylinder Eq. (22)'s ``T_m+ pi / (R+ L+)``. eta_t scales it; a rising main
+    lowers it (``L-bar = M + c alpha^2``). Infinite when h = 0, and with a leak hole (the load
+    through the hole vanishes at rest faster than the windmill's torque: such a pump never
+    stalls, though in light wind it may only crawl, delivering nothing).
 
     Examples
     --------
@@ -74,10 +78,14 @@ def stall_margin(design: Design) -> float:
     5.1
     >>> round(stall_margin(Design.seed_example().replace(cylinders=2, double_acting=True)), 2)
     1.27
+    >>> stall_margin(Design.seed_example().replace(d_leak=0.004))
+    inf
     """
+    if design.d_leak > 0.0:  # running_speeds' margin too, without its root finding
+        return math.inf
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
-    return float(cycle_mean(design).margin)
+    return float(running_speeds(design).margin)
 
 
 def stall_sides(design: Design) -> tuple[float, float]:
@@ -85,7 +93,9 @@ def stall_sides(design: Design) -> tuple[float, float]:
 
     The windmill's characteristic torque (Eq. 14) and the mean load it must carry (Eq. 15 times
     m R+ / pi, m deliveries per revolution); it can run when the first exceeds the second. Their
-    ratio is :func:`stall_margin`.
+    ratio is :func:`stall_margin`. For the real machine the first is ``eta_t T_m+`` (through
+    the chain) and the second that over the stall margin: with a rising main the load the
+    windmill carries at its best speed, 0 with a leak hole.
 
     Examples
     --------
@@ -93,8 +103,14 @@ def stall_sides(design: Design) -> tuple[float, float]:
     >>> windmill, load = stall_sides(Design.seed_example())
     >>> round(windmill / load, 2)
     5.1
+    >>> stall_sides(Design.seed_example().replace(d_leak=0.004))[1]
+    0.0
     """
-    return design.Tm_dagger, design.deliveries * design.R_dagger * design.L_dagger / math.pi
+    load = design.deliveries * design.R_dagger * design.L_dagger / math.pi
+    if design.d_leak == 0.0 and design.friction_coefficient == 0.0:
+        return design.eta_t * design.Tm_dagger, load
+    windmill = design.eta_t * design.Tm_dagger
+    return windmill, windmill / stall_margin(design)
 
 
 def _riccati(design: Design) -> tuple[float, float, float]:
@@ -103,14 +119,18 @@ def _riccati(design: Design) -> tuple[float, float, float]:
     return float(mean.k), float(mean.p), float(mean.delta2)
 
 
-def steady_speeds(design: Design) -> tuple[float, float]:
+def steady_speeds(design: Design) -> tuple[float, float | None]:
     """Steady cycle-mean crank speeds (alpha+, alpha-) x omega_m [rad/s] (Eq. 21, generalised).
 
-    ``p +- delta`` of the averaged equation (module docstring); with m = 1 and T_0 = 0 this is
-    Eq. (21), ``alpha+- = (pi T+ +- sqrt(pi^2 T+^2 - pi R+ T+ L+)) / (pi R+ T+)``. alpha+ is the
-    stable running speed; a pump below alpha- decays and stalls (in the averaged model). With
-    torque at rest alpha- may be <= 0: when ``R+ T_0`` exceeds the mean load every kick (and a
-    start from rest) spins up.
+    The roots of ``F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha)``: alpha+ the largest, where
+    F falls (the stable running speed), alpha- the one below it where F rises (a pump below it
+    decays, in the averaged model). Without a leak hole ``p +- delta`` of the averaged equation
+    (module docstring); with m = 1, T_0 = 0 and the ideal machine this is Eq. (21),
+    ``alpha+- = (pi T+ +- sqrt(pi^2 T+^2 - pi R+ T+ L+)) / (pi R+ T+)``. With torque at rest
+    alpha- may be <= 0: when ``eta_t R+ T_0`` exceeds the mean load every kick (and a start
+    from rest) spins up. With a leak hole alpha- is None where F > 0 from rest to alpha+
+    (then every start spins up to alpha+), and alpha+ may be a crawl (the pump turns so slowly
+    that all the water leaks back: ``steady_flow`` 0).
 
     Raises
     ------
@@ -123,20 +143,26 @@ def steady_speeds(design: Design) -> tuple[float, float]:
     >>> a_plus, a_minus = steady_speeds(Design.seed_example())
     >>> round(a_plus, 2), round(a_minus, 3)
     (23.71, 1.293)
+    >>> a_plus, a_minus = steady_speeds(Design.seed_example().replace(d_leak=0.004))
+    >>> round(a_plus, 2), a_minus
+    (23.71, None)
     """
-    margin = stall_margin(design)
-    if margin <= 1.0:
-        raise StallError(margin, "a steady speed")
-    mean = cycle_mean(design)
-    return float(mean.alpha_plus), float(mean.alpha_minus)
+    speeds = running_speeds(design)
+    if not speeds.runs:
+        raise StallError(float(speeds.margin), "a steady speed")
+    alpha_minus = float(speeds.alpha_minus)
+    if design.d_leak > 0.0 and math.isnan(alpha_minus):
+        return float(speeds.alpha_plus), None
+    return float(speeds.alpha_plus), alpha_minus
 
 
 def time_constant(design: Design) -> float:
-    """Spin-up time constant tau = 1 / (2 k delta) [s] (Eq. 25, generalised).
+    """Spin-up time constant tau = I-bar / (-F'(alpha+)) [s] (Eq. 25, generalised).
 
-    The rate at which the averaged equation relaxes to alpha+; with m = 1 and T_0 = 0 it is
-    Eq. (25)'s ``tau+ / omega_m``, ``tau+ = pi / (2 sqrt(pi^2 T+^2 - pi R+ T+ L+))``. It grows
-    without bound as the stall margin falls to 1.
+    The rate at which the averaged equation relaxes to alpha+; without a leak hole
+    ``1 / (2 k delta)``, and with m = 1, T_0 = 0 and the ideal machine Eq. (25)'s
+    ``tau+ / omega_m``, ``tau+ = pi / (2 sqrt(pi^2 T+^2 - pi R+ T+ L+))``. It grows without
+    bound as the stall margin falls to 1.
 
     Raises
     ------
@@ -149,10 +175,10 @@ def time_constant(design: Design) -> float:
     >>> round(time_constant(Design.seed_example()), 1)
     78.6
     """
-    margin = stall_margin(design)
-    if margin <= 1.0:
-        raise StallError(margin, "a spin-up time constant")
-    return float(cycle_mean(design).tau)
+    speeds = running_speeds(design)
+    if not speeds.runs:
+        raise StallError(float(speeds.margin), "a spin-up time constant")
+    return float(speeds.tau)
 
 
 def _g(t, k: float, delta2: float):
@@ -181,6 +207,8 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     113.3
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
+    if design.d_leak > 0.0:  # F > 0 just above rest: only a crank at rest with T_0 = 0 stays
+        return 0.0 if theta_dot0 == 0.0 and design.T_0 == 0.0 else None
     k, p, delta2 = _riccati(design)
     bend = delta2 + p * (theta_dot0 - p)
     if bend >= 0.0:
@@ -224,6 +252,10 @@ def spinup(design: Design, t, theta_dot0: float):
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     t = finite_array("t", t, "s", minimum=0.0)
+    if design.d_leak > 0.0:
+        from .revolution import leaky_spinup
+
+        return leaky_spinup(design, t, theta_dot0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)
     running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)

@@ -460,9 +460,7 @@ class Design:
     def friction_coefficient(self) -> float:
         """The rising main's friction head per flow squared, h_f / Q^2 = f_main (L_main / D_main)
         / (2 g a_main^2) [s^2/m^5], a_main = pi D_main^2 / 4; 0 without a pipe."""
-        return float(
-            equations.friction_coefficient(self.f_main, self.L_main, self.D_main, self.g)
-        )
+        return float(equations.friction_coefficient(self.f_main, self.L_main, self.D_main, self.g))
 
     @property
     def bore(self) -> float:

@@ -17,6 +17,7 @@ from .averaged import steady_speeds
 from .design import UNITS, Design
 from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
+from .reciprocating import crank_inertia
 from .units import LITRES_PER_M3
 from .validation import non_negative, positive, real, whole
 from .wind import WindRecord, as_record
@@ -73,6 +74,14 @@ class SimulationResult:
         Times a resting crank began to turn [s] (a start from rest at t = 0 included).
     wind : WindRecord or None
         The wind record the run was given (times [s], speeds [m/s]), or None: V_ref throughout.
+    swept_volume : ndarray
+        Volume the delivering faces swept since t = 0 [m^3]: ``volume`` plus what leaked back
+        through the holes (equal to it without a hole).
+    friction_loss : ndarray
+        Work lost to the rising main's friction since t = 0, ``int rho_w g h_f Q dt`` [J].
+    leak_loss : ndarray
+        Work lost through the leak holes since t = 0 [J]: the rest of the load's work
+        ``int sum_k p_k u_k dt`` after the water lifted and the friction.
     """
 
     design: Design
@@ -88,6 +97,9 @@ class SimulationResult:
     stops: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
     starts: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
     wind: WindRecord | None = None
+    swept_volume: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    friction_loss: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    leak_loss: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
 
     @property
     def wind_speed(self) -> np.ndarray:
@@ -104,8 +116,27 @@ class SimulationResult:
 
     @property
     def kinetic_energy(self) -> np.ndarray:
-        """Kinetic energy of the rotating parts, I_eff theta_dot^2 / 2 [J]."""
-        return 0.5 * self.design.I_eff * self.theta_dot**2
+        """Kinetic energy of the moving parts, J(theta) theta_dot^2 / 2 [J]: I_eff theta_dot^2 / 2
+        for the ideal machine, plus the reciprocating masses' (:func:`~windpump.reciprocating.
+        crank_inertia`)."""
+        if self.design.m_r == 0.0:
+            return 0.5 * self.design.I_eff * self.theta_dot**2
+        return 0.5 * crank_inertia(self.design, self.theta) * self.theta_dot**2
+
+    @property
+    def volumetric_efficiency(self) -> float:
+        """Volume delivered over volume swept over the run [-]: 1 without a leak hole; NaN
+        before the pistons have swept anything."""
+        swept = float(self.swept_volume[-1])
+        return float(self.volume[-1]) / swept if swept > 0.0 else math.nan
+
+    @property
+    def overall_efficiency(self) -> float:
+        """Water's potential energy over the windmill's work over the run, rho_w g h V / W [-]:
+        what the machine turned into lifted water (the rest spun it up, or was lost); NaN
+        before the windmill has done work."""
+        work = float(self.shaft_work[-1])
+        return float(self.lift_work[-1]) / work if work > 0.0 else math.nan
 
     @property
     def lift_work(self) -> np.ndarray:
@@ -505,9 +536,22 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     (Eq. 16, every face) from the strokes and flow factor, every array read-only."""
     from . import _kernels
 
-    volume = design.stroke_volume * (run.strokes - run.strokes[0])
-    flow = design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16), every face
-    arrays = (run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work, run.stops, run.starts)
+    swept = design.stroke_volume * (run.strokes - run.strokes[0])
+    volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16)
+    friction = leak = np.zeros_like(run.t)
+    if run.leaked is not None:  # the real machine
+        if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
+            volume = swept - run.leaked
+            flow = face_flows(run.theta, run.theta_dot, design).sum(axis=0)
+        friction = run.friction_loss
+        # The kernel integrates the load's excess over the static head; the static head's work
+        # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's.
+        lift = design.rho_w * design.g * design.h
+        leak = lift * (swept - volume) + run.leak_loss - friction
+    arrays = (
+        run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work, run.stops, run.starts,
+        swept, friction, leak,
+    )  # fmt: skip
     for array in arrays:
         array.flags.writeable = False
     stalled = run.outcome in (_kernels.STALLED, _kernels.RESTING)
@@ -528,6 +572,9 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
         stops=run.stops,
         starts=run.starts,
         wind=record,
+        swept_volume=swept,
+        friction_loss=friction,
+        leak_loss=leak,
     )
 
 
@@ -546,6 +593,32 @@ def kernel_machine(design: Design, record: WindRecord | None = None):
         cylinders=design.cylinders,
         double_acting=design.double_acting,
         wind=None if record is None else kernel_wind(record, design.V_ref),
+        real=None if design.is_ideal else kernel_real(design),
+    )
+
+
+def kernel_real(design: Design):
+    """The real machine's terms as the compiled integrator takes them (``_kernels.Real``)."""
+    from ._kernels.real import real_at
+
+    return real_at(kernel_real_base(design), 1.0 / design.I_eff, design.load_torque)
+
+
+def kernel_real_base(design: Design):
+    """The real machine's terms a design map's points share (``_kernels.real.RealBase``), or
+    None for the ideal machine."""
+    if design.is_ideal:
+        return None
+    from ._kernels.real import RealBase
+
+    return RealBase(
+        eta_t=design.eta_t,
+        weight_torque=design.m_r * design.g * design.R,
+        mass_inertia=design.m_r * design.R**2,
+        AR=design.A * design.R,
+        leak_per_root_head=design.leak_capacity / math.sqrt(design.h) if design.h > 0 else 0.0,
+        friction=design.friction_coefficient,
+        rho_g=design.rho_w * design.g,
     )
 
 

@@ -15,6 +15,8 @@ import numpy as np
 
 from .dynamics import SimulationResult, revolution_marks
 from .errors import ParameterError
+from .loads import load_torque_on_crank
+from .reciprocating import weight_potential, weight_torque
 from .validation import non_negative, positive, real
 from .windmill import windmill_power
 
@@ -91,6 +93,31 @@ class CycleMeanPower:
     hydraulic: np.ndarray
 
 
+class EnergyTotals(typing.NamedTuple):
+    """Where the windmill's work went over a run [J] (:meth:`PowerBudget.totals`)."""
+
+    shaft: float
+    """The windmill's work W."""
+    transmission: float
+    """Lost in the chain and sprockets, (1 - eta_t) W."""
+    friction: float
+    """Lost to the rising main's friction."""
+    leak: float
+    """Lost through the leak holes."""
+    kinetic: float
+    """Gained as kinetic energy of the moving parts (spinning up)."""
+    potential: float
+    """Gained as the reciprocating weights' potential energy (0 over whole revolutions)."""
+    water: float
+    """Lifted water, rho_w g h V."""
+
+    @property
+    def imbalance(self) -> float:
+        """What the terms leave of W, relative to W [-]: 0 for an exact run."""
+        rest = self.shaft - sum(self[1:])
+        return abs(rest) / max(abs(self.shaft), np.finfo(float).tiny)
+
+
 @dataclasses.dataclass(frozen=True)
 class PowerBudget:
     """The windmill's power and where it goes, at every sample of a run.
@@ -102,15 +129,22 @@ class PowerBudget:
     shaft_power : ndarray
         Windmill shaft power T(omega) omega, Eq. (11) [W].
     kinetic_power : ndarray
-        Rate of change of the kinetic energy, d(I_eff theta_dot^2 / 2)/dt [W]: Eq. (12) times
+        Rate of change of the kinetic energy, d(J theta_dot^2 / 2)/dt [W]: Eq. (12) times
         theta_dot; negative while the rotor slows.
     hydraulic_power : ndarray
-        Power lifting water, rho_w g h Q [W]: zero while the cylinder takes water in.
+        Power lifting water, rho_w g h Q [W]: zero while no face delivers.
     shaft_work, kinetic_energy, lift_work : ndarray
-        Their integrals since t = 0 [J]: the windmill's work, the change of I_eff theta_dot^2 / 2,
+        Their integrals since t = 0 [J]: the windmill's work, the change of J theta_dot^2 / 2,
         and rho_w g h V.
     theta : ndarray
         Crank angle [rad], unwrapped: it marks the revolutions of :meth:`cycle_means`.
+    transmission_power, friction_power, leak_power, weight_power : ndarray
+        The real machine's losses [W] (zero for the ideal machine): the chain's
+        (1 - eta_t) T omega, the rising main's rho_w g h_f Q, the leak holes' (the faces' power
+        sum p_k u_k less rho_w g (h + h_f) Q), and the rate the reciprocating weights gain
+        potential energy, -m_r g sum x_c' theta_dot.
+    transmission_loss, friction_loss, leak_loss, potential_energy : ndarray
+        Their integrals since t = 0 [J].
     """
 
     t: np.ndarray
@@ -121,13 +155,54 @@ class PowerBudget:
     kinetic_energy: np.ndarray
     lift_work: np.ndarray
     theta: np.ndarray
+    transmission_power: np.ndarray
+    friction_power: np.ndarray
+    leak_power: np.ndarray
+    weight_power: np.ndarray
+    transmission_loss: np.ndarray
+    friction_loss: np.ndarray
+    leak_loss: np.ndarray
+    potential_energy: np.ndarray
+
+    def totals(self, sample: int = -1) -> EnergyTotals:
+        """Where the work went from t = 0 to a sample (the last by default) [J].
+
+        Examples
+        --------
+        >>> from windpump import Design, simulate
+        >>> d = Design.seed_example().replace(eta_t=0.9, L_main=20.0, d_leak=0.002)
+        >>> totals = power_budget(simulate(d, 600.0)).totals()
+        >>> round(totals.transmission / totals.shaft, 3), totals.imbalance < 1e-9
+        (0.1, True)
+        """
+        return EnergyTotals(
+            *(
+                float(array[sample])
+                for array in (
+                    self.shaft_work,
+                    self.transmission_loss,
+                    self.friction_loss,
+                    self.leak_loss,
+                    self.kinetic_energy,
+                    self.potential_energy,
+                    self.lift_work,
+                )
+            )
+        )
 
     @property
     def imbalance(self) -> float:
-        """Largest ``|shaft work - kinetic energy gained - lift work|`` over the run [-].
-
-        Relative to the largest shaft work: 0 for an exact run."""
-        gap = self.shaft_work - self.kinetic_energy - self.lift_work
+        """Largest ``|W - every term of :meth:`totals`|`` over the run, relative to the largest
+        shaft work [-]: 0 for an exact run."""
+        gap = (
+            self.shaft_work
+            - self.transmission_loss
+            - self.friction_loss
+            - self.leak_loss
+            - self.kinetic_energy
+            - self.potential_energy
+            - self.lift_work
+        )
         return float(
             np.max(np.abs(gap)) / max(np.max(np.abs(self.shaft_work)), np.finfo(float).tiny)
         )
@@ -153,12 +228,15 @@ class PowerBudget:
 
 
 def power_budget(result: SimulationResult) -> PowerBudget:
-    """The wind pump's power split during a run: spinning up, and lifting water.
+    """The wind pump's power split during a run: spinning up, lifting water, and the real
+    machine's losses.
 
-    ``T(omega) omega = d(I_eff theta_dot^2 / 2)/dt + rho_w g h Q`` at every sample (Eq. 12 times
-    theta_dot, Eqs. 11 and 16, Q summed over every delivering face), and integrated: the windmill's
-    work since t = 0 equals the kinetic energy gained plus the water's potential energy
-    ``rho_w g h V``.
+    ``T omega = (1 - eta_t) T omega + d(J theta_dot^2 / 2)/dt - m_r g sum x_c' theta_dot
+    + rho_w g h Q + rho_w g h_f Q + P_leak`` at every sample (the equation of motion times
+    theta_dot; Eq. 12 times theta_dot for the ideal machine), and integrated: the windmill's work
+    since t = 0 equals the chain's loss, the kinetic energy gained, the weights' potential energy,
+    the water's ``rho_w g h V``, the rising main's friction and the leak's loss. The integrals are
+    the integrator's own quadratures, so they close to round-off.
 
     Parameters
     ----------
@@ -181,14 +259,33 @@ def power_budget(result: SimulationResult) -> PowerBudget:
         raise TypeError(f"result must be a windpump.SimulationResult, not {type(result).__name__}")
     design = result.design
     shaft_power = windmill_power(design, result.omega)
-    hydraulic_power = design.rho_w * design.g * design.h * result.flow
+    lift = design.rho_w * design.g
+    hydraulic_power = lift * design.h * result.flow
+    friction_power = lift * design.friction_coefficient * result.flow**3
+    if design.is_ideal:  # every face delivers what it sweeps against the static head
+        faces_power, leak_power = hydraulic_power, np.zeros_like(result.t)
+    else:
+        theta, theta_dot = result.theta, result.theta_dot
+        faces_power = load_torque_on_crank(design, theta, theta_dot) * theta_dot
+        leak_power = faces_power - hydraulic_power - friction_power
+    weight_power = -weight_torque(design, result.theta) * result.theta_dot
+    transmission_power = (1.0 - design.eta_t) * shaft_power
+    potential = weight_potential(design, result.theta)
     return PowerBudget(
         t=result.t,
         shaft_power=shaft_power,
-        kinetic_power=shaft_power - hydraulic_power,  # I_eff theta_dot theta_ddot, from Eq. (12)
+        kinetic_power=shaft_power - transmission_power - faces_power - weight_power,
         hydraulic_power=hydraulic_power,
         shaft_work=result.shaft_work,
         kinetic_energy=result.kinetic_energy - result.kinetic_energy[0],
         lift_work=result.lift_work,
         theta=result.theta,
+        transmission_power=transmission_power,
+        friction_power=friction_power,
+        leak_power=leak_power,
+        weight_power=weight_power,
+        transmission_loss=(1.0 - design.eta_t) * result.shaft_work,
+        friction_loss=result.friction_loss,
+        leak_loss=result.leak_loss,
+        potential_energy=potential - potential[0],
     )

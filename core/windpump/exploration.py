@@ -124,6 +124,18 @@ class Exploration:
         return float(self.run.volume[-1])
 
     @property
+    def volumetric_efficiency(self) -> float:
+        """Water delivered over the volume the pistons swept [-] (:attr:`SimulationResult.
+        volumetric_efficiency`): below 1 with a leak hole."""
+        return self.run.volumetric_efficiency
+
+    @property
+    def overall_efficiency(self) -> float:
+        """Lifted water's energy over the windmill's work, rho_w g h V / W [-]
+        (:attr:`SimulationResult.overall_efficiency`)."""
+        return self.run.overall_efficiency
+
+    @property
     def mean_flow(self) -> float:
         """Water pumped over the run / its duration [m^3/s] (0 for a run of no duration)."""
         duration = float(self.run.t[-1])

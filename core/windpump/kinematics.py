@@ -6,7 +6,8 @@ arrays and broadcast. Eq. (1) and its derivative are the functions the compiled 
 (:mod:`windpump._kernels.equations`, called here with arrays).
 
 With several cylinders (``Design.cylinders = n``) cylinder k sees ``theta - 2 pi k / n``;
-:func:`face_flows` gives every delivering face's flow.
+:func:`swept_flows` gives the flow every delivering face sweeps, :func:`face_flows` what it
+delivers (less a leak hole's flow).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import math
 
 import numpy as np
 
+from ._kernels.equations import delivered_flow as _delivered_flow
 from ._kernels.equations import lever_arm as _lever
 from ._kernels.equations import piston_over_R as _x_over_R
 from .validation import finite_array, positive, rod_ratio
@@ -144,12 +146,74 @@ def cylinder_angles(theta, cylinders: int) -> np.ndarray:
     return np.asarray(theta)[None, ...] - lags.reshape((cylinders,) + (1,) * np.ndim(theta))
 
 
-def face_flows(theta, theta_dot, design):
-    """Flow of every face of every cylinder [m^3/s], shape ``(faces, samples)``.
+def swept_flows(theta, theta_dot, design):
+    """Flow every delivering face sweeps, ``u = A |dx/dtheta| theta_dot`` [m^3/s], shape
+    ``(faces, samples)``; 0 on a face that does not deliver.
 
-    Row ``2k`` is cylinder k's top face (``A |dx/dt|`` while ``pi < theta - 2 pi k/n < 2 pi``
-    modulo 2 pi), row ``2k + 1`` its bottom face (double-acting only: the other half, zero
-    otherwise); Eq. (16) face by face. Their sum is the pump's flow.
+    Row ``2k`` is cylinder k's top face (while ``pi < theta - 2 pi k/n < 2 pi`` modulo 2 pi),
+    row ``2k + 1`` its bottom face (double-acting only: the other half, zero otherwise); Eq. (16)
+    face by face. A tight piston delivers all of it (:func:`face_flows`).
+
+    Parameters
+    ----------
+    theta : array_like
+        Crank angles from TDC [rad].
+    theta_dot : array_like
+        Crank speeds [rad/s], broadcasting with theta.
+    design : Design
+
+    Examples
+    --------
+    >>> import math
+    >>> from windpump import Design
+    >>> d = Design.seed_example()
+    >>> round(float(swept_flows([3 * math.pi / 2], [2.0], d)[0, 0] / (d.A * d.R)), 12)
+    2.0
+    """
+    theta = finite_array("theta", theta, "rad")
+    theta_dot = finite_array("theta_dot", theta_dot, "rad/s")
+    return design.A * design.R * face_levers(theta, design) * theta_dot
+
+
+def face_levers(theta, design) -> np.ndarray:
+    """``|dx/dtheta| / R`` [-] of every face while it delivers, 0 while it does not, shape
+    ``(2 cylinders,) + theta.shape`` (rows as :func:`swept_flows`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from windpump import Design
+    >>> face_levers(3 * math.pi / 2, Design.seed_example()).tolist()
+    [1.0, 0.0]
+    """
+    theta = np.asarray(theta, dtype=float)
+    n = design.cylinders
+    levers = np.zeros((2 * n,) + theta.shape)
+    for k, own in enumerate(cylinder_angles(theta, n)):
+        phi = np.mod(own, 2 * math.pi)
+        lever = np.abs(_lever(phi, design.L_over_R))
+        levers[2 * k] = np.where(phi > math.pi, lever, 0.0)
+        if design.double_acting:
+            levers[2 * k + 1] = np.where(phi <= math.pi, lever, 0.0)
+    return levers
+
+
+def face_flows(theta, theta_dot, design):
+    """Flow every face of every cylinder delivers into the rising main [m^3/s], shape
+    ``(faces, samples)``.
+
+    What the face sweeps (:func:`swept_flows`, Eq. 16 face by face) less what leaks back through
+    its hole, ``q = max(u - q_L, 0)`` (``Design.leak_capacity``; a tight piston, d_leak = 0,
+    delivers all it sweeps). Row ``2k`` is cylinder k's top face, row ``2k + 1`` its bottom face
+    (double-acting only, zero otherwise). Their sum is the pump's flow Q.
+
+    Parameters
+    ----------
+    theta : array_like
+        Crank angles from TDC [rad].
+    theta_dot : array_like
+        Crank speeds [rad/s], >= 0 (the crank never turns backwards), broadcasting with theta.
+    design : Design
 
     Examples
     --------
@@ -159,15 +223,8 @@ def face_flows(theta, theta_dot, design):
     >>> flows = face_flows([3 * math.pi / 2], [1.0], d)  # cylinder 0 exhausts at mid-stroke
     >>> [round(float(q / (d.A * d.R)), 6) for q in flows[:, 0]]
     [1.0, 0.0, 0.0, 0.0]
+    >>> holed = d.replace(d_leak=0.004)  # its hole passes up to 0.106 L/s
+    >>> float(face_flows([3 * math.pi / 2], [1.0], holed)[0, 0])  # slow: all leaks back
+    0.0
     """
-    theta = finite_array("theta", theta, "rad")
-    theta_dot = finite_array("theta_dot", theta_dot, "rad/s")
-    n = design.cylinders
-    flows = np.zeros((2 * n,) + theta.shape)
-    for k, own in enumerate(cylinder_angles(theta, n)):
-        phi = np.mod(own, 2 * math.pi)
-        rate = design.A * design.R * np.abs(_lever(phi, design.L_over_R)) * theta_dot
-        flows[2 * k] = np.where(phi > math.pi, rate, 0.0)
-        if design.double_acting:
-            flows[2 * k + 1] = np.where(phi <= math.pi, rate, 0.0)
-    return flows
+    return _delivered_flow(swept_flows(theta, theta_dot, design), design.leak_capacity)

@@ -24,7 +24,7 @@ import numpy as np
 from .design import WIDEST_RATIO, Design
 from .errors import ParameterError
 from .progress import Progress, reporter
-from .theory import cycle_mean, effective_inertia, load_torque
+from .theory import cycle_mean, effective_inertia, load_torque, running_speeds
 from .validation import LARGEST, SMALLEST, real_array
 
 MAX_POINTS = 4_000_000
@@ -87,7 +87,13 @@ class DesignMap:
     def stall_gear_ratio(self) -> np.ndarray:
         """For each head, the gear ratio where the stall margin is 1 (Eq. 22) [-]: the averaged
         theory's stall boundary; the pump runs at larger ratios."""
-        return cycle_mean(self.design, head=self.heads).mean_load / self.design.T_m
+        d = self.design
+        if d.d_leak > 0.0:  # a leak hole never stalls
+            return np.zeros(self.heads.shape)
+        mean_load = cycle_mean(d, head=self.heads).mean_load
+        if d.friction_coefficient == 0.0:
+            return mean_load / (d.eta_t * d.T_m)
+        return _stall_ratio_with_pipe(d, self.heads, mean_load / (d.eta_t * d.T_m))
 
     def design_at(self, row: int, column: int) -> Design:
         """The design at heads[row] and gear_ratios[column]."""
@@ -176,11 +182,11 @@ def design_map(
     ratios = _grid("gear_ratios", gear_ratios, "", 1 / WIDEST_RATIO, WIDEST_RATIO)
     heads = _grid("heads", heads, "m", 0.0, LARGEST)
     _check_corners(design, ratios, heads)
-    margin, alpha_plus, tau = _averaged_grid(design, ratios, heads)
+    margin, alpha_plus, tau, mean_flow = _averaged_grid(design, ratios, heads)
     if numeric:
         alpha_plus, tau = _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress)
-    mean_flow = design.volume_per_revolution * alpha_plus / (2 * math.pi)
-    if numeric:
+        mean_flow = design.volume_per_revolution * alpha_plus / (2 * math.pi)
+    if numeric or design.d_leak > 0.0 or design.friction_coefficient > 0.0:
         best_ratio, best_flow = _refined_best(ratios, mean_flow)
     else:
         best_ratio = _best_gear_ratio(design, ratios, heads)
@@ -231,20 +237,39 @@ def _check_corners(design: Design, ratios: np.ndarray, heads: np.ndarray) -> Non
 
 
 def _averaged_grid(design: Design, ratios: np.ndarray, heads: np.ndarray):
-    """margin, alpha+ [rad/s] and tau [s] on the grid (rows: heads), NaN where margin <= 1: the
-    averaged equation of :mod:`windpump.theory`, broadcast."""
-    mean = cycle_mean(design, gear_ratio=ratios[np.newaxis, :], head=heads[:, np.newaxis])
-    return mean.margin, mean.alpha_plus, mean.tau
+    """margin, alpha+ [rad/s], tau [s] and mean flow [m^3/s] on the grid (rows: heads), NaN
+    where margin <= 1: the averaged equation of :mod:`windpump.theory`, broadcast."""
+    speeds = running_speeds(design, gear_ratio=ratios[np.newaxis, :], head=heads[:, np.newaxis])
+    return speeds.margin, speeds.alpha_plus, speeds.tau, speeds.mean_flow
 
 
 def _best_gear_ratio(design: Design, ratios: np.ndarray, heads: np.ndarray) -> np.ndarray:
     """For each head, R+* of the module docstring clipped to the grid's range; NaN when even the
-    largest ratio in the range cannot carry the load (the margin grows with R+)."""
+    largest ratio in the range cannot carry the load (the margin grows with R+). The chain's
+    efficiency enters as a mean load M / eta_t."""
     c = design.T_m - design.T_0
     s = (math.sqrt(1.0 + 3.0 * design.T_m / c) - 1.0) / 3.0
     M = cycle_mean(design, head=heads).mean_load
-    best = np.clip(M / (design.T_m - c * s * s), ratios[0], ratios[-1])
-    return np.where(ratios[-1] * design.T_m > M, best, np.nan)
+    best = np.clip(M / (design.eta_t * (design.T_m - c * s * s)), ratios[0], ratios[-1])
+    return np.where(ratios[-1] * design.eta_t * design.T_m > M, best, np.nan)
+
+
+def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarray) -> np.ndarray:
+    """For each head, the gear ratio where the margin with a rising main is 1 [-], by bisection
+    in log R+ on the closed-form margin: above the pipeless ratio (the pipe adds load), below
+    any ratio where the margin exceeds 1."""
+    low = np.where(pipeless > 0.0, pipeless, np.nan)
+    high = low.copy()
+    for _ in range(200):  # the first ratio above the boundary, doubling
+        short = cycle_mean(design, gear_ratio=high, head=heads).margin <= 1.0
+        if not short.any():
+            break
+        high = np.where(short, 2.0 * high, high)
+    for _ in range(100):
+        middle = np.sqrt(low * high)
+        short = cycle_mean(design, gear_ratio=middle, head=heads).margin <= 1.0
+        low, high = np.where(short, middle, low), np.where(short, high, middle)
+    return np.where(pipeless > 0.0, high, 0.0)
 
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):

@@ -10,7 +10,9 @@ alpha+(V) = p + delta and the thresholds below have closed forms.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
+import typing
 
 import numpy as np
 
@@ -19,7 +21,7 @@ from .design import Design
 from .dynamics import SimulationResult, simulate
 from .errors import ParameterError
 from .loads import peak_load_torque, starts_from_rest
-from .theory import cycle_mean
+from .theory import cycle_mean, running_speeds
 from .units import SECONDS_PER_DAY
 from .validation import finite_array, non_negative
 from .wind import MAX_WIND, WindRecord, as_record, shape, weibull_scale
@@ -29,10 +31,12 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     """Wind speeds (V_stop, V_start) [m/s] that bound where the pump runs.
 
     Below ``V_stop = V_ref / sqrt(stall margin)`` a running pump cannot keep running: the averaged
-    theory's stall criterion (Eq. 22, generalised) in the wind V. Above
-    ``V_start = V_ref sqrt(peak load torque / (R+ T_0))`` a resting pump starts from any crank
-    angle (:func:`windpump.starts_from_rest` in that wind); None when T_0 = 0 (it never starts on
-    its own), inf when R+ T_0 is too small for a double. Between them a pump that runs goes on running, one at rest stays there.
+    theory's stall criterion (Eq. 22, generalised) in the wind V (with a rising main, where the
+    averaged equation's roots meet; 0 with a leak hole, which never stalls). Above
+    ``V_start = V_ref sqrt(peak load torque / (eta_t R+ T_0))`` a resting pump starts from any
+    crank angle (:func:`windpump.starts_from_rest` in that wind: the net torque at rest is > 0
+    everywhere); None when T_0 = 0 (it never starts on its own), inf when eta_t R+ T_0 is too
+    small for a double. Between them a pump that runs goes on running, one at rest stays there.
 
     Examples
     --------
@@ -43,22 +47,34 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     >>> wind_thresholds(Design.seed_example())[1] is None
     True
     """
-    V_stop = design.V_ref / math.sqrt(stall_margin(design))
+    V_stop = _stop_wind(design)
     if design.T_0 == 0.0:
         return V_stop, None
-    at_rest = design.rest_torque_on_crank  # 0 when a tiny T_0 underflows: no wind starts it
+    at_rest = design.eta_t * design.rest_torque_on_crank  # 0 when a tiny T_0 underflows
     if not at_rest:
         return V_stop, math.inf
     return V_stop, design.V_ref * math.sqrt(peak_load_torque(design) / at_rest)
 
 
+def _stop_wind(design: Design) -> float:
+    """V_stop [m/s]: ``V_ref / sqrt(stall margin)`` (the margin grows as V^2), where delta^2 = 0
+    with a rising main, 0 with a leak hole (it never stalls)."""
+    if design.d_leak > 0.0:
+        return 0.0
+    if design.friction_coefficient == 0.0:
+        return design.V_ref / math.sqrt(stall_margin(design))
+    return design.V_ref * float(cycle_mean(design).s_stop)
+
+
 def steady_flow(design: Design, V):
-    """Averaged mean flow [m^3/s] in steady winds V [m/s]: m A R alpha+(V) / pi above V_stop.
+    """Averaged mean flow [m^3/s] in steady winds V [m/s]: the revolution mean of the delivered
+    flow at alpha+(V), ``m A R alpha+(V) / pi`` for a tight piston, above V_stop.
 
     ``alpha+(V)`` is the running crank speed of :func:`windpump.steady_speeds` for
     ``design.in_wind(V)``; below (and at) V_stop the pump cannot run and the flow is 0. Above V_stop
     the flow jumps from 0 to ``m A R p s_stop / pi`` and then grows about linearly with V (the
-    crank runs near the windmill's peak, which moves with V).
+    crank runs near the windmill's peak, which moves with V). With a leak hole the flow is the
+    delivered one (swept less leaked), 0 while the pump only crawls.
 
     Parameters
     ----------
@@ -82,14 +98,14 @@ def steady_flow(design: Design, V):
     speeds = finite_array("V", V, "m/s", minimum=0.0)
     if speeds.size and speeds.max() > MAX_WIND:  # as a record's (a flow of inf, otherwise)
         raise ParameterError("V", float(speeds.max()), f"wind speeds from 0 to {MAX_WIND:g}", "m/s")
-    flow = design.volume_per_revolution * _running_speed(design, speeds) / (2 * math.pi)
+    if design.d_leak > 0.0:  # a quadrature per wind speed: each distinct one once
+        values, where = np.unique(speeds, return_inverse=True)
+        flow = np.nan_to_num(running_speeds(design, V=values).mean_flow)[
+            where.reshape(speeds.shape)
+        ]
+    else:
+        flow = np.nan_to_num(running_speeds(design, V=speeds).mean_flow)
     return flow if flow.ndim else float(flow)
-
-
-def _running_speed(design: Design, V: np.ndarray) -> np.ndarray:
-    """alpha+ [rad/s] of the averaged equation in winds V, 0 where the pump cannot run."""
-    mean = cycle_mean(design, V=V)
-    return np.where(mean.runs, mean.alpha_plus, 0.0)
 
 
 def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[float, float]:
@@ -100,7 +116,9 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     wind above V_stop (once started the pump runs whenever the wind can carry it), ``low`` only the
     winds above V_start (it runs only when it could start from rest); ``low = 0`` when T_0 = 0.
     Both by quadrature to 1e-8 relative (the linear part in closed form with the incomplete
-    gamma function, the rest with the square root's end singularity removed).
+    gamma function, the rest with the square root's end singularity removed); with a leak hole
+    (no closed form for alpha+) by the trapezoidal rule over the running flow tabulated against
+    the wind at 300 crank speeds, to about 1e-3 relative.
 
     What the bounds leave out (ripple, gusts faster than the spin-up time, stops at angles where
     the load is light) is what a full run in a wind record shows: ``simulate(..., wind=...)``.
@@ -123,10 +141,18 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     c = weibull_scale(mean_wind, k)
     k = shape(k)
     V_stop, V_start = wind_thresholds(design)
-    high = _expected_flow(design, V_stop, c, k) if _ever_blows(V_stop, c, k) else 0.0
+    expected: typing.Callable[[float, float, float], float] = functools.partial(
+        _expected_flow, design
+    )
+    if design.d_leak > 0.0:  # one table of the running flow against the wind, for both bounds
+        V_far = c * 50.0 ** (1.0 / k)  # beyond it the density is below exp(-50)
+        flows = _leaky_flows(design, V_far)
+        expected = functools.partial(_expected_leaky_flow, flows, V_far=V_far)
+
+    high = expected(V_stop, c, k) if _ever_blows(V_stop, c, k) else 0.0
     low = 0.0
     if V_start is not None and _ever_blows(V_start, c, k):
-        low = _expected_flow(design, V_start, c, k)
+        low = expected(V_start, c, k)
     return float(SECONDS_PER_DAY * low), float(SECONDS_PER_DAY * high)
 
 
@@ -140,11 +166,12 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
     """E[flow(V); V > V_from] [m^3/s] for Weibull(c, k) winds, V_from >= V_stop."""
     from scipy import integrate, special
 
-    V_stop = design.V_ref / math.sqrt(stall_margin(design))
+    V_stop = _stop_wind(design)
     mean = cycle_mean(design)  # at V_ref
     p = float(mean.p)
     per_radian = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
-    # alpha+ = p s + g sqrt(V^2 - V_stop^2), s = V / V_ref (theory.CycleMean.delta2_per_s2).
+    # alpha+ = p s + g sqrt(V^2 - V_stop^2), s = V / V_ref (theory.CycleMean.delta2_per_s2);
+    # p and delta2_per_s2 are scaled by kappa with a rising main.
     g = math.sqrt(mean.delta2_per_s2) / design.V_ref
     # E[V; V > a] = c Gamma(1 + 1/k, (a/c)^k), the upper incomplete gamma function.
     linear = c * math.gamma(1.0 + 1.0 / k) * special.gammaincc(1.0 + 1.0 / k, (V_from / c) ** k)
@@ -161,6 +188,45 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
     near, _ = integrate.quad(root_term, q_from, q_far, epsabs=0.0, epsrel=1e-12, limit=400)
     tail, _ = integrate.quad(root_term, q_far, math.inf, epsabs=0.0, epsrel=1e-12, limit=400)
     return per_radian * (p / design.V_ref * linear + g * (near + tail))
+
+
+LEAKY_SPEEDS = 300
+"""Crank speeds at which a pump with a leak hole's mean load and flow are tabulated for the
+expected flow at a Weibull site."""
+
+
+def _leaky_flows(design: Design, V_far: float) -> tuple[np.ndarray, np.ndarray]:
+    """The running flow Q-bar [m^3/s] of a pump with a leak hole against the wind V [m/s] it
+    runs in, V non-decreasing up to V_far, on LEAKY_SPEEDS crank speeds.
+
+    By the wind similarity every crank speed alpha is a steady speed in one wind: the s where
+    ``eta_t R+ T_s(R+ alpha) = L-bar(alpha)`` (a quadratic in s; L-bar does not depend on the
+    wind). The running speed alpha+(V) is the largest alpha with ``V_ref s(alpha) = V``, so V
+    runs through ``V_ref min over alpha' >= alpha of s(alpha')``, non-decreasing in alpha.
+    """
+    from .revolution import mean_load
+
+    top = design.runaway_speed / design.omega_m  # x where T vanishes at V_ref
+    fastest = V_far / design.V_ref * design.omega_m * top / design.R_dagger
+    alpha = np.linspace(0.0, fastest, LEAKY_SPEEDS + 1)[1:]
+    load, flow = mean_load(design, alpha)
+    # eta_t R+ [T_0 s^2 + (T_m - T_0) x (2 s - x)] = load, x = R+ alpha / omega_m at V_ref.
+    x = design.R_dagger * alpha / design.omega_m
+    spread = design.T_m - design.T_0
+    need = load / (design.eta_t * design.R_dagger) + spread * x * x
+    s = need / (spread * x + np.sqrt((spread * x) ** 2 + design.T_0 * need))  # the root > 0
+    return design.V_ref * np.minimum.accumulate(s[::-1])[::-1], flow
+
+
+def _expected_leaky_flow(flows, V_from: float, c: float, k: float, *, V_far: float) -> float:
+    """E[flow(V); V > V_from] [m^3/s] for Weibull(c, k) winds from :func:`_leaky_flows`: the
+    integral of ``Q-bar f(V) dV`` by the trapezoidal rule (where the running speed jumps, V
+    stands still and adds nothing)."""
+    V, flow = flows
+    V = np.clip(V, V_from, max(V_from, V_far))
+    density = k / c * (V / c) ** (k - 1.0) * np.exp(-((V / c) ** k))
+    weighted = flow * density
+    return float(np.sum(0.5 * (weighted[1:] + weighted[:-1]) * np.diff(V)))
 
 
 def record_water(design: Design, record) -> tuple[float, float]:

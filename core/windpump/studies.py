@@ -293,7 +293,8 @@ def figures_of(design: Design, t_end: float, theta0: float, theta_dot0: float) -
     margin = stall_margin(design)
     alpha_plus = alpha_minus = tau = math.nan
     if margin > 1.0:
-        alpha_plus, alpha_minus = steady_speeds(design)
+        alpha_plus, unstable = steady_speeds(design)
+        alpha_minus = math.nan if unstable is None else unstable
         tau = time_constant(design)
     flow = speed = peak_to_mean = ripple = math.nan
     if run.stalled:  # at rest in the end: it pumps nothing

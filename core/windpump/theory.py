@@ -12,7 +12,17 @@ in crank speed [rad/s] it reads
     delta^2 = (omega_m / R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0)),
 
 with T_m, T_0 and omega_m the curve's at V_ref and ``I_eff = I1 + I0 R+^2``; k does not depend on
-the wind. The roots ``p +- delta`` are alpha+- omega_m of Eq. (21), which these reduce to when
+the wind.
+
+The real machine (docs/model.rst, "The real machine: averaged theory") averages to
+``I-bar alpha' = F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha)``, I-bar = I_eff + m_r sum_c
+<x_c'^2> (the weight averages out). Without a leak hole ``L-bar = M + c alpha^2`` (c: the rising
+main) and F is still a quadratic: with ``b = eta_t R+^3 (T_m - T_0) / omega_m^2`` and
+``kappa = b / (b + c)``, ``k = (b + c) / I-bar``, p is kappa times the above and
+``delta^2 = kappa (D - (1 - kappa) (s omega_m/R+)^2)``, D the above with R+ T_m and R+ T_0 times
+eta_t; the paper's ideal machine (eta_t = 1, c = 0, m_r = 0) is the above to the last bit. With a
+leak hole L-bar is a quadrature (:mod:`windpump.revolution`) and :func:`running_speeds` finds
+the roots numerically. The roots ``p +- delta`` are alpha+- omega_m of Eq. (21), which these reduce to when
 m = 1, T_0 = 0 and s = 1; delta^2 > 0 exactly when the stall margin ``R+ T_m s^2 / M`` exceeds 1
 (Eq. 22), and the relaxation time at alpha+ is ``tau = 1 / (2 k delta)`` (Eq. 25).
 
@@ -139,6 +149,14 @@ class CycleMean:
         Cycle-mean load torque M [N m].
     s : float or ndarray
         Wind speed over V_ref [-].
+    eta_t : float
+        Transmission efficiency [-] (1: the ideal chain).
+    friction : float
+        The rising main's mean load per crank speed squared c [N m s^2]: the mean load is
+        ``M + c alpha^2`` (0: no pipe).
+    reciprocating_inertia : float
+        What the reciprocating masses add to the mean inertia, ``m_r sum_c <x_c'^2>``
+        [kg m^2].
     """
 
     R_dagger: Array
@@ -148,13 +166,48 @@ class CycleMean:
     I_eff: Array
     mean_load: Array
     s: Array = 1.0
+    eta_t: Array = 1.0
+    friction: Array = 0.0
+    reciprocating_inertia: Array = 0.0
+
+    @property
+    def I_bar(self) -> Array:
+        """The revolution-mean inertia on the crank, ``I_eff + m_r sum_c <x_c'^2>`` [kg m^2]."""
+        return self.I_eff + self.reciprocating_inertia
+
+    @property
+    def b(self) -> Array:
+        """The windmill curve's curvature on the crank, ``eta_t R+^3 (T_m - T_0) / omega_m^2``
+        [N m s^2]: ``eta_t R+ T(R+ alpha)`` falls as ``-b alpha^2`` plus a linear part."""
+        return self.eta_t * self.R_dagger**3 * (self.T_m - self.T_0) / self.omega_m**2
+
+    @property
+    def kappa(self) -> Array:
+        """``b / (b + c)`` [-]: how much the pipe's friction (c) steepens the load; 1 without
+        a pipe."""
+        return self.b / (self.b + self.friction)
 
     @property
     def margin(self) -> Array:
-        """Stall margin ``R+ T_m s^2 / M`` [-] (Eq. 22); inf where there is no load."""
-        peak = self.R_dagger * self.T_m * self.s**2  # the windmill's peak torque on the crank
+        """Stall margin [-]: the largest ``eta_t R+ T(R+ alpha) / (M + c alpha^2)`` over the
+        crank speeds, ``eta_t R+ T_m s^2 / M`` without a pipe (Eq. 22); inf where there is no
+        load."""
+        peak = self.eta_t * self.R_dagger * self.T_m * self.s**2  # the peak torque on the crank
         with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
-            return np.where(self.mean_load > 0.0, np.divide(peak, self.mean_load), math.inf)
+            margin = np.where(self.mean_load > 0.0, np.divide(peak, self.mean_load), math.inf)
+            return np.where(self.friction > 0.0, self._margin_with_pipe(), margin)
+
+    def _margin_with_pipe(self) -> Array:
+        """The largest ratio ``(a0 + a1 alpha - b alpha^2) / (M + c alpha^2)`` over alpha >= 0:
+        where its derivative vanishes, ``a1 c alpha^2 + 2 (b M + a0 c) alpha - a1 M = 0``."""
+        a0 = self.eta_t * self.rest_torque  # the windmill's torque on the crank at rest
+        a1 = 2.0 * self.b * self.omega_m * self.s / self.R_dagger
+        M, c = self.mean_load, self.friction
+        half = self.b * M + a0 * c
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            best = a1 * M / (half + np.sqrt(half * half + a1 * a1 * c * M))
+            ratio = (a0 + (a1 - self.b * best) * best) / (M + c * best * best)
+            return np.where(M > 0.0, ratio, math.inf)
 
     @property
     def runs(self) -> Array:
@@ -163,27 +216,44 @@ class CycleMean:
 
     @property
     def k(self) -> Array:
-        """Rate of the averaged equation, ``R+^3 (T_m - T_0) / (I_eff omega_m^2)`` [1/rad]."""
-        return self.R_dagger**3 * (self.T_m - self.T_0) / (self.I_eff * self.omega_m**2)
+        """Rate of the averaged equation, ``(b + c) / I-bar`` [1/rad]: ``R+^3 (T_m - T_0) /
+        (I_eff omega_m^2)`` for the ideal machine."""
+        rate = self.eta_t * self.R_dagger**3 * (self.T_m - self.T_0)
+        with_pipe = rate + self.friction * self.omega_m**2
+        return with_pipe / (self.I_bar * self.omega_m**2)
 
     @property
     def p(self) -> Array:
-        """Crank speed at the windmill's peak torque in this wind, ``s omega_m / R+`` [rad/s]."""
-        return self.omega_m / self.R_dagger * self.s
+        """Centre of the roots, ``kappa s omega_m / R+`` [rad/s]: the crank speed at the
+        windmill's peak torque in this wind without a pipe."""
+        return self.kappa * (self.omega_m / self.R_dagger * self.s)
 
     @property
     def delta2(self) -> Array:
-        """``delta^2 = (omega_m/R+)^2 (R+ T_m s^2 - M) / (R+ (T_m - T_0))`` [rad^2/s^2]."""
+        """``delta^2 = kappa (D - (1 - kappa) (s omega_m/R+)^2)`` [rad^2/s^2], with
+        ``D = (omega_m/R+)^2 (eta_t R+ T_m s^2 - M) / (eta_t R+ (T_m - T_0))``, delta^2 itself
+        without a pipe."""
         at_peak = self.omega_m / self.R_dagger  # p at V_ref
-        spare = self.R_dagger * self.T_m * self.s**2 - self.mean_load  # [N m]
-        return at_peak * at_peak * spare / (self.R_dagger * (self.T_m - self.T_0))
+        spare = self.eta_t * self.R_dagger * self.T_m * self.s**2 - self.mean_load  # [N m]
+        pipeless = at_peak * at_peak * spare / (self.eta_t * self.R_dagger * (self.T_m - self.T_0))
+        steeper = (1.0 - self.kappa) * (at_peak * self.s) ** 2
+        return self.kappa * (pipeless - steeper)
 
     @property
     def delta2_per_s2(self) -> Array:
-        """How delta^2 grows with the wind, ``(omega_m/R+)^2 T_m / (T_m - T_0)`` [rad^2/s^2]: by
-        the wind similarity ``delta^2 = delta2_per_s2 (s^2 - 1/margin(V_ref))``."""
+        """How delta^2 grows with the wind, ``kappa (omega_m/R+)^2 (T_m / (T_m - T_0) - (1 -
+        kappa))`` [rad^2/s^2]: by the wind similarity ``delta^2 = delta2_per_s2 (s^2 -
+        s_stop^2)``, ``s_stop^2 = 1/margin(V_ref)`` without a pipe."""
         at_peak = self.omega_m / self.R_dagger
-        return at_peak * at_peak * self.T_m / (self.T_m - self.T_0)
+        pipeless = at_peak * at_peak * self.T_m / (self.T_m - self.T_0)
+        return self.kappa * (pipeless - (1.0 - self.kappa) * at_peak * at_peak)
+
+    @property
+    def s_stop(self) -> Array:
+        """The wind speed over V_ref below which the pump cannot run [-]: where delta^2 = 0,
+        ``s / sqrt(margin)`` without a pipe."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.sqrt(np.maximum(self.s**2 - self.delta2 / self.delta2_per_s2, 0.0))
 
     @property
     def delta(self) -> Array:
@@ -200,17 +270,19 @@ class CycleMean:
     @property
     def alpha_minus(self) -> Array:
         """Unstable steady speed ``p - delta`` [rad/s] (Eq. 21), from the product of the roots
-        ``(omega_m/R+)^2 (M - R+ T_0 s^2) / (R+ (T_m - T_0))`` over alpha+ (the difference cancels
+        ``kappa (omega_m/R+)^2 (M - eta_t R+ T_0 s^2) / (eta_t R+ (T_m - T_0))`` over alpha+ (the difference cancels
         when the load is light); <= 0 when the torque at rest beats the mean load. NaN where it
         cannot run."""
         at_peak = self.omega_m / self.R_dagger
-        product = at_peak * at_peak * (self.mean_load - self.rest_torque)
+        product = at_peak * at_peak * (self.mean_load - self.eta_t * self.rest_torque)
         with np.errstate(divide="ignore", invalid="ignore"):
-            return product / (self.R_dagger * (self.T_m - self.T_0)) / self.alpha_plus
+            windmill = self.eta_t * self.R_dagger * (self.T_m - self.T_0)
+            return self.kappa * (product / windmill / self.alpha_plus)
 
     @property
     def tau(self) -> Array:
-        """Spin-up time constant ``1 / (2 k delta)`` [s] (Eq. 25); NaN where it cannot run."""
+        """Spin-up time constant ``1 / (2 k delta) = I-bar / (-F'(alpha+))`` [s] (Eq. 25); NaN
+        where it cannot run."""
         with np.errstate(divide="ignore"):
             return 1.0 / (2.0 * self.k * self.delta)
 
@@ -228,10 +300,13 @@ def cycle_mean(
     V: Array | None = None,
 ) -> CycleMean:
     """The averaged equation (Eqs. 19-25, generalised) of ``design`` varied in gear ratio, head
-    and wind, broadcasting.
+    and wind, broadcasting: its closed forms, for a pump without a leak hole.
 
     The gear ratio R+ is varied through R1 with R0 fixed (so ``I_eff = I1 + I0 R+^2`` changes
-    with it); every other field is the design's.
+    with it); every other field is the design's. The real machine's transmission efficiency,
+    reciprocating mass and rising main keep the equation a Riccati equation (module docstring):
+    eta_t scales the windmill's torque, the masses add to the inertia and the pipe adds
+    ``c alpha^2`` to the mean load. :func:`running_speeds` covers a leak hole too.
 
     Parameters
     ----------
@@ -249,6 +324,11 @@ def cycle_mean(
         Whose attributes (margin, alpha_plus, alpha_minus, tau, ...) have the broadcast shape of
         the arguments.
 
+    Raises
+    ------
+    ParameterError
+        Naming ``d_leak`` for a pump with a leak hole (no closed form).
+
     Examples
     --------
     >>> from windpump import Design
@@ -258,6 +338,15 @@ def cycle_mean(
     >>> float(cycle_mean(Design.seed_example()).tau.round(1))
     78.6
     """
+    if design.d_leak > 0.0:
+        from .errors import ParameterError
+
+        raise ParameterError(
+            "d_leak", design.d_leak, "0 (no leak hole) for the closed forms", "m",
+            why="with a leak hole the averaged equation is solved by quadrature: running_speeds",
+        )  # fmt: skip
+    from .revolution import friction_load, reciprocating_inertia
+
     R_dagger = design.R_dagger if gear_ratio is None else np.asarray(gear_ratio, dtype=float)
     h = design.h if head is None else np.asarray(head, dtype=float)
     load = load_torque(design.rho_w, design.g, h, design.A, design.R)
@@ -269,4 +358,99 @@ def cycle_mean(
         I_eff=effective_inertia(design.I1, design.I0, R_dagger),
         mean_load=mean_load_torque(design.deliveries, load),
         s=1.0 if V is None else np.asarray(V, dtype=float) / design.V_ref,
+        eta_t=design.eta_t,
+        friction=friction_load(design),
+        reciprocating_inertia=reciprocating_inertia(design),
     )
+
+
+@dataclasses.dataclass(frozen=True)
+class RunningSpeeds:
+    """The averaged equation's answers for designs varied in gear ratio, head and wind, with
+    or without a leak hole (:func:`running_speeds`); every array has the broadcast shape.
+
+    Attributes
+    ----------
+    margin : ndarray
+        Stall margin [-]: the largest ``eta_t R+ T(R+ alpha) / L-bar(alpha)`` over the crank
+        speeds where the windmill drives; inf with a leak hole (or no load).
+    alpha_plus : ndarray
+        Stable running crank speed alpha+ [rad/s]: the largest root of F where F falls; NaN
+        where the pump cannot run.
+    alpha_minus : ndarray
+        The rising root of F below alpha+ [rad/s] (unstable: a pump below it slows); NaN where
+        F has none (with a leak hole, where F > 0 from rest up to alpha+). Without a hole it is
+        ``CycleMean.alpha_minus`` (<= 0 when the torque at rest beats the mean load).
+    tau : ndarray
+        Time constant ``I-bar / (-F'(alpha+))`` [s]; NaN where the pump cannot run.
+    mean_flow : ndarray
+        Revolution mean of the delivered flow at alpha+ [m^3/s]; NaN where it cannot run.
+    I_bar : ndarray
+        Revolution-mean inertia on the crank [kg m^2].
+    """
+
+    margin: Array
+    alpha_plus: Array
+    alpha_minus: Array
+    tau: Array
+    mean_flow: Array
+    I_bar: Array
+
+    @property
+    def runs(self) -> Array:
+        """Whether the pump can run: the margin exceeds 1 [bool]."""
+        return self.margin > 1.0
+
+
+def running_speeds(
+    design: Design,
+    *,
+    gear_ratio: Array | None = None,
+    head: Array | None = None,
+    V: Array | None = None,
+) -> RunningSpeeds:
+    """Stall margin, steady speeds, time constant and mean flow of the averaged equation
+    ``I-bar alpha' = F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha)``, broadcasting.
+
+    Without a leak hole in closed form (:func:`cycle_mean`, the paper's Riccati equation with
+    the real machine's eta_t, I-bar and pipe). With a hole L-bar is a quadrature
+    (:func:`windpump.revolution.mean_load`): F is scanned on a grid of crank speeds up to the
+    windmill's runaway speed and its roots refined by the Illinois method to round-off; tau
+    from a central difference of F. Such a pump never stalls (margin inf): F > 0 just above
+    rest, where the load through the hole vanishes as alpha^2.
+
+    Parameters
+    ----------
+    design : Design
+    gear_ratio, head, V : float or array_like, optional
+        As :func:`cycle_mean`: R+ [-], h [m], wind speed [m/s].
+
+    Returns
+    -------
+    RunningSpeeds
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> d = Design.seed_example()
+    >>> round(float(running_speeds(d).alpha_plus), 2)
+    23.71
+    >>> holed = running_speeds(d.replace(d_leak=0.004))
+    >>> float(holed.margin), round(float(holed.alpha_plus), 2), bool(np.isnan(holed.alpha_minus))
+    (inf, 23.71, True)
+    """
+    if design.d_leak == 0.0:
+        mean = cycle_mean(design, gear_ratio=gear_ratio, head=head, V=V)
+        runs = mean.runs
+        alpha_plus = np.where(runs, mean.alpha_plus, math.nan)
+        return RunningSpeeds(
+            margin=mean.margin,
+            alpha_plus=alpha_plus,
+            alpha_minus=np.where(runs, mean.alpha_minus, math.nan),
+            tau=np.where(runs, mean.tau, math.nan),
+            mean_flow=design.volume_per_revolution * alpha_plus / (2 * math.pi),
+            I_bar=mean.I_bar,
+        )
+    from .revolution import leaky_running_speeds
+
+    return leaky_running_speeds(design, gear_ratio=gear_ratio, head=head, V=V)

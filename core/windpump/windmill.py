@@ -12,6 +12,7 @@ from ._kernels.equations import windmill_torque as _torque_curve
 from .averaged import steady_speeds
 from .design import Design
 from .errors import ParameterError
+from .theory import running_speeds
 from .validation import LARGEST, finite_array, flag
 
 
@@ -79,10 +80,12 @@ class OperatingPoint:
     crank_speed : float
         Crank speed omega / R+ [rad/s].
     flow : float
-        Mean pumped flow m A R theta_dot / pi [m^3/s] (Eq. 2, m deliveries per revolution).
+        Mean pumped flow m A R theta_dot / pi [m^3/s] (Eq. 2, m deliveries per revolution);
+        the delivered flow's revolution mean with a leak hole.
     omega_unstable : float
         The other intersection [rad/s] (R+ alpha- omega_m): below it the pump decelerates. With
-        torque at rest it may be <= 0 (no unstable speed: every kick spins up).
+        torque at rest it may be <= 0 (no unstable speed: every kick spins up); NaN with a leak
+        hole where there is none.
     power_unstable : float
         Shaft power at omega_unstable [W].
     """
@@ -116,14 +119,18 @@ def operating_point(design: Design) -> OperatingPoint:
     """
     crank_speed, crank_unstable = steady_speeds(design)
     omega = design.R_dagger * crank_speed
-    omega_unstable = design.R_dagger * crank_unstable
+    if crank_unstable is None:  # a leak hole, and F > 0 from rest: no unstable speed
+        omega_unstable, power_unstable = math.nan, math.nan
+    else:
+        omega_unstable = design.R_dagger * crank_unstable
+        power_unstable = float(windmill_power(design, max(omega_unstable, 0.0)))
     return OperatingPoint(
         omega=omega,
         power=float(windmill_power(design, omega)),
         crank_speed=crank_speed,
-        flow=design.volume_per_revolution * crank_speed / (2 * math.pi),
+        flow=float(running_speeds(design).mean_flow),
         omega_unstable=omega_unstable,
-        power_unstable=float(windmill_power(design, max(omega_unstable, 0.0))),
+        power_unstable=power_unstable,
     )
 
 

@@ -35,13 +35,14 @@ import typing
 import numpy as np
 
 if typing.TYPE_CHECKING:
-    from .model import Machine
+    from .model import Machine, Real
     from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED
     from .wind import Wind
 
 # name -> the module that defines it, imported (with numba) on first use.
 LAZY = {
     "Machine": "model",
+    "Real": "model",
     "Wind": "wind",
     "OVER_BUDGET": "stepping",
     "REACHED_T_END": "stepping",
@@ -56,6 +57,7 @@ __all__ = [
     "STALLED",
     "KernelRun",
     "Machine",
+    "Real",
     "Wind",
     "is_cached",
     "run",
@@ -75,6 +77,10 @@ class KernelRun(typing.NamedTuple):
     steps: int  # Dormand-Prince steps taken, rejected ones included
     stops: np.ndarray  # times the crank came to rest and waited for the wind [s]
     starts: np.ndarray  # times a resting crank began to turn [s]
+    # The real machine's quadratures (None for the ideal machine's run):
+    leaked: np.ndarray | None = None  # volume swept but leaked back through the holes [m^3]
+    friction_loss: np.ndarray | None = None  # work lost to the rising main's friction [J]
+    leak_loss: np.ndarray | None = None  # the rest of the load's work: the leak hole's [J]
 
 
 def __getattr__(name: str) -> typing.Any:
@@ -114,7 +120,8 @@ def run(
         max_steps,
         capacity,
     )
-    t, theta, theta_dot, work, strokes, flow = (out[row, :n].copy() for row in range(driver.ROWS))
+    t, theta, theta_dot, strokes, flow, work = (out[row, :n].copy() for row in range(driver.ROWS))
+    real = [out[row, :n].copy() for row in range(driver.ROWS, out.shape[0])]
     times, kinds = events[0, :count], events[1, :count]
     return KernelRun(
         t,
@@ -127,6 +134,9 @@ def run(
         int(steps),
         stops=times[kinds == STOP].copy(),
         starts=times[kinds == START].copy(),
+        leaked=real[0] if real else None,
+        friction_loss=real[1] if real else None,
+        leak_loss=real[2] if real else None,
     )
 
 

@@ -16,13 +16,18 @@ import numpy as np
 
 from .dopri5 import NODES, dense_value, step_factor
 from .jit import kernel
-from .model import (
-    delivered_strokes,
-    flow_factor,
-    load_on_crank,
-    load_work,
-    segment_at,
-    segment_start,
+from .model import delivered_strokes, flow_factor, segment_at, segment_start
+from .real import (
+    ROW,
+    conservative_torque,
+    conservative_work,
+    fill_row,
+    inertia_ratio,
+    next_leak_kink,
+    work_at,
+    work_rows,
+    write_work,
+    zero_work,
 )
 from .stepping import (
     ANGLE,
@@ -41,9 +46,10 @@ from .stepping import (
 )
 from .wind import has_record, next_kink
 
-# Rows of the output array, one per sampled quantity.
-T, THETA, THETA_DOT, WORK, STROKES, FLOW_FACTOR = range(6)
-ROWS = 6
+# Rows of the output array, one per sampled quantity; the work quadratures last (the real
+# machine's four from WORK on: shaft work, delivered volume, friction loss, leak loss).
+T, THETA, THETA_DOT, STROKES, FLOW_FACTOR, WORK = range(6)
+ROWS = 6  # the ideal machine's
 
 # The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's
 # duration. At 10 rtol it leaves running designs to the u test and still guards slow starts.
@@ -62,10 +68,11 @@ def faces(machine):
 @kernel
 def grid_tables(n_per_stroke, machine):
     """At the grid angles g pi / n_per_stroke of one revolution: strokes delivered since theta = 0,
-    the flow factor, and the load work since the segment began."""
+    the flow factor, the conservative work since the segment began, and J / I_eff."""
     rows = 2 * n_per_stroke
     delta = math.pi / n_per_stroke
     strokes, flows, works = np.empty(rows), np.empty(rows), np.empty(rows)
+    inertias = np.empty(rows)
     for row in range(rows):
         theta = row * delta
         segment = (row * machine.cylinders) // n_per_stroke
@@ -75,21 +82,32 @@ def grid_tables(n_per_stroke, machine):
             # On a switch the faces that start or stop sit at a dead centre and deliver nothing;
             # the side without them keeps round-off (sin pi = 1.2e-16) out of the flow.
             flows[row] = min(flows[row], flow_factor(theta, segment - 1, machine))
-        works[row] = load_work(theta, segment, machine)
-    return strokes, flows, works
+        works[row] = conservative_work(theta, segment, machine)
+        inertias[row] = inertia_ratio(theta, machine)
+    return strokes, flows, works, inertias
 
 
 @kernel
-def tabulate_segment(parity, m, machine, tables, built):
-    """For each of m equal sub-steps of a segment of this parity: the load work at its 7 stage
-    nodes and (column 7) the load at its start [N m]."""
+def tabulate_segment(parity, m, machine, tables, rows, built):
+    """For each of m equal sub-steps of a segment of this parity: the conservative work at its 7
+    stage nodes and (column 7) the conservative torque at its start [N m]; and the real machine's
+    rows at the nodes."""
     start = segment_start(parity, machine)
     h = (segment_start(parity + 1, machine) - start) / m
     for i in range(m):
-        for stage in range(7):
-            tables[parity, m, i, stage] = load_work(start + (i + NODES[stage]) * h, parity, machine)
-        tables[parity, m, i, 7] = load_on_crank(start + i * h, parity, machine)
+        stage_values(start + i * h, h, parity, machine, tables[parity, m, i], rows[parity, m, i])
     built[parity, m] = True
+
+
+@kernel
+def stage_values(theta, h, segment, machine, aux, rows):
+    """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
+    at its nodes, then the conservative torque at theta) and the real machine's ``rows``."""
+    for stage in range(7):
+        node = theta + NODES[stage] * h
+        aux[stage] = conservative_work(node, segment, machine)
+        fill_row(rows[stage], node, segment, machine)
+    aux[7] = conservative_torque(theta, segment, machine)
 
 
 @kernel
@@ -107,7 +125,7 @@ def with_room(out, n, more):
     """``out``, or a copy with twice the room, so that ``more`` samples fit after the first n."""
     if n + more <= out.shape[1]:
         return out
-    bigger = np.empty((ROWS, max(2 * out.shape[1], n + more)))
+    bigger = np.empty((out.shape[0], max(2 * out.shape[1], n + more)))
     copy_columns(bigger, out, n)
     return bigger
 
@@ -125,7 +143,7 @@ def record(out, n, t, theta, theta_dot, W, strokes, flow, final):
     out[T, n] = t
     out[THETA, n] = theta
     out[THETA_DOT, n] = theta_dot
-    out[WORK, n] = W
+    write_work(out, WORK, n, W)
     out[STROKES, n] = strokes
     out[FLOW_FACTOR, n] = flow
     return n + 1
@@ -137,6 +155,12 @@ def record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, final):
     strokes = delivered_strokes(theta, machine)
     flow = flow_factor(theta, segment, machine)
     return record(out, n, t, theta, theta_dot, W, strokes, flow, final)
+
+
+@kernel
+def kinetic(theta, theta_dot, machine):
+    """Kinetic energy per unit I_eff, J theta_dot^2 / (2 I_eff) [rad^2/s^2]."""
+    return 0.5 * inertia_ratio(theta, machine) * theta_dot * theta_dot
 
 
 @kernel
@@ -193,11 +217,11 @@ def record_in_step(
         target = j * sample_dt
         sigma = time_of_sample(target, t, y[2], k1[2], k7[2], dense[1], h)
         theta = theta_i + sigma * h
-        u = load_work(theta, segment, machine) + dense_value(
+        u = conservative_work(theta, segment, machine) + dense_value(
             sigma, u_free, y[0], k1[0], k7[0], dense[0], h
         )
-        W_j = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h)
-        theta_dot = math.sqrt(2.0 * max(u, 0.0))
+        W_j = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+        theta_dot = math.sqrt(2.0 * max(u, 0.0) / inertia_ratio(theta, machine))
         n = record_anywhere(out, n, target, theta, theta_dot, W_j, segment, machine, False)
         j += 1
     return out, n, j
@@ -248,21 +272,23 @@ def integrate(
     delta = math.pi / n_per_stroke
     waits = has_record(machine.wind)  # a resting crank waits for the wind, to t_end
     per_revolution = faces(machine)
-    strokes_table, flow_table, work_table = grid_tables(n_per_stroke, machine)
+    strokes_table, flow_table, work_table, inertia_table = grid_tables(n_per_stroke, machine)
     tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 8))
+    row_tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 7, ROW))
     built = np.zeros((2, MAX_TABLED_SUBSTEPS + 1), dtype=np.bool_)
     end_work = (  # Lambda at the end of a segment of each parity
-        load_work(segment_start(1, machine), 0, machine),
-        load_work(segment_start(2, machine), 1, machine),
+        conservative_work(segment_start(1, machine), 0, machine),
+        conservative_work(segment_start(2, machine), 1, machine),
     )
 
-    scratch = np.empty(8)  # the stage loads of a sub-step off the tables
-    out = np.empty((ROWS, max(capacity, 2)))
+    scratch = np.empty(8)  # the stage values of a sub-step off the tables
+    scratch_rows = np.empty((7, ROW))
+    out = np.empty((ROWS - 1 + work_rows(machine), max(capacity, 2)))
     events = np.empty((2, 8))
     count = 0
-    t, theta, W = 0.0, theta0, 0.0
+    t, theta, W = 0.0, theta0, zero_work(machine)
     theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
-    u = 0.5 * theta_dot * theta_dot
+    u = kinetic(theta, theta_dot, machine)
     segment = first_segment(theta0, machine)
     n = record_anywhere(out, 0, t, theta, theta_dot0, W, segment, machine, False)
     j = 1  # the next time sample is j * sample_dt
@@ -287,6 +313,8 @@ def integrate(
     # Whether theta is where the segment starts: tracked, not compared (fastmath may round
     # (j + 1) pi/n and j pi/n differently).
     full = theta == segment_start(segment, machine)
+    leak_kink = later_kink = math.inf
+    kink_segment = -1
     while True:
         end = segment_start(segment + 1, machine)
         parity = segment % 2
@@ -298,12 +326,24 @@ def integrate(
         m_seg = m if full else max(1, int(math.ceil(m * (end - theta) / width)))
         use_table = full and m_seg <= MAX_TABLED_SUBSTEPS
         if use_table and not built[parity, m_seg]:
-            tabulate_segment(parity, m_seg, machine, tables, built)
+            tabulate_segment(parity, m_seg, machine, tables, row_tables, built)
         first = theta
         h = (end - theta) / m_seg
-        work = 0.0 if full else load_work(theta, segment, machine)
-        u_free = u - work  # u less the load's work: only the windmill changes it
-        k1 = rates(ANGLE, theta, u_free, t, work, machine, segment)
+        work = 0.0 if full else conservative_work(theta, segment, machine)
+        u_free = u - work  # u less the conservative work: only the windmill (and losses) change it
+        if use_table:
+            rows = row_tables[parity, m_seg, 0]
+        else:
+            rows = scratch_rows
+            fill_row(rows[0], theta, segment, machine)
+        k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
+        # The next angles where a face starts or stops delivering through its hole: found for a
+        # segment at its first speed, used as the run passes them (a landing is up to round-off).
+        if kink_segment != segment:
+            leak_kink, later_kink = next_leak_kink(theta, theta_dot, segment, machine)
+            kink_segment = segment
+        elif theta >= leak_kink - 1e-9 * width:
+            leak_kink, later_kink = later_kink, math.inf
         worst = 0.0
         failed = landed = False
         i = 0
@@ -312,36 +352,38 @@ def integrate(
                 return out, n, OVER_BUDGET, steps, events, count
             theta_i = first + i * h
             if use_table:
-                aux = tables[parity, m_seg, i]
+                aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
-                aux = scratch
-                for stage in range(7):
-                    scratch[stage] = load_work(theta_i + NODES[stage] * h, segment, machine)
-                scratch[7] = load_on_crank(theta_i, segment, machine)
-            load = aux[7]
+                aux, rows = scratch, scratch_rows
+                stage_values(theta_i, h, segment, machine, aux, rows)
+            torque = aux[7]
             # (on a time grid, as far as a grid angle would be: pi / n_per_stroke)
             reach = max(h, delta if sample_dt is not None else g * delta - theta_i)
-            if abs(k1[0] + load * machine.inv_I_eff) * reach >= u:
+            if abs(k1[0] + torque * machine.inv_I_eff) * reach >= u:
                 # u may change by more than itself before the next grid angle: theta_dot is near 0,
                 # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
                 break
+            h_step, at_kink, at_wind_kink = h, False, False
+            if theta_i < leak_kink < theta_i + h:  # a face starts or stops delivering inside
+                h_step, at_kink = leak_kink - theta_i, True
+                aux, rows = scratch, scratch_rows
+                stage_values(theta_i, h_step, segment, machine, aux, rows)
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h, k1, aux, segment, machine
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, rows, segment, machine
             )
             steps += 1
-            h_step, at_kink = h, False
             if ok and kink < y[2] <= t_end:
                 # V(t) has a kink inside: take the sub-step only as far as it, from where the
                 # step's continuous extension puts the kink's time (the rest of the segment
                 # follows in smaller sub-steps).
-                h_step = h * time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h)
-                for stage in range(7):
-                    scratch[stage] = load_work(theta_i + NODES[stage] * h_step, segment, machine)
+                h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
+                stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
                 ok, y, k7, err, dense = dp5_step(
-                    ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, segment, machine
-                )
+                    ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment,
+                    machine,
+                )  # fmt: skip
                 steps += 1
-                at_kink = True
+                at_kink = at_wind_kink = True
             scaled = max(
                 abs(err[0]) / (rtol * u),
                 abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
@@ -361,7 +403,7 @@ def integrate(
             else:
                 theta_new = theta_i + h_step
                 at_table = use_table and not at_kink
-                work = aux[6] if at_table else load_work(theta_new, segment, machine)
+                work = aux[6] if at_table else conservative_work(theta_new, segment, machine)
             u_new = y[0] + work
             if sample_dt is not None:
                 out, n, j = record_in_step(
@@ -383,22 +425,24 @@ def integrate(
                             sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
                         )
                         t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
-                        W_g = dense_value(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
+                        W_g = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
                     strokes = (g // period) * per_revolution + strokes_table[row]
-                    theta_dot_g = math.sqrt(2.0 * u_g)
+                    theta_dot_g = math.sqrt(2.0 * u_g / inertia_table[row])
                     n = record(
                         out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False
                     )
                     g += 1
             u_free, t, W, theta = y[0], y[2], y[3], theta_new
             u = u_new
-            theta_dot = math.sqrt(2.0 * u)
+            theta_dot = math.sqrt(2.0 * u / inertia_ratio(theta, machine))
             k1 = k7
             worst = max(worst, scaled)
             i += 1
             if at_kink:  # past it, up to round-off in its time: on from here in a new split
-                kink = next_kink(max(t, kink), machine.wind)
-                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+                if at_wind_kink:
+                    kink = next_kink(max(t, kink), machine.wind)
+                    m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+                # (a leak's kink keeps m: the split before it may be a segment's short tail)
                 landed = True
                 break
         if i == m_seg and not landed:  # the segment is done: size the next one's sub-steps
@@ -432,7 +476,7 @@ def integrate(
                 j += 1
             if t == kink:
                 kink = next_kink(t, machine.wind)
-            u = 0.5 * theta_dot * theta_dot
+            u = kinetic(theta, theta_dot, machine)
             full = False
             continue
         if outcome == STALLED and waits:  # rest until the wind can turn the crank again
@@ -453,7 +497,7 @@ def integrate(
             if outcome != OVER_BUDGET:
                 n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
             return out, n, outcome, steps, events, count
-        u = 0.5 * theta_dot * theta_dot
+        u = kinetic(theta, theta_dot, machine)
         full = target == end
         if full:
             segment += 1

@@ -35,6 +35,21 @@ class Machine(typing.NamedTuple):
     cylinders: int  # n, 1 to 6
     double_acting: bool  # both faces of every piston deliver
     wind: Wind | None  # a wind record, or None: V = V_ref throughout
+    real: Real | None  # the real machine's terms (:mod:`.real`), or None: the ideal machine
+
+
+class Real(typing.NamedTuple):
+    """The real machine's terms as the kernels see them (SI units); None in :class:`Machine` for
+    the paper's ideal machine, which then compiles without them."""
+
+    eta_t: float  # transmission efficiency [-]
+    weight_torque: float  # m_r g R: the weights' torque per unit lever arm [N m]
+    mass_ratio: float  # m_r R^2 / I_eff: the masses' inertia per unit lever arm squared [-]
+    AR: float  # A R: a face's swept flow per unit lever arm and crank speed [m^3/rad]
+    q_L: float  # the leak hole's capacity [m^3/s]; 0: a tight piston
+    friction: float  # the rising main's h_f / Q^2 [s^2/m^5]
+    rho_g: float  # rho_w g [N/m^3]
+    h: float  # head [m]
 
 
 TOP, BOTTOM, NEITHER = 1, -1, 0  # which face of a cylinder delivers in a segment

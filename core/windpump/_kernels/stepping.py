@@ -1,9 +1,10 @@
 """Dormand-Prince steps of Eq. (12) in either independent variable, and the time-domain stretch.
 
 ANGLE: s = theta, state x0 = u - Lambda(theta) with u = theta_dot^2/2 and Lambda the load's work
-since the segment began (:func:`~.model.load_work`), quadratures (t, W). Only the windmill changes
-x0 and W, so a Runge-Kutta step keeps ``I_eff du = dW + I_eff dLambda`` exactly.
-TIME: s = t, state (theta, theta_dot), quadrature (W, -).
+since the segment began (:func:`~.real.conservative_work`), quadratures (t, W). Only the
+windmill (and, in the real machine, the dissipated work) changes x0, so a Runge-Kutta step keeps
+``I_eff du = dW + I_eff dLambda`` exactly.
+TIME: s = t, state (theta, theta_dot), quadratures (-, W).
 """
 
 from __future__ import annotations
@@ -52,7 +53,16 @@ from .dopri5 import (
     step_factor,
 )  # fmt: skip
 from .jit import by_value_kernel, kernel
-from .model import load_on_crank, windmill_torque_on_crank
+from .model import windmill_torque_on_crank
+from .real import (
+    ROW,
+    advance_work,
+    angle_rates,
+    dense_work,
+    time_rates,
+    torque_at_rest,
+    transmitted,
+)
 from .wind import rise_above, wind_scale
 
 ANGLE = 0
@@ -72,29 +82,26 @@ NO_TABLE = np.full(8, np.nan)  # the TIME domain has no stage loads
 
 
 @by_value_kernel
-def rates(domain, s, x0, x1, aux, machine, segment):
+def rates(domain, s, x0, x1, aux, row, machine, segment):
     """Derivatives (dx0, dx1, dq0, dq1) with respect to the independent variable s.
 
     In the ANGLE domain ``x1`` is the time (the wind's clock; it integrates 1/theta_dot as q0
-    does) and ``aux`` the load work Lambda at s, always given (tabulated or computed by the
+    does), ``aux`` the conservative work Lambda at s, always given (tabulated or computed by the
     driver): computing it here would keep this function from being inlined into the step, which
-    costs the seed example a third of its time.
+    costs the seed example a third of its time. ``row`` holds the real machine's values at s
+    (:mod:`.real`; in TIME, its scratch). In the TIME domain q0 is unused and q1 is the work.
     """
     if domain == ANGLE:
-        theta_dot = math.sqrt(2.0 * (x0 + aux))
-        per_radian = 1.0 / theta_dot
-        drive = windmill_torque_on_crank(theta_dot, wind_scale(x1, machine.wind), machine)
-        return drive * machine.inv_I_eff, per_radian, per_radian, drive
-    drive = windmill_torque_on_crank(x1, wind_scale(s, machine.wind), machine)
-    load = load_on_crank(x0, segment, machine)
-    return x1, (drive + load) * machine.inv_I_eff, drive * x1, 0.0
+        return angle_rates(x0, x1, aux, row, machine)
+    return time_rates(s, x0, x1, row, segment, machine)
 
 
 @by_value_kernel
-def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, segment, machine):
+def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, extra, segment, machine):
     """One Dormand-Prince 5(4) step of size h from (s; x0, x1; q0, q1), k1 = the rates there.
 
-    ``aux`` holds the ANGLE domain's load work at the 7 stage nodes (unused in TIME). Returns
+    ``aux`` holds the ANGLE domain's conservative work at the 7 stage nodes (unused in TIME) and
+    ``extra`` the real machine's rows there (:mod:`.real`; in TIME, scratch). Returns
     whether the step is valid (u stays > 0 at every stage), the new state, its rates (k7: the
     next step's k1), the error estimates of x0, x1 and q0, and the dense-output terms of x0, q0
     and q1 (for :func:`~.dopri5.dense_value`).
@@ -102,24 +109,24 @@ def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, segment, machine):
     a0, a1, a2, a3 = k1
     y0 = x0 + h * A21 * a0
     y1 = x1 + h * A21 * a1
-    b0, b1, b2, b3 = rates(domain, s + C2 * h, y0, y1, aux[1], machine, segment)
+    b0, b1, b2, b3 = rates(domain, s + C2 * h, y0, y1, aux[1], extra[1], machine, segment)
     y0 = x0 + h * (A31 * a0 + A32 * b0)
     y1 = x1 + h * (A31 * a1 + A32 * b1)
-    c0, c1, c2, c3 = rates(domain, s + C3 * h, y0, y1, aux[2], machine, segment)
+    c0, c1, c2, c3 = rates(domain, s + C3 * h, y0, y1, aux[2], extra[2], machine, segment)
     y0 = x0 + h * (A41 * a0 + A42 * b0 + A43 * c0)
     y1 = x1 + h * (A41 * a1 + A42 * b1 + A43 * c1)
-    d0, d1, d2, d3 = rates(domain, s + C4 * h, y0, y1, aux[3], machine, segment)
+    d0, d1, d2, d3 = rates(domain, s + C4 * h, y0, y1, aux[3], extra[3], machine, segment)
     y0 = x0 + h * (A51 * a0 + A52 * b0 + A53 * c0 + A54 * d0)
     y1 = x1 + h * (A51 * a1 + A52 * b1 + A53 * c1 + A54 * d1)
-    e0, e1, e2, e3 = rates(domain, s + C5 * h, y0, y1, aux[4], machine, segment)
+    e0, e1, e2, e3 = rates(domain, s + C5 * h, y0, y1, aux[4], extra[4], machine, segment)
     y0 = x0 + h * (A61 * a0 + A62 * b0 + A63 * c0 + A64 * d0 + A65 * e0)
     y1 = x1 + h * (A61 * a1 + A62 * b1 + A63 * c1 + A64 * d1 + A65 * e1)
-    f0, f1, f2, f3 = rates(domain, s + h, y0, y1, aux[5], machine, segment)
+    f0, f1, f2, f3 = rates(domain, s + h, y0, y1, aux[5], extra[5], machine, segment)
     n0 = x0 + h * (B1 * a0 + B3 * c0 + B4 * d0 + B5 * e0 + B6 * f0)
     n1 = x1 + h * (B1 * a1 + B3 * c1 + B4 * d1 + B5 * e1 + B6 * f1)
     m0 = q0 + h * (B1 * a2 + B3 * c2 + B4 * d2 + B5 * e2 + B6 * f2)
-    m1 = q1 + h * (B1 * a3 + B3 * c3 + B4 * d3 + B5 * e3 + B6 * f3)
-    k7 = rates(domain, s + h, n0, n1, aux[6], machine, segment)
+    m1 = advance_work(q1, h, a3, c3, d3, e3, f3)
+    k7 = rates(domain, s + h, n0, n1, aux[6], extra[6], machine, segment)
     g0, g1, g2, g3 = k7
     err0 = h * (E1 * a0 + E3 * c0 + E4 * d0 + E5 * e0 + E6 * f0 + E7 * g0)
     err1 = h * (E1 * a1 + E3 * c1 + E4 * d1 + E5 * e1 + E6 * f1 + E7 * g1)
@@ -127,20 +134,26 @@ def dp5_step(domain, s, x0, x1, q0, q1, h, k1, aux, segment, machine):
     dense = (
         h * (D1 * a0 + D3 * c0 + D4 * d0 + D5 * e0 + D6 * f0 + D7 * g0),
         h * (D1 * a2 + D3 * c2 + D4 * d2 + D5 * e2 + D6 * f2 + D7 * g2),
-        h * (D1 * a3 + D3 * c3 + D4 * d3 + D5 * e3 + D6 * f3 + D7 * g3),
+        dense_work(h, a3, c3, d3, e3, f3, g3),
     )
     valid = math.isfinite(err0) and math.isfinite(err2)  # a stage at u <= 0 makes them NaN or inf
     return valid, (n0, n1, m0, m1), k7, (err0, err1, err2), dense
 
 
 @kernel
-def time_step(t, theta, theta_dot, W, h, k1, segment, machine):
-    """A TIME-domain step (no tables)."""
-    return dp5_step(TIME, t, theta, theta_dot, W, 0.0, h, k1, NO_TABLE, segment, machine)
+def time_step(t, theta, theta_dot, W, h, k1, row, segment, machine):
+    """A TIME-domain step (no tables; ``row`` is the real machine's scratch)."""
+    return dp5_step(TIME, t, theta, theta_dot, 0.0, W, h, k1, NO_TABLE, row, segment, machine)
 
 
 @kernel
-def locate_in_time_step(t, x0, x1, q0, h_hi, k1, segment, machine, component, target):
+def time_rates_at(t, theta, theta_dot, row, segment, machine):
+    """The TIME domain's rates at a state (a step's first stage)."""
+    return rates(TIME, t, theta, theta_dot, np.nan, row[0], machine, segment)
+
+
+@kernel
+def locate_in_time_step(t, x0, x1, q1, h_hi, k1, row, segment, machine, component, target):
     """Step length h in (0, h_hi] at which x[component] of a time step reaches target.
 
     The step's result is a smooth function of its length, crossing target between 0 and h_hi.
@@ -152,15 +165,15 @@ def locate_in_time_step(t, x0, x1, q0, h_hi, k1, segment, machine, component, ta
     rising = target > (x0 if component == 0 else x1)  # the sign of the crossing
     h = h_hi
     for _ in range(200):
-        _, y, k7, _, _ = time_step(t, x0, x1, q0, h, k1, segment, machine)
-        residual = y[component] - target
+        _, y, k7, _, _ = time_step(t, x0, x1, q1, h, k1, row, segment, machine)
+        residual = (y[0] if component == 0 else y[1]) - target
         if residual == 0.0:
             break
         if (residual > 0.0) == rising:
             hi = h
         else:
             lo = h
-        slope = k7[component]
+        slope = k7[0] if component == 0 else k7[1]
         h_next = h - residual / slope if slope != 0.0 else -1.0
         if not lo < h_next < hi:
             h_next = 0.5 * (lo + hi)
@@ -168,7 +181,7 @@ def locate_in_time_step(t, x0, x1, q0, h_hi, k1, segment, machine, component, ta
             h = hi  # the end of the bracket past the crossing
             break
         h = h_next
-    _, y, _, _, _ = time_step(t, x0, x1, q0, h, k1, segment, machine)
+    _, y, _, _, _ = time_step(t, x0, x1, q1, h, k1, row, segment, machine)
     return h, y
 
 
@@ -177,7 +190,8 @@ def moves_from_rest(t, theta, segment, machine):
     """At theta_dot = 0 the crank turns on when R+ T_0 (V(t)/V_ref)^2 exceeds the load there (it
     cannot turn backwards, so otherwise it stays stopped)."""
     s = wind_scale(t, machine.wind)
-    return windmill_torque_on_crank(0.0, s, machine) + load_on_crank(theta, segment, machine) > 0.0
+    drive = transmitted(windmill_torque_on_crank(0.0, s, machine), machine)
+    return drive + torque_at_rest(theta, segment, machine) > 0.0
 
 
 @kernel
@@ -189,8 +203,9 @@ def next_start(t, theta, segment, machine):
         return t
     if machine.T_0 == 0.0:
         return math.inf
-    load = -load_on_crank(theta, segment, machine)
-    threshold = math.sqrt(load / (machine.R_dagger * machine.T_0))  # V/V_ref to exceed
+    load = -torque_at_rest(theta, segment, machine)
+    rest = transmitted(machine.R_dagger * machine.T_0, machine)
+    threshold = math.sqrt(max(load, 1e-300) / rest)  # V/V_ref to exceed (above 0: calm air never)
     while True:
         crossing = rise_above(t, threshold, machine.wind)
         if crossing == math.inf:
@@ -227,14 +242,15 @@ def advance_in_time(t, theta, theta_dot, W, theta_target, t_target, segment, mac
     LANDED, STALLED, REACHED_T_END or OVER_BUDGET.
     """
     scale_theta = rtol * math.pi
-    k1 = rates(TIME, t, theta, theta_dot, np.nan, machine, segment)
+    row = np.empty((7, ROW))  # the real machine's scratch, a row per stage
+    k1 = time_rates_at(t, theta, theta_dot, row, segment, machine)
     h = first_time_step(t, theta, theta_dot, theta_target, t_target, k1)
     used = 0
     while used < budget:
         used += 1
         h = min(h, t_target - t)
         last = h == t_target - t
-        _, y, k7, err, _ = time_step(t, theta, theta_dot, W, h, k1, segment, machine)
+        _, y, k7, err, _ = time_step(t, theta, theta_dot, W, h, k1, row, segment, machine)
         # Relative in speed: near theta_dot = 0 the windmill torque is linear in theta_dot, so a
         # start-up grows exponentially from however small a kick.
         scale_speed = rtol * max(abs(theta_dot), abs(y[1]), 1e-300)
@@ -247,25 +263,25 @@ def advance_in_time(t, theta, theta_dot, W, theta_target, t_target, segment, mac
             continue
         outcome = REACHED_T_END if last else -1
         if y[1] <= 0.0:
-            h, y = locate_in_time_step(t, theta, theta_dot, W, h, k1, segment, machine, 1, 0.0)
+            h, y = locate_in_time_step(t, theta, theta_dot, W, h, k1, row, segment, machine, 1, 0.0)
             outcome = STALLED
         if y[0] >= theta_target:
             h, y = locate_in_time_step(
-                t, theta, theta_dot, W, h, k1, segment, machine, 0, theta_target
+                t, theta, theta_dot, W, h, k1, row, segment, machine, 0, theta_target
             )
             outcome = LANDED
         if outcome == REACHED_T_END:
-            return outcome, t_target, y[0], y[1], y[2], used
+            return outcome, t_target, y[0], y[1], y[3], used
         if outcome == LANDED:
-            return outcome, t + h, theta_target, y[1], y[2], used
+            return outcome, t + h, theta_target, y[1], y[3], used
         if outcome == STALLED:
             if not moves_from_rest(t + h, y[0], segment, machine):
-                return outcome, t + h, y[0], 0.0, y[2], used
-            t, theta, theta_dot, W = t + h, y[0], 0.0, y[2]
-            k1 = rates(TIME, t, theta, theta_dot, np.nan, machine, segment)
+                return outcome, t + h, y[0], 0.0, y[3], used
+            t, theta, theta_dot, W = t + h, y[0], 0.0, y[3]
+            k1 = time_rates_at(t, theta, theta_dot, row, segment, machine)
             h = first_time_step(t, theta, theta_dot, theta_target, t_target, k1)
             continue
-        t, theta, theta_dot, W = t + h, y[0], y[1], y[2]
+        t, theta, theta_dot, W = t + h, y[0], y[1], y[3]
         k1 = k7
         h *= step_factor(scaled)
     return OVER_BUDGET, t, theta, theta_dot, W, used

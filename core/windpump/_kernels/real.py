@@ -1,0 +1,482 @@
+"""The real machine's terms in the kernels: reciprocating masses, transmission, rising main, leak.
+
+Each function here takes the :class:`~.model.Machine` and resolves on the type of its ``real``
+field when compiled (numba overloads, as :mod:`.wind` does for the wind): for the paper's ideal
+machine (``real`` is None) it is the ideal model's expression and adds no code, so the ideal run
+is compiled as it always was; for a :class:`~.model.Real` it adds the terms of docs/model.rst,
+"The real machine"::
+
+    J(theta) theta_ddot = eta_t R+ T - load(theta, theta_dot) + m_r g sum x_c' - J'(theta) theta_dot^2 / 2,
+    J = I_eff + m_r sum x_c'^2.
+
+In the angle domain the state is ``e - Lambda(theta)``, with ``e = J theta_dot^2 / (2 I_eff)``
+and Lambda the closed-form work of the weights and of the static head ``rho_w g h A |x'|`` on
+every face in its delivering half (as the ideal machine's): what is left to integrate is the
+windmill's transmitted work less the *excess* of the load over the static head (the rising main's
+friction; a leak hole's relief, negative, where a slow face delivers nothing). The quadratures
+``W = (shaft work, volume leaked back, friction loss, excess load work)`` are integrated with it, so
+a Runge-Kutta step keeps their linear relation exactly and the energy balance closes to round-off
+as the ideal machine's does; the leak's loss is the static head's work on the swept volume plus
+the excess, less the water lifted and the friction (:func:`windpump.power_budget`).
+
+The pointwise equations (Eq. 1 and its derivatives, the hole's flow, the face's pressure) are
+:mod:`.equations`' functions, shared with the numpy side.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import typing
+
+from numba import types
+from numba.extending import overload
+
+from . import equations
+from .dopri5 import B1, B3, B4, B5, B6, D1, D3, D4, D5, D6, D7, dense_value
+from .jit import OPTIONS, kernel
+from .model import (
+    NEITHER,
+    Real,
+    delivering_face,
+    lever_arm,
+    load_on_crank,
+    load_work,
+    phase,
+    piston_over_R,
+    segment_start,
+    windmill_torque_on_crank,
+)
+from .wind import wind_scale
+
+JIT_OPTIONS: typing.Any = OPTIONS  # (numba's stubs type the options narrower than it takes)
+
+lever_arm_slope = kernel(equations.lever_arm_slope)  # (d^2x/dphi^2)/R [-]
+delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
+face_pressure = kernel(equations.face_pressure)  # [Pa]
+
+ROW = 8  # a stage's row: the inertia ratio j, then |lever arm| of each cylinder's delivering face
+WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
+
+
+# -- Typed entry points: the ideal machine's expression, or the real machine's. -----------------
+
+
+def inertia_ratio(theta, machine):
+    """J(theta) / I_eff [-]: 1 for the ideal machine."""
+
+
+def conservative_work(theta, segment, machine):
+    """Lambda: the conservative torques' work since the segment began, per unit I_eff
+    [J/(kg m^2)]: the static head's (:func:`~.model.load_work`) for a tight piston, plus the
+    weights' ``m_r g sum (x_c - x_c(start))``."""
+
+
+def conservative_torque(theta, segment, machine):
+    """The conservative torques on the crank [N m]: the static head's (negative) for a tight
+    piston, plus the weights' ``m_r g sum x_c'``."""
+
+
+def torque_at_rest(theta, segment, machine):
+    """The torques on a resting crank but the windmill's [N m]: the static head's (negative) for a
+    tight piston, none through a leak hole (the water flows back through it), plus the weights'."""
+
+
+def transmitted(torque, machine):
+    """What the chain passes to the crank of a torque reflected to it, eta_t times it [N m]."""
+
+
+def zero_work(machine):
+    """The quadratures at the start: 0.0 (shaft work), or a tuple of WORKS zeros."""
+
+
+def angle_rates(x0, t, aux, row, machine):
+    """The ANGLE domain's rates (dx0, dt, dt, dW) per radian; x0 = e - Lambda, aux = Lambda."""
+
+
+def time_rates(t, theta, theta_dot, row, segment, machine):
+    """The TIME domain's rates (theta_dot, theta_ddot, 0, dW) per second; ``row`` is scratch."""
+
+
+def fill_row(row, theta, segment, machine):
+    """Write a stage's row (ROW numbers) for the real machine; nothing for the ideal one."""
+
+
+def advance_work(q, h, a, c, d, e, f):
+    """A step's 5th-order update of the work quadratures, q + h (b . stages)."""
+
+
+def dense_work(h, a, c, d, e, f, g):
+    """The continuous extension's term of the work quadratures, h (d . stages)."""
+
+
+def work_at(sigma, start, end, rate_start, rate_end, dense, h):
+    """The work quadratures at s + sigma h inside a step (:func:`~.dopri5.dense_value`)."""
+
+
+def write_work(out, row, n, W):
+    """Write the work quadratures into ``out[row:, n]``."""
+
+
+def _ideal(real) -> bool:
+    return isinstance(real, types.NoneType)
+
+
+def _entry(function):
+    """Register ``function``'s overload: ``ideal(...)`` for a None ``real``, else ``actual``."""
+
+    def register(ideal, actual, on_machine=True):
+        ideal, actual = (getattr(f, "py_func", f) for f in (ideal, actual))  # a kernel's source
+
+        @functools.wraps(function)  # numba checks the typer's signature against the stub's
+        def typer(*args):
+            machine = args[-1]
+            real = machine.types[machine.fields.index("real")] if on_machine else machine
+            return ideal if _ideal(real) else actual
+
+        overload(function, jit_options=JIT_OPTIONS)(typer)
+
+    return register
+
+
+# -- The real machine's expressions. ------------------------------------------------------------
+
+
+@kernel
+def _sums(row, theta, segment, machine, slopes):
+    """Fill ``row`` at theta; return (sum a_c, sum a_c a_c') over every cylinder (the second
+    only with ``slopes``: the time domain's J')."""
+    real = machine.real
+    squares = sum_a = sum_slope = 0.0
+    for k in range(machine.cylinders):
+        phi = theta - phase(k, machine)
+        a = lever_arm(phi, machine.L_over_R)
+        squares += a * a
+        sum_a += a
+        if slopes and real.mass_ratio != 0.0:
+            sum_slope += a * lever_arm_slope(phi, machine.L_over_R)
+        row[1 + k] = abs(a) if delivering_face(segment, k, machine) != NEITHER else 0.0
+    row[0] = 1.0 + real.mass_ratio * squares
+    return sum_a, sum_slope
+
+
+@kernel
+def _face_loads(theta_dot, row, machine):
+    """(load torque [N m], delivered flow Q [m^3/s], friction head h_f [m], sum |a|) of the
+    delivering faces whose lever arms ``row`` holds, at crank speed theta_dot."""
+    real = machine.real
+    Q = arms = 0.0
+    for k in range(machine.cylinders):
+        Q += delivered_flow(real.AR * row[1 + k] * theta_dot, real.q_L)
+        arms += row[1 + k]
+    if real.q_L == 0.0 and real.friction == 0.0:  # a tight piston, no pipe: the static head
+        return machine.load_torque * arms, Q, 0.0, arms
+    h_f = real.friction * Q * Q
+    load = 0.0
+    for k in range(machine.cylinders):
+        u = real.AR * row[1 + k] * theta_dot
+        load += face_pressure(u, real.q_L, real.rho_g, 1.0, real.h, h_f) * real.AR * row[1 + k]
+    return load, Q, h_f, arms
+
+
+def _real_angle_rates(x0, t, aux, row, machine):
+    real = machine.real
+    theta_dot = math.sqrt(2.0 * (x0 + aux) / row[0])
+    per_radian = 1.0 / theta_dot
+    drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
+    load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+    # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
+    # relief) is integrated, and so is the water lifted and the friction.
+    excess = load - machine.load_torque * arms
+    rate = (real.eta_t * drive - excess) * machine.inv_I_eff
+    leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
+    friction = real.rho_g * h_f * Q * per_radian
+    return rate, per_radian, per_radian, (drive, leaked, friction, excess)
+
+
+def _real_time_rates(t, theta, theta_dot, row, segment, machine):
+    real = machine.real
+    sum_a, sum_slope = _sums(row, theta, segment, machine, True)
+    drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
+    load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+    torque = real.eta_t * drive - load + real.weight_torque * sum_a
+    j_slope = 2.0 * real.mass_ratio * sum_slope  # dj/dtheta
+    acceleration = (torque * machine.inv_I_eff - 0.5 * j_slope * theta_dot * theta_dot) / row[0]
+    excess = (load - machine.load_torque * arms) * theta_dot
+    leaked = real.AR * arms * theta_dot - Q
+    works = (drive * theta_dot, leaked, real.rho_g * h_f * Q, excess)
+    return theta_dot, acceleration, 0.0, works
+
+
+@kernel
+def _weight_work(theta, segment, machine):
+    if machine.real.weight_torque == 0.0:
+        return 0.0
+    start = segment_start(segment, machine)
+    total = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        total += piston_over_R(theta - lag, machine.L_over_R) - piston_over_R(
+            start - lag, machine.L_over_R
+        )
+    return machine.real.weight_torque * machine.inv_I_eff * total
+
+
+@kernel
+def _weight_torque(theta, machine):
+    if machine.real.weight_torque == 0.0:
+        return 0.0
+    total = 0.0
+    for k in range(machine.cylinders):
+        total += lever_arm(theta - phase(k, machine), machine.L_over_R)
+    return machine.real.weight_torque * total
+
+
+@kernel
+def _inertia_ratio(theta, machine):
+    if machine.real.mass_ratio == 0.0:
+        return 1.0
+    squares = 0.0
+    for k in range(machine.cylinders):
+        a = lever_arm(theta - phase(k, machine), machine.L_over_R)
+        squares += a * a
+    return 1.0 + machine.real.mass_ratio * squares
+
+
+def _real_conservative_work(theta, segment, machine):
+    return load_work(theta, segment, machine) + _weight_work(theta, segment, machine)
+
+
+def _real_conservative_torque(theta, segment, machine):
+    return load_on_crank(theta, segment, machine) + _weight_torque(theta, machine)
+
+
+def _real_torque_at_rest(theta, segment, machine):
+    head = load_on_crank(theta, segment, machine) if machine.real.q_L == 0.0 else 0.0
+    return head + _weight_torque(theta, machine)
+
+
+def _ideal_angle_rates(x0, t, aux, row, machine):
+    theta_dot = math.sqrt(2.0 * (x0 + aux))
+    per_radian = 1.0 / theta_dot
+    drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
+    return drive * machine.inv_I_eff, per_radian, per_radian, drive
+
+
+def _ideal_time_rates(t, theta, theta_dot, row, segment, machine):
+    drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
+    load = load_on_crank(theta, segment, machine)
+    return theta_dot, (drive + load) * machine.inv_I_eff, 0.0, drive * theta_dot
+
+
+_entry(inertia_ratio)(lambda theta, machine: 1.0, _inertia_ratio)
+_entry(conservative_work)(
+    lambda theta, segment, machine: load_work(theta, segment, machine), _real_conservative_work
+)
+_entry(conservative_torque)(
+    lambda theta, segment, machine: load_on_crank(theta, segment, machine),
+    _real_conservative_torque,
+)
+_entry(torque_at_rest)(
+    lambda theta, segment, machine: load_on_crank(theta, segment, machine),
+    _real_torque_at_rest,
+)
+_entry(transmitted)(
+    lambda torque, machine: torque, lambda torque, machine: machine.real.eta_t * torque
+)
+_entry(zero_work)(lambda machine: 0.0, lambda machine: (0.0, 0.0, 0.0, 0.0))
+_entry(angle_rates)(_ideal_angle_rates, _real_angle_rates)
+_entry(time_rates)(_ideal_time_rates, _real_time_rates)
+
+
+def _no_row(row, theta, segment, machine):
+    return None
+
+
+def _fill_row(row, theta, segment, machine):
+    _sums(row, theta, segment, machine, False)
+
+
+_entry(fill_row)(_no_row, _fill_row)
+
+
+# -- The work quadratures: a float (the shaft work) or a tuple of WORKS. -------------------------
+
+
+@overload(advance_work, jit_options=JIT_OPTIONS)
+def _advance_work(q, h, a, c, d, e, f):
+    if isinstance(q, types.Float):
+        return lambda q, h, a, c, d, e, f: q + h * (B1 * a + B3 * c + B4 * d + B5 * e + B6 * f)
+
+    def advance(q, h, a, c, d, e, f):
+        return (
+            q[0] + h * (B1 * a[0] + B3 * c[0] + B4 * d[0] + B5 * e[0] + B6 * f[0]),
+            q[1] + h * (B1 * a[1] + B3 * c[1] + B4 * d[1] + B5 * e[1] + B6 * f[1]),
+            q[2] + h * (B1 * a[2] + B3 * c[2] + B4 * d[2] + B5 * e[2] + B6 * f[2]),
+            q[3] + h * (B1 * a[3] + B3 * c[3] + B4 * d[3] + B5 * e[3] + B6 * f[3]),
+        )
+
+    return advance
+
+
+@overload(dense_work, jit_options=JIT_OPTIONS)
+def _dense_work(h, a, c, d, e, f, g):
+    if isinstance(a, types.Float):
+        return lambda h, a, c, d, e, f, g: h * (D1 * a + D3 * c + D4 * d + D5 * e + D6 * f + D7 * g)
+
+    def dense(h, a, c, d, e, f, g):
+        return (
+            h * (D1 * a[0] + D3 * c[0] + D4 * d[0] + D5 * e[0] + D6 * f[0] + D7 * g[0]),
+            h * (D1 * a[1] + D3 * c[1] + D4 * d[1] + D5 * e[1] + D6 * f[1] + D7 * g[1]),
+            h * (D1 * a[2] + D3 * c[2] + D4 * d[2] + D5 * e[2] + D6 * f[2] + D7 * g[2]),
+            h * (D1 * a[3] + D3 * c[3] + D4 * d[3] + D5 * e[3] + D6 * f[3] + D7 * g[3]),
+        )
+
+    return dense
+
+
+@overload(work_at, jit_options=JIT_OPTIONS)
+def _work_at(sigma, start, end, rate_start, rate_end, dense, h):
+    if isinstance(start, types.Float):
+        return lambda sigma, start, end, rate_start, rate_end, dense, h: dense_value(
+            sigma, start, end, rate_start, rate_end, dense, h
+        )
+
+    def at(sigma, start, end, rate_start, rate_end, dense, h):
+        return (
+            dense_value(sigma, start[0], end[0], rate_start[0], rate_end[0], dense[0], h),
+            dense_value(sigma, start[1], end[1], rate_start[1], rate_end[1], dense[1], h),
+            dense_value(sigma, start[2], end[2], rate_start[2], rate_end[2], dense[2], h),
+            dense_value(sigma, start[3], end[3], rate_start[3], rate_end[3], dense[3], h),
+        )
+
+    return at
+
+
+@overload(write_work, jit_options=JIT_OPTIONS)
+def _write_work(out, row, n, W):
+    if isinstance(W, types.Float):
+
+        def write_one(out, row, n, W):
+            out[row, n] = W
+
+        return write_one
+
+    def write(out, row, n, W):
+        for i in range(WORKS):
+            out[row + i, n] = W[i]
+
+    return write
+
+
+def next_leak_kink(theta, theta_dot, segment, machine):
+    """The first two angles past theta in its segment where a delivering face's swept flow
+    reaches the leak hole's capacity at the present speed, ``A R |a_k| theta_dot = q_L`` [rad],
+    inf where there is none.
+
+    There the face starts (or stops) delivering and the load has a kink: the driver ends a
+    sub-step on it, as on a wind record's kink, for the step's error estimate does not see one.
+    """
+
+
+@kernel
+def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
+    """The angle psi past a dead centre (0 or pi) where the face's |lever arm|
+    ``sign * a(dead_centre + psi)`` reaches ``target``: on its rising side (psi < pi/2) or its
+    falling side. Newton's method inside a shrinking bracket (|a| is 1 at pi/2 and 0 at the dead
+    centres); NaN when the arm never reaches the target."""
+    if target >= 1.0:
+        return math.nan
+    lo, hi = (0.0, 0.5 * math.pi) if rising else (0.5 * math.pi, math.pi)
+    psi = target if rising else math.pi - target
+    for _ in range(100):
+        residual = sign * lever_arm(dead_centre + psi, L_over_R) - target
+        if residual == 0.0:
+            return psi
+        if (residual < 0.0) == rising:
+            lo = psi
+        else:
+            hi = psi
+        slope = sign * lever_arm_slope(dead_centre + psi, L_over_R)
+        guess = psi - residual / slope if slope != 0.0 else -1.0
+        if not lo < guess < hi:
+            guess = 0.5 * (lo + hi)
+        if abs(guess - psi) <= 4e-16 * guess or hi - lo <= 4e-16 * hi:
+            return guess
+        psi = guess
+    return psi
+
+
+@kernel
+def _next_leak_kink(theta, theta_dot, segment, machine):
+    real = machine.real
+    if real.q_L == 0.0 or not theta_dot > 0.0:
+        return math.inf, math.inf
+    target = real.q_L / (real.AR * theta_dot)  # the |lever arm| where a face starts delivering
+    width = math.pi / machine.cylinders
+    end = segment_start(segment + 1, machine)
+    middle = segment_start(segment, machine) + 0.5 * width
+    best = second = math.inf
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) == NEITHER:
+            continue
+        lag = phase(k, machine)
+        half = math.floor((middle - lag) / math.pi)  # the face's half turn: it began at half pi
+        dead_centre = math.pi * (half % 2)  # reduced: Newton's iterates keep their digits
+        sign = 1.0 if lever_arm(middle - lag, machine.L_over_R) > 0.0 else -1.0
+        for rising in (True, False):  # near the dead centre it left, and near the next
+            psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
+            kink = lag + half * math.pi + psi
+            if not theta + 1e-9 * width < kink < end - 1e-9 * width:
+                continue
+            if kink < best:
+                best, second = kink, best
+            elif kink < second:
+                second = kink
+    return best, second
+
+
+_entry(next_leak_kink)(
+    lambda theta, theta_dot, segment, machine: (math.inf, math.inf), _next_leak_kink
+)
+
+
+class RealBase(typing.NamedTuple):
+    """The real machine's terms that do not change with the gear ratio and the head (a design
+    map's points share them); :func:`real_at` completes them."""
+
+    eta_t: float  # [-]
+    weight_torque: float  # m_r g R [N m]
+    mass_inertia: float  # m_r R^2 [kg m^2]
+    AR: float  # A R [m^3/rad]
+    leak_per_root_head: float  # Cd a_L sqrt(2 g): q_L / sqrt(h) [m^2.5/s]
+    friction: float  # h_f / Q^2 [s^2/m^5]
+    rho_g: float  # rho_w g [N/m^3]
+
+
+def real_at(base, inv_I_eff, load_torque):
+    """The :class:`~.model.Real` of a design with this base, 1 / I_eff [1/(kg m^2)] and load
+    rho_w g h A R [N m]; None for the ideal machine's (None) base."""
+    if base is None:
+        return None
+    h = load_torque / (base.rho_g * base.AR)
+    return Real(
+        base.eta_t, base.weight_torque, base.mass_inertia * inv_I_eff, base.AR,
+        base.leak_per_root_head * math.sqrt(h), base.friction, base.rho_g, h,
+    )  # fmt: skip
+
+
+def _real_at_typer(base, inv_I_eff, load_torque):
+    if _ideal(base):
+        return lambda base, inv_I_eff, load_torque: None
+    return real_at
+
+
+overload(real_at, jit_options=JIT_OPTIONS)(_real_at_typer)
+
+
+def work_rows(machine):
+    """How many rows the work quadratures take in the output: 1, or WORKS."""
+
+
+_entry(work_rows)(lambda machine: 1, lambda machine: WORKS)

@@ -1,0 +1,188 @@
+"""The real machine in the integrator: reciprocating mass, transmission, rising main, leak hole.
+
+Every run is checked against tests/real_reference.py, a tight DOP853 integration of the issue's
+equations written independently of the kernels, and the energy balance against its named terms.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from real_reference import real_reference_run
+
+import windpump
+from windpump import _kernels, reciprocating
+from windpump.dynamics import kernel_machine
+
+SEED = windpump.Design.seed_example()
+
+DESIGNS = {
+    "heavy rod": SEED.replace(m_r=1.5),
+    "lossy chain": SEED.replace(eta_t=0.85),
+    "thin main": SEED.replace(L_main=20.0, D_main=0.02),
+    "leak hole": SEED.replace(d_leak=0.003),
+    "every effect": SEED.replace(m_r=1.0, eta_t=0.9, L_main=20.0, d_leak=0.002),
+    "two double-acting": SEED.replace(
+        m_r=1.0, eta_t=0.9, L_main=20.0, d_leak=0.002, cylinders=2, double_acting=True, h=1.0
+    ),
+    "three cylinders": SEED.replace(m_r=0.5, L_main=30.0, D_main=0.03, d_leak=0.001, cylinders=3),
+}
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_a_run_follows_the_reference(name):
+    design = DESIGNS[name]
+    run = windpump.simulate(design, 20.0)
+    ref = real_reference_run(design, 20.0, math.pi / 2, 3.0)
+    assert not run.stalled and not ref.stalled
+    assert run.t[-1] == pytest.approx(ref.t, abs=1e-12)
+    assert run.theta[-1] == pytest.approx(ref.theta, rel=1e-5)  # with a hole: ~2e-6 (measured)
+    assert run.theta_dot[-1] == pytest.approx(ref.theta_dot, rel=1e-5)
+    assert run.volume[-1] == pytest.approx(ref.volume, rel=1e-5)
+    assert run.shaft_work[-1] == pytest.approx(ref.shaft_work, rel=1e-5)
+    W = ref.shaft_work
+    assert run.friction_loss[-1] == pytest.approx(ref.friction_loss, abs=5e-5 * W)
+    lift = design.rho_w * design.g * design.h
+    leak = ref.faces_work - lift * ref.volume - ref.friction_loss
+    assert run.leak_loss[-1] == pytest.approx(leak, abs=5e-5 * W)
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_the_energy_closes_with_each_loss_named(name):
+    design = DESIGNS[name]
+    budget = windpump.power_budget(windpump.simulate(design, 600.0))
+    assert budget.imbalance < 1e-9
+    totals = budget.totals()
+    assert totals.imbalance < 1e-9
+    assert totals.transmission == pytest.approx((1 - design.eta_t) * totals.shaft, rel=1e-12)
+    assert totals.friction >= 0.0 and totals.leak >= -1e-9 * totals.shaft
+    if design.friction_coefficient == 0.0:
+        assert totals.friction == 0.0
+    if design.leak_capacity == 0.0:
+        assert abs(totals.leak) < 1e-9 * totals.shaft
+
+
+def test_the_ideal_machine_keeps_its_own_kernel():
+    assert SEED.is_ideal and kernel_machine(SEED).real is None
+    neutral = SEED.replace(m_r=0.0, eta_t=1.0, L_main=0.0, d_leak=0.0, f_main=0.05)
+    assert neutral.is_ideal
+    assert not SEED.replace(eta_t=0.99).is_ideal
+    assert SEED.replace(L_main=10.0, f_main=0.0).is_ideal  # a frictionless main adds nothing
+
+
+def test_the_real_kernel_with_vanishing_effects_tends_to_the_ideal_run():
+    ideal = windpump.simulate(SEED, 60.0)
+    almost = windpump.simulate(SEED.replace(m_r=1e-9, d_leak=1e-9, L_main=1e-9), 60.0)
+    assert almost.theta_dot[-1] == pytest.approx(ideal.theta_dot[-1], rel=1e-7)
+    assert almost.volume[-1] == pytest.approx(ideal.volume[-1], rel=1e-7)
+
+
+def test_a_leak_hole_lets_a_pump_start_that_the_tight_one_cannot():
+    weak = SEED.replace(T_0=0.1)  # R+ T_0 = 0.4 N m, below the static load's peak (1.22 N m)
+    assert not windpump.starts_from_rest(weak)
+    tight = windpump.simulate(weak, 200.0, theta0=1.5 * math.pi, theta_dot0=0.0)
+    assert tight.stalled and tight.t_stall == 0.0
+    holed = weak.replace(d_leak=0.004)  # it crawls (sweeping less than the hole passes), then runs
+    run = windpump.simulate(holed, 200.0, theta0=1.5 * math.pi, theta_dot0=0.0)
+    ref = real_reference_run(holed, 200.0, 1.5 * math.pi, 0.0)
+    assert not run.stalled and not ref.stalled
+    assert run.theta_dot[-1] == pytest.approx(ref.theta_dot, rel=1e-5)
+    assert run.volume[-1] == pytest.approx(ref.volume, rel=1e-4)
+    assert 0.0 < run.volumetric_efficiency < 1.0
+
+
+def test_the_efficiencies_are_the_volumes_and_works_over_the_run():
+    run = windpump.simulate(DESIGNS["every effect"], 600.0)
+    assert run.volumetric_efficiency == pytest.approx(run.volume[-1] / run.swept_volume[-1])
+    assert run.overall_efficiency == pytest.approx(run.lift_work[-1] / run.shaft_work[-1])
+    assert 0.0 < run.overall_efficiency < run.volumetric_efficiency < 1.0
+    tight = windpump.simulate(SEED, 60.0)
+    assert tight.volumetric_efficiency == 1.0
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    theta=st.floats(-20.0, 20.0),
+    m_r=st.floats(0.0, 50.0),
+    cylinders=st.integers(1, 6),
+    ratio=st.floats(1.05, 20.0),
+)
+def test_the_kernels_masses_are_the_numpy_sides(theta, m_r, cylinders, ratio):
+    design = SEED.replace(m_r=m_r, cylinders=cylinders, L=SEED.R * ratio)
+    machine = kernel_machine(design)
+    if machine.real is None:  # m_r = 0: the ideal machine
+        machine = machine._replace(real=kernel_machine(design.replace(eta_t=0.5)).real)
+    from windpump._kernels import real
+
+    j = real._inertia_ratio(theta, machine) * design.I_eff
+    assert j == pytest.approx(float(reciprocating.crank_inertia(design, theta)), rel=1e-12)
+    torque = real._weight_torque(theta, machine)
+    expected = float(reciprocating.weight_torque(design, theta))
+    assert torque == pytest.approx(expected, rel=1e-12, abs=1e-12 * m_r * design.g * design.R)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    m_r=st.floats(0.0, 3.0),
+    eta_t=st.floats(0.5, 1.0),
+    L_main=st.floats(0.0, 40.0),
+    leak=st.floats(0.0, 0.5),
+    cylinders=st.integers(1, 3),
+    double_acting=st.booleans(),
+)
+def test_any_real_machine_closes_its_energy_and_delivers_at_most_what_it_sweeps(
+    m_r, eta_t, L_main, leak, cylinders, double_acting
+):
+    design = SEED.replace(
+        m_r=m_r, eta_t=eta_t, L_main=L_main, d_leak=leak * SEED.bore, cylinders=cylinders,
+        double_acting=double_acting, h=1.0,
+    )  # fmt: skip
+    run = windpump.simulate(design, 30.0)
+    budget = windpump.power_budget(run)
+    assert budget.imbalance < 1e-9
+    assert np.all(run.volume <= run.swept_volume * (1 + 1e-9) + 1e-15)
+    assert np.all(np.diff(run.volume) >= -1e-15)
+
+
+def test_the_kernel_returns_no_real_rows_for_the_ideal_machine():
+    run = _kernels.run(kernel_machine(SEED), math.pi / 2, 3.0, 1.0, 16, None, 1e-8, 10**6, 64)
+    assert run.leaked is None and run.friction_loss is None
+
+
+def test_in_a_lull_a_leaky_pump_rests_and_starts_again_by_its_torque_at_rest():
+    from real_reference import torque_at_rest
+
+    design = SEED.replace(T_0=0.1, d_leak=0.004, m_r=0.5, cylinders=2)
+    lull = ([0.0, 600.0, 610.0, 2400.0, 2410.0], [5.0, 5.0, 0.0, 0.0, 6.0])  # calm air
+    run = windpump.simulate(design, 3600.0, theta_dot0=0.0, wind=lull, sample_dt=1.0)
+    assert len(run.stops) >= 1 and len(run.starts) >= 2 and not run.stalled
+    width = math.pi / design.cylinders
+    for times, moving in ((run.stops, False), (run.starts, True)):
+        for t in times:
+            theta = float(np.interp(t, run.t, run.theta))
+            V = float(np.interp(t, *lull))
+            mid = (math.floor(theta / width) + 0.5) * width
+            net = torque_at_rest(design.in_wind(max(V, 1e-3)), theta, mid)
+            assert (net > 0.0) == moving or abs(net) < 1e-9
+    assert windpump.power_budget(run).imbalance < 1e-9
+
+
+def test_a_design_maps_simulated_points_run_the_real_machine():
+    from windpump._kernels.grid import steady_runs
+    from windpump.dynamics import MAX_STEPS, RTOL, kernel_real_base
+
+    design = DESIGNS["every effect"]
+    base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
+    speed, _, _ = steady_runs(
+        np.array([design.R_dagger]), np.array([1 / design.I_eff]),
+        np.array([design.load_torque]), np.array([23.0]), np.array([300.0]), base, 1, False, 5,
+        RTOL, MAX_STEPS, kernel_real_base(design),
+    )  # fmt: skip
+    run = windpump.simulate(design, 300.0, theta_dot0=23.0)
+    marks, times = windpump.revolution_marks(run.t, run.theta)
+    expected = 5 * 2 * math.pi / (times[-1] - times[-6])
+    assert speed[0] == pytest.approx(expected, rel=1e-3)

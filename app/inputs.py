@@ -12,12 +12,13 @@ from urllib.parse import urlencode
 import param
 
 import windpump
+from windpump.units import MM_PER_M
 
 SEED = windpump.Design.seed_example()
 SEED_MARGIN = windpump.stall_margin(SEED)
 
-# name: (display format, where its slider sits: the sidebar's "main" list, its "more" card, or
-# the Wind tab)
+# name: (display format, where its slider sits: the sidebar's "main" list, its "more" card, its
+# "real" card (the real machine's losses) or the Wind tab)
 FORMATS = {
     "L_over_R": ("0.00", "main"),
     "R_dagger": ("0.0", "main"),
@@ -31,12 +32,23 @@ FORMATS = {
     "I1": ("0.0000", "more"),
     "cylinders": ("0", "main"),
     "T_0": ("0.00", "more"),
+    "m_r": ("0.0", "real"),
+    "eta_t": ("0.00", "real"),
+    "L_main": ("0", "real"),
+    "D_main_mm": ("0", "real"),
+    "f_main": ("0.000", "real"),
+    "d_leak_mm": ("0.0", "real"),
+    "Cd_leak": ("0.00", "real"),
     "V": ("0.0", "wind"),
     "mean_wind": ("0.0", "wind"),
     "k": ("0.0", "wind"),
     "time_scale": ("0", "wind"),
     "seed": ("0", "wind"),
 }
+
+# The real machine's inputs (windpump.design.REAL_MACHINE, diameters in mm): the ideal machine's
+# values by default.
+REAL_MACHINE_INPUTS = tuple(name for name, (_f, place) in FORMATS.items() if place == "real")
 
 # Switches (check boxes), by name; in the link as true/false.
 SWITCHES = ("double_acting",)
@@ -64,6 +76,28 @@ class PumpInputs(param.Parameterized):
     cylinders = param.Number(1, bounds=(1, 6), step=1, label="Cylinders n (phase lag 2π/n)")
     T_0 = param.Number(0.0, bounds=(0.0, 4.95), step=0.05, label="Torque at rest T₀ [N·m]")
     double_acting = param.Boolean(False, label="Double-acting pistons (both faces deliver)")
+    # The real machine (Design.REAL_MACHINE), the ideal machine by default; diameters in mm
+    m_r = param.Number(
+        SEED.m_r, bounds=(0.0, 50.0), step=0.5, label="Piston and pump rod mass mᵣ [kg]"
+    )
+    eta_t = param.Number(
+        SEED.eta_t, bounds=(0.1, 1.0), step=0.01, label="Chain drive efficiency ηₜ"
+    )
+    L_main = param.Number(
+        SEED.L_main, bounds=(0.0, 100.0), step=1.0, label="Rising main length [m]"
+    )
+    D_main_mm = param.Number(
+        SEED.D_main * MM_PER_M, bounds=(5.0, 100.0), step=1.0, label="Rising main diameter [mm]"
+    )
+    f_main = param.Number(
+        SEED.f_main, bounds=(0.0, 0.2), step=0.005, label="Rising main friction factor f"
+    )
+    d_leak_mm = param.Number(
+        SEED.d_leak * MM_PER_M, bounds=(0.0, 40.0), step=0.1, label="Leak hole diameter [mm]"
+    )
+    Cd_leak = param.Number(
+        SEED.Cd_leak, bounds=(0.05, 1.0), step=0.01, label="Leak hole discharge coefficient"
+    )
     V = param.Number(
         SEED.V_ref, bounds=(0.5, 20.0), step=0.1, label="Steady wind V [m/s] (Tₘ, ωₘ, T₀ at 5 m/s)"
     )
@@ -96,7 +130,20 @@ class PumpInputs(param.Parameterized):
             cylinders=round(self.cylinders),
             double_acting=self.double_acting,
             T_0=self.T_0,
+            **self.real_machine(),
         )
+
+    def real_machine(self) -> dict[str, float]:
+        """The real machine's Design fields these inputs give [SI units: the mm shown in m]."""
+        return {
+            "m_r": self.m_r,
+            "eta_t": self.eta_t,
+            "L_main": self.L_main,
+            "D_main": self.D_main_mm / MM_PER_M,
+            "f_main": self.f_main,
+            "d_leak": self.d_leak_mm / MM_PER_M,
+            "Cd_leak": self.Cd_leak,
+        }
 
     def defaults(self) -> dict[str, float | bool]:
         return {name: self.param[name].default for name in self.names()}
@@ -254,6 +301,28 @@ PRESETS = {
         {"double_acting": True, "h": 1.5},
         "Both faces of the piston deliver: the flow pulses twice per revolution, never stops, and "
         "the load doubles (the margin halves at the same head).",
+    ),
+    "A deep well with a heavy pump rod": (
+        {
+            "h": 25.0,
+            "T_m": 2.5,
+            "theta_dot0": 6.0,
+            "m_r": 15.0,
+            "eta_t": 0.8,
+            "L_main": 30.0,
+            "D_main_mm": 25.0,
+        },
+        "Water lifted 25 m by a 15 kg steel pump rod through a 30 m rising main of 25 mm, the chain "
+        "losing a fifth of the windmill's work: the rotor needs four times the paper's torque "
+        "(Tₘ = 2.5 N·m) and a 6 rad/s kick, and the pipe's friction adds up to 5 m of head at the "
+        "peak of each stroke.",
+    ),
+    "A leak hole lets it start": (
+        {"T_0": 0.25, "theta0": 4.71, "theta_dot0": 0.0, "d_leak_mm": 3.0},
+        "From rest at mid-stroke the windmill's R†T₀ = 1 N·m is less than the tight piston's load "
+        "(1.48 N·m): with the leak hole set to 0 the pump never moves. Through a 3 mm hole the "
+        "water slips back at rest, the load vanishes and the pump starts on its own; at speed the "
+        "hole costs about 4 % of the water.",
     ),
     "A stalled pump": (
         {"h": 21.0},

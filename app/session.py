@@ -115,9 +115,18 @@ def input_name(error: Exception) -> str | None:
     """The input behind a parameter the core refused (the core names R1 and L, the page R† and
     L/R)."""
     name = getattr(error, "name", None)
-    return {"L": "L_over_R", "R1": "R_dagger"}.get(name, name)
+    return CORE_TO_INPUT.get(name, name)
+
+
+# The core's field -> the input that sets it, where the page shows another quantity (a ratio, mm).
+CORE_TO_INPUT = {"L": "L_over_R", "R1": "R_dagger", "D_main": "D_main_mm", "d_leak": "d_leak_mm"}
 
 
 def sentence(error: Exception) -> str:
+    """The error's message as a sentence: capitalised, unless it starts with a parameter's name
+    (``d_leak = ...`` stays as the core spells it), and ending in a full stop."""
     text = str(error)
-    return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
+    name = getattr(error, "name", None)
+    if not (name and text.startswith(f"{name} ")):
+        text = text[0].upper() + text[1:]
+    return text + ("" if text.endswith(".") else ".")

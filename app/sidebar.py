@@ -10,7 +10,7 @@ import panel as pn
 import windpump
 
 from .buttons import ActionButton
-from .inputs import FORMATS, PRESETS, SWITCHES, PumpInputs
+from .inputs import FORMATS, PRESETS, REAL_MACHINE_INPUTS, SWITCHES, PumpInputs
 from .keyboard import FOCUS_CSS
 from .lab import LabData
 from .styles import TEXT, ZOOM_JS
@@ -78,6 +78,10 @@ class Sidebar(pn.viewable.Viewer):
             )
             for name in SWITCHES
         }
+        self.more_card = self.card("More parameters", "more")
+        self.real_card = self.card("Real machine: rod, chain, pipe, leak", "real")
+        # a preset or a link that sets the real machine opens its card, so the student sees it
+        inputs.param.watch(self._open_real_card, list(REAL_MACHINE_INPUTS))
         button = dict(stylesheets=[*TEXT, BUTTON_CSS, FOCUS_CSS], sizing_mode="stretch_width")
         self._page_buttons(button, dark)
         self.refused_upload = RefusedUploads()  # the page's word that it refused a large file
@@ -113,22 +117,31 @@ class Sidebar(pn.viewable.Viewer):
     def show_design(self, design: windpump.Design) -> None:
         self.download.filename = design_filename(design)
 
-    def __panel__(self) -> pn.Column:
-        main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]
-        more = pn.Card(
-            *(self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "more"),
-            header=card_header("More parameters"),
+    def _open_real_card(self, *events) -> None:
+        inputs = events[0].obj
+        if not all(inputs.is_default(name, getattr(inputs, name)) for name in REAL_MACHINE_INPUTS):
+            self.real_card.collapsed = False
+
+    def card(self, title: str, place: str) -> pn.Card:
+        """A collapsed card of the sliders that sit in ``place`` (FORMATS)."""
+        return pn.Card(
+            *(self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place),
+            header=card_header(title),
             collapsed=True,
             sizing_mode="stretch_width",
             stylesheets=TEXT,
         )
+
+    def __panel__(self) -> pn.Column:
+        main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]
         lab = self.lab
         return pn.Column(
             self.preset,
             self.preset_note,
             *main,
             *self.switches.values(),
-            more,
+            self.more_card,
+            self.real_card,
             pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),
             self.reset_button,
             self.copy_link,

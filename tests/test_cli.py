@@ -68,10 +68,39 @@ def test_set_and_design_files_choose_the_design(tmp_path):
     assert f"{windpump.stall_margin(changed):.6g}" in by_file.stdout
 
 
+def test_set_takes_the_real_machines_fields(tmp_path):
+    real = SEED.replace(m_r=2.0, d_leak=0.003, eta_t=0.9, L_main=12.0, D_main=0.02)
+    file = tmp_path / "real.json"
+    file.write_text(real.to_json())
+    settings = ["m_r=2", "d_leak=0.003", "eta_t=0.9", "L_main=12", "D_main=0.02"]
+    by_set = windpump_command(
+        "simulate", *(f"--set={text}" for text in settings), "--t-end", "5",
+        "--csv", str(tmp_path / "set.csv"),
+    )  # fmt: skip
+    by_file = windpump_command(
+        "simulate", "--design", str(file), "--t-end", "5", "--csv", str(tmp_path / "file.csv")
+    )
+    assert by_set.returncode == 0 == by_file.returncode, by_set.stderr + by_file.stderr
+    assert by_set.stdout.replace("set.csv", "file.csv") == by_file.stdout
+    header = [line for line in (tmp_path / "set.csv").read_text().splitlines() if "#" in line]
+    for line in ("# m_r = 2 kg", "# d_leak = 0.003 m", "# eta_t = 0.9", "# L_main = 12 m",
+                 "# D_main = 0.02 m", "# f_main = 0.02", "# Cd_leak = 0.6"):  # fmt: skip
+        assert line in header
+    assert (tmp_path / "set.csv").read_text() == (tmp_path / "file.csv").read_text()
+
+
 @pytest.mark.parametrize(
     "args, words",
     [
         (["simulate", "--set", "h=-1"], "h = -1.0 m is not allowed"),
+        (["simulate", "--set", "m_r=-2"], "m_r = -2.0 kg is not allowed: m_r must be"),
+        (["simulate", "--set", "eta_t=1.5"], "eta_t = 1.5 is not allowed: eta_t must be"),
+        (["simulate", "--set", "D_main=0"], "D_main = 0.0 m is not allowed: D_main must be"),
+        (["simulate", "--set", "f_main=0.3"], "f_main = 0.3 is not allowed: f_main must be"),
+        (["simulate", "--set", "d_leak=0.05"], "d_leak = 0.05 m is not allowed: d_leak must be"),
+        (["simulate", "--set", "Cd_leak=0"], "Cd_leak = 0.0 is not allowed: Cd_leak must be"),
+        (["simulate", "--set", "L_main=-3"], "L_main = -3.0 m is not allowed: L_main must be"),
+        (["simulate", "--set", "m_r=heavy"], "m_r = 'heavy' is not allowed: m_r must be a number"),
         (["simulate", "--set", "bore=1"], "expected NAME=VALUE"),
         (["simulate", "--set", "h"], "expected NAME=VALUE"),
         (["simulate", "--set", "double_acting=maybe"], "double_acting"),
@@ -184,6 +213,31 @@ def test_sweep_runs_a_table_of_designs_on_two_workers(tmp_path):
     assert [float(row["volume [m^3]"]) for row in rows] == pytest.approx(expected.volume, rel=1e-11)
     assert [row["stalled"] for row in rows] == ["False", "False", "True"]
     # the table reads back as designs (its figure columns are ignored)
+    again = windpump_command("sweep", str(out), "--csv", str(tmp_path / "again.csv"))
+    assert again.returncode == 0, again.stderr
+    assert (tmp_path / "again.csv").read_text() == out.read_text()
+
+
+def test_sweep_reads_and_writes_the_real_machines_columns(tmp_path):
+    table = tmp_path / "designs.csv"
+    table.write_text(
+        "h [m],m_r [kg],d_leak [m],eta_t,L_main [m],t_end\n3,4,0.002,0.8,20,30\n5,0,0,1,0,30\n"
+    )
+    out = tmp_path / "out.csv"
+    done = windpump_command("sweep", str(table), "--csv", str(out))
+    assert done.returncode == 0, done.stderr
+    rows = list(csv.DictReader(io.StringIO(out.read_text())))
+    for name, unit in [("m_r", "kg"), ("eta_t", ""), ("L_main", "m"), ("D_main", "m"),
+                       ("f_main", ""), ("d_leak", "m"), ("Cd_leak", "")]:  # fmt: skip
+        assert f"{name} [{unit}]".replace(" []", "") in rows[0]
+    column = {key.split(" [")[0]: key for key in rows[0]}
+    assert [float(row[column["m_r"]]) for row in rows] == [4.0, 0.0]
+    assert [float(row[column["d_leak"]]) for row in rows] == [0.002, 0.0]
+    assert [float(row[column["eta_t"]]) for row in rows] == [0.8, 1.0]
+    assert [float(row[column["D_main"]]) for row in rows] == [0.05, 0.05]  # the default
+    designs = [SEED.replace(m_r=4.0, d_leak=0.002, eta_t=0.8, L_main=20.0), SEED.replace(h=5.0)]
+    expected = windpump.sweep(designs, 30.0)
+    assert [float(row["volume [m^3]"]) for row in rows] == pytest.approx(expected.volume, rel=1e-11)
     again = windpump_command("sweep", str(out), "--csv", str(tmp_path / "again.csv"))
     assert again.returncode == 0, again.stderr
     assert (tmp_path / "again.csv").read_text() == out.read_text()

@@ -9,9 +9,29 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from windpump import Design, DesignFileError, ParameterError
-from windpump.design import UNITS
+from windpump.design import REAL_MACHINE, UNITS
 
 SEED = Design.seed_example()
+
+# The fields of a version 1 file (before the real machine's), as that version wrote them.
+VERSION_1_UNITS = {
+    "R0": "m",
+    "R1": "m",
+    "R": "m",
+    "L": "m",
+    "A": "m^2",
+    "I0": "kg m^2",
+    "I1": "kg m^2",
+    "T_m": "N m",
+    "omega_m": "rad/s",
+    "h": "m",
+    "rho_w": "kg/m^3",
+    "g": "m/s^2",
+    "cylinders": "",
+    "double_acting": "",
+    "T_0": "N m",
+    "V_ref": "m/s",
+}
 
 
 @st.composite
@@ -37,22 +57,134 @@ def designs(draw):
     )
 
 
+@st.composite
+def real_machines(draw):
+    """Valid designs with every real-machine field set anywhere in its range (the hole up to
+    just below the bore)."""
+    design = draw(designs())
+    return design.replace(
+        m_r=draw(st.floats(0.0, 1e3)),
+        eta_t=draw(st.floats(1e-6, 1.0)),
+        L_main=draw(st.floats(0.0, 1e4)),
+        D_main=draw(st.floats(1e-4, 1.0)),
+        f_main=draw(st.floats(0.0, 0.2)),
+        d_leak=design.bore * draw(st.floats(0.0, 0.999)),
+        Cd_leak=draw(st.floats(1e-6, 1.0)),
+    )
+
+
 @given(designs())
 def test_every_design_round_trips_exactly(design):
     assert Design.from_json(design.to_json()) == design
 
 
+@given(real_machines())
+def test_every_real_machine_round_trips_exactly(design):
+    again = Design.from_json(design.to_json())
+    assert again == design
+    assert all(getattr(again, name) == getattr(design, name) for name in REAL_MACHINE)
+
+
+def test_the_real_machines_fields_are_written_with_their_units():
+    design = SEED.replace(
+        m_r=12.5, eta_t=0.85, L_main=30.0, D_main=0.025, f_main=0.03, d_leak=0.003, Cd_leak=0.7
+    )
+    document = json.loads(design.to_json())
+    assert {name: document["fields"][name] for name in REAL_MACHINE} == {
+        "m_r": 12.5,
+        "eta_t": 0.85,
+        "L_main": 30.0,
+        "D_main": 0.025,
+        "f_main": 0.03,
+        "d_leak": 0.003,
+        "Cd_leak": 0.7,
+    }
+    assert {name: document["units"][name] for name in REAL_MACHINE} == {
+        "m_r": "kg",
+        "eta_t": "",
+        "L_main": "m",
+        "D_main": "m",
+        "f_main": "",
+        "d_leak": "m",
+        "Cd_leak": "",
+    }
+    assert Design.from_json(json.dumps(document)) == design
+
+
 def test_the_file_states_its_schema_version_and_units():
     document = json.loads(SEED.to_json())
-    assert document["schema"] == "windpump.design" and document["version"] == 1
+    assert document["schema"] == "windpump.design" and document["version"] == 2
     assert document["units"] == UNITS and set(document["fields"]) == set(UNITS)
+    assert set(UNITS) == set(VERSION_1_UNITS) | set(REAL_MACHINE)
 
 
 def test_fields_with_defaults_may_be_left_out():
     document = json.loads(SEED.to_json())
-    for name in ("rho_w", "g", "cylinders", "double_acting", "T_0", "V_ref"):
+    for name in ("rho_w", "g", "cylinders", "double_acting", "T_0", "V_ref", *REAL_MACHINE):
         del document["fields"][name]
     assert Design.from_json(json.dumps(document)) == SEED
+
+
+def version_1_file(**changes) -> str:
+    """A design file as version 1 wrote it (no real-machine fields), ``changes`` in its fields."""
+    fields = {name: value for name, value in SEED.as_dict().items() if name in VERSION_1_UNITS}
+    fields.update(R0=0.05, h=7.5, cylinders=2, **changes)
+    document = {
+        "schema": "windpump.design",
+        "version": 1,
+        "fields": fields,
+        "units": VERSION_1_UNITS,
+    }
+    return json.dumps(document, indent=2)
+
+
+def test_a_version_1_file_is_still_read_as_the_ideal_machine():
+    design = Design.from_json(version_1_file())
+    assert design == SEED.replace(R0=0.05, h=7.5, cylinders=2)
+    assert design.is_ideal
+    assert (design.m_r, design.eta_t, design.L_main, design.d_leak) == (0.0, 1.0, 0.0, 0.0)
+    assert (design.D_main, design.f_main, design.Cd_leak) == (0.05, 0.02, 0.6)
+
+
+@pytest.mark.parametrize("name", REAL_MACHINE)
+def test_a_version_1_file_with_a_real_machine_field_is_refused(name):
+    with pytest.raises(DesignFileError) as caught:
+        Design.from_json(version_1_file(**{name: SEED.as_dict()[name]}))
+    message = str(caught.value)
+    assert f"unknown field(s) ['{name}']" in message and "version 1" in message
+
+
+BAD_REAL_MACHINE = [
+    ("m_r", -0.5, "from 0 to"),
+    ("m_r", -1e-9, "from 0 to"),
+    ("eta_t", 0.0, "above 0 and at most 1"),
+    ("eta_t", -0.2, "above 0 and at most 1"),
+    ("eta_t", 1.01, "above 0 and at most 1"),
+    ("L_main", -1.0, "from 0 to"),
+    ("D_main", 0.0, "from 1e-12 to"),
+    ("D_main", -0.05, "from 1e-12 to"),
+    ("f_main", -0.01, "from 0 to 0.2"),
+    ("f_main", 0.21, "from 0 to 0.2"),
+    ("d_leak", SEED.bore, f"below the bore = {SEED.bore!r} m"),
+    ("d_leak", 0.05, f"below the bore = {SEED.bore!r} m"),
+    ("d_leak", -0.001, "from 0"),
+    ("Cd_leak", 0.0, "above 0 and at most 1"),
+    ("Cd_leak", 1.5, "above 0 and at most 1"),
+]
+
+
+@pytest.mark.parametrize("name, value, allowed", BAD_REAL_MACHINE)
+def test_a_bad_real_machine_value_names_the_field_value_and_range(name, value, allowed):
+    for make in (
+        lambda: SEED.replace(**{name: value}),
+        lambda: Design(**{**SEED.as_dict(), name: value}),
+        lambda: Design.from_json(edited(lambda d: d["fields"].update({name: value}))),
+    ):
+        with pytest.raises(ParameterError) as caught:
+            make()
+        message = str(caught.value)
+        assert caught.value.name == name and caught.value.value == value
+        assert message.startswith(f"{name} = {value!r}") and allowed in message, message
 
 
 def edited(change) -> str:
@@ -67,7 +199,7 @@ def edited(change) -> str:
         ("{not json", "not JSON"),
         ("[]", "not a design file"),
         (edited(lambda d: d.update(schema="other")), "not a design file"),
-        (edited(lambda d: d.update(version=2)), "newer windpump"),
+        (edited(lambda d: d.update(version=3)), "newer windpump"),
         (edited(lambda d: d.update(version="1")), '"version"'),
         (edited(lambda d: d["fields"].update(bore=0.04)), "unknown field(s) ['bore']"),
         (edited(lambda d: d["fields"].pop("h")), "missing field(s) ['h']"),

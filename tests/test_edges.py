@@ -72,8 +72,12 @@ def in_field_range(name: str, value) -> bool:
         return is_number(value) and 1 <= value <= MAX_CYLINDERS and value == int(value)
     if not is_number(value) or isinstance(value, float) and not math.isfinite(value):
         return False
-    lowest = 0.0 if name in ("h", "T_0") else 1e-12
-    highest = 150.0 if name == "V_ref" else 1e12
+    if name in ("eta_t", "Cd_leak"):  # fractions
+        return 0.0 < value <= 1.0
+    if name == "d_leak":  # through the piston: narrower than its bore
+        return 0.0 <= value < math.sqrt(4.0 * SEED.A / math.pi)
+    lowest = 0.0 if name in ("h", "T_0", "m_r", "L_main", "f_main") else 1e-12
+    highest = {"V_ref": 150.0, "f_main": 0.2}.get(name, 1e12)
     return lowest <= value <= highest
 
 

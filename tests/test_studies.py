@@ -124,3 +124,16 @@ def test_a_run_that_fails_names_its_design():
     assert list(table.failed) == [1] and table.failed[1].startswith("t_end = 1000000.0 s")
     with pytest.raises(TypeError, match=r"designs\[0\]"):
         sweep(["seed"], 10.0)
+
+
+def test_the_table_carries_the_real_machines_fields():
+    heavy = SEED.replace(m_r=6.0, eta_t=0.75, L_main=40.0, D_main=0.03, f_main=0.025)
+    leaky = SEED.replace(d_leak=0.004, Cd_leak=0.65)
+    table = sweep([heavy, leaky], 20.0)
+    columns = table.columns()
+    for name in ("m_r", "eta_t", "L_main", "D_main", "f_main", "d_leak", "Cd_leak"):
+        assert columns[name].tolist() == [getattr(heavy, name), getattr(leaky, name)]
+    header = table.to_csv().splitlines()[0].split(",")
+    for cell in ("m_r [kg]", "eta_t", "L_main [m]", "D_main [m]", "f_main", "d_leak [m]"):
+        assert cell in header
+    assert "Cd_leak" in header

@@ -42,7 +42,7 @@ class PumpViews:
         dark = self.dark  # each view draws in its theme's colours
         self.speed = SpeedView(self.time_range, self.cursor, dark)
         self.flow = FlowView(self.time_range, self.cursor, dark)
-        self.energy = EnergyView(self.time_range, self.cursor, dark)
+        self.energy = EnergyView(dark)
         self.closeup = CloseupView(dark)
         self.stall = StallView(dark)
         self.operating = OperatingView(dark)

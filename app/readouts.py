@@ -21,7 +21,9 @@ READOUT_CSS = """
 .readout .label {font-size: 14px; color: inherit; opacity: 0.85}
 .readout .value {font-size: 20px; font-weight: bold}
 """
-READOUTS = ("mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "energy")
+READOUTS = (
+    "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",
+)  # fmt: skip
 STATUS_STYLE = {
     Status.RUNNING: "success",
     Status.SLOWING: "warning",
@@ -99,6 +101,7 @@ class Readouts(pn.viewable.Viewer):
             "margin": ("Stall margin, Eq. (22)", f"{seen.margin:.3f}"),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
             "ripple": ("Speed ripple", f"{100 * figures.speed_ripple:.3f} %" if figures else "–"),
+            "efficiency": efficiency_readout(seen),
             "energy": energy_readout(seen),
         }
         for name, (label, value) in values.items():
@@ -120,20 +123,41 @@ class Readouts(pn.viewable.Viewer):
         return pn.Column(self.row, self.status, sizing_mode="stretch_width")
 
 
+def percent(value: float) -> str:
+    return f"{100 * value:.1f} %" if value == value else "–"  # (NaN: nothing swept, no work)
+
+
+def efficiency_readout(seen: windpump.Exploration) -> tuple[str, str]:
+    """Delivered over swept volume, and lifted water's energy over the windmill's work."""
+    volumetric, overall = seen.volumetric_efficiency, seen.overall_efficiency
+    return "Efficiency: volumetric, overall", f"{percent(volumetric)}, {percent(overall)}"
+
+
 def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
-    """The run's energy balance in words that keep the sign: a slowing rotor gives energy back."""
-    budget = windpump.power_budget(seen.run)
-    work, kinetic, lift = (
-        float(e[-1]) for e in (budget.shaft_work, budget.kinetic_energy, budget.lift_work)
-    )
+    """The run's energy balance in words that keep the sign: a slowing rotor gives energy back.
+    The real machine's losses (chain, rising main, leak) are one term when there are any."""
+    totals = windpump.power_budget(seen.run).totals()
+    work, lift = totals.shaft, totals.water
+    kinetic = totals.kinetic + totals.potential
+    lost = totals.transmission + totals.friction + totals.leak
+    if seen.design.is_ideal:
+        if kinetic >= 0:
+            return (
+                "Windmill's work = gained speed + lifted water",
+                f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
+            )
+        return (
+            "Windmill's work + speed given back = lifted water",
+            f"{work:,.0f} J + {-kinetic:,.0f} J = {lift:,.0f} J",
+        )
     if kinetic >= 0:
         return (
-            "Windmill's work = gained speed + lifted water",
-            f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
+            "Windmill's work = losses + gained speed + lifted water",
+            f"{work:,.0f} J = {lost:,.0f} J + {kinetic:,.0f} J + {lift:,.0f} J",
         )
     return (
-        "Windmill's work + speed given back = lifted water",
-        f"{work:,.0f} J + {-kinetic:,.0f} J = {lift:,.0f} J",
+        "Windmill's work + speed given back = losses + lifted water",
+        f"{work:,.0f} J + {-kinetic:,.0f} J = {lost:,.0f} J + {lift:,.0f} J",
     )
 
 

@@ -15,7 +15,7 @@ from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
 import windpump
 from windpump.units import LITRES_PER_M3
 
-from .envelope import band, bin_means
+from .envelope import band
 from .figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
 from .styles import CAPTION_CSS
 
@@ -262,70 +262,61 @@ class CloseupView(View):
         )
 
 
-class EnergyView(TimeView):
+class EnergyView(View):
     caption = (
-        "Per revolution: the windmill's power T ω (Eq. 11) goes into lifting water ρ_w g h Q and "
-        "into spinning the rotor up, d(½ I_eff θ̇²)/dt; below zero the slowing rotor gives power back."
+        "Over the run, the windmill's work W = ∫ T ω dt, and where it went: the chain (1 − η_t) W, "
+        "the rising main's friction ∫ ρ_w g h_f Q dt, the leak hole, the spinning up "
+        "Δ(½ J θ̇²) and the rod's weight, and the lifted water ρ_w g h V (a slowing rotor gives "
+        "energy back: its bar goes up)."
     )
+    STEPS = ("windmill's work", "chain", "rising main", "leak hole", "spinning up", "lifted water")
+    COLORS = ("windmill", "structure", "wind", "data", "alpha_minus", "flow")
 
-    def __init__(self, time_range, cursor, dark: bool = False):
-        super().__init__(time_range, cursor, dark)
-        c = self.colors
-        source = self.sources["power_split"] = empty(
-            "t", "hydraulic", "shaft", "kinetic", "kinetic_low", "kinetic_high"
+    def __init__(self, dark: bool = False):
+        super().__init__(dark)
+        self.sources["losses"] = empty("step", "left", "right", "label", "color", "at")
+        self.figure = fig = new_figure(
+            "Where the windmill's work goes",
+            "work over the run [J]",
+            "",
+            tools="save",
+            y_range=FactorRange(*reversed(self.STEPS)),
         )
-        self.figure = fig = self.time_figure(
-            "Where the windmill's power goes",
-            "power [W]",
-            [
-                ("t", "@t{0.0} s"),
-                ("T ω", "@shaft{0.00} W"),
-                ("lifting water", "@hydraulic{0.00} W"),
-                ("spinning up", "@kinetic{0.00} W"),
-            ],
-        )
-        # Translucent areas (the dashed line shows through), outlined so that each stands out.
-        water = fig.varea("t", 0.0, "hydraulic", source=source, color=c["flow"], alpha=0.5)
-        water_edge = line(fig, "t", "hydraulic", source, c["flow"], 1.5)
-        spin = fig.varea(
-            "t", "kinetic_low", "kinetic_high", source=source, color=c["averaged"], alpha=0.5
-        )
-        spin_edge = line(fig, "t", "kinetic_high", source, c["averaged"], 1.5)
-        line(fig, "t", "kinetic_low", source, c["averaged"], 1.5)
-        shaft = line(fig, "t", "shaft", source, c["ink"], 2, "dashed")
-        legend(
-            fig,
-            {
-                "lifting water": [water, water_edge],
-                "spinning up (+), back (−)": [spin, spin_edge],
-                "windmill T ω": shaft,
-            },
-        )
-        self.hover_on(shaft)
+        source = self.sources["losses"]
+        fig.hbar(y="step", left="left", right="right", height=0.6, color="color", source=source)
+        fig.text(
+            x="at", y="step", text="label", source=source, text_baseline="middle",
+            text_font_size="14px", x_offset=6, color=self.colors["ink"],
+        )  # fmt: skip
+        fig.x_range.start = 0
 
     def update(self, seen, bins):
-        means = windpump.power_budget(seen.run).cycle_means()
-        if len(means.t) == 0:  # not one revolution: no power per revolution to draw but zero
-            zero = np.zeros(2)
-            means = type(means)(np.array([0.0, float(seen.run.t[-1])]), zero, zero, zero)
-        kinetic = means.kinetic
-        # Spinning up stacks on the water; power given back by a slowing rotor shows below zero.
-        low = np.where(kinetic >= 0, means.hydraulic, kinetic)
-        high = np.where(kinetic >= 0, means.hydraulic + kinetic, 0.0)
-        refill(
-            self.sources["power_split"],
-            bin_means(
-                means.t,
-                {
-                    "hydraulic": means.hydraulic,
-                    "shaft": means.shaft,
-                    "kinetic": kinetic,
-                    "kinetic_low": low,
-                    "kinetic_high": high,
-                },
-                bins,
-            ),
-        )
+        refill(self.sources["losses"], self.waterfall(windpump.power_budget(seen.run).totals()))
+
+    def waterfall(self, totals: windpump.EnergyTotals) -> dict:
+        """The bars: W from 0, each loss hanging from what is left, the water from 0."""
+        spin = totals.kinetic + totals.potential
+        W = totals.shaft
+        left, right, running = [0.0], [W], W
+        for loss in (totals.transmission, totals.friction, totals.leak, spin):
+            left.append(min(running, running - loss))
+            right.append(max(running, running - loss))
+            running -= loss
+        left.append(0.0)
+        right.append(totals.water)
+        values = (W, totals.transmission, totals.friction, totals.leak, spin, totals.water)
+        share = [100.0 * v / W if W > 0 else 0.0 for v in values]
+        labels = [f"{v:,.0f} J ({p:.1f} %)" for v, p in zip(values, share, strict=True)]
+        labels[4] = labels[4] if spin >= 0 else f"{-spin:,.0f} J given back"
+        self.figure.x_range.end = 1.35 * max(max(right), 1e-9)  # room for the labels
+        return {
+            "step": list(self.STEPS),
+            "left": left,
+            "right": right,
+            "label": labels,
+            "color": [self.colors[c] for c in self.COLORS],
+            "at": right,
+        }
 
 
 SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")

@@ -36,33 +36,52 @@ def bar_lengths(source):
 # -- the energy view ----------------------------------------------------------------------------
 
 
-def test_the_energy_view_splits_the_windmills_power(app):
+def test_the_energy_view_is_a_waterfall_of_the_windmills_work(app):
     app.reset()
-    split = app.sources["power_split"].data
-    assert 0 < len(split["t"]) <= BINS
-    np.testing.assert_allclose(
-        split["shaft"], np.add(split["hydraulic"], split["kinetic"]), rtol=1e-9
-    )
+    bars = app.sources["losses"].data
     run = windpump.simulate(SEED, 600.0)
     budget = windpump.power_budget(run)
-    means = budget.cycle_means()
-    # Smooth curves averaged over 2-pixel bins: each point is the curve near the bin's middle
-    for name, curve in (("hydraulic", means.hydraulic), ("shaft", means.shaft)):
-        near = np.interp(split["t"], means.t, curve)
-        np.testing.assert_allclose(split[name], near, rtol=0, atol=0.01 * curve.max())
-    assert max(split["shaft"]) <= means.shaft.max() + 1e-12
+    W, K, E = (float(a[-1]) for a in (budget.shaft_work, budget.kinetic_energy, budget.lift_work))
+    steps = dict(zip(bars["step"], zip(bars["left"], bars["right"], strict=True), strict=True))
+    assert steps["windmill's work"] == pytest.approx((0.0, W))
+    for loss in ("chain", "rising main", "leak hole"):  # the ideal machine loses nothing
+        assert steps[loss][1] - steps[loss][0] == pytest.approx(0.0, abs=1e-9 * W)
+    assert steps["spinning up"] == pytest.approx((W - K, W))
+    assert steps["lifted water"] == pytest.approx((0.0, E))
+    assert W - K == pytest.approx(E, rel=1e-6)  # the water's bar meets what is left
     text = app.readouts["energy"].object
     assert f"{budget.shaft_work[-1]:,.0f} J = {budget.kinetic_energy[-1]:,.0f} J + " in text
 
 
 def test_the_energy_view_follows_the_sliders(app):
     app.reset()
-    before = list(app.sources["power_split"].data["hydraulic"])
+    before = list(app.sources["losses"].data["right"])
     app.sidebar.sliders["h"].value = 6.0
     run = windpump.simulate(SEED.replace(h=6.0), 600.0)
     lift = windpump.power_budget(run).lift_work[-1]
-    assert list(app.sources["power_split"].data["hydraulic"]) != before
+    assert list(app.sources["losses"].data["right"]) != before
     assert f"{lift:,.0f} J" in app.readouts["energy"].object
+    app.reset()
+
+
+def test_the_waterfall_and_readouts_name_the_real_machines_losses(app):
+    app.set_values(m_r=1.0, eta_t=0.9, L_main=20.0, d_leak_mm=2.0)
+    design = SEED.replace(m_r=1.0, eta_t=0.9, L_main=20.0, d_leak=0.002)
+    assert app.seen.design == design
+    run = windpump.simulate(design, 600.0)
+    totals = windpump.power_budget(run).totals()
+    bars = app.sources["losses"].data
+    widths = dict(zip(bars["step"], np.subtract(bars["right"], bars["left"]), strict=True))
+    assert widths["chain"] == pytest.approx(totals.transmission, rel=1e-6)
+    assert widths["rising main"] == pytest.approx(totals.friction, rel=1e-6)
+    assert widths["leak hole"] == pytest.approx(totals.leak, rel=1e-6)
+    assert widths["lifted water"] == pytest.approx(totals.water, rel=1e-6)
+    assert bars["left"][bars["step"].index("spinning up")] == pytest.approx(totals.water, rel=1e-6)
+    efficiency = app.readouts["efficiency"].object
+    assert f"{100 * run.volumetric_efficiency:.1f} %" in efficiency
+    assert f"{100 * run.overall_efficiency:.1f} %" in efficiency
+    lost = totals.transmission + totals.friction + totals.leak
+    assert f"{lost:,.0f} J" in app.readouts["energy"].object
     app.reset()
 
 

@@ -182,8 +182,8 @@ def test_the_energy_view_is_on_the_main_page(page):
     run = windpump.simulate(SEED, 600.0)
     work = windpump.power_budget(run).shaft_work[-1]
     assert f"{work:,.0f} J = " in text(page, "energy")
-    shaft = model_data(page, "power_split", "shaft")
-    assert 0 < len(shaft) and max(shaft) > 0
+    right = model_data(page, "losses", "right")
+    assert len(right) == 6 and right[0] == pytest.approx(work, rel=1e-9)
     assert page.problems == []
 
 

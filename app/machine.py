@@ -26,7 +26,7 @@ from bokeh.models import (
 from bokeh.plotting import figure
 
 import windpump
-from windpump.units import LITRES_PER_M3
+from windpump.units import LITRES_PER_M3, MM_PER_M
 
 from .figures import LABEL, empty, palette
 from .keyboard import FOCUS_CSS
@@ -121,6 +121,8 @@ class MachineView(View):
         s["machine_piston"] = empty("x", "y", "width", "height")
         s["machine_water"] = empty("x", "y", "width", "height")
         s["machine_label"] = ColumnDataSource({"x": [0.0], "y": [0.0], "text": [""]})
+        s["machine_main"] = empty("xs", "ys")  # the rising main, when the design has one
+        s["machine_notes"] = empty("x", "y", "text", "align")  # the main's and the hole's size
         # Ranges set from the design (set_design) to the figure's own aspect, with no border: equal
         # scales on both axes whatever width the page gives it.
         self.figure = fig = figure(
@@ -184,6 +186,11 @@ class MachineView(View):
             line_color=c["ink"],
             line_width=2,
         )
+        fig.multi_line("xs", "ys", source=s["machine_main"], color=c["flow"], line_width=7)
+        fig.text(
+            "x", "y", "text", source=s["machine_notes"], text_font_size="13px",
+            text_baseline="middle", text_align="align", text_color=c["ink"],
+        )  # fmt: skip
         fig.text(
             "x",
             "y",
@@ -287,6 +294,8 @@ class MachineView(View):
             self.sources["machine_static"],
             {"xs": [a for a, _ in static], "ys": [b for _, b in static]},
         )
+        riser = static[-3]
+        self._real_parts(d, riser, (-d.bore / 2, 0.5 * (d.L - d.R + top)))
         refill(
             self.sources["machine_circles"],
             {"x": [c0[0], 0.0], "y": [c0[1], 0.0], "radius": [d.R0, d.R1]},
@@ -305,6 +314,27 @@ class MachineView(View):
             pitch=pitch,
         )
         self._frame(d)
+
+    def _real_parts(self, d: windpump.Design, riser, cylinder_side) -> None:
+        """The real machine's rising main (over the riser, drawn when L_main > 0, labelled with
+        its length and bore) and its leak hole's size beside the first cylinder."""
+        main = d.L_main > 0.0
+        refill(
+            self.sources["machine_main"],
+            {"xs": [riser[0]] if main else [], "ys": [riser[1]] if main else []},
+        )
+        notes = {"x": [], "y": [], "text": [], "align": []}
+        if main:
+            notes["x"].append(riser[0][1] + 0.3 * d.bore)
+            notes["y"].append(0.5 * (riser[1][1] + riser[1][2]))
+            notes["text"].append(f"rising main\n{d.L_main:g} m × {d.D_main * MM_PER_M:g} mm")
+            notes["align"].append("left")
+        if d.d_leak > 0.0:
+            notes["x"].append(cylinder_side[0] - 0.3 * d.bore)
+            notes["y"].append(cylinder_side[1])
+            notes["text"].append(f"leak hole\n{d.d_leak * MM_PER_M:g} mm")
+            notes["align"].append("right")
+        refill(self.sources["machine_notes"], notes)
 
     def _frame(self, d: windpump.Design) -> None:
         """The figure's ranges around the whole machine, at the figure's aspect."""

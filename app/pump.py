@@ -130,6 +130,9 @@ def _linkage_of(design: windpump.Design) -> tuple[float, ...]:
         design.R0,
         design.R1,
         design.cylinders,
+        design.L_main,  # the rising main and the leak hole are drawn, and labelled
+        design.D_main,
+        design.d_leak,
         design.double_acting,
     )
 

@@ -85,6 +85,19 @@ def test_the_waterfall_and_readouts_name_the_real_machines_losses(app):
     app.reset()
 
 
+def test_the_machine_shows_its_rising_main_and_leak_hole_only_when_it_has_them(app):
+    app.reset()
+    assert app.sources["machine_main"].data["xs"] == []
+    assert app.sources["machine_notes"].data["text"] == []
+    app.set_values(L_main=30.0, d_leak_mm=2.5)
+    assert len(app.sources["machine_main"].data["xs"]) == 1
+    notes = app.sources["machine_notes"].data["text"]
+    assert any("30 m × 50 mm" in note for note in notes)
+    assert any("2.5 mm" in note for note in notes)
+    app.reset()
+    assert app.sources["machine_main"].data["xs"] == []
+
+
 # -- the pump's slider-crank --------------------------------------------------------------------
 
 

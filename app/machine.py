@@ -325,8 +325,8 @@ class MachineView(View):
         )
         notes = {"x": [], "y": [], "text": [], "align": []}
         if main:
-            notes["x"].append(riser[0][1] + 0.3 * d.bore)
-            notes["y"].append(0.5 * (riser[1][1] + riser[1][2]))
+            notes["x"].append(riser[0][0] + 1.0 * d.bore)  # under the pipe, by the cylinders
+            notes["y"].append(riser[1][0] - 1.4 * d.bore)
             notes["text"].append(f"rising main\n{d.L_main:g} m × {d.D_main * MM_PER_M:g} mm")
             notes["align"].append("left")
         if d.d_leak > 0.0:

@@ -306,9 +306,9 @@ class EnergyView(View):
         right.append(totals.water)
         values = (W, totals.transmission, totals.friction, totals.leak, spin, totals.water)
         share = [100.0 * v / W if W > 0 else 0.0 for v in values]
-        labels = [f"{v:,.0f} J ({p:.1f} %)" for v, p in zip(values, share, strict=True)]
+        labels = [f"{v:,.0f} J, {p:.0f} %" for v, p in zip(values, share, strict=True)]
         labels[4] = labels[4] if spin >= 0 else f"{-spin:,.0f} J given back"
-        self.figure.x_range.end = 1.35 * max(max(right), 1e-9)  # room for the labels
+        self.figure.x_range.end = 1.8 * max(max(right), 1e-9)  # room for the labels
         return {
             "step": list(self.STEPS),
             "left": left,

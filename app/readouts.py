@@ -106,6 +106,9 @@ class Readouts(pn.viewable.Viewer):
         }
         for name, (label, value) in values.items():
             self.readouts[name].show(label, value)
+        # The ideal machine delivers what it sweeps: its efficiencies say little, and a projector's
+        # first screen has no row to spare.
+        self.readouts["efficiency"].visible = not seen.design.is_ideal
         self.status.object, self.status.alert_type = (
             f"{status_text(seen)} {start_text(seen)}",
             STATUS_STYLE[seen.status],

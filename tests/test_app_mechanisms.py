@@ -77,6 +77,7 @@ def test_the_waterfall_and_readouts_name_the_real_machines_losses(app):
     assert widths["leak hole"] == pytest.approx(totals.leak, rel=1e-6)
     assert widths["lifted water"] == pytest.approx(totals.water, rel=1e-6)
     assert bars["left"][bars["step"].index("spinning up")] == pytest.approx(totals.water, rel=1e-6)
+    assert app.readouts["efficiency"].visible  # shown for a real machine, hidden for the ideal
     efficiency = app.readouts["efficiency"].object
     assert f"{100 * run.volumetric_efficiency:.1f} %" in efficiency
     assert f"{100 * run.overall_efficiency:.1f} %" in efficiency

@@ -7,6 +7,7 @@ from urllib.parse import parse_qsl
 
 import numpy as np
 import pytest
+from real_reference import real_reference_run
 
 import windpump
 from windpump_app.explorer import Explorer
@@ -53,14 +54,14 @@ def test_each_slider_sets_its_field_of_the_design_the_core_runs(app, name):
 
 
 def test_every_tab_gets_the_real_machine(app):
-    app.set_values(m_r=4.0, eta_t=0.9, d_leak_mm=2.0)
-    design = SEED.replace(m_r=4.0, eta_t=0.9, d_leak=0.002)
+    app.set_values(m_r=4.0, eta_t=0.9, L_main=20.0, D_main_mm=20.0)
+    design = SEED.replace(m_r=4.0, eta_t=0.9, L_main=20.0, D_main=0.02)
     app.main().active = 2  # the Wind tab runs its day once opened
     assert app.wind.last_run.design == design
     app.design_map.update(app.seen)  # mapped around this design (all but R1 and h)
     assert app.design_map._mapped_key == design.replace(R1=design.R0, h=0.0)
     downloaded = app._csv().getvalue().splitlines()
-    for line in ("# m_r = 4 kg", "# eta_t = 0.9", "# d_leak = 0.002 m", "# Cd_leak = 0.6"):
+    for line in ("# m_r = 4 kg", "# eta_t = 0.9", "# D_main = 0.02 m", "# d_leak = 0 m"):
         assert line in downloaded
 
 
@@ -139,6 +140,7 @@ def test_the_leak_preset_is_a_tight_pump_that_cannot_start_given_a_hole(app):
     assert design.R_dagger * design.T_0 == pytest.approx(1.0)
     assert load_at_rest == pytest.approx(1.478, abs=1e-3) and load_at_rest > 1.0
     assert not windpump.starts_from_rest(tight)  # ... and so it does from every angle
+    assert windpump.starts_from_rest(design)  # with the hole: no load at rest
     # ... while the hole (through the piston) lets the water by: q_L = Cd a_L sqrt(2 g h)
     assert 0.0 < design.d_leak < design.bore
     q_L = 0.6 * math.pi / 4 * 0.003**2 * math.sqrt(2 * 9.81 * 3.0)
@@ -182,4 +184,43 @@ def test_the_deep_well_preset_still_runs(app):
     ideal, _ = margin_and_kick_force(design.replace(eta_t=1.0, L_main=0.0), 6.0)
     assert ideal == pytest.approx(windpump.stall_margin(SEED.replace(h=25.0, T_m=2.5)), rel=1e-4)
     assert 1.5 < margin < ideal  # the chain and the pipe cost margin, but it still runs
+    assert windpump.stall_margin(design) == pytest.approx(margin, rel=1e-4)
     assert net_at_kick > 0  # kicked above alpha-: it spins up
+
+
+# -- the presets' runs, against the issue's equations integrated by scipy (tests/real_reference.py)
+
+
+def at(run, t: float, name: str) -> float:
+    return float(np.interp(t, run.t, getattr(run, name)))
+
+
+def test_the_leak_preset_starts_from_rest_and_the_tight_pump_does_not(app):
+    app.sidebar.preset.value = "A leak hole lets it start"
+    design, theta0 = app.inputs.design(), app.inputs.theta0
+    assert "Running" in app.readouts.status.object
+    assert "starts on its own" in app.readouts.status.object
+    ref = real_reference_run(design, 120.0, theta0, 0.0)
+    run = app.seen.run
+    assert not ref.stalled and not run.stalled and ref.theta_dot > 1.0
+    assert at(run, 120.0, "volume") == pytest.approx(ref.volume, rel=1e-4)
+    assert at(run, 120.0, "theta_dot") == pytest.approx(ref.theta_dot, rel=1e-4)
+    app.sidebar.sliders["d_leak_mm"].value = 0.0  # the same pump, tight
+    assert app.inputs.design() == design.replace(d_leak=0.0)
+    tight = real_reference_run(app.inputs.design(), 120.0, theta0, 0.0)
+    assert tight.stalled and tight.t == 0.0
+    assert app.seen.run.stalled and app.seen.run.t_stall == 0.0
+    assert "Never started" in app.readouts.status.object
+
+
+def test_the_deep_well_preset_runs_as_the_issues_equations_say(app):
+    app.sidebar.preset.value = "A deep well with a heavy pump rod"
+    design = app.inputs.design()
+    ref = real_reference_run(design, 120.0, app.inputs.theta0, app.inputs.theta_dot0)
+    run = app.seen.run
+    assert not ref.stalled and not run.stalled and "Running" in app.readouts.status.object
+    assert at(run, 120.0, "volume") == pytest.approx(ref.volume, rel=1e-4)
+    assert at(run, 120.0, "theta_dot") == pytest.approx(ref.theta_dot, rel=1e-4)
+    assert ref.friction_loss > 0.0  # the rising main takes its share
+    kicked_lower = real_reference_run(design, 120.0, app.inputs.theta0, 3.0)
+    assert kicked_lower.stalled  # the paper's 3 rad/s kick is below this pump's alpha-

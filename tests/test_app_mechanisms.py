@@ -12,7 +12,6 @@ from test_linkage import half_angle
 import windpump
 from windpump_app.explorer import Explorer
 from windpump_app.mechanisms import SIX_BAR
-from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
 

@@ -14,7 +14,7 @@ import os
 import numpy as np
 
 from .averaged import steady_speeds
-from .design import UNITS, Design
+from .design import REAL_MACHINE, UNITS, Design
 from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
 from .reciprocating import crank_inertia
@@ -349,6 +349,12 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
     every sample of the record where the wind bends. A float: it may be too large for an int."""
     from .site import steady_flow
 
+    if not design.is_ideal:
+        # The ideal machine runs at least as fast, and its averaged theory is in closed form (a
+        # leak hole's takes a quadrature a wind speed: seconds for a day's record); a real run's
+        # kinks and harmonics take up to ~3 steps a switch.
+        ideal = design.replace(**{name: DEFAULTS[name] for name in REAL_MACHINE})
+        return REAL_STEPS_PER_SWITCH * estimated_steps(ideal, t_end, record)
     per_speed = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
     switches_per_radian = design.cylinders / math.pi
     if record is None:
@@ -360,6 +366,10 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
     speed = steady_flow(design, np.interp(times, t, V)) / per_speed
     radians = float(np.sum(0.5 * (speed[1:] + speed[:-1]) * np.diff(times)))
     return bends + switches_per_radian * radians
+
+
+REAL_STEPS_PER_SWITCH = 3.0
+DEFAULTS = {field.name: field.default for field in dataclasses.fields(Design)}
 
 
 def check_work(design: Design, t_end: float, record: WindRecord | None = None) -> None:

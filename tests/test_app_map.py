@@ -114,3 +114,22 @@ def on_a_grid_edge(tab, flow, x, y) -> float:
     row = np.flatnonzero(np.isclose(tab.heads, y, rtol=0, atol=1e-12))
     assert row.size, (x, y)  # a vertex of a contour line lies on the grid's edges
     return float(np.interp(x, tab.ratios, flow[row[0], :]))
+
+
+def test_a_leaky_pumps_map_is_its_coarse_map_interpolated(app):
+    """A hole's averaged theory is a quadrature a point: the tab maps LEAKY_GRID^2 points and
+    interpolates them onto its grid; on the coarse grid's own points it is that map."""
+    from windpump_app.map_tab import LEAKY_GRID
+
+    app.set_values(d_leak_mm=3.0, T_0=0.25)
+    tab = app.design_map
+    flow, stall, best = tab.mapped
+    ratios = np.linspace(tab.ratios[0], tab.ratios[-1], LEAKY_GRID)
+    heads = np.linspace(tab.heads[0], tab.heads[-1], LEAKY_GRID)
+    coarse = windpump.design_map(app.seen.design, ratios, heads)
+    coarse_flow = np.nan_to_num(coarse.mean_flow)
+    # Both grids share their corners, and the first ratio's column is interpolated in h alone.
+    assert flow[0, 0] == pytest.approx(coarse_flow[0, 0])
+    assert flow[-1, -1] == pytest.approx(coarse_flow[-1, -1])
+    assert flow[7, 0] == pytest.approx(np.interp(tab.heads[7], heads, coarse_flow[:, 0]))
+    assert stall == pytest.approx(np.interp(tab.heads, heads, coarse.stall_gear_ratio))

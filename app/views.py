@@ -31,7 +31,9 @@ def same(old, new) -> bool:
         try:
             a, b = np.asarray(old[key]), np.asarray(value)
         except ValueError:  # ragged (lists of lists of several lengths): compare as lists
-            return list(old[key]) == list(value)
+            if list(old[key]) != list(value):
+                return False
+            continue  # and the other columns
         if a.shape != b.shape or a.dtype.kind != b.dtype.kind:
             return False
         if a.dtype.kind == "f" and not np.array_equal(a, b, equal_nan=True):

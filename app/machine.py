@@ -188,7 +188,7 @@ class MachineView(View):
         )
         fig.multi_line("xs", "ys", source=s["machine_main"], color=c["flow"], line_width=7)
         fig.text(
-            "x", "y", "text", source=s["machine_notes"], text_font_size="13px",
+            "x", "y", "text", source=s["machine_notes"], text_font_size=LABEL,
             text_baseline="middle", text_align="align", text_color=c["ink"],
         )  # fmt: skip
         fig.text(

@@ -16,7 +16,7 @@ import windpump
 from windpump.units import LITRES_PER_M3
 
 from .envelope import band
-from .figures import FACES, HEIGHT, draw_band, empty, legend, line, new_figure, palette
+from .figures import FACES, HEIGHT, LABEL, draw_band, empty, legend, line, new_figure, palette
 from .styles import CAPTION_CSS
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
@@ -288,7 +288,7 @@ class EnergyView(View):
         fig.hbar(y="step", left="left", right="right", height=0.6, color="color", source=source)
         fig.text(
             x="at", y="step", text="label", source=source, text_baseline="middle",
-            text_font_size="14px", x_offset=6, color=self.colors["ink"],
+            text_font_size=LABEL, x_offset=6, color=self.colors["ink"],
         )  # fmt: skip
         fig.x_range.start = 0
 

@@ -145,8 +145,8 @@ def test_any_real_machine_closes_its_energy_and_delivers_at_most_what_it_sweeps(
     budget = windpump.power_budget(run)
     assert budget.imbalance < 1e-9
     assert np.all(run.volume <= run.swept_volume * (1 + 1e-9) + 1e-15)
-    assert np.all(run.volume >= -1e-7 * run.swept_volume[-1])
-    assert np.all(np.diff(run.volume) >= -1e-7 * run.swept_volume[-1])  # to its accuracy
+    assert np.all(run.volume >= -2e-6 * run.swept_volume[-1])  # swept less leaked, each to ~1e-6
+    assert np.all(np.diff(run.volume) >= -2e-6 * run.swept_volume[-1])  # to its accuracy
 
 
 def test_the_kernel_returns_no_real_rows_for_the_ideal_machine():

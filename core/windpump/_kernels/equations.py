@@ -128,7 +128,7 @@ def leak_capacity(d_leak, Cd_leak, g, h):
     Examples
     --------
     >>> round(float(leak_capacity(0.004, 0.6, 9.81, 10.0)) * 1e3, 4)  # L/s
-    0.1057
+    0.1056
     """
     return Cd_leak * (0.25 * np.pi) * d_leak * d_leak * np.sqrt(2.0 * g * h)
 

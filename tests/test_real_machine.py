@@ -218,3 +218,32 @@ def test_each_power_of_the_budget_integrates_to_its_work():
     for power, work in pairs:
         integrated = cumulative_trapezoid(power, run.t, initial=0.0)
         assert np.max(np.abs(integrated - work)) < 1e-5 * W  # the trapezoid rule: ~6e-7
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    levers=st.lists(st.floats(0.0, 1.5), min_size=1, max_size=6),
+    theta_dot=st.floats(0.0, 60.0),
+    leak=st.floats(0.0, 0.9),
+    L_main=st.floats(0.0, 60.0),
+    D_main=st.floats(0.01, 0.1),
+)
+def test_the_kernels_face_loads_are_the_numpy_sides(levers, theta_dot, leak, L_main, D_main):
+    """The compiled twin of windpump.loads.faces_load (kept for speed) gives its numbers."""
+    from windpump._kernels import real
+
+    design = SEED.replace(
+        cylinders=len(levers), d_leak=leak * SEED.bore, L_main=L_main, D_main=D_main,
+        eta_t=0.9,  # a real machine whatever the rest
+    )  # fmt: skip
+    machine = kernel_machine(design)
+    row = np.zeros(real.ROW)
+    row[1 : 1 + len(levers)] = levers
+    load, Q, _, arms = real._face_loads(theta_dot, row, machine)
+    expected_load, expected_Q = windpump.loads.faces_load(
+        np.array(levers)[:, None], theta_dot, design
+    )
+    scale = design.load_torque * max(sum(levers), 1.0)
+    assert load == pytest.approx(float(expected_load[0]), rel=1e-12, abs=1e-12 * scale)
+    assert Q == pytest.approx(float(expected_Q[0]), rel=1e-12, abs=1e-18)
+    assert arms == pytest.approx(sum(levers), rel=1e-15, abs=0.0)

@@ -11,7 +11,7 @@ The weights' torque is :func:`windpump.loads.weight_torque` (the torque at rest 
 revolution-mean inertia is :func:`windpump.revolution.reciprocating_inertia`.
 
 The compiled integrator keeps its own copy of these sums for speed (``_kernels.real``);
-tests/test_kernel_twins.py holds the two together.
+tests/test_real_machine.py holds the two together.
 """
 
 from __future__ import annotations

@@ -139,7 +139,7 @@ def efficiency_readout(seen: windpump.Exploration) -> tuple[str, str]:
 def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
     """The run's energy balance in words that keep the sign: a slowing rotor gives energy back.
     The real machine's losses (chain, rising main, leak) are one term when there are any."""
-    totals = windpump.power_budget(seen.run).totals()
+    totals = seen.energy_totals
     work, lift = totals.shaft, totals.water
     kinetic = totals.kinetic + totals.potential
     lost = totals.transmission + totals.friction + totals.leak

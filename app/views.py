@@ -293,7 +293,7 @@ class EnergyView(View):
         fig.x_range.start = 0
 
     def update(self, seen, bins):
-        refill(self.sources["losses"], self.waterfall(windpump.power_budget(seen.run).totals()))
+        refill(self.sources["losses"], self.waterfall(seen.energy_totals))
 
     def waterfall(self, totals: windpump.EnergyTotals) -> dict:
         """The bars: W from 0, each loss hanging from what is left, the water from 0."""

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 import math
 
 import numpy as np
@@ -17,6 +18,7 @@ from .averaged import (
 )
 from .design import Design
 from .dynamics import Intermittency, SimulationResult, simulate
+from .energy import EnergyTotals, power_budget
 from .loads import starts_from_rest
 from .validation import whole
 from .windmill import OperatingPoint, operating_point
@@ -122,6 +124,12 @@ class Exploration:
     def pumped_volume(self) -> float:
         """Water pumped over the run [m^3]."""
         return float(self.run.volume[-1])
+
+    @functools.cached_property
+    def energy_totals(self) -> EnergyTotals:
+        """Where the windmill's work went over the run [J] (:meth:`windpump.PowerBudget.totals`), computed
+        once: the page's waterfall and its energy readout both read it."""
+        return power_budget(self.run).totals()
 
     @property
     def volumetric_efficiency(self) -> float:

@@ -364,3 +364,25 @@ def test_a_numeric_map_says_how_long_it_will_take(capsys, monkeypatch, tmp_path)
         and lines[1].startswith("windpump map: about ")
         and lines[1].endswith(" left")
     )
+
+
+@pytest.mark.parametrize("scale", [1e12, 1e-12])
+@pytest.mark.parametrize("theta_dot0", [0.0, 3.0, 1e30])
+def test_spinup_between_roots_many_decades_apart(scale, theta_dot0):
+    # alpha- ~ 1e-45 and alpha+ ~ 1e20 rad/s (or 1e-109 and 2e-36): p + (z0 + d^2 g) / (1 + z0 g)
+    # gave -16384 and NaN (hypothesis found it); the curve must go monotonically from the kick
+    # to alpha+ and stay finite and positive.
+    fields = dict.fromkeys(["R", "A", "I0", "I1", "h", "rho_w", "g", "V_ref"], 1e-12)
+    design = Design(
+        **fields, R0=scale, R1=1e4 if scale > 1 else 1e12, T_m=scale, omega_m=scale, L=1.5e-12
+    )
+    alpha_plus, alpha_minus = windpump.steady_speeds(design)
+    tau = windpump.time_constant(design)
+    t = np.array([0.0, 1e-3, 1.0, 10.0, 100.0]) * tau
+    speeds = windpump.spinup(design, t, theta_dot0)
+    assert np.all(np.isfinite(speeds)) and np.all(speeds >= 0.0), speeds
+    if theta_dot0 > alpha_minus:
+        assert speeds[0] == pytest.approx(theta_dot0, rel=1e-12)
+        assert speeds[-1] == pytest.approx(alpha_plus, rel=1e-12)
+        steps = np.diff(speeds) * np.sign(alpha_plus - theta_dot0)
+        assert np.all(steps >= 0.0), speeds

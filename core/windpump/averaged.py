@@ -210,13 +210,18 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     if design.d_leak > 0.0:  # F > 0 just above rest: only a crank at rest with T_0 = 0 stays
         return 0.0 if theta_dot0 == 0.0 and design.T_0 == 0.0 else None
     k, p, delta2 = _riccati(design)
+    if delta2 > 0.0:  # from the roots (p^2 - delta^2 cancels when they lie decades apart)
+        mean = cycle_mean(design)
+        a_plus, a_minus = float(mean.alpha_plus), float(mean.alpha_minus)
+        if theta_dot0 >= a_minus:
+            return None
+        # alpha reaches 0 where (alpha - a-)/(a+ - alpha) has fallen from its start to -a-/a+
+        drop = math.log1p(-theta_dot0 / a_plus) - math.log1p(-theta_dot0 / a_minus)
+        return drop / (k * (a_plus - a_minus))
     bend = delta2 + p * (theta_dot0 - p)
     if bend >= 0.0:
         return None
     g_star = -theta_dot0 / bend
-    if delta2 > 0.0:
-        d = math.sqrt(delta2)
-        return math.atanh(d * g_star) / (k * d) if d * g_star < 1.0 else None
     if delta2 < 0.0:
         q = math.sqrt(-delta2)
         return math.atan(q * g_star) / (k * q)
@@ -259,7 +264,40 @@ def spinup(design: Design, t, theta_dot0: float):
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)
     running = t < t_stall if t_stall is not None else np.ones(t.shape, dtype=bool)
-    g = _g(np.where(running, t, 0.0), k, delta2)
-    z0 = theta_dot0 - p
-    speed = p + (z0 + delta2 * g) / (1.0 + z0 * g)
+    t_run = np.where(running, t, 0.0)
+    if delta2 > 0.0:
+        mean = cycle_mean(design)
+        roots = float(mean.alpha_plus), float(mean.alpha_minus)
+        speed = _between_roots(t_run, k, theta_dot0, *roots)
+    else:
+        g = _g(t_run, k, delta2)
+        z0 = theta_dot0 - p
+        speed = p + (z0 + delta2 * g) / (1.0 + z0 * g)
     return np.where(running, speed, 0.0)
+
+
+def _between_roots(t, k: float, theta_dot0: float, a_plus: float, a_minus: float):
+    """Eq. (24) with two real roots, written from them: ``(alpha - a-) / (a+ - alpha)`` grows as
+    ``exp(k (a+ - a-) t)``.
+
+    The same curve as ``p + (z0 + delta^2 g) / (1 + z0 g)``, but with no difference of nearly
+    equal numbers: that form lost every digit (and gave negative speeds) when the roots lie many
+    orders of magnitude apart (alpha- ~ 1e-45, alpha+ ~ 1e20 rad/s, inside the fields' range).
+    """
+    span = a_plus - a_minus
+    if theta_dot0 == a_plus:
+        return np.full(t.shape, a_plus)
+    ratio = (theta_dot0 - a_minus) / (a_plus - theta_dot0)  # (alpha - a-) / (a+ - alpha) at 0
+    if ratio == 0.0:
+        return np.full(t.shape, a_minus)
+    # Exponents kept finite: past exp(690) alpha is its limit to the last digit anyway.
+    rate = np.minimum(k * span * t, 690.0)
+    if ratio > 0.0:  # between the roots: rises (or falls) to a+
+        x = np.exp(np.minimum(math.log(ratio) + k * span * t, 690.0))
+        return a_minus / (1.0 + x) + a_plus * (x / (1.0 + x))
+    # |ratio| e^rate - 1 and 1 - |ratio| e^rate from the gaps, not from |ratio| ~ 1
+    if theta_dot0 > a_plus:  # above a+: falls to it
+        return a_plus + span / (span / (theta_dot0 - a_plus) * np.exp(rate) + np.expm1(rate))
+    x = -ratio * np.exp(rate)
+    with np.errstate(divide="ignore"):  # below a-: decays to the stall (x reaches 1 there)
+        return a_minus - span * x / (span / (a_plus - theta_dot0) + ratio * np.expm1(rate))

@@ -1,0 +1,299 @@
+"""The Site tab: the design on the sliders at a site for a year, with a demand and a tank.
+
+A site's hourly wind (a record that ships with pvlib, or a TMY3, EPW or CSV file uploaded) at the
+hub height, run through the quasi-steady year of ``windpump.supply``: the water pumped and
+demanded month by month, the tank's level over the year, the loss-of-load probability against
+tank size (``windpump.supply_map``) with this tank marked, and the year's readouts. Every number
+comes from ``windpump``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource
+
+import windpump
+
+from .figures import palette
+from .keyboard import FOCUS_CSS
+from .readouts import Readout
+from .sidebar import PromptSlider
+from .site_figures import LOLP_TARGET, MONTHS, level_figure, lolp_figure, monthly_figure
+from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
+from .site_record import SiteRecords
+from .styles import CAPTION_CSS, TEXT
+from .tab import Tab
+from .views import refill
+
+log = logging.getLogger("windpump.app")
+
+SITE_READOUTS = {
+    "site_water": "The year's water: pumped · delivered [m³]",
+    "site_lolp": "Loss-of-load probability",
+    "dry_days": "Dry days",
+    "dry_spell": "Longest dry spell",
+    "tank_for_5": "Smallest tank for 5 %",
+}
+TANKS = 41  # tank sizes on the loss-of-load curve, over the tank slider's range
+SLOW = 0.3  # [s] a year that took longer is announced before it is computed again
+SITE_MESSAGE, SITE_NOTE = "site-message", "site-note"  # an upload's outcome (uploads.Reveal)
+
+
+def number_text(value: float, unit: str = "", digits: int = 1) -> str:
+    """A readout's number: "12.5 m³", "none" for inf (no tank on the curve is enough)."""
+    if math.isinf(value):
+        return "none can"
+    return f"{value:,.{digits}f}" + (f" {unit}" if unit else "")
+
+
+class SiteTab(Tab):
+    """The Site tab: ``inputs`` are the page's (the design), ``site`` the tab's own (in the
+    link); ``reveal`` scrolls an upload's outcome into view."""
+
+    title, waiting = "Site", "Computing the site's year…"
+
+    def __init__(self, inputs, site: SiteInputs, reveal, dark: bool = False):
+        super().__init__(dark)
+        self.inputs, self.site, self.reveal = inputs, site, reveal
+        self.design: windpump.Design | None = None  # at V_ref, of the page's latest run
+        self.records = SiteRecords()
+
+    def update(self, seen: windpump.Exploration) -> None:
+        self.design = self.inputs.design_at_v_ref()  # the page ran it: valid
+        super().update(seen)
+
+    def build(self) -> None:
+        self.colors = palette(self.dark)
+        self.sources: dict[str, ColumnDataSource] = {}
+        self.readouts = {name: Readout(name) for name in SITE_READOUTS}
+        self.monthly = monthly_figure(self.sources, self.colors)
+        self.level, self.tank_line = level_figure(self.sources, self.colors)
+        self.lolp, _target = lolp_figure(self.sources, self.colors)
+        for name, source in self.sources.items():
+            source.name = f"sitetab_{name}"  # for a browser: get_model_by_name
+        self._build_controls()
+        self.note = pn.pane.Markdown(
+            "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]
+        )
+        self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
+        self.computing = pn.pane.Alert(
+            "**Computing the year…**", alert_type="info", visible=False, stylesheets=TEXT
+        )
+        self.supplied: windpump.Supply | None = None  # the year drawn
+        self._curve: tuple = ()  # what the loss-of-load curve drawn was computed for
+        self._took = 0.0  # [s] the last year's computation
+        self._to_draw: tuple | None = None
+        self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
+
+    def _build_controls(self) -> None:
+        style = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
+        self.sliders = {
+            name: PromptSlider.from_param(self.site.param[name], format=fmt, **style)
+            for name, fmt in (("hub", "0.0"), ("demand", "0.0"), ("tank", "0.0"))
+        }
+        self.site_select = pn.widgets.Select(
+            name="Site", options={label: key for key, label in SITES.items()}, **style
+        )
+        self.restart = pn.widgets.RadioBoxGroup(
+            name="Restart", options={label: key for key, label in RESTARTS.items()}, **style
+        )
+        for widget, name in ((self.site_select, "site"), (self.restart, "restart")):
+            self._follow(widget, name)
+        self.upload, self.upload_message = self.records.controls(SITE_MESSAGE)
+        self.upload.param.watch(
+            lambda *_e: self.load_data(self.records.chosen()), ["value", "filename"]
+        )
+
+    def _follow(self, widget, name: str) -> None:
+        """A choice widget and the site input ``name`` kept equal, both ways."""
+        if getattr(self.site, name) in widget.options.values():
+            widget.value = getattr(self.site, name)
+        else:
+            self.site.param.update(**{name: widget.value})
+        widget.param.watch(lambda event: setattr(self.site, name, event.new), "value")
+        self.site.param.watch(lambda event: setattr(widget, "value", event.new), name)
+
+    # -- updates -----------------------------------------------------------------------------
+
+    def draw(self, seen: windpump.Exploration) -> None:
+        """The year for the design and the site's inputs: at once if it is quick, else after the
+        page has said that it is being computed."""
+        if self.design is None:
+            return
+        asked = (self.design, self.site.site, *self.site.values().values())
+        document = pn.state.curdoc
+        served = document is not None and document.session_context is not None
+        if served and (self._took > SLOW or not self._curve):
+            self.computing.visible = True
+            self._to_draw = asked
+            document.add_next_tick_callback(self._draw_latest)
+            return
+        self._year(self.design)
+
+    def _draw_latest(self) -> None:
+        asked, self._to_draw = self._to_draw, None
+        if asked is None or self.design is None:
+            return  # a later move's callback has drawn it already
+        try:
+            with pn.io.hold():
+                self._year(self.design)
+        except Exception as error:  # a bug: say so, log it, keep the session alive
+            log.exception("Site update failed")
+            self.failed(f"Something went wrong ({type(error).__name__}: {error}).")
+
+    def _year(self, design: windpump.Design) -> None:
+        start = time.perf_counter()
+        self.computing.visible = False
+        try:
+            record = self.records.at(self.site.site, self.site.hub)
+            rule = dict(restart=self.site.restart)
+            curve = (design, record, self.site.demand, self.site.restart)
+            if curve != self._curve:
+                self._draw_curve(design, record, rule)
+                self._curve = curve
+            supplied = windpump.supply(design, record, self.site.demand, self.site.tank, **rule)
+        except ValueError as error:
+            self.failed(f"The year cannot be run: {error}")
+            return
+        self.error.visible = False
+        self.supplied = supplied
+        self._draw_year(supplied)
+        self._took = time.perf_counter() - start
+
+    def _draw_curve(self, design, record, rule: dict) -> None:
+        """The loss-of-load probability over the tank slider's range, and the smallest tank."""
+        tanks = np.linspace(*self.site.param["tank"].bounds, TANKS)
+        mapped = windpump.supply_map(
+            design, record, self.site.demand, [design.R_dagger], tanks, **rule
+        )
+        refill(self.sources["lolp"], {"tank": tanks, "lolp": 100 * np.asarray(mapped)[0]})
+        self.tank_5 = windpump.tank_for(design, record, self.site.demand, LOLP_TARGET, **rule)
+
+    def _draw_year(self, supplied) -> None:
+        monthly = supplied.monthly
+        refill(
+            self.sources["monthly"],
+            {
+                "month": list(MONTHS),
+                "pumped": np.asarray(monthly.pumped),
+                "demand": np.asarray(monthly.demand),
+                "delivered": np.asarray(monthly.delivered),
+            },
+        )
+        days = np.arange(len(supplied.level)) / 24.0
+        x, lower, upper = daily_band(days, supplied.level)
+        refill(self.sources["level"], {"t": x, "lower": lower, "upper": upper})
+        self.tank_line.location = self.site.tank
+        refill(self.sources["lolp_here"], {"tank": [self.site.tank], "lolp": [100 * supplied.lolp]})
+        self._readouts(supplied)
+
+    def _readouts(self, supplied) -> None:
+        shown = {
+            "site_water": f"{supplied.pumped_total:,.0f} · {supplied.delivered_total:,.0f}",
+            "site_lolp": f"{100 * supplied.lolp:.1f} %",
+            "dry_days": f"{supplied.dry_days:d}",
+            "dry_spell": f"{supplied.longest_dry_spell:.1f} days",
+            "tank_for_5": number_text(self.tank_5, "m³"),
+        }
+        for name, value in shown.items():
+            self.readouts[name].show(SITE_READOUTS[name], value)
+        self.note.object = self.records.describe(self.site.site, self.site.hub, supplied)
+
+    def failed(self, message: str) -> None:
+        self.computing.visible = False
+        self.error.object = message
+        self.error.visible = True
+
+    # -- an uploaded record ------------------------------------------------------------------
+
+    def load_data(self, data: bytes | None) -> None:
+        """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
+        nothing changes. Either outcome is scrolled into view."""
+        if data is None:
+            return
+        if not self.records.load(data, self.upload.filename or ""):
+            self.reveal.show(SITE_MESSAGE)
+            return
+        options = {label: key for key, label in SITES.items()}
+        options[f"Uploaded: {self.records.uploaded_name}"] = UPLOADED
+        self.site_select.options = options
+        if self.site.site == UPLOADED:
+            self.redraw()  # a second file: the same choice, a new record
+        self.site.site = UPLOADED
+        self.reveal.show(SITE_NOTE)
+
+    def refuse_size(self, size: int) -> None:
+        """The page stopped a file over the limit before sending it: say so here."""
+        self.records.refuse_size(size)
+
+    # -- layout ------------------------------------------------------------------------------
+
+    def figures(self) -> list:
+        return [self.monthly, self.level, self.lolp]
+
+    def layout(self) -> pn.Column:
+        def caption(text: str):
+            return pn.pane.HTML(f"<p>{text}</p>", stylesheets=CAPTION_CSS)
+
+        flex = {"flex": "1 1 460px", "min-width": "300px"}
+        controls = pn.Column(
+            self.site_select,
+            pn.pane.Markdown(
+                "**Your own site**: a TMY3 or EPW file, or a CSV of time, wind speed [m/s]",
+                stylesheets=TEXT,
+            ),
+            self.upload,
+            self.upload_message,
+            self.sliders["hub"],
+            self.sliders["demand"],
+            self.sliders["tank"],
+            pn.pane.Markdown("**Restart after a calm**", stylesheets=TEXT),
+            self.restart,
+            sizing_mode="stretch_width",
+            styles=flex,
+        )
+
+        def boxed(fig):
+            return pn.Column(
+                pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+                sizing_mode="stretch_width",
+                styles=flex,
+            )
+
+        return pn.Column(
+            pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width"),
+            self.computing,
+            self.error,
+            pn.FlexBox(
+                controls, boxed(self.monthly), flex_wrap="wrap", sizing_mode="stretch_width"
+            ),
+            self.note,
+            pn.FlexBox(
+                boxed(self.level), boxed(self.lolp), flex_wrap="wrap", sizing_mode="stretch_width"
+            ),
+            caption(
+                "The design on the sliders in the site's hourly wind at the hub (the quasi-steady "
+                "year: each hour the pump runs as the averaged theory says in that hour's wind). "
+                "The tank takes what is pumped and gives the demand; an hour it cannot is a loss "
+                "of load. Dashed: the tank's size, and 5 %."
+            ),
+            sizing_mode="stretch_width",
+        )
+
+
+def daily_band(days: np.ndarray, values: np.ndarray):
+    """Each day's lowest and highest value (a year of hours: 365 points, under the figure's
+    pixels): (day's middle, lower, upper)."""
+    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
+    edges = np.searchsorted(days, np.arange(whole))
+    edges = np.unique(edges[edges < len(days)])
+    return (
+        days[edges] + 0.5,
+        np.minimum.reduceat(values, edges),
+        np.maximum.reduceat(values, edges),
+    )

@@ -25,8 +25,8 @@ class SiteInputs(param.Parameterized):
 
     site = param.Selector(objects=[*SITES, UPLOADED], default="greensboro", label="Site")
     hub = param.Number(10.0, bounds=(2.0, 40.0), step=0.5, label="Hub height [m]")
-    demand = param.Number(5.0, bounds=(0.1, 50.0), step=0.1, label="Demand [m³/day]")
-    tank = param.Number(10.0, bounds=(0.0, 100.0), step=0.5, label="Tank [m³]")
+    demand = param.Number(10.0, bounds=(0.1, 50.0), step=0.1, label="Demand [m³/day]")
+    tank = param.Number(5.0, bounds=(0.0, 100.0), step=0.5, label="Tank [m³]")
     restart = param.Selector(objects=list(RESTARTS), default="attended", label="Restart")
 
     NUMBERS = ("hub", "demand", "tank")

@@ -119,7 +119,6 @@ class SiteRecords:
 
 def supply_text(supplied) -> str:
     """What the year's run says of itself: its starts, or why it never starts."""
-    reason = getattr(supplied, "reason", None)
-    if reason:
-        return f"The pump never starts: {reason}"
+    if supplied.why:
+        return f"The pump never starts: {supplied.why}."
     return f"The pump starts {supplied.starts} time(s) over the year."

@@ -85,7 +85,8 @@ class SiteTab(Tab):
             "**Computing the year…**", alert_type="info", visible=False, stylesheets=TEXT
         )
         self.supplied: windpump.Supply | None = None  # the year drawn
-        self._curve: tuple = ()  # what the loss-of-load curve drawn was computed for
+        self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
+        self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._took = 0.0  # [s] the last year's computation
         self._to_draw: tuple | None = None
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
@@ -97,10 +98,10 @@ class SiteTab(Tab):
             for name, fmt in (("hub", "0.0"), ("demand", "0.0"), ("tank", "0.0"))
         }
         self.site_select = pn.widgets.Select(
-            name="Site", options={label: key for key, label in SITES.items()}, **style
+            label="Site", options={label: key for key, label in SITES.items()}, **style
         )
         self.restart = pn.widgets.RadioBoxGroup(
-            name="Restart", options={label: key for key, label in RESTARTS.items()}, **style
+            options={label: key for key, label in RESTARTS.items()}, **style
         )
         for widget, name in ((self.site_select, "site"), (self.restart, "restart")):
             self._follow(widget, name)
@@ -152,10 +153,7 @@ class SiteTab(Tab):
         try:
             record = self.records.at(self.site.site, self.site.hub)
             rule = dict(restart=self.site.restart)
-            curve = (design, record, self.site.demand, self.site.restart)
-            if curve != self._curve:
-                self._draw_curve(design, record, rule)
-                self._curve = curve
+            self._draw_curve(design, record, rule)
             supplied = windpump.supply(design, record, self.site.demand, self.site.tank, **rule)
         except ValueError as error:
             self.failed(f"The year cannot be run: {error}")
@@ -166,20 +164,36 @@ class SiteTab(Tab):
         self._took = time.perf_counter() - start
 
     def _draw_curve(self, design, record, rule: dict) -> None:
-        """The loss-of-load probability over the tank slider's range, and the smallest tank."""
-        tanks = np.linspace(*self.site.param["tank"].bounds, TANKS)
+        """The smallest tank for 5 %, and the loss-of-load probability over tanks up to a range
+        that shows the curve's knee; each recomputed only when what it depends on changed."""
+        asked = (design, record, self.site.demand, self.site.restart)
+        if asked != self._curve[:4]:
+            self.tank_5 = windpump.tank_for(design, record, self.site.demand, LOLP_TARGET, **rule)
+        top = self._tank_range()
+        if (*asked, top) == self._curve:
+            return
+        tanks = np.linspace(0.0, top, TANKS)
         mapped = windpump.supply_map(
             design, record, self.site.demand, [design.R_dagger], tanks, **rule
         )
-        refill(self.sources["lolp"], {"tank": tanks, "lolp": 100 * np.asarray(mapped)[0]})
-        self.tank_5 = windpump.tank_for(design, record, self.site.demand, LOLP_TARGET, **rule)
+        refill(self.sources["lolp"], {"tank": tanks, "lolp": 100 * mapped.lolp[:, 0]})
+        self.lolp.x_range.end = top
+        self._curve = (*asked, top)
+
+    def _tank_range(self) -> float:
+        """The curve's largest tank [m³]: twice this tank's, or 1.5 times the smallest for 5 %,
+        at least 20, rounded up to 10 and at most the slider's end (the curve's knee in view)."""
+        wanted = max(20.0, 2.0 * self.site.tank)
+        if math.isfinite(self.tank_5):
+            wanted = max(wanted, 1.5 * self.tank_5)
+        return min(self.site.param["tank"].bounds[1], 10.0 * math.ceil(wanted / 10.0))
 
     def _draw_year(self, supplied) -> None:
         monthly = supplied.monthly
         refill(
             self.sources["monthly"],
             {
-                "month": list(MONTHS),
+                "month": [MONTHS[m - 1] for m in monthly.month],
                 "pumped": np.asarray(monthly.pumped),
                 "demand": np.asarray(monthly.demand),
                 "delivered": np.asarray(monthly.delivered),
@@ -193,11 +207,12 @@ class SiteTab(Tab):
         self._readouts(supplied)
 
     def _readouts(self, supplied) -> None:
+        totals = supplied.totals
         shown = {
-            "site_water": f"{supplied.pumped_total:,.0f} · {supplied.delivered_total:,.0f}",
+            "site_water": f"{totals.pumped:,.0f} · {totals.delivered:,.0f}",
             "site_lolp": f"{100 * supplied.lolp:.1f} %",
             "dry_days": f"{supplied.dry_days:d}",
-            "dry_spell": f"{supplied.longest_dry_spell:.1f} days",
+            "dry_spell": f"{supplied.longest_dry_spell:d} days",
             "tank_for_5": number_text(self.tank_5, "m³"),
         }
         for name, value in shown.items():

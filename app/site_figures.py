@@ -3,23 +3,29 @@ year, and the loss-of-load probability against tank size."""
 
 from __future__ import annotations
 
-from bokeh.models import FactorRange, HoverTool, Span
+import math
+
+from bokeh.models import CustomJS, FactorRange, HoverTool, Span
 
 from .figures import draw_band, empty, legend, line, new_figure
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
 
+# On a narrow figure (a phone) the months' names are tilted, so that they do not run together.
+TILT_JS = """
+const tilt = plot.outer_width < 520 ? angle : 0
+for (const axis of plot.below) {
+  if (axis.major_label_orientation !== tilt) axis.setv({major_label_orientation: tilt}, {sync: false})
+}
+"""
+
 
 def monthly_figure(s: dict, c: dict):
     """Water pumped (bars) and demanded (a line) each calendar month [m³]."""
     s["monthly"] = empty("month", "pumped", "demand", "delivered")
-    fig = new_figure(
-        "Water pumped and demanded, month by month",
-        "month",
-        "water [m³]",
-        x_range=FactorRange(*MONTHS),
-    )
+    fig = new_figure("Water each month", "month", "water [m³]", x_range=FactorRange(*MONTHS))
+    fig.js_on_change("outer_width", CustomJS(args=dict(plot=fig, angle=math.pi / 3), code=TILT_JS))
     fig.y_range.start = 0
     bars = fig.vbar(
         x="month", top="pumped", width=0.7, source=s["monthly"], color=c["flow"], alpha=0.8

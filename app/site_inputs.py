@@ -15,8 +15,8 @@ from .inputs import clipped, on_grid, step_decimals
 SITES = {"greensboro": "Greensboro, NC (TMY3)", "sand_point": "Sand Point, AK (TMY3)"}
 UPLOADED = "uploaded"  # a file read in this session: not carried by a link
 RESTARTS = {
-    "self": "On its own (torque at rest)",
-    "attended": "Attended (kicked as soon as the wind can)",
+    "attended": "Attended: restarted once V ≥ V_stop",
+    "self": "On its own: it waits for V ≥ V_start",
 }
 
 

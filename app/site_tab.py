@@ -33,8 +33,8 @@ from .views import refill
 log = logging.getLogger("windpump.app")
 
 SITE_READOUTS = {
-    "site_water": "The year's water: pumped · delivered [m³]",
-    "site_lolp": "Loss-of-load probability",
+    "site_water": "Pumped · delivered [m³/year]",
+    "site_lolp": "Loss of load",
     "dry_days": "Dry days",
     "dry_spell": "Longest dry spell",
     "tank_for_5": "Smallest tank for 5 %",
@@ -88,6 +88,7 @@ class SiteTab(Tab):
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._took = 0.0  # [s] the last year's computation
+        self._drawn_site = ""
         self._to_draw: tuple | None = None
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
 
@@ -100,8 +101,10 @@ class SiteTab(Tab):
         self.site_select = pn.widgets.Select(
             label="Site", options={label: key for key, label in SITES.items()}, **style
         )
-        self.restart = pn.widgets.RadioBoxGroup(
-            options={label: key for key, label in RESTARTS.items()}, **style
+        self.restart = pn.widgets.Select(
+            label="Restart after a calm",
+            options={label: key for key, label in RESTARTS.items()},
+            **style,
         )
         for widget, name in ((self.site_select, "site"), (self.restart, "restart")):
             self._follow(widget, name)
@@ -126,10 +129,13 @@ class SiteTab(Tab):
         page has said that it is being computed."""
         if self.design is None:
             return
-        asked = (self.design, self.site.site, *self.site.values().values())
+        asked = (self.design, *self.site.values().values())
         document = pn.state.curdoc
         served = document is not None and document.session_context is not None
-        if served and (self._took > SLOW or not self._curve):
+        # the first year is drawn at once (the tab says it is computing until it appears; empty
+        # figures would be sent otherwise); later a slow one, or a new site's, is announced
+        slow = self._took > SLOW or self.site.site != self._drawn_site
+        if served and self.supplied is not None and slow:
             self.computing.visible = True
             self._to_draw = asked
             document.add_next_tick_callback(self._draw_latest)
@@ -159,7 +165,7 @@ class SiteTab(Tab):
             self.failed(f"The year cannot be run: {error}")
             return
         self.error.visible = False
-        self.supplied = supplied
+        self.supplied, self._drawn_site = supplied, self.site.site
         self._draw_year(supplied)
         self._took = time.perf_counter() - start
 
@@ -258,44 +264,44 @@ class SiteTab(Tab):
         flex = {"flex": "1 1 460px", "min-width": "300px"}
         controls = pn.Column(
             self.site_select,
+            self.sliders["hub"],
+            self.sliders["demand"],
+            self.sliders["tank"],
+            self.restart,
             pn.pane.Markdown(
                 "**Your own site**: a TMY3 or EPW file, or a CSV of time, wind speed [m/s]",
                 stylesheets=TEXT,
             ),
             self.upload,
             self.upload_message,
-            self.sliders["hub"],
-            self.sliders["demand"],
-            self.sliders["tank"],
-            pn.pane.Markdown("**Restart after a calm**", stylesheets=TEXT),
-            self.restart,
             sizing_mode="stretch_width",
-            styles=flex,
+            styles={"flex": "1 1 300px", "min-width": "280px"},
         )
 
-        def boxed(fig):
+        def boxed(fig, grow: int = 1):
             return pn.Column(
                 pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
                 sizing_mode="stretch_width",
-                styles=flex,
+                styles={**flex, "flex": f"{grow} 1 460px"},
             )
 
         return pn.Column(
             pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width"),
             self.computing,
             self.error,
-            pn.FlexBox(
-                controls, boxed(self.monthly), flex_wrap="wrap", sizing_mode="stretch_width"
-            ),
             self.note,
+            pn.FlexBox(
+                controls, boxed(self.monthly, 2), flex_wrap="wrap", sizing_mode="stretch_width"
+            ),
             pn.FlexBox(
                 boxed(self.level), boxed(self.lolp), flex_wrap="wrap", sizing_mode="stretch_width"
             ),
             caption(
-                "The design on the sliders in the site's hourly wind at the hub (the quasi-steady "
-                "year: each hour the pump runs as the averaged theory says in that hour's wind). "
-                "The tank takes what is pumped and gives the demand; an hour it cannot is a loss "
-                "of load. Dashed: the tank's size, and 5 %."
+                "The design on the sliders in the site's hourly wind at the hub, hour by hour "
+                "(the quasi-steady year: in each hour's wind the pump runs as the averaged theory "
+                "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
+                "the loss-of-load probability is the share of the year's demand it could not "
+                "give, and a dry day one with any. Dashed: the tank's size, and 5 %."
             ),
             sizing_mode="stretch_width",
         )

@@ -7,16 +7,18 @@ import math
 
 from bokeh.models import CustomJS, FactorRange, HoverTool, Span
 
-from .figures import draw_band, empty, legend, line, new_figure
+from .figures import HEIGHT, draw_band, empty, legend, line, new_figure
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
+SITE_HEIGHT = HEIGHT + 40  # [px] each keeps a frame to read under its legend in presentation mode
 
 # On a narrow figure (a phone) the months' names are tilted, so that they do not run together.
 TILT_JS = """
 const tilt = plot.outer_width < 520 ? angle : 0
-for (const axis of plot.below) {
-  if (axis.major_label_orientation !== tilt) axis.setv({major_label_orientation: tilt}, {sync: false})
+for (const axis of plot.below) {  // the axis (a legend lies below too)
+  if (axis.major_label_orientation === undefined || axis.major_label_orientation === tilt) continue
+  axis.setv({major_label_orientation: tilt}, {sync: false})
 }
 """
 
@@ -24,7 +26,9 @@ for (const axis of plot.below) {
 def monthly_figure(s: dict, c: dict):
     """Water pumped (bars) and demanded (a line) each calendar month [m³]."""
     s["monthly"] = empty("month", "pumped", "demand", "delivered")
-    fig = new_figure("Water each month", "month", "water [m³]", x_range=FactorRange(*MONTHS))
+    fig = new_figure(
+        "Water each month", "month", "water [m³]", SITE_HEIGHT, x_range=FactorRange(*MONTHS)
+    )
     fig.js_on_change("outer_width", CustomJS(args=dict(plot=fig, angle=math.pi / 3), code=TILT_JS))
     fig.y_range.start = 0
     bars = fig.vbar(
@@ -56,7 +60,9 @@ def level_figure(s: dict, c: dict):
     """The water in the tank over the year [m³], each day's lowest to highest, under the tank's
     size: (figure, the tank's line)."""
     s["level"] = empty("t", "lower", "upper")
-    fig = new_figure("The tank over the year", "day of the year", "water in the tank [m³]")
+    fig = new_figure(
+        "The tank over the year", "day of the year", "water in the tank [m³]", SITE_HEIGHT
+    )
     fig.y_range.start = 0
     band = draw_band(fig, s["level"], c["integrated"])
     size = Span(
@@ -80,7 +86,10 @@ def lolp_figure(s: dict, c: dict):
     s["lolp"] = empty("tank", "lolp")
     s["lolp_here"] = empty("tank", "lolp")
     fig = new_figure(
-        "Loss-of-load probability against tank size", "tank [m³]", "loss-of-load probability [%]"
+        "Loss-of-load probability against tank size",
+        "tank [m³]",
+        "loss of load [%]",
+        SITE_HEIGHT,
     )
     fig.y_range.start = 0
     curve = line(fig, "tank", "lolp", s["lolp"], c["flow"], 3)

@@ -15,8 +15,8 @@ from .inputs import clipped, on_grid, step_decimals
 SITES = {"greensboro": "Greensboro, NC (TMY3)", "sand_point": "Sand Point, AK (TMY3)"}
 UPLOADED = "uploaded"  # a file read in this session: not carried by a link
 RESTARTS = {
-    "attended": "Attended: restarted once V ≥ V_stop",
-    "self": "On its own: it waits for V ≥ V_start",
+    "attended": "Attended (V ≥ V_stop)",
+    "self": "On its own (V ≥ V_start)",
 }
 
 

@@ -76,6 +76,8 @@ class SiteTab(Tab):
         self.lolp, _target = lolp_figure(self.sources, self.colors)
         for name, source in self.sources.items():
             source.name = f"sitetab_{name}"  # for a browser: get_model_by_name
+        for name, fig in zip(("monthly", "level", "lolp"), self.figures(), strict=True):
+            fig.name = f"site_{name}_figure"
         self._build_controls()
         self.note = pn.pane.Markdown(
             "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]

@@ -5,7 +5,7 @@ Typical meteorological years (TMY3, and EPW made from them) give one hour per li
 each labelled at the end of its hour (``01:00`` is the hour from midnight), each month taken from a
 different real year. A record keeps the times from its first hour [s], the wind speeds [m/s], the
 anemometer's height (10 m in these files) and the calendar month each hour lies in (the month of
-the label less one hour).
+the hour's start: its label less one hour).
 """
 
 from __future__ import annotations
@@ -171,7 +171,7 @@ def _tmy3(iotools, path: Path) -> WindRecord:
     station = str(meta.get("Name", "")).strip().strip('"').strip()
     state = str(meta.get("State", "")).strip()
     name = f"{station}, {state}" if station and state else station or path.stem
-    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES)
+    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES, labelled_at_end=True)
 
 
 def _epw(iotools, path: Path) -> WindRecord:
@@ -183,7 +183,7 @@ def _epw(iotools, path: Path) -> WindRecord:
     if missing.size:
         line = EPW_HEADER_LINES + int(missing[0]) + 1
         raise LabDataError(f"the wind speed is missing (EPW's {EPW_MISSING_WIND:g})", line)
-    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES)
+    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES, labelled_at_end=False)
 
 
 def _read(reader, path: Path, **options):
@@ -195,8 +195,10 @@ def _read(reader, path: Path, **options):
         raise LabDataError(f"{path.name} is not a weather file pvlib can read: {error}") from None
 
 
-def _hourly(data, speed, name: str, header_lines: int) -> WindRecord:
-    """The record of a file labelled at each hour's end, checked line by line."""
+def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) -> WindRecord:
+    """The record of an hourly file, checked line by line. pvlib labels a TMY3 hour at its end
+    (as the file does: its month is the label's less an hour), an EPW hour at its start (it
+    takes an hour off the file's end label)."""
     V = speed.to_numpy(dtype=float)
     index = data.index
     seconds = (index - index[0]).total_seconds().to_numpy(dtype=float)
@@ -209,7 +211,7 @@ def _hourly(data, speed, name: str, header_lines: int) -> WindRecord:
     for i in np.flatnonzero(steps != SECONDS_PER_HOUR)[:1]:
         what = "skips an hour or more" if steps[i] > 0 else "does not come after the line before"
         raise LabDataError(f"the hour {index[i + 1]} {what}", header_lines + int(i) + 2)
-    month = (index - _HOUR).month.to_numpy(dtype=np.int8)  # the hour before its end label
+    month = ((index - _HOUR) if labelled_at_end else index).month.to_numpy(dtype=np.int8)
     return WindRecord(_frozen(seconds), _frozen(V), ANEMOMETER, name, _frozen(month, np.int8))
 
 

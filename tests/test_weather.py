@@ -200,3 +200,23 @@ def test_a_year_at_sand_point_with_a_tank():
     assert year.totals.pumped == pytest.approx(year.monthly.pumped.sum(), rel=1e-12)
     size = windpump.tank_for(design, record, 5.0, 0.05)
     assert windpump.supply(design, record, 5.0, size).lolp <= 0.05
+
+
+def test_read_weather_takes_an_uploads_bytes():
+    from_bytes = read_weather(GREENSBORO.read_bytes())
+    np.testing.assert_array_equal(from_bytes.V, read_weather(GREENSBORO).V)
+    np.testing.assert_array_equal(from_bytes.month, sample_site("greensboro").month)
+    csv = read_weather(b"0,4\n1800,5\n3600,6\n", height=30.0)
+    assert csv.V.tolist() == [4.0, 5.0, 6.0] and csv.height == 30.0 and csv.name == ""
+
+
+def test_a_file_named_like_an_address_is_read_from_disk(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "http_site.epw").write_text(epw_text([(1988, 1, 1, h + 1, 4.0) for h in range(24)]))
+    assert read_weather("http_site.epw").V.tolist() == [4.0] * 24
+
+
+@pytest.mark.parametrize("height", [0.0, -1.0, math.nan, 1e4])
+def test_a_record_refuses_a_bad_height(height):
+    with pytest.raises(ParameterError, match="height"):
+        WindRecord(np.array([0.0, 1.0]), np.array([3.0, 4.0]), height)

@@ -525,7 +525,9 @@ def supply(
         chunk_days=chunk_days, executor=executor, progress=progress,
     )  # fmt: skip
     return _with_tank(
-        dataclasses.replace(year, running=full.running, pumped=full.pumped, why=""),
+        dataclasses.replace(
+            year, running=full.running, pumped=full.pumped, why="" if full.running.any() else year.why
+        ),
         demand_h, tank, restart=restart, name=name, method="full", quasi_steady=steady,
     )  # fmt: skip
 

@@ -54,7 +54,6 @@ from .site import (
     wind_thresholds,
 )
 from .studies import Sweep, sweep
-from .supply import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
 from .weather import read_weather, sample_site
 from .wind import WindRecord
 from .windmill import (
@@ -66,6 +65,7 @@ from .windmill import (
     windmill_power,
     windmill_torque,
 )
+from .yearly import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
 
 # The public names by topic, as the API reference (docs/api/index.rst) groups them.
 __all__ = [

@@ -151,8 +151,8 @@ def full_year(
     FullYear
     """
     from .site import wind_thresholds
-    from .supply import RESTARTS, _choice, _quasi_steady_year, hourly
     from .theory import running_speeds
+    from .yearly import RESTARTS, _choice, _quasi_steady_year, hourly
 
     restart = _choice("restart", restart, RESTARTS)
     chunk_days = whole("chunk_days", chunk_days, 1, 366)

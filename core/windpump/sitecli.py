@@ -11,9 +11,9 @@ import math
 import sys
 
 from .errors import ParameterError
-from .supply import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 from .units import LITRES_PER_M3
 from .wind import WindRecord
+from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
 
 def add_commands(commands, design_options) -> None:

@@ -5,7 +5,7 @@ Typical meteorological years (TMY3, and EPW made from them) give one hour per li
 each labelled at the end of its hour (``01:00`` is the hour from midnight), each month taken from a
 different real year. A record keeps the times from its first hour [s], the wind speeds [m/s], the
 anemometer's height (10 m in these files) and the calendar month each hour lies in (the month of
-the label less one hour).
+the hour's start: its label less one hour).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 from .errors import ParameterError
 from .labdata import LabDataError
 from .units import SECONDS_PER_HOUR
-from .wind import MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
+from .wind import MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
 
 SITES = {"greensboro": "723170TYA.CSV", "sand_point": "703165TY.csv"}
 """The typical years in pvlib's wheel (``pvlib/data``): Greensboro, North Carolina (mean wind
@@ -48,12 +48,12 @@ def pvlib_iotools():
     return iotools
 
 
-def sample_site(name: str) -> WindRecord:
+def sample_site(site: str) -> WindRecord:
     """The typical year of wind at one of the sites whose TMY3 file pvlib ships.
 
     Parameters
     ----------
-    name : {"greensboro", "sand_point"}
+    site : {"greensboro", "sand_point"}
         Greensboro, North Carolina (TMY3 station 723170, mean wind about 3.1 m/s at 10 m) or
         Sand Point, Alaska (703165, about 5.1 m/s).
 
@@ -75,16 +75,17 @@ def sample_site(name: str) -> WindRecord:
     >>> len(record.t), round(float(record.V.mean()), 2), record.height
     (8760, 3.05, 10.0)
     """
-    if name not in SITES:
-        raise ParameterError("site", name, "one of " + ", ".join(map(repr, SITES)))
+    if not isinstance(site, str) or site not in SITES:
+        raise ParameterError("site", site, "one of " + ", ".join(map(repr, SITES)))
     iotools = pvlib_iotools()
     import pvlib
 
-    return _tmy3(iotools, Path(pvlib.__file__).parent / "data" / SITES[name])
+    path = Path(pvlib.__file__).parent / "data" / SITES[site]
+    return _tmy3(iotools, path.read_text(encoding="utf-8", errors="replace"), site)
 
 
 def read_weather(
-    path: str | os.PathLike, height: float | None = None, name: str | None = None
+    source: str | os.PathLike | bytes, height: float | None = None, name: str | None = None
 ) -> WindRecord:
     """A wind record from a weather file: TMY3, EPW, or the Wind tab's two-column CSV.
 
@@ -92,17 +93,19 @@ def read_weather(
     (a first line ``LOCATION,...``, or a name ending in ``.epw``) by ``pvlib.iotools.read_epw``;
     their speeds are at 10 m and every hour keeps its calendar month. Anything else is the
     Wind tab's CSV (:func:`windpump.wind.read_csv`: time in seconds or ISO timestamps, then
-    speed), whose months are those of its timestamps (none for seconds).
+    speed), whose months are those of its timestamps (none for seconds). The file is read here
+    (at most ``MAX_CSV_BYTES``) and handed to pvlib as text, never as a name it could fetch.
 
     Parameters
     ----------
-    path : str or PathLike
-        The file.
+    source : str, PathLike or bytes
+        The file, or its contents (an upload).
     height : float, optional
         The anemometer's height [m], > 0: the CSV's (10 m by default); a weather file's own is
         10 m, which this replaces.
     name : str, optional
-        The site's name; by default the station's (TMY3, EPW) or the file's stem (CSV).
+        The site's name; by default the station's (TMY3, EPW) or the file's stem (CSV; "" for
+        contents).
 
     Returns
     -------
@@ -112,34 +115,52 @@ def read_weather(
     ------
     LabDataError
         (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
-        included), an hour that repeats or is skipped (a gap).
+        included), an hour that repeats or is skipped (a gap); or a file that cannot be read.
     ModuleNotFoundError
         For TMY3 or EPW without pvlib (``pip install 'windpump[site]'``).
 
     Examples
     --------
-    >>> import pathlib, tempfile
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "mast.csv"
-    >>> _ = path.write_text("2026-03-31T23:00,4.0\\n2026-04-01T00:00,5.5\\n")
-    >>> record = read_weather(path, height=20.0)
-    >>> record.t.tolist(), record.month.tolist(), record.height, record.name
-    ([0.0, 3600.0], [3, 4], 20.0, 'mast')
+    >>> record = read_weather(b"2026-03-31T23:00,4.0\\n2026-04-01T00:00,5.5\\n", height=20.0)
+    >>> record.t.tolist(), record.month.tolist(), record.height
+    ([0.0, 3600.0], [3, 4], 20.0)
     """
-    path = Path(path)
     if height is not None:
         height = _height(height)
-    kind = _kind(path)
+    data, stem, suffix = _contents(source)
+    text = data.decode("utf-8", errors="replace")
+    kind = _kind(text, suffix)
     if kind == "csv":
-        record = read_csv(path)
-        record = WindRecord(record.t, record.V, ANEMOMETER, path.stem, _csv_months(path, record))
+        record = read_csv(data)
+        record = WindRecord(record.t, record.V, ANEMOMETER, stem, _csv_months(data))
     else:
         iotools = pvlib_iotools()
-        record = _tmy3(iotools, path) if kind == "tmy3" else _epw(iotools, path)
-    if height is not None:
-        record = WindRecord(record.t, record.V, height, record.name, record.month)
-    if name is not None:
-        record = WindRecord(record.t, record.V, record.height, str(name), record.month)
-    return record
+        reader = _tmy3 if kind == "tmy3" else _epw
+        record = reader(iotools, text, stem or kind.upper())
+    return WindRecord(
+        record.t,
+        record.V,
+        record.height if height is None else height,
+        record.name if name is None else str(name),
+        record.month,
+    )
+
+
+def _contents(source) -> tuple[bytes, str, str]:
+    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``), its stem and suffix ("" for bytes)."""
+    if isinstance(source, bytes | bytearray):
+        data, stem, suffix = bytes(source), "", ""
+    else:
+        path = Path(source)
+        try:
+            with open(path, "rb") as file:
+                data = file.read(MAX_CSV_BYTES + 1)
+        except OSError as error:
+            raise LabDataError(f"cannot read {path}: {error.strerror or error}") from None
+        stem, suffix = path.stem, path.suffix.lower()
+    if len(data) > MAX_CSV_BYTES:
+        raise LabDataError(f"the file is over {MAX_CSV_BYTES:,} bytes")
+    return data, stem, suffix
 
 
 def _height(height: object) -> float:
@@ -151,14 +172,10 @@ def _height(height: object) -> float:
     return value
 
 
-def _kind(path: Path) -> str:
+def _kind(text: str, suffix: str) -> str:
     """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name)."""
-    try:
-        with open(path, encoding="utf-8", errors="replace") as file:
-            first = file.readline()
-    except OSError as error:
-        raise LabDataError(f"cannot read {path}: {error.strerror or error}") from None
-    if first.upper().startswith("LOCATION,") or path.suffix.lower() == ".epw":
+    first = text.split("\n", 1)[0]
+    if first.upper().startswith("LOCATION,") or suffix == ".epw":
         return "epw"
     fields = first.strip().split(",")
     if len(fields) == 7 and fields[0].strip().isdigit():
@@ -166,37 +183,42 @@ def _kind(path: Path) -> str:
     return "csv"
 
 
-def _tmy3(iotools, path: Path) -> WindRecord:
-    data, meta = _read(iotools.read_tmy3, path, map_variables=True)
+def _tmy3(iotools, text: str, stem: str) -> WindRecord:
+    data, meta = _read(iotools.read_tmy3, text, map_variables=True)
     station = str(meta.get("Name", "")).strip().strip('"').strip()
     state = str(meta.get("State", "")).strip()
-    name = f"{station}, {state}" if station and state else station or path.stem
-    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES)
+    name = f"{station}, {state}" if station and state else station or stem
+    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES, labelled_at_end=True)
 
 
-def _epw(iotools, path: Path) -> WindRecord:
-    data, meta = _read(iotools.read_epw, path)
+def _epw(iotools, text: str, stem: str) -> WindRecord:
+    data, meta = _read(iotools.read_epw, text)
     parts = [str(meta.get(key, "")).strip() for key in ("city", "state-prov", "country")]
-    name = ", ".join(part for part in parts if part and part != "-") or path.stem
+    name = ", ".join(part for part in parts if part and part != "-") or stem
     speed = data["wind_speed"].to_numpy(dtype=float)
     missing = np.flatnonzero(speed >= EPW_MISSING_WIND)
     if missing.size:
         line = EPW_HEADER_LINES + int(missing[0]) + 1
         raise LabDataError(f"the wind speed is missing (EPW's {EPW_MISSING_WIND:g})", line)
-    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES)
+    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES, labelled_at_end=False)
 
 
-def _read(reader, path: Path, **options):
-    """pvlib's reader on ``path``, its year coerced to one so the hours increase (a typical year
-    mixes years across months); its failures as a LabDataError."""
+def _read(reader, text: str, **options):
+    """pvlib's reader on the file's text, its year coerced to one so the hours increase (a
+    typical year mixes years across months); its failures as a LabDataError."""
+    import io
+
     try:
-        return reader(str(path), coerce_year=2001, **options)  # not a leap year, as TMY
+        return reader(io.StringIO(text), coerce_year=2001, **options)  # not a leap year, as TMY
     except (ValueError, KeyError, IndexError, TypeError) as error:
-        raise LabDataError(f"{path.name} is not a weather file pvlib can read: {error}") from None
+        message = " ".join(str(error).split())[:200]
+        raise LabDataError(f"not a weather file pvlib can read: {message}") from None
 
 
-def _hourly(data, speed, name: str, header_lines: int) -> WindRecord:
-    """The record of a file labelled at each hour's end, checked line by line."""
+def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) -> WindRecord:
+    """The record of an hourly file, checked line by line. pvlib labels a TMY3 hour at its end
+    (as the file does: its month is the label's less an hour), an EPW hour at its start (it
+    takes an hour off the file's end label)."""
     V = speed.to_numpy(dtype=float)
     index = data.index
     seconds = (index - index[0]).total_seconds().to_numpy(dtype=float)
@@ -209,19 +231,19 @@ def _hourly(data, speed, name: str, header_lines: int) -> WindRecord:
     for i in np.flatnonzero(steps != SECONDS_PER_HOUR)[:1]:
         what = "skips an hour or more" if steps[i] > 0 else "does not come after the line before"
         raise LabDataError(f"the hour {index[i + 1]} {what}", header_lines + int(i) + 2)
-    month = (index - _HOUR).month.to_numpy(dtype=np.int8)  # the hour before its end label
+    month = ((index - _HOUR) if labelled_at_end else index).month.to_numpy(dtype=np.int8)
     return WindRecord(_frozen(seconds), _frozen(V), ANEMOMETER, name, _frozen(month, np.int8))
 
 
-def _csv_months(path: Path, record: WindRecord) -> np.ndarray | None:
+def _csv_months(data: bytes) -> np.ndarray | None:
     """The months of a CSV's ISO timestamps (None for times in seconds): re-read from its first
     column, which :func:`windpump.wind.read_csv` has checked."""
     import datetime
 
     from .labdata import read_rows, split_header
-    from .wind import COLUMNS, MAX_CSV_BYTES, _time
+    from .wind import COLUMNS, _time
 
-    rows = read_rows(path, MAX_CSV_BYTES, COLUMNS)
+    rows = read_rows(data, MAX_CSV_BYTES, COLUMNS)
     _header, rows = split_header(rows, lambda cell: _time(cell) is not None, COLUMNS)
     moments = [_time(cells[0]) for _number, cells in rows]
     if not moments or not isinstance(moments[0], datetime.datetime):

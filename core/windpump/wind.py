@@ -80,6 +80,12 @@ class WindRecord:
     name: str = ""
     month: np.ndarray | None = None
 
+    def __post_init__(self) -> None:
+        height = positive("height", self.height, "m")
+        if height > MAX_HEIGHT:
+            raise ParameterError("height", height, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
+        object.__setattr__(self, "height", height)
+
     def __iter__(self) -> typing.Iterator[np.ndarray]:
         return iter((self.t, self.V))
 

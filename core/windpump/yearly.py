@@ -525,7 +525,9 @@ def supply(
         chunk_days=chunk_days, executor=executor, progress=progress,
     )  # fmt: skip
     return _with_tank(
-        dataclasses.replace(year, running=full.running, pumped=full.pumped, why=""),
+        dataclasses.replace(
+            year, running=full.running, pumped=full.pumped, why="" if full.running.any() else year.why
+        ),
         demand_h, tank, restart=restart, name=name, method="full", quasi_steady=steady,
     )  # fmt: skip
 
@@ -556,8 +558,10 @@ def tank_for(
         Water asked for [m^3/day], >= 0.
     lolp : float, default 0.05
         The loss-of-load probability allowed [-], from 0 to below 1.
-    restart, profile
-        As :func:`supply`.
+    restart : {"self", "attended"}, keyword-only
+        Who restarts a resting pump, as :func:`supply`.
+    profile : 24 weights or None, keyword-only
+        The demand's spread over the day's hours, as :func:`supply`.
 
     Returns
     -------
@@ -683,8 +687,10 @@ def supply_map(
         Sprocket ratios R+ [-], each giving a valid design.
     tanks : array_like
         Tank capacities [m^3], finite and >= 0.
-    restart, profile
-        As :func:`supply`.
+    restart : {"self", "attended"}, keyword-only
+        Who restarts a resting pump, as :func:`supply`.
+    profile : 24 weights or None, keyword-only
+        The demand's spread over the day's hours, as :func:`supply`.
 
     Returns
     -------

@@ -5,7 +5,6 @@ at the hub height the tab asks for."""
 from __future__ import annotations
 
 import functools
-import tempfile
 from pathlib import Path
 
 import panel as pn
@@ -34,22 +33,15 @@ def sample_at(name: str, hub: float) -> windpump.WindRecord:
 
 
 def read_upload(data: bytes, filename: str) -> windpump.WindRecord:
-    """A weather file's record from its bytes (the core reads files: a temporary one named as the
-    student's, so an EPW is known by its name too)."""
+    """A weather file's record from an upload's bytes, named after the file when it names no
+    station (a CSV)."""
     check_file_size(len(data), WIND_MAX_BYTES, what=WHAT)
     if not data:
         raise LabDataError("the file is empty")
-    name = Path(filename).name or "uploaded.csv"
-    suffix = Path(name).suffix.lower() if Path(name).suffix.lower() in SUFFIXES else ".csv"
-    with tempfile.TemporaryDirectory() as folder:
-        path = Path(folder) / f"upload{suffix}"
-        path.write_bytes(data)
-        record = windpump.read_weather(path)
-    stem = Path(name).stem
-    return record if record.name != "upload" else record_named(record, stem)
-
-
-def record_named(record: windpump.WindRecord, name: str) -> windpump.WindRecord:
+    record = windpump.read_weather(data)
+    if record.name:
+        return record
+    name = Path(filename).stem or "uploaded"
     return windpump.WindRecord(record.t, record.V, record.height, name, record.month)
 
 

@@ -42,6 +42,13 @@ SITE_READOUTS = {
 TANKS = 41  # tank sizes on the loss-of-load curve, over the tank slider's range
 SLOW = 0.3  # [s] a year that took longer is announced before it is computed again
 SITE_MESSAGE, SITE_NOTE = "site-message", "site-note"  # an upload's outcome (uploads.Reveal)
+CAPTION = (
+    "The design on the sliders in the site's hourly wind at the hub, hour by hour "
+    "(the quasi-steady year: in each hour's wind the pump runs as the averaged theory "
+    "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
+    "the loss-of-load probability is the share of the year's demand it could not "
+    "give, and a dry day one with any. Dashed: the tank's size, and 5 %."
+)
 
 
 def number_text(value: float, unit: str = "", digits: int = 1) -> str:
@@ -109,20 +116,11 @@ class SiteTab(Tab):
             **style,
         )
         for widget, name in ((self.site_select, "site"), (self.restart, "restart")):
-            self._follow(widget, name)
+            follow(widget, self.site, name)
         self.upload, self.upload_message = self.records.controls(SITE_MESSAGE)
         self.upload.param.watch(
             lambda *_e: self.load_data(self.records.chosen()), ["value", "filename"]
         )
-
-    def _follow(self, widget, name: str) -> None:
-        """A choice widget and the site input ``name`` kept equal, both ways."""
-        if getattr(self.site, name) in widget.options.values():
-            widget.value = getattr(self.site, name)
-        else:
-            self.site.param.update(**{name: widget.value})
-        widget.param.watch(lambda event: setattr(self.site, name, event.new), "value")
-        self.site.param.watch(lambda event: setattr(widget, "value", event.new), name)
 
     # -- updates -----------------------------------------------------------------------------
 
@@ -298,15 +296,19 @@ class SiteTab(Tab):
             pn.FlexBox(
                 boxed(self.level), boxed(self.lolp), flex_wrap="wrap", sizing_mode="stretch_width"
             ),
-            caption(
-                "The design on the sliders in the site's hourly wind at the hub, hour by hour "
-                "(the quasi-steady year: in each hour's wind the pump runs as the averaged theory "
-                "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
-                "the loss-of-load probability is the share of the year's demand it could not "
-                "give, and a dry day one with any. Dashed: the tank's size, and 5 %."
-            ),
+            caption(CAPTION),
             sizing_mode="stretch_width",
         )
+
+
+def follow(widget, inputs, name: str) -> None:
+    """A choice widget and the input ``name`` of ``inputs`` kept equal, both ways."""
+    if getattr(inputs, name) in widget.options.values():
+        widget.value = getattr(inputs, name)
+    else:
+        inputs.param.update(**{name: widget.value})
+    widget.param.watch(lambda event: setattr(inputs, name, event.new), "value")
+    inputs.param.watch(lambda event: setattr(widget, "value", event.new), name)
 
 
 def daily_band(days: np.ndarray, values: np.ndarray):

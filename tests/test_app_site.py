@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 
 import numpy as np
+import panel as pn
 import param
 import pytest
 
@@ -185,3 +186,28 @@ def test_a_file_the_page_refused_is_reported_in_the_site_tab(app):
     assert message.visible and "12,000,000 bytes" in message.object
     assert not app.wind_tab.built and not app.sidebar.lab.message.visible
     assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
+
+
+def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monkeypatch):
+    """Served, a year that took long last time (or a new site) is said first ("Computing the
+    year…") and computed in the next tick; the first year is drawn at once."""
+    from bokeh.document import Document
+
+    document = Document()
+    document._session_context = lambda: object()  # as a served session's document
+    ticks = []
+    monkeypatch.setattr(document, "add_next_tick_callback", ticks.append)
+    monkeypatch.setattr(pn.state, "_curdoc", pn.state._curdoc)
+    pn.state.curdoc = document
+    try:
+        lolp = value(app, "site_lolp")
+        app.site_inputs.site = "sand_point"
+        assert app.site.computing.visible and value(app, "site_lolp") == lolp  # said, not done
+        ticks.pop()()
+        assert not app.site.computing.visible
+        _, supplied = year(site="sand_point")
+        check_drawn(app, supplied, 5.0)
+        app.site_inputs.demand = 9.0  # quick, and the same site: at once
+        assert ticks == [] and not app.site.computing.visible
+    finally:
+        pn.state.curdoc = None

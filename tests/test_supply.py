@@ -316,3 +316,15 @@ def test_the_full_year_refuses_a_turbulence_the_gust_model_cannot_give(turbulenc
         supply(
             SELF_STARTING, hourly_record([5.0] * 3), 1.0, 0.0, method="full", turbulence=turbulence
         )
+
+
+def test_attended_in_full_someone_starts_a_pump_without_torque_at_rest():
+    seed = Design.seed_example()  # T_0 = 0: it never starts on its own
+    record = hourly_record([1.0] * 3 + [6.0] * 9)
+    alone = supply(seed, record, 1.0, 0.0, method="full", chunk_days=1)
+    assert alone.pumped.sum() == 0.0 and "T_0 = 0" in alone.why
+    helped = supply(seed, record, 1.0, 0.0, method="full", restart="attended", chunk_days=1)
+    steady = helped.quasi_steady
+    np.testing.assert_array_equal(steady.running, np.arange(12) >= 3)
+    assert not helped.running[:3].any() and helped.running[4:].all()
+    np.testing.assert_allclose(helped.pumped[5:11], steady.pumped[5:11], rtol=0.01)

@@ -328,3 +328,25 @@ def test_attended_in_full_someone_starts_a_pump_without_torque_at_rest():
     np.testing.assert_array_equal(steady.running, np.arange(12) >= 3)
     assert not helped.running[:3].any() and helped.running[4:].all()
     np.testing.assert_allclose(helped.pumped[5:11], steady.pumped[5:11], rtol=0.01)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    V=st.lists(st.floats(0.0, 12.0, allow_nan=False), min_size=24, max_size=96),
+    demand=st.floats(0.1, 30.0),
+)
+def test_a_larger_tank_never_loses_more(V, demand):
+    tanks = np.array([0.0, 0.3, 1.0, 2.5, 7.0, 40.0])
+    found = supply_map(SELF_STARTING, hourly_record(V), demand, [3.5, 4.0, 5.0], tanks)
+    assert np.all(np.diff(found.lolp, axis=0) <= 1e-12)
+    assert np.all((found.lolp >= 0.0) & (found.lolp <= 1.0 + 1e-12))
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    demand=st.one_of(st.floats(max_value=-1e-300), st.just(math.nan), st.just(math.inf)),
+)
+def test_any_bad_demand_is_named(demand):
+    with pytest.raises(ParameterError) as error:
+        supply(SELF_STARTING, hourly_record([5.0] * 3), demand, 1.0)
+    assert error.value.name == "demand"

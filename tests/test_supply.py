@@ -350,3 +350,22 @@ def test_any_bad_demand_is_named(demand):
     with pytest.raises(ParameterError) as error:
         supply(SELF_STARTING, hourly_record([5.0] * 3), demand, 1.0)
     assert error.value.name == "demand"
+
+
+def test_the_full_years_chunks_are_cut_to_what_a_run_may_do():
+    from windpump.dynamics import MAX_STEPS, estimated_steps
+    from windpump.fullyear import _spans
+
+    V = np.full(24 * 120, 14.0)  # 120 days of strong wind in one chunk
+    spans = _spans(SELF_STARTING, V, V.size, False)
+    assert len(spans) > 1 and spans[0][0] == 0
+    assert all(a + n == b for (a, n), (b, _) in zip(spans, spans[1:], strict=False))
+    assert sum(n for _, n in spans) == V.size
+    for first, hours in spans:
+        t = (np.arange(hours) + 0.5) * HOUR
+        assert (
+            estimated_steps(
+                SELF_STARTING, hours * HOUR, windpump.WindRecord(t, V[first : first + hours])
+            )
+            <= MAX_STEPS / 2
+        )

@@ -163,12 +163,9 @@ def full_year(
     V, month = hourly(record)
     steady = _quasi_steady_year(design, V, month, restart)
     V_stop, _ = wind_thresholds(design)
-    hours_per = chunk_days * 24
-    firsts = list(range(0, V.size, hours_per))
     padded = np.concatenate(([V[0]], V, [V[-1]]))
     chunks = []
-    for index, first in enumerate(firsts):
-        hours = min(hours_per, V.size - first)
+    for index, (first, hours) in enumerate(_spans(design, V, chunk_days * 24, shape > 0.0)):
         ran = first > 0 and bool(steady.running[first - 1])
         theta_dot0 = _running_speed(running_speeds, design, V[first]) if ran else 0.0
         chunk_seed = None if seed is None else int(seed) * 1_000_003 + index
@@ -180,6 +177,30 @@ def full_year(
     running = np.concatenate([r[0] for r in results])
     pumped = np.concatenate([r[1] for r in results])
     return FullYear(running, pumped, len(chunks))
+
+
+def _spans(design: Design, V: np.ndarray, hours: int, gusty: bool) -> list[tuple[int, int]]:
+    """The chunks (first hour, hours): ``hours`` long, halved until each run's estimated work
+    (:func:`windpump.dynamics.estimated_steps`, a gust's bend a second added) is at most half
+    the integrator's bound ``MAX_STEPS``, so a windy site's week is cut rather than refused."""
+    from .dynamics import MAX_STEPS, estimated_steps
+    from .wind import as_record
+
+    todo = [(first, min(hours, V.size - first)) for first in range(0, V.size, hours)]
+    spans = []
+    while todo:
+        first, length = todo.pop(0)
+        t = (np.arange(length) + 0.5) * SECONDS_PER_HOUR
+        record = as_record((t, V[first : first + length]), length * SECONDS_PER_HOUR)
+        work = estimated_steps(design, length * SECONDS_PER_HOUR, record)
+        work *= 2.0 if gusty else 1.0
+        work += length * SECONDS_PER_HOUR / GUST_DT if gusty else 0.0
+        if work <= MAX_STEPS / 2 or length == 1:
+            spans.append((first, length))
+        else:
+            half = length // 2
+            todo[:0] = [(first, half), (first + half, length - half)]
+    return spans
 
 
 def _running_speed(running_speeds, design: Design, V: float) -> float:

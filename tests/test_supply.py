@@ -369,3 +369,11 @@ def test_the_full_years_chunks_are_cut_to_what_a_run_may_do():
             )
             <= MAX_STEPS / 2
         )
+
+
+def test_a_tank_of_exactly_n_hours_of_demand_has_no_round_off_dry_day():
+    # 10 m^3 holds exactly 5 days of 2 m^3/day: emptied hour by hour, it ends a round-off short
+    V = [9.0] * 24 + [0.0] * (24 * 5) + [9.0] * 24
+    year = supply(SELF_STARTING, hourly_record(V), 2.0, 10.0)
+    assert year.shortfall.sum() < 1e-12
+    assert year.dry_days == 0 and year.longest_dry_spell == 0

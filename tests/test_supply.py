@@ -377,3 +377,16 @@ def test_a_tank_of_exactly_n_hours_of_demand_has_no_round_off_dry_day():
     year = supply(SELF_STARTING, hourly_record(V), 2.0, 10.0)
     assert year.shortfall.sum() < 1e-12
     assert year.dry_days == 0 and year.longest_dry_spell == 0
+
+
+def test_the_maps_kernel_is_the_single_tanks_number_for_number():
+    from windpump._kernels import supply as kernels
+
+    rng = np.random.default_rng(11)
+    pumped = rng.exponential(0.2, (4, 500)) * (rng.random((4, 500)) < 0.4)
+    demand = np.full(500, 0.08)
+    tanks = np.array([0.0, 0.05, 0.4, 1.0, 3.0, 30.0])
+    found = kernels.shortfall_map(pumped, demand, tanks, 1e-6, 20)
+    for i in range(4):
+        for j, tank in enumerate(tanks):
+            assert found[i, j] == kernels.short_total(pumped[i], demand, tank, 1e-6, 20)

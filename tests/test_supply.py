@@ -316,3 +316,77 @@ def test_the_full_year_refuses_a_turbulence_the_gust_model_cannot_give(turbulenc
         supply(
             SELF_STARTING, hourly_record([5.0] * 3), 1.0, 0.0, method="full", turbulence=turbulence
         )
+
+
+def test_attended_in_full_someone_starts_a_pump_without_torque_at_rest():
+    seed = Design.seed_example()  # T_0 = 0: it never starts on its own
+    record = hourly_record([1.0] * 3 + [6.0] * 9)
+    alone = supply(seed, record, 1.0, 0.0, method="full", chunk_days=1)
+    assert alone.pumped.sum() == 0.0 and "T_0 = 0" in alone.why
+    helped = supply(seed, record, 1.0, 0.0, method="full", restart="attended", chunk_days=1)
+    steady = helped.quasi_steady
+    np.testing.assert_array_equal(steady.running, np.arange(12) >= 3)
+    assert not helped.running[:3].any() and helped.running[4:].all()
+    np.testing.assert_allclose(helped.pumped[5:11], steady.pumped[5:11], rtol=0.01)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    V=st.lists(st.floats(0.0, 12.0, allow_nan=False), min_size=24, max_size=96),
+    demand=st.floats(0.1, 30.0),
+)
+def test_a_larger_tank_never_loses_more(V, demand):
+    tanks = np.array([0.0, 0.3, 1.0, 2.5, 7.0, 40.0])
+    found = supply_map(SELF_STARTING, hourly_record(V), demand, [3.5, 4.0, 5.0], tanks)
+    assert np.all(np.diff(found.lolp, axis=0) <= 1e-12)
+    assert np.all((found.lolp >= 0.0) & (found.lolp <= 1.0 + 1e-12))
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    demand=st.one_of(st.floats(max_value=-1e-300), st.just(math.nan), st.just(math.inf)),
+)
+def test_any_bad_demand_is_named(demand):
+    with pytest.raises(ParameterError) as error:
+        supply(SELF_STARTING, hourly_record([5.0] * 3), demand, 1.0)
+    assert error.value.name == "demand"
+
+
+def test_the_full_years_chunks_are_cut_to_what_a_run_may_do():
+    from windpump.dynamics import MAX_STEPS, estimated_steps
+    from windpump.fullyear import _spans
+
+    V = np.full(24 * 120, 14.0)  # 120 days of strong wind in one chunk
+    spans = _spans(SELF_STARTING, V, V.size, False)
+    assert len(spans) > 1 and spans[0][0] == 0
+    assert all(a + n == b for (a, n), (b, _) in zip(spans, spans[1:], strict=False))
+    assert sum(n for _, n in spans) == V.size
+    for first, hours in spans:
+        t = (np.arange(hours) + 0.5) * HOUR
+        assert (
+            estimated_steps(
+                SELF_STARTING, hours * HOUR, windpump.WindRecord(t, V[first : first + hours])
+            )
+            <= MAX_STEPS / 2
+        )
+
+
+def test_a_tank_of_exactly_n_hours_of_demand_has_no_round_off_dry_day():
+    # 10 m^3 holds exactly 5 days of 2 m^3/day: emptied hour by hour, it ends a round-off short
+    V = [9.0] * 24 + [0.0] * (24 * 5) + [9.0] * 24
+    year = supply(SELF_STARTING, hourly_record(V), 2.0, 10.0)
+    assert year.shortfall.sum() < 1e-12
+    assert year.dry_days == 0 and year.longest_dry_spell == 0
+
+
+def test_the_maps_kernel_is_the_single_tanks_number_for_number():
+    from windpump._kernels import supply as kernels
+
+    rng = np.random.default_rng(11)
+    pumped = rng.exponential(0.2, (4, 500)) * (rng.random((4, 500)) < 0.4)
+    demand = np.full(500, 0.08)
+    tanks = np.array([0.0, 0.05, 0.4, 1.0, 3.0, 30.0])
+    found = kernels.shortfall_map(pumped, demand, tanks, 1e-6, 20)
+    for i in range(4):
+        for j, tank in enumerate(tanks):
+            assert found[i, j] == kernels.short_total(pumped[i], demand, tank, 1e-6, 20)

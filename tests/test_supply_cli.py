@@ -77,3 +77,21 @@ def test_failures_are_one_line_and_exit_1(args, message):
     assert done.returncode == 1 and done.stdout == ""
     assert len(done.stderr.splitlines()) == 1 and message in done.stderr
     assert done.stderr.startswith(f"windpump {args[0]}: error:")
+
+
+def test_supply_in_full_from_a_csv(tmp_path):
+    path = tmp_path / "mast.csv"
+    hours = [f"2026-06-01T{h:02d}:00,{6.0 if h < 18 else 1.0}" for h in range(24)]
+    path.write_text("time,speed\n" + "\n".join(hours) + "\n")
+    done = windpump_command(
+        "supply", "--weather", str(path), "--demand", "1", "--tank", "0.5", "--set", "T_0=0.3",
+        "--full", "--workers", "2",
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    record = windpump.read_weather(path)
+    year = windpump.supply(DESIGN, record, 1.0, 0.5, method="full")
+    gap = f"({year.quasi_steady_gap:+.2%})"
+    assert any(
+        line.startswith("quasi-steady year") and gap in line for line in done.stdout.splitlines()
+    )
+    assert any(line.startswith("Jun") for line in done.stdout.splitlines())

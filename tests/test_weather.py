@@ -220,3 +220,11 @@ def test_a_file_named_like_an_address_is_read_from_disk(tmp_path, monkeypatch):
 def test_a_record_refuses_a_bad_height(height):
     with pytest.raises(ParameterError, match="height"):
         WindRecord(np.array([0.0, 1.0]), np.array([3.0, 4.0]), height)
+
+
+def test_a_csv_with_a_gap_is_refused_at_its_line(tmp_path):
+    path = tmp_path / "gappy.csv"
+    path.write_text("time,speed\n# a mast\n0,4\n1800,5\n9000,6\n")
+    with pytest.raises(LabDataError, match="line 5") as error:
+        read_weather(path)
+    assert "gap of 2 h" in str(error.value)

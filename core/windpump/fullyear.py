@@ -163,12 +163,9 @@ def full_year(
     V, month = hourly(record)
     steady = _quasi_steady_year(design, V, month, restart)
     V_stop, _ = wind_thresholds(design)
-    hours_per = chunk_days * 24
-    firsts = list(range(0, V.size, hours_per))
     padded = np.concatenate(([V[0]], V, [V[-1]]))
     chunks = []
-    for index, first in enumerate(firsts):
-        hours = min(hours_per, V.size - first)
+    for index, (first, hours) in enumerate(_spans(design, V, chunk_days * 24, shape > 0.0)):
         ran = first > 0 and bool(steady.running[first - 1])
         theta_dot0 = _running_speed(running_speeds, design, V[first]) if ran else 0.0
         chunk_seed = None if seed is None else int(seed) * 1_000_003 + index
@@ -180,6 +177,30 @@ def full_year(
     running = np.concatenate([r[0] for r in results])
     pumped = np.concatenate([r[1] for r in results])
     return FullYear(running, pumped, len(chunks))
+
+
+def _spans(design: Design, V: np.ndarray, hours: int, gusty: bool) -> list[tuple[int, int]]:
+    """The chunks (first hour, hours): ``hours`` long, halved until each run's estimated work
+    (:func:`windpump.dynamics.estimated_steps`, a gust's bend a second added) is at most half
+    the integrator's bound ``MAX_STEPS``, so a windy site's week is cut rather than refused."""
+    from .dynamics import MAX_STEPS, estimated_steps
+    from .wind import as_record
+
+    todo = [(first, min(hours, V.size - first)) for first in range(0, V.size, hours)]
+    spans = []
+    while todo:
+        first, length = todo.pop(0)
+        t = (np.arange(length) + 0.5) * SECONDS_PER_HOUR
+        record = as_record((t, V[first : first + length]), length * SECONDS_PER_HOUR)
+        work = estimated_steps(design, length * SECONDS_PER_HOUR, record)
+        work *= 2.0 if gusty else 1.0
+        work += length * SECONDS_PER_HOUR / GUST_DT if gusty else 0.0
+        if work <= MAX_STEPS / 2 or length == 1:
+            spans.append((first, length))
+        else:
+            half = length // 2
+            todo[:0] = [(first, half), (first + half, length - half)]
+    return spans
 
 
 def _running_speed(running_speeds, design: Design, V: float) -> float:
@@ -219,9 +240,13 @@ def chunk_wind(chunk: _Chunk) -> tuple[np.ndarray, np.ndarray]:
 
 
 def run_chunk(chunk: _Chunk) -> tuple[np.ndarray, np.ndarray]:
-    """One chunk's hours: (running, pumped [m^3])."""
+    """One chunk's hours: (running, pumped [m^3]).
+
+    One run to the chunk's end; attended, a run ends where the crank first comes to rest and the
+    next starts (at alpha+) at the first hour from then whose mean wind reaches V_stop, as it
+    does at the chunk's start when the pump rests there.
+    """
     from .dynamics import simulate
-    from .theory import running_speeds
 
     t, V = chunk_wind(chunk)
     end = chunk.hours * SECONDS_PER_HOUR
@@ -230,30 +255,44 @@ def run_chunk(chunk: _Chunk) -> tuple[np.ndarray, np.ndarray]:
     turning = np.zeros(chunk.hours)
     start, theta_dot0, base = 0.0, chunk.theta_dot0, 0.0
     while start < end:
-        shifted = (t - start, V)
+        if chunk.attended and theta_dot0 == 0.0:
+            start, theta_dot0 = _restart(chunk, boundaries, start)
+            if start >= end:
+                break
         run = simulate(
-            chunk.design, end - start, THETA0, theta_dot0, wind=shifted, sample_dt=SAMPLE_DT
+            chunk.design, end - start, THETA0, theta_dot0, wind=(t - start, V), sample_dt=SAMPLE_DT
         )
         t_run = run.t + start
         stop = end
         if chunk.attended and len(run.stops):
-            stop = float(run.stops[0]) + start
+            stop = max(float(run.stops[0]) + start, start + SAMPLE_DT)
         inside = t_run <= stop
         here = (boundaries >= start) & (boundaries <= stop)
         volume[here] = base + np.interp(boundaries[here], t_run[inside], run.volume[inside])
         _add_turning(turning, t_run[inside], run.theta_dot[inside])
-        if stop >= end:
-            break
         base = base + float(np.interp(stop, t_run, run.volume))
-        later = np.flatnonzero((boundaries[:-1] >= stop) & (chunk.V[1:-1] >= chunk.V_stop))
         volume[boundaries > stop] = base
-        if not later.size:
-            break
-        hour = int(later[0])
-        start = float(boundaries[hour])
-        alpha = float(running_speeds(chunk.design, V=chunk.V[hour + 1]).alpha_plus)
-        theta_dot0 = alpha if math.isfinite(alpha) and alpha > 0.0 else 3.0
+        start, theta_dot0 = stop, 0.0
     return turning >= 0.5 * SECONDS_PER_HOUR, np.diff(volume)
+
+
+def _restart(chunk: _Chunk, boundaries: np.ndarray, after: float) -> tuple[float, float]:
+    """When someone restarts a resting pump, from ``after`` [s]: the first hour's start whose mean
+    wind reaches V_stop, and the crank speed they give it (alpha+ in that wind, or the usual kick
+    where the averaged theory has none); the chunk's end when no hour does."""
+    from .theory import running_speeds
+
+    later = np.flatnonzero((boundaries[:-1] >= after) & (chunk.V[1:-1] >= chunk.V_stop))
+    if not later.size:
+        return float(boundaries[-1]), 0.0
+    hour = int(later[0])
+    alpha = float(running_speeds(chunk.design, V=chunk.V[hour + 1]).alpha_plus)
+    return float(boundaries[hour]), alpha if math.isfinite(alpha) and alpha > 0.0 else KICK
+
+
+KICK = 3.0
+"""Crank speed [rad/s] someone gives a resting pump where the averaged theory has no running
+speed (as :func:`windpump.run_in_wind`'s kick)."""
 
 
 def _add_turning(turning: np.ndarray, t: np.ndarray, theta_dot: np.ndarray) -> None:

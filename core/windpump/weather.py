@@ -132,7 +132,15 @@ def read_weather(
     kind = _kind(text, suffix)
     if kind == "csv":
         record = read_csv(data)
-        record = WindRecord(record.t, record.V, ANEMOMETER, stem, _csv_months(data))
+        months, lines = _csv_rows(data)
+        steps = np.diff(record.t)
+        for i in np.flatnonzero(steps > SECONDS_PER_HOUR)[:1]:
+            raise LabDataError(
+                f"a gap of {steps[i] / SECONDS_PER_HOUR:.4g} h after the line before "
+                "(a site's year needs a sample in every hour)",
+                lines[i + 1],
+            )
+        record = WindRecord(record.t, record.V, ANEMOMETER, stem, months)
     else:
         iotools = pvlib_iotools()
         reader = _tmy3 if kind == "tmy3" else _epw
@@ -235,9 +243,9 @@ def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) ->
     return WindRecord(_frozen(seconds), _frozen(V), ANEMOMETER, name, _frozen(month, np.int8))
 
 
-def _csv_months(data: bytes) -> np.ndarray | None:
-    """The months of a CSV's ISO timestamps (None for times in seconds): re-read from its first
-    column, which :func:`windpump.wind.read_csv` has checked."""
+def _csv_rows(data: bytes) -> tuple[np.ndarray | None, list[int]]:
+    """The months of a CSV's ISO timestamps (None for times in seconds) and each sample's line:
+    re-read from its first column, which :func:`windpump.wind.read_csv` has checked."""
     import datetime
 
     from .labdata import read_rows, split_header
@@ -246,9 +254,11 @@ def _csv_months(data: bytes) -> np.ndarray | None:
     rows = read_rows(data, MAX_CSV_BYTES, COLUMNS)
     _header, rows = split_header(rows, lambda cell: _time(cell) is not None, COLUMNS)
     moments = [_time(cells[0]) for _number, cells in rows]
+    lines = [number for number, _cells in rows]
     if not moments or not isinstance(moments[0], datetime.datetime):
-        return None
-    return _frozen([moment.month for moment in moments], np.int8)  # type: ignore[union-attr]
+        return None, lines
+    months = [moment.month for moment in moments]  # type: ignore[union-attr]
+    return _frozen(months, np.int8), lines
 
 
 def _frozen(values, dtype=float) -> np.ndarray:

@@ -56,6 +56,10 @@ MOST_PASSES = 20
 
 HOURS_PER_DAY = 24
 
+DRY_TOLERANCE = 1e-9
+"""Shortfall in a day [m^3] (a microlitre) beyond which the day counts as dry: above the
+round-off of the tank's books."""
+
 DAYS_IN_MONTH = (31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31)
 """A year of 365 days: the months of a record without dates, counted from 1 January."""
 
@@ -208,9 +212,10 @@ class Supply:
     @property
     def dry(self) -> np.ndarray:
         """Whether each day (24-hour blocks from the record's start, the last maybe shorter) had
-        any shortfall [bool]."""
+        any shortfall [bool]: more than ``DRY_TOLERANCE`` in the day (a tank that holds exactly
+        n hours of demand otherwise empties to a round-off of 1e-15 m^3 short)."""
         days = np.arange(self.hours) // HOURS_PER_DAY
-        return np.bincount(days, weights=self.shortfall > 0.0) > 0.0
+        return np.bincount(days, weights=self.shortfall) > DRY_TOLERANCE
 
     @property
     def dry_days(self) -> int:

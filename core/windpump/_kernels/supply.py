@@ -88,11 +88,39 @@ def short_total(pumped, demand, capacity, tolerance, most):
 @parallel_kernel
 def shortfall_map(pumped, demand, capacities, tolerance, most):
     """The periodic year's shortfall [m^3] for every row of ``pumped`` (one per gear ratio) and
-    every tank capacity: shape (rows, capacities)."""
+    every tank capacity: shape (rows, capacities); rows in parallel.
+
+    Each tank's passes are :func:`short_total`'s, number for number (the same operations in the
+    same order); the tanks of a row run side by side through the hours, so the loop over them
+    vectorises, and a tank whose level has repeated keeps its total while the others go on."""
     rows = pumped.shape[0]
-    out = np.empty((rows, capacities.size))
-    for job in numba.prange(rows * capacities.size):
-        i = job // capacities.size
-        j = job % capacities.size
-        out[i, j] = short_total(pumped[i], demand, capacities[j], tolerance, most)
+    count = capacities.size
+    out = np.empty((rows, count))
+    for i in numba.prange(rows):
+        start = capacities.copy()
+        level = np.empty(count)
+        short = np.empty(count)
+        done = np.zeros(count, dtype=np.bool_)
+        left = count
+        for _ in range(most):
+            level[:] = start
+            short[:] = 0.0
+            for h in range(pumped.shape[1]):
+                p = pumped[i, h]
+                d = demand[h]
+                for j in range(count):
+                    available = level[j] + p
+                    given = min(d, available)
+                    short[j] += d - given
+                    level[j] = available - given - max(0.0, available - given - capacities[j])
+            for j in range(count):
+                if not done[j]:
+                    out[i, j] = short[j]
+                    if abs(level[j] - start[j]) <= tolerance:
+                        done[j] = True
+                        left -= 1
+                    else:
+                        start[j] = level[j]
+            if left == 0:
+                break
     return out

@@ -2,7 +2,7 @@
 
 The session's state (``session.Session``: inputs → exploration, error, stale) is drawn in the
 sidebar (``sidebar.Sidebar``), the readouts (``readouts.Readouts``), the pump's views
-(``pump.PumpViews``) and the tabs (``tab.Tab``: ``mechanisms``, ``wind_tab``, ``map_tab``); the
+(``pump.PumpViews``) and the tabs (``tab.Tab``: ``mechanisms``, ``wind_tab``, ``map_tab``, ``site_tab``); the
 link is read and written by ``link``. Every number comes from ``windpump``.
 """
 
@@ -28,6 +28,8 @@ from .pump import PumpViews, name_sources
 from .readouts import Readouts
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
+from .site_inputs import SiteInputs
+from .site_tab import SITE_MESSAGE, SiteTab
 from .styles import TEXT
 from .tab import PageTabs, Tab
 from .views import BINS
@@ -75,8 +77,11 @@ class Explorer(Session, pn.viewable.Viewer):
         self._wire()
         if not defer_views:
             self.show_views()
-        values, read = self.inputs.parse_query(query)
-        notices += read
+        site_values, notices_site = self.site_inputs.parse_query(query)
+        pump_query = {key: raw for key, raw in query.items() if key not in SiteInputs.keys()}
+        values, read = self.inputs.parse_query(pump_query)
+        notices += read + notices_site
+        self.site_inputs.param.update(**site_values)
         presentation = presentation_from(query, notices)
         if presentation is not None:
             self.presentation = presentation
@@ -99,7 +104,11 @@ class Explorer(Session, pn.viewable.Viewer):
         self.mechanisms_tab = Mechanisms(slider, self.dark)
         self.wind_tab = WindTab(self.inputs, self.sidebar.sliders, self.bins, reveal, self.dark)
         self.map_tab = MapTab(self.inputs, self.dark)
-        self.page_tabs = PageTabs([self.mechanisms_tab, self.wind_tab, self.map_tab], self._open)
+        self.site_inputs = SiteInputs()  # the Site tab's own inputs, in the link
+        self.site_tab = SiteTab(self.inputs, self.site_inputs, reveal, self.dark)
+        self.page_tabs = PageTabs(
+            [self.mechanisms_tab, self.wind_tab, self.map_tab, self.site_tab], self._open
+        )
 
     def _wire(self) -> None:
         """The sidebar's actions, presentation mode and a refused upload."""
@@ -141,6 +150,11 @@ class Explorer(Session, pn.viewable.Viewer):
     def design_map(self) -> MapTab:
         """The Design map tab, built on first use."""
         return self._open(self.map_tab)
+
+    @property
+    def site(self) -> SiteTab:
+        """The Site tab, built on first use (it runs its year then)."""
+        return self._open(self.site_tab)
 
     def _open(self, tab: T) -> T:
         """``tab``, built and drawn; the Mechanisms tab's data sources join the page's."""
@@ -230,6 +244,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self.sidebar.preset.value = PRESET_PROMPT
         if self.mechanisms_tab.built:
             self.mechanisms_tab.reset()
+        self.site_inputs.param.update(**self.site_inputs.defaults())
         self.set_values(**self.inputs.defaults())
 
     def _on_preset(self, event) -> None:
@@ -272,7 +287,10 @@ class Explorer(Session, pn.viewable.Viewer):
         refused = self.sidebar.refused_upload
         if refused.size is None:
             return
-        if refused.wind:
+        if refused.kind == "site":
+            self.site.refuse_size(refused.size)
+            self.sidebar.reveal.show(SITE_MESSAGE)
+        elif refused.wind:
             self.wind.refuse_size(refused.size)
             self.sidebar.reveal.show(WIND_MESSAGE)
         else:
@@ -302,12 +320,15 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def link_query(self) -> str:
         """The page's query as its link carries it (``link.page_query``)."""
-        return page_query(self.inputs, self.presentation, self.dark, self.bins is None)
+        return page_query(
+            self.inputs, self.presentation, self.dark, self.bins is None, self.site_inputs.query()
+        )
 
     def follow_in_link(self, location) -> None:
         """Keep ``location`` (a served page's ``pn.state.location``) on ``link_query()``."""
         self._location = PageLink(location, self.link_query)
         self.inputs.param.watch(self._location.write, self.inputs.names())
+        self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
         self.param.watch(self._location.write, "presentation")
 
     # -- layout ------------------------------------------------------------------------------

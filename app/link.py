@@ -53,16 +53,17 @@ def notices_text(notices: list[str]) -> str:
     return "**Some values in the link were ignored:**\n\n" + "\n".join(listed)
 
 
-def page_query(inputs, presentation: bool, dark: bool, full: bool) -> str:
+def page_query(inputs, presentation: bool, dark: bool, full: bool, *more: str) -> str:
     """The page's query as its link carries it: the inputs that differ from the defaults, each
-    as its slider shows it, then presentation mode, the dark theme and full resolution if on.
-    Nothing else: a key the page ignored is not carried on."""
+    as its slider shows it, then ``more`` (a tab's own inputs' query), then presentation mode,
+    the dark theme and full resolution if on. Nothing else: a key the page ignored is not
+    carried on."""
     page = {"presentation": "true"} if presentation else {}
     if dark:
         page["theme"] = "dark"
     if full:
         page["resolution"] = "full"
-    return "&".join(part for part in (inputs.query(), urlencode(page)) if part)
+    return "&".join(part for part in (inputs.query(), *more, urlencode(page)) if part)
 
 
 class PageLink:

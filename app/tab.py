@@ -26,8 +26,8 @@ for (const delay of [300, 1000, 2500, 5000, 10000, 20000]) {
 TABS_CSS = [
     f":host {{ font-size: {px(16)}; }}",
     f".bk-tab {{ font-size: {px(16)}; }}",
-    # four headers fit a phone's width
-    "@media (max-width: 500px) { .bk-tab { font-size: 14px; padding: 8px 6px !important; } }",
+    # five headers fit a phone's width (390 px)
+    "@media (max-width: 500px) { .bk-tab { font-size: 14px; padding: 8px 4px !important; } }",
     TAB_FOCUS_CSS,
     # Panel keeps a hidden tab's content laid out (visibility: hidden), so the page
     # was as tall as the longest tab: a short tab scrolled into blank space.

@@ -21,16 +21,18 @@ if (!window.__windpumpUploads) {
     input.addEventListener(
       "change",
       (event) => {
-        // A wind record (its upload's host carries `wind_class`) may be larger than a lab file.
+        // A wind record or a site's weather (its upload's host carries `wind_class` or
+        // `site_class`) may be larger than a lab file.
         const host = input.getRootNode().host
         const wind = host != null && host.classList.contains(wind_class)
-        const limit = wind ? wind_max_bytes : max_bytes
+        const site = host != null && host.classList.contains(site_class)
+        const limit = wind || site ? wind_max_bytes : max_bytes
         const big = [...(input.files || [])].find((file) => file.size > limit)
         if (big == null) return
         event.stopImmediatePropagation()
         input.value = ""
         const model = channel()
-        const kind = wind ? "wind" : "lab"
+        const kind = site ? "site" : wind ? "wind" : "lab"
         if (model != null) model.value = `${big.size}\t${Date.now()}\t${kind}\t${big.name}`
       },
       true,

@@ -21,6 +21,7 @@ from windpump.wind import MAX_CSV_BYTES
 # A wind record is sent whole too: its limit stays below the ~15 MB that closes the connection.
 WIND_MAX_BYTES = min(MAX_CSV_BYTES, 10_000_000)
 WIND_CLASS = "wind-upload"
+SITE_CLASS = "site-upload"  # the Site tab's weather file: the wind record's limit
 
 UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
 CHANNEL_CLASS = "upload-refused"
@@ -46,8 +47,8 @@ for (const delay of [50, 300, 1000]) setTimeout(reveal, delay)
 
 
 class RefusedUploads(pn.widgets.TextInput):
-    """Hidden; the page writes ``"<bytes>\\t<time>\\t<lab|wind>\\t<name>"`` into it when it refuses
-    a file."""
+    """Hidden; the page writes ``"<bytes>\\t<time>\\t<lab|wind|site>\\t<name>"`` into it when it
+    refuses a file."""
 
     def __init__(self, **params):
         super().__init__(visible=False, css_classes=[CHANNEL_CLASS], **params)
@@ -61,8 +62,13 @@ class RefusedUploads(pn.widgets.TextInput):
     @property
     def wind(self) -> bool:
         """Whether the refused file was a wind record (else a lab torque file)."""
+        return self.kind == "wind"
+
+    @property
+    def kind(self) -> str:
+        """Which upload the refused file was chosen in: "lab", "wind" or "site"."""
         fields = self.value.split("\t")
-        return len(fields) > 2 and fields[2] == "wind"
+        return fields[2] if len(fields) > 2 and fields[2] in ("wind", "site") else "lab"
 
 
 def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
@@ -74,6 +80,7 @@ def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
                 max_bytes=max_bytes,
                 wind_max_bytes=WIND_MAX_BYTES,
                 wind_class=WIND_CLASS,
+                site_class=SITE_CLASS,
                 channel_class=CHANNEL_CLASS,
             ),
             code=UPLOADS_JS,

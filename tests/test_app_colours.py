@@ -101,6 +101,8 @@ def themed(app: Explorer, dark: bool) -> list:
     figures += [wind.curve, wind.day_wind, wind.day_speed, wind.day_litres]
     design_map.update(app.seen)
     figures += [design_map.figure]
+    site = app.site  # its year runs once opened
+    figures += [site.monthly, site.level, site.lolp]
     figures += [
         mechanisms.slider_crank.crank_figure,
         mechanisms.slider_crank.travel_figure,

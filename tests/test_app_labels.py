@@ -12,9 +12,12 @@ from windpump_app.explorer import Explorer
 
 def every_figure(app: Explorer) -> list:
     app.main().active = 2  # the Wind tab runs its day once opened
-    wind, design_map, mechanisms = app.wind, app.design_map, app.mechanisms
+    wind, design_map, mechanisms, site = app.wind, app.design_map, app.mechanisms, app.site
     design_map.update(app.seen)
     return [
+        site.monthly,
+        site.level,
+        site.lolp,
         *(view.figure for view in app.pump.views),
         wind.curve,
         wind.day_wind,

@@ -16,7 +16,7 @@ import pytest
 CORE = Path(__file__).resolve().parents[1] / "core" / "windpump"
 KERNELS = CORE / "_kernels"
 APP_LIBRARIES = {"panel", "bokeh", "param", "app"}
-STUDY_EXTRAS = {"pandas", "tqdm", "matplotlib", "dask", "distributed"}
+STUDY_EXTRAS = {"pandas", "tqdm", "matplotlib", "dask", "distributed", "pvlib"}
 KERNEL_LIBRARIES = {"numpy", "numba"}
 
 

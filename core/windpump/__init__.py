@@ -16,7 +16,7 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 (78.6, False)
 """
 
-from . import energy, labdata, linkage, playback, reciprocating, theory, units, wind
+from . import energy, labdata, linkage, playback, reciprocating, theory, units, weather, wind
 from .averaged import (
     averaged_stall_time,
     mean_lever_arm,
@@ -54,6 +54,8 @@ from .site import (
     wind_thresholds,
 )
 from .studies import Sweep, sweep
+from .weather import read_weather, sample_site
+from .wind import WindRecord
 from .windmill import (
     OperatingPoint,
     TorqueFit,
@@ -63,6 +65,7 @@ from .windmill import (
     windmill_power,
     windmill_torque,
 )
+from .yearly import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
 
 # The public names by topic, as the API reference (docs/api/index.rst) groups them.
 __all__ = [
@@ -83,6 +86,9 @@ __all__ = [
     # wind and site
     "wind_thresholds", "steady_flow", "water_per_day", "record_water", "run_in_wind",
     "WindRun", "WindEvents",
+    # a site's year: weather records, the tank, the supply
+    "WindRecord", "read_weather", "sample_site", "supply", "Supply", "MonthTable", "Totals",
+    "tank_for", "supply_map", "SupplyMap",
     # studies
     "design_map", "DesignMap", "sweep", "Sweep",
     # energy and playback
@@ -90,5 +96,5 @@ __all__ = [
     "playback_frames",
     "Playback", "piston_table", "crank_table", "CrankTable",
     # modules of their own
-    "energy", "labdata", "linkage", "playback", "reciprocating", "theory", "units", "wind",
+    "energy", "labdata", "linkage", "playback", "reciprocating", "theory", "units", "weather", "wind",
 ]  # fmt: skip

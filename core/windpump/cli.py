@@ -1,4 +1,5 @@
-"""The ``windpump`` command: simulate a design, map it, sweep a table of designs, serve the explorer.
+"""The ``windpump`` command: simulate a design, map it, sweep a table of designs, a year of water at
+a site (``supply``, ``tank``: :mod:`windpump.sitecli`), serve the explorer.
 
 Every command starts from the paper's example (``Design.seed_example``), or a design file
 (``--design FILE.json``, :meth:`Design.to_json`), with fields changed by ``--set NAME=VALUE``
@@ -106,6 +107,10 @@ def build_parser() -> argparse.ArgumentParser:
     sweeping.add_argument("--scheduler", metavar="ADDRESS", help="a dask.distributed scheduler")
     sweeping.add_argument("--csv", metavar="FILE", help="write the table here (default: stdout)")
     sweeping.set_defaults(run=sweep_command)
+
+    from .sitecli import add_commands
+
+    add_commands(commands, design_options)
 
     serve = commands.add_parser(
         "serve",

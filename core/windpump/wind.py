@@ -8,6 +8,7 @@ V linear between samples and held past the ends. The rotor's curve follows V(t) 
 
 from __future__ import annotations
 
+import dataclasses
 import datetime
 import math
 import numbers
@@ -18,7 +19,7 @@ import numpy as np
 
 from .errors import ParameterError, cut, shown
 from .labdata import LabDataError, _is_number, check_columns, read_rows, split_header
-from .validation import positive
+from .validation import positive, real
 
 MAX_RECORD = 10_000_000
 """Most samples a wind record may hold (a year at one sample every 3 s)."""
@@ -36,11 +37,100 @@ MAX_WIND = 150.0
 COLUMNS = "two columns: time [s] or an ISO timestamp, then wind speed [m/s]"
 
 
-class WindRecord(typing.NamedTuple):
-    """Wind speeds ``V`` [m/s] at times ``t`` [s] from the run's start (a tuple: ``t, V = record``)."""
+@dataclasses.dataclass(frozen=True, eq=False)
+class WindRecord:
+    """Wind speeds ``V`` [m/s] at times ``t`` [s] from the record's start, measured at ``height``
+    [m] at the site ``name``; it unpacks as the pair it extends, ``t, V = record``.
+
+    A frozen dataclass rather than a ``typing.NamedTuple``: the site's fields (``height``,
+    ``name``, ``month``) have defaults, yet iterating, indexing and ``len`` still see the pair
+    (t, V) only, so every caller written for the two-element record (``t, V = record``,
+    ``simulate(wind=record)``, :func:`as_record`) works unchanged; a NamedTuple with four fields
+    would unpack into four. Records compare by identity (their fields are arrays).
+
+    Attributes
+    ----------
+    t : ndarray
+        Times [s] from the record's start, increasing.
+    V : ndarray
+        Wind speeds [m/s], from 0 to ``MAX_WIND``.
+    height : float, default 10.0
+        Height of the anemometer above ground [m] (10 m: the meteorological standard).
+    name : str, default ""
+        The site's name.
+    month : ndarray or None, default None
+        The calendar month (1 to 12) each sample belongs to, when the record has dates (a weather
+        file's; for a file that labels each hour at its end, the month the hour lies in); None
+        for a record in seconds only (then :func:`windpump.supply` counts its months from 1
+        January of a year of 365 days).
+
+    Examples
+    --------
+    >>> record = WindRecord(np.array([0.0, 3600.0]), np.array([4.0, 6.0]), 10.0, "here")
+    >>> t, V = record
+    >>> V.tolist(), record.height, len(record)
+    ([4.0, 6.0], 10.0, 2)
+    >>> record.at_height(40.0).V.round(3).tolist()  # the 1/7 power law
+    [4.876, 7.314]
+    """
 
     t: np.ndarray
     V: np.ndarray
+    height: float = 10.0
+    name: str = ""
+    month: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        height = positive("height", self.height, "m")
+        if height > MAX_HEIGHT:
+            raise ParameterError("height", height, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
+        object.__setattr__(self, "height", height)
+
+    def __iter__(self) -> typing.Iterator[np.ndarray]:
+        return iter((self.t, self.V))
+
+    def __len__(self) -> int:
+        return 2
+
+    def __getitem__(self, index: int) -> np.ndarray:
+        return (self.t, self.V)[index]
+
+    def at_height(self, z: float, shear: float = 1.0 / 7.0) -> WindRecord:
+        """The record scaled to the height z [m] by the power law ``V (z / height)^shear``.
+
+        Parameters
+        ----------
+        z : float
+            The height wanted (a rotor's hub) [m], > 0 and at most 500.
+        shear : float, default 1/7
+            The wind shear exponent [-], from 0 to 1 (0.1 over open water, 1/7 over open land,
+            up to about 0.4 over towns and forests).
+
+        Returns
+        -------
+        WindRecord
+            The same times and months, at height z.
+        """
+        z = positive("z", z, "m")
+        if z > MAX_HEIGHT:
+            raise ParameterError("z", z, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
+        shear = real("shear", shear)
+        if not 0.0 <= shear <= 1.0:
+            raise ParameterError("shear", shear, "from 0 to 1", why="a wind shear exponent")
+        V = self.V * (z / self.height) ** shear
+        if V.size and V.max() > MAX_WIND:
+            raise ParameterError("z", z, f"a height where the winds stay <= {MAX_WIND:g} m/s", "m")
+        return dataclasses.replace(self, V=_read_only(V), height=z)
+
+
+MAX_HEIGHT = 500.0
+"""Highest hub or anemometer a record may be scaled to or from [m]."""
+
+
+def _read_only(values) -> np.ndarray:
+    array = np.array(values, dtype=float)
+    array.flags.writeable = False
+    return array
 
 
 def weibull_scale(mean: float, k: float) -> float:

@@ -1,0 +1,116 @@
+"""The Site tab's wind records: the two typical years pvlib ships, or a file uploaded (TMY3, EPW or
+the Wind tab's CSV, at most 10 MB: a bad file is explained and the record stays as it was), each
+at the hub height the tab asks for."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+
+import panel as pn
+
+import windpump
+from windpump.labdata import LabDataError, check_file_size
+
+from .site_inputs import SITES, UPLOADED
+from .styles import TEXT
+from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen
+
+WHAT = "a year of hourly weather (a TMY3 or EPW file is about 1.5 MB)"
+SUFFIXES = (".csv", ".epw", ".txt", ".tsv")
+
+
+@functools.lru_cache(maxsize=2)
+def sample(name: str) -> windpump.WindRecord:
+    """A typical year pvlib ships, read once for the server."""
+    return windpump.sample_site(name)
+
+
+@functools.lru_cache(maxsize=16)
+def sample_at(name: str, hub: float) -> windpump.WindRecord:
+    """A shipped year at the hub height [m], kept: a move of the demand reuses the same record."""
+    return sample(name).at_height(hub)
+
+
+def read_upload(data: bytes, filename: str) -> windpump.WindRecord:
+    """A weather file's record from an upload's bytes, named after the file when it names no
+    station (a CSV)."""
+    check_file_size(len(data), WIND_MAX_BYTES, what=WHAT)
+    if not data:
+        raise LabDataError("the file is empty")
+    record = windpump.read_weather(data)
+    if record.name:
+        return record
+    name = Path(filename).stem or "uploaded"
+    return windpump.WindRecord(record.t, record.V, record.height, name, record.month)
+
+
+class SiteRecords:
+    """The tab's records: ``at(site, hub)``; an upload's control and message (``controls``)."""
+
+    def __init__(self):
+        self.uploaded: windpump.WindRecord | None = None
+        self.uploaded_name = ""
+        self._at: tuple = ()  # (hub, the uploaded record at it)
+
+    def controls(self, message_class: str) -> tuple[pn.widgets.FileInput, pn.pane.Alert]:
+        self.upload = pn.widgets.FileInput(
+            accept=",".join(SUFFIXES),
+            css_classes=[SITE_CLASS],  # the page's size check knows it by this
+            stylesheets=TEXT,
+            sizing_mode="stretch_width",
+        )
+        self.message = pn.pane.Alert(
+            "", alert_type="danger", visible=False, stylesheets=TEXT, css_classes=[message_class]
+        )
+        return self.upload, self.message
+
+    def chosen(self) -> bytes | None:
+        return chosen(self.upload)
+
+    def at(self, site: str, hub: float) -> windpump.WindRecord:
+        """The site's record at the hub height [m]."""
+        if site != UPLOADED:
+            return sample_at(site, hub)
+        if self.uploaded is None:
+            raise ValueError("no file has been uploaded: choose one, or a site of the list")
+        if not self._at or self._at[0] != hub or self._at[1] is not self.uploaded:
+            self._at = (hub, self.uploaded, self.uploaded.at_height(hub))
+        return self._at[2]
+
+    def load(self, data: bytes, filename: str) -> bool:
+        """Read an uploaded file; True when it is the uploaded site now. A bad file is explained
+        in the message and nothing changes."""
+        try:
+            record = read_upload(data, filename)
+        except (LabDataError, ValueError) as error:
+            self.message.object = f"This weather file cannot be used: {error}"
+            self.message.visible = True
+            return False
+        self.uploaded, self.uploaded_name = record, record.name or Path(filename).stem
+        self.message.visible = False
+        return True
+
+    def refuse_size(self, size: int) -> None:
+        """The page stopped a file over the limit before sending it: say so."""
+        if size <= WIND_MAX_BYTES:
+            return  # not a size the page refuses: a tampered value
+        self.message.object = (
+            f"This weather file cannot be used: it has {size:,} bytes; at most "
+            f"{WIND_MAX_BYTES:,} are read ({WHAT})."
+        )
+        self.message.visible = True
+
+    def describe(self, site: str, hub: float, supplied) -> str:
+        """A line on the record and the year: where, how long, the mean wind at the hub."""
+        record = sample(site) if site != UPLOADED else self.uploaded
+        where = SITES.get(site, f"the uploaded file *{self.uploaded_name}*")
+        name = f" ({record.name})" if record is not None and record.name else ""
+        return f"**{where}**{name}, the hub at {hub:g} m. {supply_text(supplied)}"
+
+
+def supply_text(supplied) -> str:
+    """What the year's run says of itself: its starts, or why it never starts."""
+    if supplied.why:
+        return f"The pump never starts: {supplied.why}."
+    return f"The pump starts {supplied.starts} time(s) over the year."

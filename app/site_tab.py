@@ -1,0 +1,324 @@
+"""The Site tab: the design on the sliders at a site for a year, with a demand and a tank.
+
+A site's hourly wind (a record that ships with pvlib, or a TMY3, EPW or CSV file uploaded) at the
+hub height, run through the quasi-steady year of ``windpump.supply``: the water pumped and
+demanded month by month, the tank's level over the year, the loss-of-load probability against
+tank size (``windpump.supply_map``) with this tank marked, and the year's readouts. Every number
+comes from ``windpump``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+
+import numpy as np
+import panel as pn
+from bokeh.models import ColumnDataSource
+
+import windpump
+
+from .figures import palette
+from .keyboard import FOCUS_CSS
+from .readouts import Readout
+from .sidebar import PromptSlider
+from .site_figures import LOLP_TARGET, MONTHS, level_figure, lolp_figure, monthly_figure
+from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
+from .site_record import SiteRecords
+from .styles import CAPTION_CSS, TEXT
+from .tab import Tab
+from .views import refill
+
+log = logging.getLogger("windpump.app")
+
+SITE_READOUTS = {
+    "site_water": "Pumped · delivered [m³/year]",
+    "site_lolp": "Loss of load",
+    "dry_days": "Dry days",
+    "dry_spell": "Longest dry spell",
+    "tank_for_5": "Smallest tank for 5 %",
+}
+TANKS = 41  # tank sizes on the loss-of-load curve, over the tank slider's range
+SLOW = 0.3  # [s] a year that took longer is announced before it is computed again
+SITE_MESSAGE, SITE_NOTE = "site-message", "site-note"  # an upload's outcome (uploads.Reveal)
+CAPTION = (
+    "The design on the sliders in the site's hourly wind at the hub, hour by hour "
+    "(the quasi-steady year: in each hour's wind the pump runs as the averaged theory "
+    "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
+    "the loss-of-load probability is the share of the year's demand it could not "
+    "give, and a dry day one with any. Dashed: the tank's size, and 5 %."
+)
+
+
+def number_text(value: float, unit: str = "", digits: int = 1) -> str:
+    """A readout's number: "12.5 m³", "none" for inf (no tank on the curve is enough)."""
+    if math.isinf(value):
+        return "none can"
+    return f"{value:,.{digits}f}" + (f" {unit}" if unit else "")
+
+
+class SiteTab(Tab):
+    """The Site tab: ``inputs`` are the page's (the design), ``site`` the tab's own (in the
+    link); ``reveal`` scrolls an upload's outcome into view."""
+
+    title, waiting = "Site", "Computing the site's year…"
+
+    def __init__(self, inputs, site: SiteInputs, reveal, dark: bool = False):
+        super().__init__(dark)
+        self.inputs, self.site, self.reveal = inputs, site, reveal
+        self.design: windpump.Design | None = None  # at V_ref, of the page's latest run
+        self.records = SiteRecords()
+
+    def update(self, seen: windpump.Exploration) -> None:
+        self.design = self.inputs.design_at_v_ref()  # the page ran it: valid
+        super().update(seen)
+
+    def build(self) -> None:
+        self.colors = palette(self.dark)
+        self.sources: dict[str, ColumnDataSource] = {}
+        self.readouts = {name: Readout(name) for name in SITE_READOUTS}
+        self.monthly = monthly_figure(self.sources, self.colors)
+        self.level, self.tank_line = level_figure(self.sources, self.colors)
+        self.lolp, _target = lolp_figure(self.sources, self.colors)
+        for name, source in self.sources.items():
+            source.name = f"sitetab_{name}"  # for a browser: get_model_by_name
+        for name, fig in zip(("monthly", "level", "lolp"), self.figures(), strict=True):
+            fig.name = f"site_{name}_figure"
+        self._build_controls()
+        self.note = pn.pane.Markdown(
+            "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]
+        )
+        self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
+        self.computing = pn.pane.Alert(
+            "**Computing the year…**", alert_type="info", visible=False, stylesheets=TEXT
+        )
+        self.supplied: windpump.Supply | None = None  # the year drawn
+        self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
+        self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
+        self._took = 0.0  # [s] the last year's computation
+        self._drawn_site = ""
+        self._to_draw: tuple | None = None
+        self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
+
+    def _build_controls(self) -> None:
+        style = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
+        self.sliders = {
+            name: PromptSlider.from_param(self.site.param[name], format=fmt, **style)
+            for name, fmt in (("hub", "0.0"), ("demand", "0.0"), ("tank", "0.0"))
+        }
+        self.site_select = pn.widgets.Select(
+            label="Site", options={label: key for key, label in SITES.items()}, **style
+        )
+        self.restart = pn.widgets.Select(
+            label="Restart after a calm",
+            options={label: key for key, label in RESTARTS.items()},
+            **style,
+        )
+        for widget, name in ((self.site_select, "site"), (self.restart, "restart")):
+            follow(widget, self.site, name)
+        self.upload, self.upload_message = self.records.controls(SITE_MESSAGE)
+        self.upload.param.watch(
+            lambda *_e: self.load_data(self.records.chosen()), ["value", "filename"]
+        )
+
+    # -- updates -----------------------------------------------------------------------------
+
+    def draw(self, seen: windpump.Exploration) -> None:
+        """The year for the design and the site's inputs: at once if it is quick, else after the
+        page has said that it is being computed."""
+        if self.design is None:
+            return
+        asked = (self.design, *self.site.values().values())
+        document = pn.state.curdoc
+        served = document is not None and document.session_context is not None
+        # the first year is drawn at once (the tab says it is computing until it appears; empty
+        # figures would be sent otherwise); later a slow one, or a new site's, is announced
+        slow = self._took > SLOW or self.site.site != self._drawn_site
+        if served and self.supplied is not None and slow:
+            self.computing.visible = True
+            self._to_draw = asked
+            document.add_next_tick_callback(self._draw_latest)
+            return
+        self._year(self.design)
+
+    def _draw_latest(self) -> None:
+        asked, self._to_draw = self._to_draw, None
+        if asked is None or self.design is None:
+            return  # a later move's callback has drawn it already
+        try:
+            with pn.io.hold():
+                self._year(self.design)
+        except Exception as error:  # a bug: say so, log it, keep the session alive
+            log.exception("Site update failed")
+            self.failed(f"Something went wrong ({type(error).__name__}: {error}).")
+
+    def _year(self, design: windpump.Design) -> None:
+        start = time.perf_counter()
+        self.computing.visible = False
+        try:
+            record = self.records.at(self.site.site, self.site.hub)
+            rule = dict(restart=self.site.restart)
+            self._draw_curve(design, record, rule)
+            supplied = windpump.supply(design, record, self.site.demand, self.site.tank, **rule)
+        except ValueError as error:
+            self.failed(f"The year cannot be run: {error}")
+            return
+        self.error.visible = False
+        self.supplied, self._drawn_site = supplied, self.site.site
+        self._draw_year(supplied)
+        self._took = time.perf_counter() - start
+
+    def _draw_curve(self, design, record, rule: dict) -> None:
+        """The smallest tank for 5 %, and the loss-of-load probability over tanks up to a range
+        that shows the curve's knee; each recomputed only when what it depends on changed."""
+        asked = (design, record, self.site.demand, self.site.restart)
+        if asked != self._curve[:4]:
+            self.tank_5 = windpump.tank_for(design, record, self.site.demand, LOLP_TARGET, **rule)
+        top = self._tank_range()
+        if (*asked, top) == self._curve:
+            return
+        tanks = np.linspace(0.0, top, TANKS)
+        mapped = windpump.supply_map(
+            design, record, self.site.demand, [design.R_dagger], tanks, **rule
+        )
+        refill(self.sources["lolp"], {"tank": tanks, "lolp": 100 * mapped.lolp[:, 0]})
+        self.lolp.x_range.end = top
+        self._curve = (*asked, top)
+
+    def _tank_range(self) -> float:
+        """The curve's largest tank [m³]: twice this tank's, or 1.5 times the smallest for 5 %,
+        at least 20, rounded up to 10 and at most the slider's end (the curve's knee in view)."""
+        wanted = max(20.0, 2.0 * self.site.tank)
+        if math.isfinite(self.tank_5):
+            wanted = max(wanted, 1.5 * self.tank_5)
+        return min(self.site.param["tank"].bounds[1], 10.0 * math.ceil(wanted / 10.0))
+
+    def _draw_year(self, supplied) -> None:
+        monthly = supplied.monthly
+        refill(
+            self.sources["monthly"],
+            {
+                "month": [MONTHS[m - 1] for m in monthly.month],
+                "pumped": np.asarray(monthly.pumped),
+                "demand": np.asarray(monthly.demand),
+                "delivered": np.asarray(monthly.delivered),
+            },
+        )
+        days = np.arange(len(supplied.level)) / 24.0
+        x, lower, upper = daily_band(days, supplied.level)
+        refill(self.sources["level"], {"t": x, "lower": lower, "upper": upper})
+        self.tank_line.location = self.site.tank
+        refill(self.sources["lolp_here"], {"tank": [self.site.tank], "lolp": [100 * supplied.lolp]})
+        self._readouts(supplied)
+
+    def _readouts(self, supplied) -> None:
+        totals = supplied.totals
+        shown = {
+            "site_water": f"{totals.pumped:,.0f} · {totals.delivered:,.0f}",
+            "site_lolp": f"{100 * supplied.lolp:.1f} %",
+            "dry_days": f"{supplied.dry_days:d}",
+            "dry_spell": f"{supplied.longest_dry_spell:d} days",
+            "tank_for_5": number_text(self.tank_5, "m³"),
+        }
+        for name, value in shown.items():
+            self.readouts[name].show(SITE_READOUTS[name], value)
+        self.note.object = self.records.describe(self.site.site, self.site.hub, supplied)
+
+    def failed(self, message: str) -> None:
+        self.computing.visible = False
+        self.error.object = message
+        self.error.visible = True
+
+    # -- an uploaded record ------------------------------------------------------------------
+
+    def load_data(self, data: bytes | None) -> None:
+        """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
+        nothing changes. Either outcome is scrolled into view."""
+        if data is None:
+            return
+        if not self.records.load(data, self.upload.filename or ""):
+            self.reveal.show(SITE_MESSAGE)
+            return
+        options = {label: key for key, label in SITES.items()}
+        options[f"Uploaded: {self.records.uploaded_name}"] = UPLOADED
+        self.site_select.options = options
+        if self.site.site == UPLOADED:
+            self.redraw()  # a second file: the same choice, a new record
+        self.site.site = UPLOADED
+        self.reveal.show(SITE_NOTE)
+
+    def refuse_size(self, size: int) -> None:
+        """The page stopped a file over the limit before sending it: say so here."""
+        self.records.refuse_size(size)
+
+    # -- layout ------------------------------------------------------------------------------
+
+    def figures(self) -> list:
+        return [self.monthly, self.level, self.lolp]
+
+    def layout(self) -> pn.Column:
+        def caption(text: str):
+            return pn.pane.HTML(f"<p>{text}</p>", stylesheets=CAPTION_CSS)
+
+        flex = {"flex": "1 1 460px", "min-width": "300px"}
+        controls = pn.Column(
+            self.site_select,
+            self.sliders["hub"],
+            self.sliders["demand"],
+            self.sliders["tank"],
+            self.restart,
+            pn.pane.Markdown(
+                "**Your own site**: a TMY3 or EPW file, or a CSV of time, wind speed [m/s]",
+                stylesheets=TEXT,
+            ),
+            self.upload,
+            self.upload_message,
+            sizing_mode="stretch_width",
+            styles={"flex": "1 1 300px", "min-width": "280px"},
+        )
+
+        def boxed(fig, grow: int = 1):
+            return pn.Column(
+                pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+                sizing_mode="stretch_width",
+                styles={**flex, "flex": f"{grow} 1 460px"},
+            )
+
+        return pn.Column(
+            pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width"),
+            self.computing,
+            self.error,
+            self.note,
+            pn.FlexBox(
+                controls, boxed(self.monthly, 2), flex_wrap="wrap", sizing_mode="stretch_width"
+            ),
+            pn.FlexBox(
+                boxed(self.level), boxed(self.lolp), flex_wrap="wrap", sizing_mode="stretch_width"
+            ),
+            caption(CAPTION),
+            sizing_mode="stretch_width",
+        )
+
+
+def follow(widget, inputs, name: str) -> None:
+    """A choice widget and the input ``name`` of ``inputs`` kept equal, both ways."""
+    if getattr(inputs, name) in widget.options.values():
+        widget.value = getattr(inputs, name)
+    else:
+        inputs.param.update(**{name: widget.value})
+    widget.param.watch(lambda event: setattr(inputs, name, event.new), "value")
+    inputs.param.watch(lambda event: setattr(widget, "value", event.new), name)
+
+
+def daily_band(days: np.ndarray, values: np.ndarray):
+    """Each day's lowest and highest value (a year of hours: 365 points, under the figure's
+    pixels): (day's middle, lower, upper)."""
+    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
+    edges = np.searchsorted(days, np.arange(whole))
+    edges = np.unique(edges[edges < len(days)])
+    return (
+        days[edges] + 0.5,
+        np.minimum.reduceat(values, edges),
+        np.maximum.reduceat(values, edges),
+    )

@@ -1,0 +1,279 @@
+"""A site's year of wind from a weather file: TMY3 and EPW (read by pvlib, the optional extra
+``site``) or the wind CSV the Wind tab reads, and the two typical years pvlib ships.
+
+Typical meteorological years (TMY3, and EPW made from them) give one hour per line, 8760 lines,
+each labelled at the end of its hour (``01:00`` is the hour from midnight), each month taken from a
+different real year. A record keeps the times from its first hour [s], the wind speeds [m/s], the
+anemometer's height (10 m in these files) and the calendar month each hour lies in (the month of
+the hour's start: its label less one hour).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ParameterError
+from .labdata import LabDataError
+from .units import SECONDS_PER_HOUR
+from .wind import MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
+
+SITES = {"greensboro": "723170TYA.CSV", "sand_point": "703165TY.csv"}
+"""The typical years in pvlib's wheel (``pvlib/data``): Greensboro, North Carolina (mean wind
+about 3.1 m/s) and Sand Point, Alaska (about 5.1 m/s)."""
+
+TMY3_HEADER_LINES = 2
+"""Lines before a TMY3 file's first hour: the station's line and the columns' names."""
+
+EPW_HEADER_LINES = 8
+"""Lines before an EPW file's first hour (LOCATION, DESIGN CONDITIONS, ..., DATA PERIODS)."""
+
+EPW_MISSING_WIND = 999.0
+"""EPW's code for a missing wind speed."""
+
+ANEMOMETER = 10.0
+"""Height of the wind speeds in TMY3 and EPW files [m] (the meteorological standard)."""
+
+
+def pvlib_iotools():
+    """``pvlib.iotools``, or a ModuleNotFoundError naming the extra that installs it."""
+    try:
+        from pvlib import iotools
+    except ImportError:
+        raise ModuleNotFoundError(
+            "reading TMY3 and EPW weather files needs pvlib: pip install 'windpump[site]'"
+        ) from None
+    return iotools
+
+
+def sample_site(site: str) -> WindRecord:
+    """The typical year of wind at one of the sites whose TMY3 file pvlib ships.
+
+    Parameters
+    ----------
+    site : {"greensboro", "sand_point"}
+        Greensboro, North Carolina (TMY3 station 723170, mean wind about 3.1 m/s at 10 m) or
+        Sand Point, Alaska (703165, about 5.1 m/s).
+
+    Returns
+    -------
+    WindRecord
+        8760 hourly speeds at 10 m, with their months, named after the station.
+
+    Raises
+    ------
+    ParameterError
+        For another name.
+    ModuleNotFoundError
+        Without pvlib (``pip install 'windpump[site]'``).
+
+    Examples
+    --------
+    >>> record = sample_site("greensboro")
+    >>> len(record.t), round(float(record.V.mean()), 2), record.height
+    (8760, 3.05, 10.0)
+    """
+    if not isinstance(site, str) or site not in SITES:
+        raise ParameterError("site", site, "one of " + ", ".join(map(repr, SITES)))
+    iotools = pvlib_iotools()
+    import pvlib
+
+    path = Path(pvlib.__file__).parent / "data" / SITES[site]
+    return _tmy3(iotools, path.read_text(encoding="utf-8", errors="replace"), site)
+
+
+def read_weather(
+    source: str | os.PathLike | bytes, height: float | None = None, name: str | None = None
+) -> WindRecord:
+    """A wind record from a weather file: TMY3, EPW, or the Wind tab's two-column CSV.
+
+    TMY3 (a first line of 7 fields, the station's) is read by ``pvlib.iotools.read_tmy3``, EPW
+    (a first line ``LOCATION,...``, or a name ending in ``.epw``) by ``pvlib.iotools.read_epw``;
+    their speeds are at 10 m and every hour keeps its calendar month. Anything else is the
+    Wind tab's CSV (:func:`windpump.wind.read_csv`: time in seconds or ISO timestamps, then
+    speed), whose months are those of its timestamps (none for seconds). The file is read here
+    (at most ``MAX_CSV_BYTES``) and handed to pvlib as text, never as a name it could fetch.
+
+    Parameters
+    ----------
+    source : str, PathLike or bytes
+        The file, or its contents (an upload).
+    height : float, optional
+        The anemometer's height [m], > 0: the CSV's (10 m by default); a weather file's own is
+        10 m, which this replaces.
+    name : str, optional
+        The site's name; by default the station's (TMY3, EPW) or the file's stem (CSV; "" for
+        contents).
+
+    Returns
+    -------
+    WindRecord
+
+    Raises
+    ------
+    LabDataError
+        (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
+        included), an hour that repeats or is skipped (a gap); or a file that cannot be read.
+    ModuleNotFoundError
+        For TMY3 or EPW without pvlib (``pip install 'windpump[site]'``).
+
+    Examples
+    --------
+    >>> record = read_weather(b"2026-03-31T23:00,4.0\\n2026-04-01T00:00,5.5\\n", height=20.0)
+    >>> record.t.tolist(), record.month.tolist(), record.height
+    ([0.0, 3600.0], [3, 4], 20.0)
+    """
+    if height is not None:
+        height = _height(height)
+    data, stem, suffix = _contents(source)
+    text = data.decode("utf-8", errors="replace")
+    kind = _kind(text, suffix)
+    if kind == "csv":
+        record = read_csv(data)
+        months, lines = _csv_rows(data)
+        steps = np.diff(record.t)
+        for i in np.flatnonzero(steps > SECONDS_PER_HOUR)[:1]:
+            raise LabDataError(
+                f"a gap of {steps[i] / SECONDS_PER_HOUR:.4g} h after the line before "
+                "(a site's year needs a sample in every hour)",
+                lines[i + 1],
+            )
+        record = WindRecord(record.t, record.V, ANEMOMETER, stem, months)
+    else:
+        iotools = pvlib_iotools()
+        reader = _tmy3 if kind == "tmy3" else _epw
+        record = reader(iotools, text, stem or kind.upper())
+    return WindRecord(
+        record.t,
+        record.V,
+        record.height if height is None else height,
+        record.name if name is None else str(name),
+        record.month,
+    )
+
+
+def _contents(source) -> tuple[bytes, str, str]:
+    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``), its stem and suffix ("" for bytes)."""
+    if isinstance(source, bytes | bytearray):
+        data, stem, suffix = bytes(source), "", ""
+    else:
+        path = Path(source)
+        try:
+            with open(path, "rb") as file:
+                data = file.read(MAX_CSV_BYTES + 1)
+        except OSError as error:
+            raise LabDataError(f"cannot read {path}: {error.strerror or error}") from None
+        stem, suffix = path.stem, path.suffix.lower()
+    if len(data) > MAX_CSV_BYTES:
+        raise LabDataError(f"the file is over {MAX_CSV_BYTES:,} bytes")
+    return data, stem, suffix
+
+
+def _height(height: object) -> float:
+    from .validation import positive
+
+    value = positive("height", height, "m")
+    if value > MAX_HEIGHT:
+        raise ParameterError("height", value, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
+    return value
+
+
+def _kind(text: str, suffix: str) -> str:
+    """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name)."""
+    first = text.split("\n", 1)[0]
+    if first.upper().startswith("LOCATION,") or suffix == ".epw":
+        return "epw"
+    fields = first.strip().split(",")
+    if len(fields) == 7 and fields[0].strip().isdigit():
+        return "tmy3"
+    return "csv"
+
+
+def _tmy3(iotools, text: str, stem: str) -> WindRecord:
+    data, meta = _read(iotools.read_tmy3, text, map_variables=True)
+    station = str(meta.get("Name", "")).strip().strip('"').strip()
+    state = str(meta.get("State", "")).strip()
+    name = f"{station}, {state}" if station and state else station or stem
+    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES, labelled_at_end=True)
+
+
+def _epw(iotools, text: str, stem: str) -> WindRecord:
+    data, meta = _read(iotools.read_epw, text)
+    parts = [str(meta.get(key, "")).strip() for key in ("city", "state-prov", "country")]
+    name = ", ".join(part for part in parts if part and part != "-") or stem
+    speed = data["wind_speed"].to_numpy(dtype=float)
+    missing = np.flatnonzero(speed >= EPW_MISSING_WIND)
+    if missing.size:
+        line = EPW_HEADER_LINES + int(missing[0]) + 1
+        raise LabDataError(f"the wind speed is missing (EPW's {EPW_MISSING_WIND:g})", line)
+    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES, labelled_at_end=False)
+
+
+def _read(reader, text: str, **options):
+    """pvlib's reader on the file's text, its year coerced to one so the hours increase (a
+    typical year mixes years across months); its failures as a LabDataError."""
+    import io
+
+    try:
+        return reader(io.StringIO(text), coerce_year=2001, **options)  # not a leap year, as TMY
+    except (ValueError, KeyError, IndexError, TypeError) as error:
+        message = " ".join(str(error).split())[:200]
+        raise LabDataError(f"not a weather file pvlib can read: {message}") from None
+
+
+def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) -> WindRecord:
+    """The record of an hourly file, checked line by line. pvlib labels a TMY3 hour at its end
+    (as the file does: its month is the label's less an hour), an EPW hour at its start (it
+    takes an hour off the file's end label)."""
+    V = speed.to_numpy(dtype=float)
+    index = data.index
+    seconds = (index - index[0]).total_seconds().to_numpy(dtype=float)
+    for i in np.flatnonzero(~np.isfinite(V) | (V < 0.0) | (V > MAX_WIND))[:1]:
+        raise LabDataError(
+            f"the wind speed {V[i]!r} is not a number from 0 to {MAX_WIND:g} m/s",
+            header_lines + int(i) + 1,
+        )
+    steps = np.diff(seconds)
+    for i in np.flatnonzero(steps != SECONDS_PER_HOUR)[:1]:
+        what = "skips an hour or more" if steps[i] > 0 else "does not come after the line before"
+        raise LabDataError(f"the hour {index[i + 1]} {what}", header_lines + int(i) + 2)
+    month = ((index - _HOUR) if labelled_at_end else index).month.to_numpy(dtype=np.int8)
+    return WindRecord(_frozen(seconds), _frozen(V), ANEMOMETER, name, _frozen(month, np.int8))
+
+
+def _csv_rows(data: bytes) -> tuple[np.ndarray | None, list[int]]:
+    """The months of a CSV's ISO timestamps (None for times in seconds) and each sample's line:
+    re-read from its first column, which :func:`windpump.wind.read_csv` has checked."""
+    import datetime
+
+    from .labdata import read_rows, split_header
+    from .wind import COLUMNS, _time
+
+    rows = read_rows(data, MAX_CSV_BYTES, COLUMNS)
+    _header, rows = split_header(rows, lambda cell: _time(cell) is not None, COLUMNS)
+    moments = [_time(cells[0]) for _number, cells in rows]
+    lines = [number for number, _cells in rows]
+    if not moments or not isinstance(moments[0], datetime.datetime):
+        return None, lines
+    months = [moment.month for moment in moments]  # type: ignore[union-attr]
+    return _frozen(months, np.int8), lines
+
+
+def _frozen(values, dtype=float) -> np.ndarray:
+    array = np.array(values, dtype=dtype)
+    array.flags.writeable = False
+    return array
+
+
+class _Hour:
+    """One hour as pandas' Timedelta, made on first use (pandas is imported only with pvlib)."""
+
+    def __rsub__(self, index):
+        import pandas
+
+        return index - pandas.Timedelta(hours=1)
+
+
+_HOUR = _Hour()

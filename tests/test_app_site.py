@@ -1,0 +1,213 @@
+"""The Site tab in-process: its sources and readouts against windpump.supply for the same inputs,
+the link, uploads good and bad."""
+
+from __future__ import annotations
+
+import datetime
+import math
+from pathlib import Path
+
+import numpy as np
+import panel as pn
+import param
+import pytest
+
+import windpump
+from windpump_app.explorer import Explorer
+
+SEED = windpump.Design.seed_example()
+SITE_TAB = 4  # Wind pump, Mechanisms, Wind, Design map, Site
+
+
+@pytest.fixture
+def app():
+    explorer = Explorer()
+    explorer.main().active = SITE_TAB
+    return explorer
+
+
+def value(app, name):
+    html = app.site.readouts[name].object
+    return html.split(f'data-name="{name}">')[1].split("<")[0]
+
+
+def year(design=SEED, site="greensboro", hub=10.0, demand=10.0, tank=5.0, restart="attended"):
+    record = windpump.sample_site(site).at_height(hub)
+    return record, windpump.supply(design, record, demand, tank, restart=restart)
+
+
+def data(app, name):
+    return app.site.sources[name].data
+
+
+def check_drawn(app, supplied, tank: float) -> None:
+    """The tab's sources and readouts hold ``supplied``'s numbers (the year the core runs)."""
+    monthly = data(app, "monthly")
+    np.testing.assert_array_equal(monthly["pumped"], np.asarray(supplied.monthly.pumped))
+    np.testing.assert_array_equal(monthly["demand"], np.asarray(supplied.monthly.demand))
+    np.testing.assert_array_equal(monthly["delivered"], np.asarray(supplied.monthly.delivered))
+    # each day's lowest and highest level: the year's 8760 hours as 365 rows of 24
+    days = np.asarray(supplied.level).reshape(365, 24)
+    level = data(app, "level")
+    np.testing.assert_array_equal(level["lower"], days.min(axis=1))
+    np.testing.assert_array_equal(level["upper"], days.max(axis=1))
+    np.testing.assert_allclose(level["t"], np.arange(365) + 0.5)
+    here = data(app, "lolp_here")
+    assert here["tank"] == [tank] and here["lolp"] == [100 * supplied.lolp]
+    assert app.site.tank_line.location == tank
+    assert value(app, "site_lolp") == f"{100 * supplied.lolp:.1f} %"
+    assert value(app, "dry_days") == f"{supplied.dry_days:d}"
+    assert value(app, "dry_spell") == f"{supplied.longest_dry_spell:d} days"
+
+
+def test_opening_the_tab_runs_the_year_at_greensboro(app):
+    record, supplied = year()
+    check_drawn(app, supplied, 5.0)
+    totals = supplied.totals
+    assert value(app, "site_water") == f"{totals.pumped:,.0f} · {totals.delivered:,.0f}"
+    tanks = np.asarray(data(app, "lolp")["tank"])
+    np.testing.assert_allclose(tanks, np.linspace(0.0, tanks[-1], tanks.size))
+    mapped = windpump.supply_map(SEED, record, 10.0, [SEED.R_dagger], tanks, restart="attended")
+    np.testing.assert_allclose(data(app, "lolp")["lolp"], 100 * mapped.lolp[:, 0], rtol=1e-12)
+    smallest = windpump.tank_for(SEED, record, 10.0, 0.05, restart="attended")
+    assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
+    assert tanks[-1] >= 1.5 * smallest  # the curve reaches past the 5 % tank
+    assert "Greensboro" in app.site.note.object
+
+
+def test_every_control_moves_the_year(app):
+    app.site_inputs.param.update(site="sand_point", hub=20.0, demand=8.0, tank=25.0)
+    _, supplied = year(site="sand_point", hub=20.0, demand=8.0, tank=25.0)
+    check_drawn(app, supplied, 25.0)
+    app.site.sliders["demand"].value = 3.0  # the widgets are the inputs
+    assert app.site_inputs.demand == 3.0
+    app.site.site_select.value = "greensboro"
+    app.site.restart.value = "self"
+    _, supplied = year(hub=20.0, demand=3.0, tank=25.0, restart="self")
+    check_drawn(app, supplied, 25.0)
+
+
+def test_the_design_on_the_sliders_is_the_sites(app):
+    app.set_values(h=2.0, T_0=0.3)
+    _, supplied = year(design=SEED.with_ratios(h=2.0, T_0=0.3))
+    check_drawn(app, supplied, 5.0)
+    app.set_values(V=8.0)  # the steady wind: the same rotor, the same year
+    check_drawn(app, supplied, 5.0)
+
+
+def test_a_pump_that_never_starts_says_why(app):
+    app.site_inputs.restart = "self"  # T_0 = 0: no torque at rest
+    supplied = windpump.supply(SEED, windpump.sample_site("greensboro"), 10.0, 5.0, restart="self")
+    assert supplied.why
+    assert "never starts" in app.site.note.object
+
+
+def test_the_link_carries_every_control_and_a_tampered_value_is_ignored():
+    query = {"site": [b"sand_point"], "hub": [b"15"], "demand": [b"7.5"], "tank": [b"30"],
+             "restart": [b"self"], "T_0": [b"0.3"]}  # fmt: skip
+    app = Explorer(query=query)
+    assert app.site_inputs.values() == {
+        "site": "sand_point", "restart": "self", "hub": 15.0, "demand": 7.5, "tank": 30.0,
+    }  # fmt: skip
+    assert not app.notices.visible
+    linked = app.link_query()
+    for part in ("site=sand_point", "hub=15", "demand=7.5", "tank=30", "restart=self", "T_0=0.3"):
+        assert part in linked.split("&")
+    assert Explorer(query={"demand": [b"10"]}).link_query() == ""  # defaults left out
+    tampered = Explorer(query={"site": [b"atlantis"], "tank": [b"-1"], "demand": [b"2.04"]})
+    assert tampered.notices.visible
+    assert "Site (site) = “atlantis” ignored" in tampered.notices.object
+    assert "Tank [m³] (tank) = “-1” ignored" in tampered.notices.object
+    assert "taken as 2" in tampered.notices.object
+    assert tampered.site_inputs.site == "greensboro" and tampered.site_inputs.demand == 2.0
+    uploaded = Explorer(query={"site": [b"uploaded"]})
+    assert "upload it again" in uploaded.notices.object
+    reset = Explorer(query=query)
+    reset.reset()
+    assert reset.link_query() == ""
+
+
+class Location(param.Parameterized):
+    """What a served page's ``pn.state.location`` offers its link."""
+
+    search = param.String("")
+
+
+def test_the_page_link_follows_a_site_control():
+    app = Explorer()
+    location = Location()
+    app.follow_in_link(location)
+    app.site_inputs.tank = 20.0
+    assert location.search == "?tank=20"
+
+
+def hourly_csv(days: int, speed=lambda h: 5.0 + 2.0 * math.sin(h / 7.0)) -> bytes:
+    start = datetime.datetime(2026, 1, 1)
+    rows = "".join(
+        f"{start + datetime.timedelta(hours=h):%Y-%m-%dT%H:%M},{speed(h):.3f}\n"
+        for h in range(24 * days)
+    )
+    return ("time,V [m/s]\n" + rows).encode()
+
+
+def test_an_uploaded_file_is_the_site_and_a_bad_one_changes_nothing(app):
+    import pvlib  # the shipped Greensboro year, uploaded as a file
+
+    tmy3 = (Path(pvlib.__file__).parent / "data" / "723170TYA.CSV").read_bytes()
+    app.site.upload.param.update(value=tmy3, filename="greensboro.csv")
+    assert app.site_inputs.site == "uploaded" and not app.site.upload_message.visible
+    _, supplied = year()
+    check_drawn(app, supplied, 5.0)
+    assert "Uploaded" in " ".join(app.site.site_select.options)
+    drawn = value(app, "site_lolp"), np.array(data(app, "monthly")["pumped"])
+    for bad, said in (
+        (b"t,V\n0,5\n3600,-3\n", "line 3"),
+        (b"", "empty"),
+    ):
+        app.site.upload.param.update(value=bad, filename="bad.csv")
+        assert app.site.upload_message.visible and said in app.site.upload_message.object
+        assert app.site_inputs.site == "uploaded"
+        assert value(app, "site_lolp") == drawn[0]
+        np.testing.assert_array_equal(data(app, "monthly")["pumped"], drawn[1])
+    assert app.sidebar.reveal.value.split("\t")[0] in app.site.upload_message.css_classes
+
+
+def test_a_csv_of_timestamps_is_a_site_too(app):
+    app.site.upload.param.update(value=hourly_csv(60), filename="mast.csv")
+    assert app.site_inputs.site == "uploaded", app.site.upload_message.object
+    assert "mast" in app.site.note.object
+    assert len(data(app, "level")["t"]) == 60
+    assert data(app, "monthly")["month"] == ["Jan", "Feb", "Mar"]  # the months it holds
+
+
+def test_a_file_the_page_refused_is_reported_in_the_site_tab(app):
+    app.sidebar.refused_upload.value = f"{12_000_000}\t1\tsite\tyear.epw"
+    message = app.site.upload_message
+    assert message.visible and "12,000,000 bytes" in message.object
+    assert not app.wind_tab.built and not app.sidebar.lab.message.visible
+    assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
+
+
+def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monkeypatch):
+    """Served, a year that took long last time (or a new site) is said first ("Computing the
+    year…") and computed in the next tick; the first year is drawn at once."""
+    from bokeh.document import Document
+
+    document = Document()
+    document._session_context = lambda: object()  # as a served session's document
+    ticks = []
+    monkeypatch.setattr(document, "add_next_tick_callback", ticks.append)
+    monkeypatch.setattr(pn.state, "_curdoc", pn.state._curdoc)
+    pn.state.curdoc = document
+    try:
+        lolp = value(app, "site_lolp")
+        app.site_inputs.site = "sand_point"
+        assert app.site.computing.visible and value(app, "site_lolp") == lolp  # said, not done
+        ticks.pop()()
+        assert not app.site.computing.visible
+        _, supplied = year(site="sand_point")
+        check_drawn(app, supplied, 5.0)
+        app.site_inputs.demand = 9.0  # quick, and the same site: at once
+        assert ticks == [] and not app.site.computing.visible
+    finally:
+        pn.state.curdoc = None

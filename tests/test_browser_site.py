@@ -1,0 +1,90 @@
+"""The Site tab as a student meets it: served, in Debian's chromium, driven by playwright."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+from test_browser import ARTIFACTS, SIZES, open_page, press, text, wait_for_readout
+from test_layout import CANVAS_TEXT, SCROLLS
+
+import windpump
+
+from served import DEEP_TEXT
+
+pytestmark = pytest.mark.browser
+
+SEED = windpump.Design.seed_example()
+QUERY = "(name) => new URLSearchParams(location.search).get(name)"
+SITE_FIGURES = ("monthly", "level", "lolp")
+
+
+def site_readouts(demand: float, tank: float = 5.0) -> dict[str, str]:
+    """The readouts the tab shows for the paper's design at Greensboro, attended (the core's)."""
+    record = windpump.sample_site("greensboro").at_height(10.0)
+    year = windpump.supply(SEED, record, demand, tank, restart="attended")
+    return {
+        "site_lolp": f"{100 * year.lolp:.1f} %",
+        "dry_days": f"{year.dry_days:d}",
+        "dry_spell": f"{year.longest_dry_spell:d} days",
+    }
+
+
+def test_the_site_tab_shows_the_year_and_follows_the_demand(browser, url):
+    page = open_page(browser, url, width=1280, height=720, query="?demand=12")
+    try:
+        page.get_by_role("tab", name="Site").click()
+        for name, shown in site_readouts(12.0).items():
+            wait_for_readout(page, name, shown)
+        bars = "() => window.Bokeh.documents[0].get_model_by_name('sitetab_monthly').data.pumped"
+        assert len(page.evaluate(bars)) == 12
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "site_1280x720.png"))
+        before = text(page, "site_lolp")
+
+        press(page, "Demand [m³/day]", "ArrowRight", 5)  # 12.0 -> 12.5
+        page.wait_for_function(f"() => ({QUERY})('demand') === '12.5'", timeout=60_000)
+        expected = site_readouts(12.5)
+        for name, shown in expected.items():
+            wait_for_readout(page, name, shown)
+        assert expected["site_lolp"] != before
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_weather_file_over_the_limit_is_refused_in_the_page(browser, url):
+    """The page's size check (uploads.js) knows the Site tab's upload: 10 MB, said in the tab."""
+    page = open_page(browser, url)
+    try:
+        page.get_by_role("tab", name="Site").click()
+        page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
+        huge = {"name": "huge.epw", "mimeType": "text/plain", "buffer": b"0,5\n" * 3_000_000}
+        page.locator(".site-upload input[type=file]").set_input_files(files=[huge])
+        page.get_by_text("This weather file cannot be used: it has 12,000,000 bytes").wait_for(
+            timeout=60_000
+        )
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+@pytest.mark.parametrize("query", ["", "?presentation=true&theme=dark"])
+def test_the_site_tab_fits_every_screen(browser, url, width, height, query):
+    """Nothing scrolls sideways and no figure's title or axis label is cut; a screenshot of each."""
+    page = open_page(browser, url, width, height, query)
+    try:
+        page.get_by_role("tab", name="Site").click()
+        page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
+        time.sleep(1.0)  # the figures' layout settles after their data
+        sideways = [(s, extra) for s, extra in page.evaluate(SCROLLS) if extra > 0]
+        assert sideways == [], f"sideways scrolling at {width}×{height}{query}: {sideways}"
+        cut = {n: page.evaluate(CANVAS_TEXT, f"site_{n}_figure") for n in SITE_FIGURES}
+        assert {n: c for n, c in cut.items() if c} == {}
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        theme = "dark" if "dark" in query else "light"
+        page.screenshot(path=str(ARTIFACTS / f"site_{theme}_{width}x{height}.png"))
+        assert page.problems == []
+    finally:
+        page.close()

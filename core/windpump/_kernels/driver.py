@@ -528,6 +528,39 @@ def leak_cut(theta_i, h, leak_kink):
     return h, False
 
 
+@kernel
+def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
+                 segment, machine):  # fmt: skip
+    """A sub-step from theta_i that passed a wind record's kink, taken again only as far as it,
+    from where the step's continuous extension puts the kink's time (the rest of the segment
+    follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
+    h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
+    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
+    ok, y, k7, err, dense = dp5_step(
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment, machine
+    )
+    return ok, y, k7, err, dense, h_step
+
+
+@inline_kernel
+def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, kink, m,
+                  width, h, machine):  # fmt: skip
+    """The state after sub-step i, accepted, to theta_new: (u_free, t, W, theta, u, theta_dot,
+    k1, the worst scaled error so far, i + 1, kink, m, ON_KINK or SPLIT_DONE). Past a kink (up to
+    round-off in its time) the run goes on from there in a new split: past a wind record's, of m
+    sub-steps from the errors so far; a leak's keeps m (the split before it may be a segment's
+    short tail)."""
+    theta_dot = math.sqrt(2.0 * u_new / inertia_ratio(theta_new, machine))
+    worst = max(worst, scaled)
+    status = SPLIT_DONE
+    if at_kink:
+        if at_wind_kink:
+            kink = next_kink(max(y[2], kink), machine.wind)
+            m = next_split_size(width, h, worst)
+        status = ON_KINK
+    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i + 1, kink, m, status
+
+
 @inline_kernel
 def after_split(status, i, m_seg, full, m, width, h, worst, segment):
     """After a split's sub-steps: on to the next segment when they all were taken (m from their
@@ -591,14 +624,10 @@ def in_angle(
             )
             steps += 1
             at_wind_kink = ok and kink < y[2] <= t_end
-            if at_wind_kink:  # V(t) has a kink inside: take the sub-step only as far as it, from
-                # where the step's continuous extension puts the kink's time (the rest of the
-                # segment follows in smaller sub-steps)
-                h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-                stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
-                ok, y, k7, err, dense = dp5_step(
-                    ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment,
-                    machine,
+            if at_wind_kink:  # V(t) has a kink inside: the sub-step goes only as far as it
+                ok, y, k7, err, dense, h_step = step_to_kink(
+                    kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
+                    segment, machine,
                 )  # fmt: skip
                 steps += 1
                 at_kink = True
@@ -628,18 +657,11 @@ def in_angle(
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
                     dense,
                 )  # fmt: skip
-            u_free, t, W, theta = y[0], y[2], y[3], theta_new
-            u = u_new
-            theta_dot = math.sqrt(2.0 * u / inertia_ratio(theta, machine))
-            k1 = k7
-            worst = max(worst, scaled)
-            i += 1
-            if at_kink:  # past it, up to round-off in its time: on from here in a new split
-                if at_wind_kink:
-                    kink = next_kink(max(t, kink), machine.wind)
-                    m = next_split_size(width, h, worst)
-                # (a leak's kink keeps m: the split before it may be a segment's short tail)
-                status = ON_KINK
+            u_free, t, W, theta, u, theta_dot, k1, worst, i, kink, m, status = past_sub_step(
+                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, kink, m, width, h,
+                machine,
+            )  # fmt: skip
+            if status == ON_KINK:
                 break
         segment, full, m = after_split(status, i, m_seg, full, m, width, h, worst, segment)
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):

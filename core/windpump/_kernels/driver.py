@@ -17,7 +17,7 @@ import numpy as np
 
 from .dopri5 import NODES, dense_value, step_factor
 from .jit import inline_kernel, kernel
-from .model import delivered_strokes, flow_factor, segment_at, segment_start
+from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
     ROW,
     conservative_torque,
@@ -506,6 +506,17 @@ def record_end(out, n, t, theta, theta_dot, W, segment, machine):
 
 
 @inline_kernel
+def without_wind(machine):
+    """The machine without its wind record: what the loads, masses and tolerances need, with no
+    arrays (an array passed to an inlined kernel is one more reference, counted on every call)."""
+    return Machine(
+        machine.R_dagger, machine.T_m, machine.T_0, machine.omega_m, machine.inv_I_eff,
+        machine.load_torque, machine.L_over_R, machine.cylinders, machine.double_acting, None,
+        machine.real,
+    )  # fmt: skip
+
+
+@inline_kernel
 def split_of(m, full, theta, width, n_per_stroke, sample_dt, segment, machine):
     """Split the rest of the segment, from theta to its end, into m_seg equal sub-steps h long
     (m over a full segment ``width`` long), their stage values tabulated or not. Returns (end,
@@ -543,10 +554,10 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
 
 
 @inline_kernel
-def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, kink, m,
-                  width, h, machine):  # fmt: skip
+def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h,
+                  machine):  # fmt: skip
     """The state after sub-step i, accepted, to theta_new: (u_free, t, W, theta, u, theta_dot,
-    k1, the worst scaled error so far, i + 1, kink, m, ON_KINK or SPLIT_DONE). Past a kink (up to
+    k1, the worst scaled error so far, i + 1, m, ON_KINK or SPLIT_DONE). Past a kink (up to
     round-off in its time) the run goes on from there in a new split: past a wind record's, of m
     sub-steps from the errors so far; a leak's keeps m (the split before it may be a segment's
     short tail)."""
@@ -555,10 +566,9 @@ def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_ki
     status = SPLIT_DONE
     if at_kink:
         if at_wind_kink:
-            kink = next_kink(max(y[2], kink), machine.wind)
             m = next_split_size(width, h, worst)
         status = ON_KINK
-    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i + 1, kink, m, status
+    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i + 1, m, status
 
 
 @inline_kernel
@@ -586,9 +596,10 @@ def in_angle(
     segment's end and its grid index)."""
     t_end, rtol, max_steps = limits
     strokes_table, flow_table, work_table, inertia_table = at_grid
+    calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
-            m, full, theta, width, n_per_stroke, sample_dt, segment, machine
+            m, full, theta, width, n_per_stroke, sample_dt, segment, calm
         )
         if use_table and not built[parity, m_seg]:
             tabulate_segment(parity, m_seg, machine, tables, row_tables, built)
@@ -600,7 +611,7 @@ def in_angle(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
         k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
-        leak = leak_kinks(theta, theta_dot, width, segment, machine, leak[0], leak[1], leak[2])
+        leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
         first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
         while i < m_seg:
             if steps >= max_steps:
@@ -612,7 +623,7 @@ def in_angle(
             else:
                 aux, rows = scratch, scratch_rows
                 stage_values(theta_i, h, segment, machine, aux, rows)
-            if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, machine):
+            if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
                 break
             h_step, at_kink = leak_cut(theta_i, h, leak[0])
@@ -631,7 +642,7 @@ def in_angle(
                 )  # fmt: skip
                 steps += 1
                 at_kink = True
-            scaled = scaled_error(err, y, t, u, rtol, width, machine)
+            scaled = scaled_error(err, y, t, u, rtol, width, calm)
             if y[2] > t_end:
                 status = IN_TIME  # the sub-step would pass t_end: go on in time
                 break
@@ -641,7 +652,7 @@ def in_angle(
             last = i == m_seg - 1 and not at_kink
             theta_new, work = sub_step_end(
                 last, end, end_work[parity], theta_i, h_step, use_table and not at_kink, aux[6],
-                segment, machine,
+                segment, calm,
             )  # fmt: skip
             u_new = y[0] + work
             if sample_dt is not None:
@@ -657,10 +668,11 @@ def in_angle(
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
                     dense,
                 )  # fmt: skip
-            u_free, t, W, theta, u, theta_dot, k1, worst, i, kink, m, status = past_sub_step(
-                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, kink, m, width, h,
-                machine,
-            )  # fmt: skip
+            u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
+                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h, calm
+            )
+            if at_wind_kink:
+                kink = next_kink(max(t, kink), machine.wind)
             if status == ON_KINK:
                 break
         segment, full, m = after_split(status, i, m_seg, full, m, width, h, worst, segment)

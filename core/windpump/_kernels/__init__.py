@@ -109,7 +109,7 @@ def run(
     from . import driver
     from .stepping import START, STOP
 
-    out, n, outcome, steps, events, count = driver.integrate(
+    ran = driver.integrate(
         machine,
         theta0,
         theta_dot0,
@@ -120,9 +120,10 @@ def run(
         max_steps,
         capacity,
     )
+    out, n = ran.out, ran.samples
     t, theta, theta_dot, strokes, flow, work = (out[row, :n].copy() for row in range(driver.ROWS))
     real = [out[row, :n].copy() for row in range(driver.ROWS, out.shape[0])]
-    times, kinds = events[0, :count], events[1, :count]
+    times, kinds = ran.events[0, : ran.event_count], ran.events[1, : ran.event_count]
     return KernelRun(
         t,
         theta,
@@ -130,8 +131,8 @@ def run(
         work,
         strokes,
         flow,
-        int(outcome),
-        int(steps),
+        int(ran.outcome),
+        int(ran.steps),
         stops=times[kinds == STOP].copy(),
         starts=times[kinds == START].copy(),
         leaked=real[0] if real else None,

@@ -11,12 +11,13 @@ would pass t_end, the run goes on in time as far as the next grid angle or switc
 from __future__ import annotations
 
 import math
+import typing
 
 import numpy as np
 
 from .dopri5 import NODES, dense_value, step_factor
-from .jit import kernel
-from .model import delivered_strokes, flow_factor, segment_at, segment_start
+from .jit import inline_kernel, kernel
+from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
     ROW,
     conservative_torque,
@@ -256,80 +257,353 @@ def note_event(events, count, t, kind):
     return events, count + 1
 
 
-@kernel
-def integrate(
-    machine, theta0, theta_dot0, t_end, n_per_stroke, sample_dt, rtol, max_steps, capacity
-):
-    """Integrate Eq. (12) from (theta0, theta_dot0) at t = 0 up to t_end or a stop.
+class Run(typing.NamedTuple):
+    """What :func:`integrate` returns."""
 
-    Samples go on the grid of angles g pi / n_per_stroke or, when sample_dt is a number (not
-    None: each grid compiles its own specialisation), of times j sample_dt. In a wind record a crank that comes to rest waits (:func:`~.stepping.next_start`)
-    and the run goes on to t_end. Returns (out, samples, outcome, steps, events, event count):
-    ``out[:, :samples]`` holds, by rows T ... FLOW_FACTOR, the start, the grid samples and the
-    end; ``events[:, :count]`` the times (row 0) of every STOP and START (row 1).
-    """
-    width = math.pi / machine.cylinders
-    period = 2 * n_per_stroke
-    delta = math.pi / n_per_stroke
-    waits = has_record(machine.wind)  # a resting crank waits for the wind, to t_end
-    per_revolution = faces(machine)
-    strokes_table, flow_table, work_table, inertia_table = grid_tables(n_per_stroke, machine)
+    out: np.ndarray  # out[:, :samples]: by rows T ... FLOW_FACTOR (and WORK on), every sample
+    samples: int  # the start, the grid samples and the end
+    outcome: int  # REACHED_T_END, STALLED, RESTING or OVER_BUDGET
+    steps: int  # Dormand-Prince steps taken, rejected ones included
+    events: np.ndarray  # events[:, :event_count]: the time (row 0) of every STOP and START (row 1)
+    event_count: int
+
+
+class Limits(typing.NamedTuple):
+    """Where a run stops and how closely it follows Eq. (12)."""
+
+    t_end: float  # [s]
+    rtol: float  # the steps' relative tolerance [-]
+    max_steps: int  # Dormand-Prince steps at most (then OVER_BUDGET)
+
+
+class Grid(typing.NamedTuple):
+    """The output grid of crank angles g delta."""
+
+    delta: float  # pi / n_per_stroke [rad]
+    period: int  # grid angles per revolution, 2 n_per_stroke
+    per_revolution: int  # stroke volumes delivered per revolution (:func:`faces`)
+
+
+# How a split's sub-steps ended (:func:`in_angle`): every one taken; one failed (a finer
+# split follows); one landed on a kink (a new split from there); theta is a poor variable (on in
+# time); the step budget ran out.
+SPLIT_DONE, REFINED, ON_KINK, IN_TIME, OUT_OF_STEPS = range(5)
+
+
+@inline_kernel
+def sub_step_tables(machine):
+    """Room for the stage values (:func:`stage_values`) of every split of a segment of either
+    parity into up to MAX_TABLED_SUBSTEPS sub-steps, none built yet (:func:`tabulate_segment`),
+    and Lambda at the end of a segment of each parity."""
     tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 8))
     row_tables = np.empty((2, MAX_TABLED_SUBSTEPS + 1, MAX_TABLED_SUBSTEPS, 7, ROW))
     built = np.zeros((2, MAX_TABLED_SUBSTEPS + 1), dtype=np.bool_)
-    end_work = (  # Lambda at the end of a segment of each parity
+    end_work = (
         conservative_work(segment_start(1, machine), 0, machine),
         conservative_work(segment_start(2, machine), 1, machine),
     )
+    return tables, row_tables, built, end_work
 
-    scratch = np.empty(8)  # the stage values of a sub-step off the tables
-    scratch_rows = np.empty((7, ROW))
-    out = np.empty((ROWS - 1 + work_rows(machine), max(capacity, 2)))
-    events = np.empty((2, 8))
-    count = 0
-    t, theta, W = 0.0, theta0, zero_work(machine)
-    theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
-    u = kinetic(theta, theta_dot, machine)
-    segment = first_segment(theta0, machine)
-    n = record_anywhere(out, 0, t, theta, theta_dot0, W, segment, machine, False)
-    j = 1  # the next time sample is j * sample_dt
-    steps = 0
-    if theta_dot0 <= 0.0:
-        start = next_start(0.0, theta0, segment, machine) if waits else 0.0
-        if not moves_from_rest(start, theta0, segment, machine) or start >= t_end:
-            if not waits:
-                return out, n, STALLED, 0, events, count
-            out, n, j = record_rest(out, n, j, sample_dt, 0.0, t_end, theta, W, segment, machine)
-            return out, n, RESTING, 0, events, count
-        if start > 0.0:
-            out, n, j = record_rest(out, n, j, sample_dt, 0.0, start, theta, W, segment, machine)
-        t = start
-        events, count = note_event(events, count, t, START)
 
-    g = int(math.floor(theta0 / delta)) + 1  # the next grid angle to sample is g * delta
+@inline_kernel
+def start_from_rest(out, n, j, sample_dt, theta0, t_end, W, segment, machine, events, count):
+    """A run from rest at theta0: it moves at once, or in a wind record when the wind can turn it
+    (resting until then), or never. Returns (outcome, out, n, j, t, events, count): the outcome
+    STALLED or RESTING when the run ends here, else -1 and the time the crank starts."""
+    waits = has_record(machine.wind)  # a resting crank waits for the wind, to t_end
+    start = next_start(0.0, theta0, segment, machine) if waits else 0.0
+    if not moves_from_rest(start, theta0, segment, machine) or start >= t_end:
+        if not waits:
+            return STALLED, out, n, j, 0.0, events, count
+        out, n, j = record_rest(out, n, j, sample_dt, 0.0, t_end, theta0, W, segment, machine)
+        return RESTING, out, n, j, 0.0, events, count
+    if start > 0.0:
+        out, n, j = record_rest(out, n, j, sample_dt, 0.0, start, theta0, W, segment, machine)
+    events, count = note_event(events, count, start, START)
+    return -1, out, n, j, start, events, count
+
+
+@inline_kernel
+def first_grid_index(theta0, delta):
+    """The first grid angle g delta past theta0, by its index g."""
+    g = int(math.floor(theta0 / delta)) + 1
     if g * delta <= theta0:  # theta0 sits on a grid angle, up to round-off
         g += 1
-    kink = next_kink(t, machine.wind)  # steps land on the wind record's samples
-    m = FIRST_SUBSTEPS  # sub-steps per segment
-    # Whether theta is where the segment starts: tracked, not compared (fastmath may round
-    # (j + 1) pi/n and j pi/n differently).
-    full = theta == segment_start(segment, machine)
-    leak_kink = later_kink = math.inf
-    kink_segment = -1
+    return g
+
+
+@inline_kernel
+def end_grid_index(segment, n_per_stroke, sample_dt, machine):
+    """The grid index of the segment's end, when the end is a grid angle (else -1, as always on
+    a time grid)."""
+    ends = (segment + 1) * n_per_stroke
+    end_grid = ends // machine.cylinders if ends % machine.cylinders == 0 else -1
+    if sample_dt is not None:
+        end_grid = -1  # no grid angles on a time grid
+    return end_grid
+
+
+@inline_kernel
+def leak_kinks(theta, theta_dot, width, segment, machine, leak_kink, later_kink, kink_segment):
+    """The next angles where a face starts or stops delivering through its hole: found for a
+    segment at its first speed, used as the run passes them (a landing is up to round-off).
+    Returns (the next, the one after, the segment they are of)."""
+    if kink_segment != segment:
+        leak_kink, later_kink = next_leak_kink(theta, theta_dot, segment, machine)
+        kink_segment = segment
+    elif theta >= leak_kink - 1e-9 * width:
+        leak_kink, later_kink = later_kink, math.inf
+    return leak_kink, later_kink, kink_segment
+
+
+@inline_kernel
+def near_rest(k1, torque, h, theta_i, g, delta, sample_dt, u, machine):
+    """Whether u may change by more than itself before the next grid angle (on a time grid, as
+    far as a grid angle would be: pi / n_per_stroke): theta_dot is near 0, where theta is
+    singular (dt/dtheta = 1/theta_dot) but time is not, and the run goes on in time."""
+    reach = max(h, delta if sample_dt is not None else g * delta - theta_i)
+    return abs(k1[0] + torque * machine.inv_I_eff) * reach >= u
+
+
+@inline_kernel
+def scaled_error(err, y, t, u, rtol, width, machine):
+    """A sub-step's error, scaled: at most 1 to accept it. u against rtol, the time against
+    TIME_RTOL_FACTOR rtol of the step's duration, the leaked volume against :func:`leak_scale`."""
+    return max(
+        abs(err[0]) / (rtol * u),
+        abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
+        abs(err[3]) / (rtol * leak_scale(width, machine)),  # (0 for the ideal machine)
+    )
+
+
+@inline_kernel
+def finer_split(ok, scaled, h_step, width, m):
+    """After a failed sub-step: (REFINED, the sub-steps of a full segment from now on), or
+    (IN_TIME, m) when sub-steps that fine no longer suit theta."""
+    needed = width / (h_step * (step_factor(scaled) if ok else 0.25))
+    if needed > MAX_SUBSTEPS:
+        return IN_TIME, m
+    return REFINED, max(m + 1, int(math.ceil(needed)))
+
+
+@inline_kernel
+def next_split_size(width, h, worst):
+    """Sub-steps of a full segment, from the worst scaled error of sub-steps h long."""
+    return min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
+
+
+@inline_kernel
+def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment, machine):
+    """Where a sub-step ends and the conservative work there: the segment's end, exactly, after
+    its last sub-step; else from the tables (``aux``) when the step was the tabulated one."""
+    if last:
+        return end, end_work
+    theta_new = theta_i + h_step
+    work = tabled if at_table else conservative_work(theta_new, segment, machine)
+    return theta_new, work
+
+
+@kernel
+def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
+                       inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
+                       dense):  # fmt: skip
+    """Samples at the grid angles g delta a sub-step from (theta_i, t, W) to (theta_new, y)
+    passed, from its continuous extension; the segment's end is a grid angle by index, whatever
+    the round-off in g delta, of the :class:`Grid` (``at_grid`` holds :func:`grid_tables`).
+    Returns (out, n, the next g)."""
+    delta, period, per_revolution = grid
+    while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
+        row = g % period
+        if g == end_grid:
+            u_g, t_g, W_g = u_new, y[2], y[3]
+        else:
+            sigma = (g * delta - theta_i) / h_step
+            u_g = work_table[row] + dense_value(sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step)
+            t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
+            W_g = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
+        strokes = (g // period) * per_revolution + strokes_table[row]
+        theta_dot_g = math.sqrt(2.0 * u_g / inertia_table[row])
+        n = record(out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False)
+        g += 1
+    return n, g
+
+
+@inline_kernel
+def wait_for_wind(out, n, j, sample_dt, t, theta, W, t_end, segment, machine, events, count):
+    """A crank that stalled at t in a wind record rests until the wind can turn it again (or to
+    t_end). Returns (RESTING or -1: it moves again, out, n, j, the time it starts, events,
+    count)."""
+    events, count = note_event(events, count, t, STOP)
+    start = next_start(t, theta, segment, machine)
+    rest_end = min(start, t_end)
+    out, n, j = record_rest(out, n, j, sample_dt, t, rest_end, theta, W, segment, machine)
+    if start >= t_end:
+        return RESTING, out, n, j, start, events, count
+    events, count = note_event(events, count, start, START)
+    return -1, out, n, j, start, events, count
+
+
+@inline_kernel
+def time_stretch(out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, end, end_grid,
+                 limits, grid, at_grid, sample_dt, segment, machine, events, count):  # fmt: skip
+    """On in time (:func:`~.stepping.advance_in_time`) as far as the next grid angle or switch
+    (or sample time, or wind kink), where the run goes on, or to a stop or the end. Returns
+    (the run's outcome or -1, out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full,
+    segment, events, count)."""
+    t_end, rtol, max_steps = limits
+    delta, period, per_revolution = grid
+    target = end if g == end_grid or sample_dt is not None else min(g * delta, end)
+    until = min(t_end, kink)
+    if sample_dt is not None:
+        until = min(until, j * sample_dt)
+    outcome, t, theta, theta_dot, W, used = advance_in_time(
+        t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps
+    )
+    steps += used
+    out = with_room(out, n, 1)
+    if outcome == REACHED_T_END and t < t_end:  # a sample time or a kink
+        if sample_dt is not None and t == j * sample_dt:
+            n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, False)
+            j += 1
+        if t == kink:
+            kink = next_kink(t, machine.wind)
+        u, full, outcome = kinetic(theta, theta_dot, machine), False, -1
+    elif outcome == STALLED and has_record(machine.wind):  # rest until the wind can turn it
+        outcome, out, n, j, t, events, count = wait_for_wind(
+            out, n, j, sample_dt, t, theta, W, t_end, segment, machine, events, count
+        )
+        theta_dot, u = 0.0, 0.0
+        if outcome == -1:
+            kink = next_kink(t, machine.wind)
+            full = theta == segment_start(segment, machine)
+    elif outcome != LANDED:
+        if outcome == STALLED:
+            events, count = note_event(events, count, t, STOP)
+        if outcome != OVER_BUDGET:
+            n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
+    else:
+        u, full, outcome = kinetic(theta, theta_dot, machine), target == end, -1
+        if full:
+            segment += 1
+        if g == end_grid or (target != end and sample_dt is None):
+            strokes_table, flow_table, _, _ = at_grid
+            row = g % period
+            strokes = (g // period) * per_revolution + strokes_table[row]
+            n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row], False)
+            g += 1
+    return (outcome, out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, segment,
+            events, count)  # fmt: skip
+
+
+@inline_kernel
+def record_end(out, n, t, theta, theta_dot, W, segment, machine):
+    """The last sample, at the end of a run that reached t_end on a switch (unless the grid put
+    one there). Returns (out, n)."""
+    out = with_room(out, n, 1)
+    if out[T, n - 1] < t:
+        n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
+    return out, n
+
+
+@inline_kernel
+def without_wind(machine):
+    """The machine without its wind record: what the loads, masses and tolerances need, with no
+    arrays (an array passed to an inlined kernel is one more reference, counted on every call)."""
+    return Machine(
+        machine.R_dagger, machine.T_m, machine.T_0, machine.omega_m, machine.inv_I_eff,
+        machine.load_torque, machine.L_over_R, machine.cylinders, machine.double_acting, None,
+        machine.real,
+    )  # fmt: skip
+
+
+@inline_kernel
+def split_of(m, full, theta, width, n_per_stroke, sample_dt, segment, machine):
+    """Split the rest of the segment, from theta to its end, into m_seg equal sub-steps h long
+    (m over a full segment ``width`` long), their stage values tabulated or not. Returns (end,
+    parity, the end's grid index, m_seg, use_table, h)."""
+    end = segment_start(segment + 1, machine)
+    end_grid = end_grid_index(segment, n_per_stroke, sample_dt, machine)
+    m_seg = m if full else max(1, int(math.ceil(m * (end - theta) / width)))
+    use_table = full and m_seg <= MAX_TABLED_SUBSTEPS
+    # (over a full segment by the reciprocal, as LLVM has always compiled it: arcp)
+    h = (end - theta) * (1.0 / m_seg) if full else (end - theta) / m_seg
+    return end, segment % 2, end_grid, m_seg, use_table, h
+
+
+@inline_kernel
+def leak_cut(theta_i, h, leak_kink):
+    """A sub-step's length: h, or as far as a leak's kink inside it. Returns (length, whether
+    it ends on the kink)."""
+    if theta_i < leak_kink < theta_i + h:  # a face starts or stops delivering inside
+        return leak_kink - theta_i, True
+    return h, False
+
+
+@kernel
+def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
+                 segment, machine):  # fmt: skip
+    """A sub-step from theta_i that passed a wind record's kink, taken again only as far as it,
+    from where the step's continuous extension puts the kink's time (the rest of the segment
+    follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
+    h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
+    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
+    ok, y, k7, err, dense = dp5_step(
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment, machine
+    )
+    return ok, y, k7, err, dense, h_step
+
+
+@inline_kernel
+def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h,
+                  machine):  # fmt: skip
+    """The state after sub-step i, accepted, to theta_new: (u_free, t, W, theta, u, theta_dot,
+    k1, the worst scaled error so far, i + 1, m, ON_KINK or SPLIT_DONE). Past a kink (up to
+    round-off in its time) the run goes on from there in a new split: past a wind record's, of m
+    sub-steps from the errors so far; a leak's keeps m (the split before it may be a segment's
+    short tail)."""
+    theta_dot = math.sqrt(2.0 * u_new / inertia_ratio(theta_new, machine))
+    worst = max(worst, scaled)
+    status = SPLIT_DONE
+    if at_kink:
+        if at_wind_kink:
+            m = next_split_size(width, h, worst)
+        status = ON_KINK
+    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i + 1, m, status
+
+
+@inline_kernel
+def after_split(status, i, m_seg, full, m, width, h, worst, segment):
+    """After a split's sub-steps: on to the next segment when they all were taken (m from their
+    worst scaled error), else on from part of this one. Returns (segment, full, m)."""
+    if status != SPLIT_DONE:
+        return segment, full and i == 0, m
+    if full or m_seg > 1:  # a single sub-step of a segment's tail is short by position
+        m = next_split_size(width, h, worst)
+    return segment + 1, True, m
+
+
+@inline_kernel
+def in_angle(
+    out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full, segment, leak, tables,
+    row_tables, built, scratch, scratch_rows, at_grid, end_work, limits, grid, width,
+    n_per_stroke, sample_dt, machine,
+):  # fmt: skip
+    """Segment after segment in angle, each split into sub-steps (:func:`split_of`) sampled on
+    the output grid, until the run reaches t_end on a switch, runs out of steps, or finds theta
+    a poor variable (IN_TIME). The segment and sub-step loops share one body: an inlined helper
+    taking arrays counts two atomic references per array per call (the sub-step loop as a helper
+    of its own, called per segment, took six double-acting cylinders 17 % longer). Returns
+    (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full, segment, leak, the
+    segment's end and its grid index)."""
+    t_end, rtol, max_steps = limits
+    strokes_table, flow_table, work_table, inertia_table = at_grid
+    calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
     while True:
-        end = segment_start(segment + 1, machine)
-        parity = segment % 2
-        # The grid index of the segment's end, when the end is a grid angle (else -1).
-        ends = (segment + 1) * n_per_stroke
-        end_grid = ends // machine.cylinders if ends % machine.cylinders == 0 else -1
-        if sample_dt is not None:
-            end_grid = -1  # no grid angles on a time grid
-        m_seg = m if full else max(1, int(math.ceil(m * (end - theta) / width)))
-        use_table = full and m_seg <= MAX_TABLED_SUBSTEPS
+        end, parity, end_grid, m_seg, use_table, h = split_of(
+            m, full, theta, width, n_per_stroke, sample_dt, segment, calm
+        )
         if use_table and not built[parity, m_seg]:
             tabulate_segment(parity, m_seg, machine, tables, row_tables, built)
-        first = theta
-        h = (end - theta) / m_seg
         work = 0.0 if full else conservative_work(theta, segment, machine)
         u_free = u - work  # u less the conservative work: only the windmill (and losses) change it
         if use_table:
@@ -338,74 +612,49 @@ def integrate(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
         k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
-        # The next angles where a face starts or stops delivering through its hole: found for a
-        # segment at its first speed, used as the run passes them (a landing is up to round-off).
-        if kink_segment != segment:
-            leak_kink, later_kink = next_leak_kink(theta, theta_dot, segment, machine)
-            kink_segment = segment
-        elif theta >= leak_kink - 1e-9 * width:
-            leak_kink, later_kink = later_kink, math.inf
-        worst = 0.0
-        failed = landed = False
-        i = 0
+        leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
+        first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
         while i < m_seg:
             if steps >= max_steps:
-                return out, n, OVER_BUDGET, steps, events, count
+                status = OUT_OF_STEPS
+                break
             theta_i = first + i * h
             if use_table:
                 aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
                 aux, rows = scratch, scratch_rows
                 stage_values(theta_i, h, segment, machine, aux, rows)
-            torque = aux[7]
-            # (on a time grid, as far as a grid angle would be: pi / n_per_stroke)
-            reach = max(h, delta if sample_dt is not None else g * delta - theta_i)
-            if abs(k1[0] + torque * machine.inv_I_eff) * reach >= u:
-                # u may change by more than itself before the next grid angle: theta_dot is near 0,
-                # where theta is singular (dt/dtheta = 1/theta_dot) but time is not. Go on in time.
+            if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
+                status = IN_TIME
                 break
-            h_step, at_kink, at_wind_kink = h, False, False
-            if theta_i < leak_kink < theta_i + h:  # a face starts or stops delivering inside
-                h_step, at_kink = leak_kink - theta_i, True
+            h_step, at_kink = leak_cut(theta_i, h, leak[0])
+            if at_kink:
                 aux, rows = scratch, scratch_rows
                 stage_values(theta_i, h_step, segment, machine, aux, rows)
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, rows, segment, machine
             )
             steps += 1
-            if ok and kink < y[2] <= t_end:
-                # V(t) has a kink inside: take the sub-step only as far as it, from where the
-                # step's continuous extension puts the kink's time (the rest of the segment
-                # follows in smaller sub-steps).
-                h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-                stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
-                ok, y, k7, err, dense = dp5_step(
-                    ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment,
-                    machine,
+            at_wind_kink = ok and kink < y[2] <= t_end
+            if at_wind_kink:  # V(t) has a kink inside: the sub-step goes only as far as it
+                ok, y, k7, err, dense, h_step = step_to_kink(
+                    kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
+                    segment, machine,
                 )  # fmt: skip
                 steps += 1
-                at_kink = at_wind_kink = True
-            scaled = max(
-                abs(err[0]) / (rtol * u),
-                abs(err[2]) / (TIME_RTOL_FACTOR * rtol * max(y[2] - t, 1e-300)),
-                abs(err[3]) / (rtol * leak_scale(width, machine)),  # (0 for the ideal machine)
-            )
+                at_kink = True
+            scaled = scaled_error(err, y, t, u, rtol, width, calm)
             if y[2] > t_end:
-                break  # the sub-step would pass t_end: go on in time
+                status = IN_TIME  # the sub-step would pass t_end: go on in time
+                break
             if not (ok and scaled <= 1.0):
-                needed = width / (h_step * (step_factor(scaled) if ok else 0.25))
-                if needed > MAX_SUBSTEPS:
-                    break  # sub-steps this fine no longer suit theta: go on in time
-                m = max(m + 1, int(math.ceil(needed)))
-                failed = True
+                status, m = finer_split(ok, scaled, h_step, width, m)
                 break
             last = i == m_seg - 1 and not at_kink
-            if last:
-                theta_new, work = end, end_work[parity]
-            else:
-                theta_new = theta_i + h_step
-                at_table = use_table and not at_kink
-                work = aux[6] if at_table else conservative_work(theta_new, segment, machine)
+            theta_new, work = sub_step_end(
+                last, end, end_work[parity], theta_i, h_step, use_table and not at_kink, aux[6],
+                segment, calm,
+            )  # fmt: skip
             u_new = y[0] + work
             if sample_dt is not None:
                 out, n, j = record_in_step(
@@ -413,98 +662,83 @@ def integrate(
                     segment, machine,
                 )  # fmt: skip
             else:
-                if n + int(h / delta) + 2 > out.shape[1]:  # (a call per sample would cost 20 %)
-                    out = with_room(out, n, int(h / delta) + 2)
-                # Samples at the grid angles this sub-step passed, from the continuous extension;
-                # the segment's end is a grid angle by index, whatever the round-off in g * delta.
-                while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
-                    row = g % period
-                    if g == end_grid:
-                        u_g, t_g, W_g = u_new, y[2], y[3]
-                    else:
-                        sigma = (g * delta - theta_i) / h_step
-                        u_g = work_table[row] + dense_value(
-                            sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
-                        )
-                        t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
-                        W_g = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
-                    strokes = (g // period) * per_revolution + strokes_table[row]
-                    theta_dot_g = math.sqrt(2.0 * u_g / inertia_table[row])
-                    n = record(
-                        out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False
-                    )
-                    g += 1
-            u_free, t, W, theta = y[0], y[2], y[3], theta_new
-            u = u_new
-            theta_dot = math.sqrt(2.0 * u / inertia_ratio(theta, machine))
-            k1 = k7
-            worst = max(worst, scaled)
-            i += 1
-            if at_kink:  # past it, up to round-off in its time: on from here in a new split
-                if at_wind_kink:
-                    kink = next_kink(max(t, kink), machine.wind)
-                    m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
-                # (a leak's kink keeps m: the split before it may be a segment's short tail)
-                landed = True
+                if n + int(h / grid.delta) + 2 > out.shape[1]:  # (a call per sample: +20 %)
+                    out = with_room(out, n, int(h / grid.delta) + 2)
+                n, g = record_grid_angles(
+                    out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
+                    inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
+                    dense,
+                )  # fmt: skip
+            u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
+                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h, calm
+            )
+            if at_wind_kink:
+                kink = next_kink(max(t, kink), machine.wind)
+            if status == ON_KINK:
                 break
-        if i == m_seg and not landed:  # the segment is done: size the next one's sub-steps
-            segment += 1
-            was_full, full = full, True
-            if t >= t_end:
-                out = with_room(out, n, 1)
-                if out[T, n - 1] < t:
-                    n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
-                return out, n, REACHED_T_END, steps, events, count
-            if was_full or m_seg > 1:  # a single sub-step of a segment's tail is short by position
-                m = min(MAX_SUBSTEPS, max(1, int(math.ceil(width / (h * step_factor(worst))))))
-            continue
-        if i > 0:
-            full = False  # part of the segment is done
-        if failed or landed:
-            continue
-        # On in time, as far as the next grid angle or switch (or sample time).
-        target = end if g == end_grid or sample_dt is not None else min(g * delta, end)
-        until = min(t_end, kink)
-        if sample_dt is not None:
-            until = min(until, j * sample_dt)
-        outcome, t, theta, theta_dot, W, used = advance_in_time(
-            t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps
+        segment, full, m = after_split(status, i, m_seg, full, m, width, h, worst, segment)
+        if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
+            return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
+                    segment, leak, end, end_grid)  # fmt: skip
+
+
+@kernel
+def integrate(
+    machine, theta0, theta_dot0, t_end, n_per_stroke, sample_dt, rtol, max_steps, capacity
+):
+    """Integrate Eq. (12) from (theta0, theta_dot0) at t = 0 up to t_end or a stop.
+
+    Samples go on the grid of angles g pi / n_per_stroke or, when sample_dt is a number (not
+    None: each grid compiles its own specialisation), of times j sample_dt. In a wind record a
+    crank that comes to rest waits (:func:`~.stepping.next_start`) and the run goes on to t_end.
+    The run goes in angle (:func:`in_angle`) and, where theta is a poor variable, in time
+    (:func:`time_stretch`). Returns a :class:`Run`.
+    """
+    width, delta = math.pi / machine.cylinders, math.pi / n_per_stroke
+    limits = Limits(t_end, rtol, max_steps)
+    grid = Grid(delta, 2 * n_per_stroke, faces(machine))
+    at_grid = grid_tables(n_per_stroke, machine)
+    tables, row_tables, built, end_work = sub_step_tables(machine)
+    scratch, scratch_rows = np.empty(8), np.empty((7, ROW))  # stage values off the tables
+    out = np.empty((ROWS - 1 + work_rows(machine), max(capacity, 2)))
+    events, count = np.empty((2, 8)), 0
+    t, theta, W = 0.0, theta0, zero_work(machine)
+    theta_dot = theta_dot0  # kept beside u: u underflows for theta_dot below about 1e-154
+    u = kinetic(theta, theta_dot, machine)
+    segment = first_segment(theta0, machine)
+    n = record_anywhere(out, 0, t, theta, theta_dot0, W, segment, machine, False)
+    j, steps = 1, 0  # the next time sample is j * sample_dt
+    if theta_dot0 <= 0.0:
+        outcome, out, n, j, t, events, count = start_from_rest(
+            out, n, j, sample_dt, theta0, t_end, W, segment, machine, events, count
         )
-        steps += used
-        out = with_room(out, n, 1)
-        if outcome == REACHED_T_END and t < t_end:  # a sample time or a kink
-            if sample_dt is not None and t == j * sample_dt:
-                n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, False)
-                j += 1
-            if t == kink:
-                kink = next_kink(t, machine.wind)
-            u = kinetic(theta, theta_dot, machine)
-            full = False
-            continue
-        if outcome == STALLED and waits:  # rest until the wind can turn the crank again
-            events, count = note_event(events, count, t, STOP)
-            start = next_start(t, theta, segment, machine)
-            rest_end = min(start, t_end)
-            out, n, j = record_rest(out, n, j, sample_dt, t, rest_end, theta, W, segment, machine)
-            if start >= t_end:
-                return out, n, RESTING, steps, events, count
-            events, count = note_event(events, count, start, START)
-            t, theta_dot, u = start, 0.0, 0.0
-            kink = next_kink(t, machine.wind)
-            full = theta == segment_start(segment, machine)
-            continue
-        if outcome != LANDED:
-            if outcome == STALLED:
-                events, count = note_event(events, count, t, STOP)
-            if outcome != OVER_BUDGET:
-                n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
-            return out, n, outcome, steps, events, count
-        u = kinetic(theta, theta_dot, machine)
-        full = target == end
-        if full:
-            segment += 1
-        if g == end_grid or (target != end and sample_dt is None):
-            row = g % period
-            strokes = (g // period) * per_revolution + strokes_table[row]
-            n = record(out, n, t, theta, theta_dot, W, strokes, flow_table[row], False)
-            g += 1
+        if outcome >= 0:
+            return Run(out, n, outcome, 0, events, count)
+    g = first_grid_index(theta0, delta)  # the next grid angle to sample is g * delta
+    kink = next_kink(t, machine.wind)  # steps land on the wind record's samples
+    m = FIRST_SUBSTEPS  # sub-steps per segment
+    # Whether theta is where the segment starts: tracked, not compared (fastmath may round
+    # (j + 1) pi/n and j pi/n differently).
+    full = theta == segment_start(segment, machine)
+    leak = (math.inf, math.inf, -1)  # (the next leak kink, the one after, of which segment)
+    while True:
+        status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full, segment, leak, end, end_grid = (
+            in_angle(
+                out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full, segment, leak,
+                tables, row_tables, built, scratch, scratch_rows, at_grid, end_work, limits, grid,
+                width, n_per_stroke, sample_dt, machine,
+            )
+        )  # fmt: skip
+        if status == OUT_OF_STEPS:
+            return Run(out, n, OVER_BUDGET, steps, events, count)
+        if status == SPLIT_DONE:  # on a switch at or past t_end
+            out, n = record_end(out, n, t, theta, theta_dot, W, segment, machine)
+            return Run(out, n, REACHED_T_END, steps, events, count)
+        outcome, out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, segment, events, count = (
+            time_stretch(
+                out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, end, end_grid,
+                limits, grid, at_grid, sample_dt, segment, machine, events, count,
+            )
+        )  # fmt: skip
+        if outcome >= 0:
+            return Run(out, n, outcome, steps, events, count)

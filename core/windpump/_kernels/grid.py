@@ -41,9 +41,8 @@ def steady_runs(
             double_acting, None, real_at(real_base, inv_I_eff[i], load_torque[i]),
         )  # fmt: skip
         capacity = int(1.1 * theta_dot0[i] * t_end[i] / math.pi) + 64
-        out, n, outcome, _, _, _ = integrate(
-            machine, 0.0, theta_dot0[i], t_end[i], 1, None, rtol, max_steps, capacity
-        )
+        ran = integrate(machine, 0.0, theta_dot0[i], t_end[i], 1, None, rtol, max_steps, capacity)
+        out, n, outcome = ran.out, ran.samples, ran.outcome
         outcomes[i] = outcome
         if outcome != REACHED_T_END:
             continue

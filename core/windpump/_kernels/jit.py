@@ -58,3 +58,15 @@ def by_value_kernel(function):
 def parallel_kernel(function):
     """A :func:`kernel` whose ``numba.prange`` loops run on every core."""
     return kernel(function, parallel=True)
+
+
+def inline_kernel(function):
+    """A :func:`kernel` spliced into its caller's code (numba's ``inline="always"``) before
+    either is compiled: a piece of one long kernel given a name, with no compiled copy of its own.
+
+    Free when it takes and returns numbers (the caller compiles as if it were written in place).
+    Each array it takes is one more reference to it, counted atomically on every call unless
+    numba can prune the pair: the driver's helpers called per sub-step or per segment take
+    numbers only (four arrays passed per sub-step cost six cylinders 12 %).
+    """
+    return kernel(function, inline="always")

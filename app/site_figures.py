@@ -1,13 +1,13 @@
-"""The Site tab's figures: the water and the demand month by month, the tank's level over the
-year, and the loss-of-load probability against tank size."""
+"""The Site tab's figures: the demand month by month (delivered and short) before the water
+pumped, the tank's level over the record, and the loss-of-load probability against tank size."""
 
 from __future__ import annotations
 
 import math
 
-from bokeh.models import CustomJS, FactorRange, HoverTool, Span
+from bokeh.models import CustomJS, FactorRange, HoverTool, Range1d, Span
 
-from .figures import HEIGHT, draw_band, empty, legend, line, new_figure
+from .figures import HEIGHT, LABEL, empty, legend, line, new_figure
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
@@ -23,60 +23,92 @@ for (const axis of plot.below) {  // the axis (a legend lies below too)
 """
 
 
+CUT = 2.5  # pumped water above CUT times the largest month's demand is cut, its number written
+
+
 def monthly_figure(s: dict, c: dict):
-    """Water pumped (bars) and demanded (a line) each calendar month [m³]."""
-    s["monthly"] = empty("month", "pumped", "demand", "delivered")
+    """Each calendar month's demand [m³] as a stacked bar, delivered and short (in a warning
+    colour), in front of the water pumped (an outlined bar, cut at the figure's top with its
+    number written when it dwarfs the demand: ``water_range``)."""
+    s["monthly"] = empty("month", "pumped", "demand", "delivered", "shortfall", "cut", "cut_at")
     fig = new_figure(
-        "Water each month", "month", "water [m³]", SITE_HEIGHT, x_range=FactorRange(*MONTHS)
+        "Water each month",
+        "month",
+        "water [m³]",
+        SITE_HEIGHT,
+        x_range=FactorRange(*MONTHS),
+        y_range=Range1d(0, 1),
     )
     fig.js_on_change("outer_width", CustomJS(args=dict(plot=fig, angle=math.pi / 3), code=TILT_JS))
-    fig.y_range.start = 0
-    bars = fig.vbar(
-        x="month", top="pumped", width=0.7, source=s["monthly"], color=c["flow"], alpha=0.8
-    )
-    demand = fig.scatter(
-        "month", "demand", source=s["monthly"], marker="dash", size=30, line_width=4,
-        color=c["load"],
+    source = s["monthly"]
+    pumped = fig.vbar(
+        x="month", top="pumped", width=0.85, source=source, fill_color=c["ghost"],
+        fill_alpha=0.25, line_color=c["ghost"], line_width=2,
     )  # fmt: skip
-    delivered = fig.scatter(
-        "month", "delivered", source=s["monthly"], marker="circle", size=9, color=c["ink"]
+    delivered = fig.vbar(x="month", top="delivered", width=0.5, source=source, color=c["flow"])
+    short = fig.vbar(
+        x="month", bottom="delivered", top="demand", width=0.5, source=source, color=c["best"]
     )
+    fig.text(
+        x="month", y="cut_at", text="cut", source=source, angle=math.pi / 2, text_align="right",
+        text_baseline="middle", text_font_size=LABEL, text_color=c["ink"],
+    )  # fmt: skip
     fig.add_tools(
         HoverTool(
-            renderers=[bars],
+            renderers=[pumped],
             tooltips=[
                 ("month", "@month"),
                 ("pumped", "@pumped{0.0} m³"),
-                ("delivered", "@delivered{0.0} m³"),
                 ("demand", "@demand{0.0} m³"),
+                ("delivered", "@delivered{0.0} m³"),
+                ("short", "@shortfall{0.0} m³"),
             ],
         )
     )
-    legend(fig, {"pumped": bars, "demand": demand, "delivered": delivered})
+    legend(fig, {"delivered": delivered, "short of the demand": short, "pumped": pumped})
     return fig
 
 
+def water_range(pumped, demand) -> tuple[float, list[str]]:
+    """The monthly figure's top [m³] and each month's written number: every bar in view, unless
+    the water pumped would crush the demand's bars (more than CUT times the largest month's
+    demand): then the figure stops at CUT times it and a month pumped beyond shows its number."""
+    most_asked = max(demand, default=0.0)
+    most_pumped = max(pumped, default=0.0)
+    if most_asked <= 0.0 or most_pumped <= CUT * most_asked:
+        return 1.08 * max(most_pumped, most_asked, 1e-9), ["" for _ in pumped]
+    top = CUT * most_asked
+    return top, [f"{p:,.0f} " if p > top else "" for p in pumped]
+
+
 def level_figure(s: dict, c: dict):
-    """The water in the tank over the year [m³], each day's lowest to highest, under the tank's
-    size: (figure, the tank's line)."""
-    s["level"] = empty("t", "lower", "upper")
+    """The water in the tank each day [m³]: its range (a band), its mean (a line) and the days
+    short of water (a rug along the bottom), under the tank's size: (figure, the tank's line)."""
+    s["level"] = empty("t", "lower", "upper", "mean")
+    s["dry"] = empty("t", "top")
     fig = new_figure(
         "The tank over the year", "day of the year", "water in the tank [m³]", SITE_HEIGHT
     )
     fig.y_range.start = 0
-    band = draw_band(fig, s["level"], c["integrated"])
+    band = fig.varea("t", "lower", "upper", source=s["level"], color=c["integrated"], alpha=0.3)
+    mean = line(fig, "t", "mean", s["level"], c["integrated"], 2)
+    dry = fig.vbar(x="t", top="top", width=0.9, source=s["dry"], color=c["load"])
     size = Span(
         location=0, dimension="width", line_color=c["ink"], line_width=2, line_dash="dashed"
     )
     fig.add_layout(size)
     fig.add_tools(
         HoverTool(
-            renderers=[band[1]],
-            tooltips=[("day", "@t{0}"), ("level", "@lower{0.0} to @upper{0.0} m³")],
+            renderers=[mean],
+            tooltips=[
+                ("day", "@t{0}"),
+                ("mean", "@mean{0.0} m³"),
+                ("range", "@lower{0.0} to @upper{0.0} m³"),
+            ],
             mode="vline",
         )
     )
-    legend(fig, {"lowest to highest each day": band})
+    legend(fig, {"each day: lowest to highest, mean": [band, mean], "days short of water": dry})
     return fig, size
 
 

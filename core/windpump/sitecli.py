@@ -12,7 +12,6 @@ import csv
 import io
 import math
 import os
-import sys
 from pathlib import Path
 
 from .errors import ParameterError

@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from bokeh.models import CustomJS, FactorRange, HoverTool, Range1d, Span
 
 from .figures import HEIGHT, LABEL, empty, legend, line, new_figure
+from .site_record import span
+from .views import refill
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
@@ -81,6 +84,24 @@ def water_range(pumped, demand) -> tuple[float, list[str]]:
     return top, [f"{p:,.0f} " if p > top else "" for p in pumped]
 
 
+def show_monthly(source, fig, monthly) -> None:
+    """A year's months (``windpump.MonthTable``) in the monthly figure, cut at ``water_range``."""
+    top, cut = water_range(monthly.pumped, monthly.demand)
+    refill(
+        source,
+        {
+            "month": [MONTHS[m - 1] for m in monthly.month],
+            "pumped": np.asarray(monthly.pumped),
+            "demand": np.asarray(monthly.demand),
+            "delivered": np.asarray(monthly.delivered),
+            "shortfall": np.asarray(monthly.shortfall),
+            "cut": cut,
+            "cut_at": np.full(len(cut), 0.98 * top),
+        },
+    )
+    fig.y_range.end = top
+
+
 def level_figure(s: dict, c: dict):
     """The water in the tank each day [m³]: its range (a band), its mean (a line) and the days
     short of water (a rug along the bottom), under the tank's size: (figure, the tank's line)."""
@@ -110,6 +131,34 @@ def level_figure(s: dict, c: dict):
     )
     legend(fig, {"each day: lowest to highest, mean": [band, mean], "days short of water": dry})
     return fig, size
+
+
+def show_level(sources: dict, fig, supplied, tank: float) -> None:
+    """A year's tank (``windpump.Supply``) in the level figure: each day's range and mean, the
+    days short of water, the title and axis by the record's span."""
+    days = np.arange(supplied.hours) / 24.0
+    x, lower, upper, mean = daily_band(days, supplied.level)
+    refill(sources["level"], {"t": x, "lower": lower, "upper": upper, "mean": mean})
+    dry = np.flatnonzero(supplied.dry) + 0.5
+    rug = 0.05 * max(tank, float(np.max(upper, initial=0.0)), 1e-3)  # [m³] the rug's height
+    refill(sources["dry"], {"t": dry, "top": np.full(dry.size, rug)})
+    over = span(supplied.hours)
+    fig.title.text = f"The tank over {over}"
+    fig.xaxis.axis_label = "day of the year" if over == "the year" else "day"
+
+
+def daily_band(days: np.ndarray, values: np.ndarray):
+    """Each day's lowest, highest and mean value (a year of hours: 365 points, under the
+    figure's pixels): (day's middle, lower, upper, mean)."""
+    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
+    edges = np.searchsorted(days, np.arange(whole))
+    edges = np.unique(edges[edges < len(days)])
+    return (
+        days[edges] + 0.5,
+        np.minimum.reduceat(values, edges),
+        np.maximum.reduceat(values, edges),
+        np.add.reduceat(values, edges) / np.diff(np.append(edges, len(values))),
+    )
 
 
 def lolp_figure(s: dict, c: dict):

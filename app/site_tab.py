@@ -25,11 +25,11 @@ from .readouts import Readout
 from .sidebar import PromptSlider
 from .site_figures import (
     LOLP_TARGET,
-    MONTHS,
     level_figure,
     lolp_figure,
     monthly_figure,
-    water_range,
+    show_level,
+    show_monthly,
 )
 from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
 from .site_record import SiteRecords, span, supply_status
@@ -209,30 +209,8 @@ class SiteTab(Tab):
         return min(self.site.param["tank"].bounds[1], 10.0 * math.ceil(wanted / 10.0))
 
     def _draw_year(self, supplied) -> None:
-        monthly = supplied.monthly
-        top, cut = water_range(monthly.pumped, monthly.demand)
-        refill(
-            self.sources["monthly"],
-            {
-                "month": [MONTHS[m - 1] for m in monthly.month],
-                "pumped": np.asarray(monthly.pumped),
-                "demand": np.asarray(monthly.demand),
-                "delivered": np.asarray(monthly.delivered),
-                "shortfall": np.asarray(monthly.shortfall),
-                "cut": cut,
-                "cut_at": np.full(len(cut), 0.98 * top),
-            },
-        )
-        self.monthly.y_range.end = top
-        days = np.arange(supplied.hours) / 24.0
-        x, lower, upper, mean = daily_band(days, supplied.level)
-        refill(self.sources["level"], {"t": x, "lower": lower, "upper": upper, "mean": mean})
-        dry = np.flatnonzero(supplied.dry) + 0.5
-        rug = 0.05 * max(self.site.tank, float(np.max(upper, initial=0.0)), 1e-3)
-        refill(self.sources["dry"], {"t": dry, "top": np.full(dry.size, rug)})
-        whole_year = span(supplied.hours) == "the year"
-        self.level.title.text = f"The tank over {span(supplied.hours)}"
-        self.level.xaxis.axis_label = "day of the year" if whole_year else "day"
+        show_monthly(self.sources["monthly"], self.monthly, supplied.monthly)
+        show_level(self.sources, self.level, supplied, self.site.tank)
         self.tank_line.location = self.site.tank
         refill(self.sources["lolp_here"], {"tank": [self.site.tank], "lolp": [100 * supplied.lolp]})
         self._readouts(supplied)
@@ -338,17 +316,3 @@ def follow(widget, inputs, name: str) -> None:
         inputs.param.update(**{name: widget.value})
     widget.param.watch(lambda event: setattr(inputs, name, event.new), "value")
     inputs.param.watch(lambda event: setattr(widget, "value", event.new), name)
-
-
-def daily_band(days: np.ndarray, values: np.ndarray):
-    """Each day's lowest, highest and mean value (a year of hours: 365 points, under the
-    figure's pixels): (day's middle, lower, upper, mean)."""
-    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
-    edges = np.searchsorted(days, np.arange(whole))
-    edges = np.unique(edges[edges < len(days)])
-    return (
-        days[edges] + 0.5,
-        np.minimum.reduceat(values, edges),
-        np.maximum.reduceat(values, edges),
-        np.add.reduceat(values, edges) / np.diff(np.append(edges, len(values))),
-    )

@@ -263,3 +263,26 @@ def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monke
         assert ticks == [] and not app.site.computing.visible
     finally:
         pn.state.curdoc = None
+
+
+def test_the_link_remembers_the_tab_both_ways():
+    """``tab=site`` (etc.) opens the page on that tab, the pump's tab (the default) left out; a
+    click on a tab is written into a served page's link."""
+    from windpump_app.link import TABS
+
+    app = Explorer(query={"tab": [b"site"], "site": [b"sand_point"]})
+    location = Location()
+    app.follow_in_link(location)  # as main.py: before the page (and its tabs) is built
+    tabs = app.main()
+    assert tabs.active == SITE_TAB and app.site_tab.built and not app.notices.visible
+    assert app.link_query().split("&") == ["site=sand_point", "tab=site"]
+    tabs.active = 2
+    assert location.search == "?site=sand_point&tab=wind"
+    tabs.active = 0
+    assert location.search == "?site=sand_point"
+    for index, name in enumerate(TABS, start=1):
+        opened = Explorer(query={"tab": [name.encode()]})
+        assert opened.main().active == index and opened.link_query() == f"tab={name}"
+    wrong = Explorer(query={"tab": [b"nowhere"]})
+    assert wrong.main().active == 0 and wrong.link_query() == ""
+    assert "Tab (tab) = “nowhere” ignored" in wrong.notices.object

@@ -310,8 +310,7 @@ class Explorer(Session, pn.viewable.Viewer):
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
     def _restyle(self, event) -> None:
-        self.readouts.present(event.new)
-        self._restyle_views(event.new)
+        self._restyle_views(event.new)  # the readouts follow the page's zoom (styles.px)
 
     def _restyle_views(self, large: bool) -> None:
         """Presentation mode on (``large``) or back off, in every figure built so far: the text

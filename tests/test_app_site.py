@@ -286,3 +286,19 @@ def test_the_link_remembers_the_tab_both_ways():
     wrong = Explorer(query={"tab": [b"nowhere"]})
     assert wrong.main().active == 0 and wrong.link_query() == ""
     assert "Tab (tab) = “nowhere” ignored" in wrong.notices.object
+
+
+def test_every_tabs_readouts_grow_with_presentation_mode(app):
+    """Presentation mode sets the page's zoom in the browser (styles.ZOOM_JS): a readout's label
+    and value are sized by it, the Site and Wind tabs' as the pump's (their sizes were fixed)."""
+    import re
+
+    from windpump_app.styles import ZOOM_VARIABLE
+
+    readouts = [*app.readouts.readouts.values(), *app.site.readouts.values()]
+    readouts += app.wind.readouts.values()
+    for readout in readouts:
+        css = "".join(readout.stylesheets)
+        for part in ("label", "value"):
+            size = re.search(rf"\.readout \.{part} \{{font-size: ([^;]*);", css).group(1)
+            assert ZOOM_VARIABLE in size, (readout.readout_name, part, size)

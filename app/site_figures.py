@@ -103,24 +103,27 @@ def show_monthly(source, fig, monthly) -> None:
 
 
 def level_figure(s: dict, c: dict):
-    """The water in the tank each day [m³]: its range (a band), its mean (a line) and the days
-    short of water (a rug along the bottom), under the tank's size: (figure, the tank's line)."""
+    """The water in the tank each day [m³]: its mean, filled from the bottom as water in a tank
+    (opaque enough to read without an outline, so a tank that fills and empties every few days
+    is a comb of water, not a scribble of lines), and the days short of water (a rug along the
+    bottom), under the tank's size: (figure, the tank's line). Each day's range is in the hover.
+    """
     s["level"] = empty("t", "lower", "upper", "mean")
     s["dry"] = empty("t", "top")
     fig = new_figure(
         "The tank over the year", "day of the year", "water in the tank [m³]", SITE_HEIGHT
     )
     fig.y_range.start = 0
-    band = fig.varea("t", "lower", "upper", source=s["level"], color=c["integrated"], alpha=0.3)
-    mean = line(fig, "t", "mean", s["level"], c["integrated"], 2)
+    mean = fig.varea(x="t", y1=0.0, y2="mean", source=s["level"], color=c["integrated"], alpha=0.8)
     dry = fig.vbar(x="t", top="top", width=0.9, source=s["dry"], color=c["load"])
     size = Span(
         location=0, dimension="width", line_color=c["ink"], line_width=2, line_dash="dashed"
     )
     fig.add_layout(size)
+    edge = fig.line("t", "mean", source=s["level"], line_alpha=0.0)  # for the hover alone
     fig.add_tools(
         HoverTool(
-            renderers=[mean],
+            renderers=[edge],
             tooltips=[
                 ("day", "@t{0}"),
                 ("mean", "@mean{0.0} m³"),
@@ -129,13 +132,13 @@ def level_figure(s: dict, c: dict):
             mode="vline",
         )
     )
-    legend(fig, {"each day: lowest to highest, mean": [band, mean], "days short of water": dry})
+    legend(fig, {"water in the tank (the day's mean)": mean, "days short of water": dry})
     return fig, size
 
 
 def show_level(sources: dict, fig, supplied, tank: float) -> None:
-    """A year's tank (``windpump.Supply``) in the level figure: each day's range and mean, the
-    days short of water, the title and axis by the record's span."""
+    """A year's tank (``windpump.Supply``) in the level figure: each day's mean (its range for
+    the hover), the days short of water, the title and axis by the record's span."""
     days = np.arange(supplied.hours) / 24.0
     x, lower, upper, mean = daily_band(days, supplied.level)
     refill(sources["level"], {"t": x, "lower": lower, "upper": upper, "mean": mean})

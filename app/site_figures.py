@@ -26,6 +26,7 @@ for (const axis of plot.below) {  // the axis (a legend lies below too)
 """
 
 
+DRY = "days short of water"  # the level figure's rug, in its legend when there are any
 CUT = 2.5  # pumped water above CUT times the largest month's demand is cut, its number written
 
 
@@ -132,7 +133,7 @@ def level_figure(s: dict, c: dict):
             mode="vline",
         )
     )
-    legend(fig, {"water in the tank (the day's mean)": mean, "days short of water": dry})
+    legend(fig, {"water in the tank (the day's mean)": mean, DRY: dry})
     return fig, size
 
 
@@ -145,6 +146,9 @@ def show_level(sources: dict, fig, supplied, tank: float) -> None:
     dry = np.flatnonzero(supplied.dry) + 0.5
     rug = 0.05 * max(tank, float(np.max(upper, initial=0.0)), 1e-3)  # [m³] the rug's height
     refill(sources["dry"], {"t": dry, "top": np.full(dry.size, rug)})
+    for item in fig.legend[0].items:  # an empty rug draws a blank swatch: left out
+        if item.label.value == DRY:
+            item.visible = bool(dry.size)
     over = span(supplied.hours)
     fig.title.text = f"The tank over {over}"
     fig.xaxis.axis_label = "day of the year" if over == "the year" else "day"

@@ -145,6 +145,8 @@ def test_a_short_record_is_labelled_by_its_span_not_a_year(app):
     assert "[m³ over 3 days]" in html and "year" not in html
     assert "of 3 days" in app.site.status.object and "year" not in app.site.status.object
     assert app.site.level.title.text == "The tank over 3 days"
+    rug = [i for i in app.site.level.legend[0].items if i.label.value == "days short of water"]
+    assert rug[0].visible is False  # none short: no blank swatch
     assert "year" not in app.site.level.xaxis.axis_label
     seventy = b"".join(hourly_csv(3).splitlines(keepends=True)[:71])  # a header, 70 hours
     app.site.upload.param.update(value=seventy, filename="short.csv")
@@ -152,6 +154,7 @@ def test_a_short_record_is_labelled_by_its_span_not_a_year(app):
     app.site_inputs.site = "greensboro"
     assert "[m³/year]" in app.site.readouts["site_water"].object
     assert app.site.level.title.text == "The tank over the year"
+    assert rug[0].visible is True
 
 
 def test_the_link_carries_every_control_and_a_tampered_value_is_ignored():

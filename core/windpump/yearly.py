@@ -415,7 +415,8 @@ def _quasi_steady_year(design: Design, V: np.ndarray, month: np.ndarray, restart
     else:
         kernels.hysteresis(V, math.inf if V_start is None else V_start, V_stop, attended, running)
         if not running.any():
-            why = _never_reached(V_stop if attended else V_start, attended)
+            need = V_stop if attended or V_start is None else V_start  # (V_start: not None)
+            why = _never_reached(need, attended)
     pumped = np.where(running, steady_flow(design, V) * SECONDS_PER_HOUR, 0.0)
     return _Year(V, month, running, pumped, V_stop, V_start, why)
 

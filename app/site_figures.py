@@ -133,7 +133,7 @@ def level_figure(s: dict, c: dict):
             mode="vline",
         )
     )
-    legend(fig, {"water in the tank (the day's mean)": mean, DRY: dry})
+    legend(fig, {"water in the tank": mean, DRY: dry})
     return fig, size
 
 

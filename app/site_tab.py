@@ -55,7 +55,7 @@ CAPTION = (
     "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
     "the loss-of-load probability is the share of the demand it could not give, and a day "
     "short of water one with any. A month's pumped water cut at the top has its number "
-    "written. Dashed: the tank's size, and 5 %."
+    "written; the tank's water is each day's mean. Dashed: the tank's size, and 5 %."
 )
 
 

@@ -14,14 +14,15 @@ import windpump
 from windpump import Status
 from windpump.units import LITRES_PER_M3
 
-from .styles import COMPACT, px
+from .styles import COMPACT, ZOOM_VARIABLE, px
 
 # Sizes follow the page's zoom (styles.px): presentation mode enlarges every tab's readouts, in
-# the browser, with the rest of the page's text.
+# the browser, with the rest of the page's text: the labels by a quarter (14 -> 17.5 px), the
+# numbers a class reads from the back of the room by half (20 -> 30 px: 2 x zoom - 1).
 READOUT_CSS = f"""
 .readout {{border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}}
 .readout .label {{font-size: {px(14)}; color: inherit; opacity: 0.85}}
-.readout .value {{font-size: {px(20)}; font-weight: bold}}
+.readout .value {{font-size: calc(20px * (2 * var({ZOOM_VARIABLE}, 1) - 1)); font-weight: bold}}
 """
 READOUTS = (
     "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",

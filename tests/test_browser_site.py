@@ -69,8 +69,8 @@ READOUT_SIZES = """(name) => {
 
 
 def test_a_link_opens_the_site_tab_and_presentation_enlarges_its_readouts(browser, url):
-    """``?tab=site`` opens on the Site tab; presentation mode makes every tab's readouts a
-    quarter larger (the Site tab's stayed at 14 px and 20 px)."""
+    """``?tab=site`` opens on the Site tab; presentation mode enlarges every tab's readouts,
+    labels by a quarter and numbers by half, as the pump's (the Site tab's stayed at 14 and 20 px)."""
     for query, zoom in (("?tab=site", 1.0), ("?tab=site&presentation=true", 1.25)):
         page = open_page(browser, url, 1280, 720, query)
         try:
@@ -79,7 +79,8 @@ def test_a_link_opens_the_site_tab_and_presentation_enlarges_its_readouts(browse
             )
             assert page.get_by_role("tab", name="Site").get_attribute("aria-selected") == "true"
             for name in ("site_lolp", "mean_flow"):  # the Site tab's and the pump tab's
-                assert page.evaluate(READOUT_SIZES, name) == [14 * zoom, 20 * zoom], (query, name)
+                value = 20 * (2 * zoom - 1)  # the numbers grow by half (30 px)
+                assert page.evaluate(READOUT_SIZES, name) == [14 * zoom, value], (query, name)
             assert page.problems == []
         finally:
             page.close()

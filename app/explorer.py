@@ -20,7 +20,16 @@ import windpump
 
 from .figures import present
 from .inputs import PRESETS
-from .link import PageLink, notices_text, page_query, presentation_from, readable, text
+from .link import (
+    PageLink,
+    notices_text,
+    page_query,
+    presentation_from,
+    readable,
+    tab_from,
+    tab_query,
+    text,
+)
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
 from .page import page
@@ -82,6 +91,7 @@ class Explorer(Session, pn.viewable.Viewer):
         values, read = self.inputs.parse_query(pump_query)
         notices += read + notices_site
         self.site_inputs.param.update(**site_values)
+        self._tab = tab_from(query, notices)  # the tab the link opens on (main())
         presentation = presentation_from(query, notices)
         if presentation is not None:
             self.presentation = presentation
@@ -300,8 +310,7 @@ class Explorer(Session, pn.viewable.Viewer):
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
     def _restyle(self, event) -> None:
-        self.readouts.present(event.new)
-        self._restyle_views(event.new)
+        self._restyle_views(event.new)  # the readouts follow the page's zoom (styles.px)
 
     def _restyle_views(self, large: bool) -> None:
         """Presentation mode on (``large``) or back off, in every figure built so far: the text
@@ -320,8 +329,14 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def link_query(self) -> str:
         """The page's query as its link carries it (``link.page_query``)."""
+        shown = self.tabs.active if hasattr(self, "tabs") else self._tab
         return page_query(
-            self.inputs, self.presentation, self.dark, self.bins is None, self.site_inputs.query()
+            self.inputs,
+            self.presentation,
+            self.dark,
+            self.bins is None,
+            self.site_inputs.query(),
+            tab_query(shown),
         )
 
     def follow_in_link(self, location) -> None:
@@ -330,6 +345,8 @@ class Explorer(Session, pn.viewable.Viewer):
         self.inputs.param.watch(self._location.write, self.inputs.names())
         self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
         self.param.watch(self._location.write, "presentation")
+        if hasattr(self, "tabs"):
+            self.tabs.param.watch(self._location.write, "active")
 
     # -- layout ------------------------------------------------------------------------------
 
@@ -346,6 +363,9 @@ class Explorer(Session, pn.viewable.Viewer):
     def main(self) -> pn.Tabs:
         """The tabs: the pump's, then each of ``page_tabs`` once it is chosen."""
         self.tabs = self.page_tabs.strip(self.pump_tab())
+        self.tabs.active = self._tab  # the link's tab, opened as a click opens it
+        if self._location is not None:
+            self.tabs.param.watch(self._location.write, "active")
         return self.tabs
 
     def __panel__(self) -> pn.Row:

@@ -45,6 +45,25 @@ def presentation_from(query: dict, notices: list[str]) -> bool | None:
     return None
 
 
+TABS = ("mechanisms", "wind", "map", "site")  # ``tab=``: the tabs after the pump's, in order
+
+
+def tab_from(query: dict, notices: list[str]) -> int:
+    """``?tab=site`` (``mechanisms``, ``wind``, ``map``) opens the page on that tab: its index
+    in the tab strip; 0, the pump's tab, when not given or ignored."""
+    raw = text(query.get("tab", [b""]))
+    if raw in TABS:
+        return TABS.index(raw) + 1
+    if raw:
+        notices.append(f"Tab (tab) = “{clipped(raw)}” ignored: one of {', '.join(TABS)}.")
+    return 0
+
+
+def tab_query(active: int) -> str:
+    """The link's part for the tab shown (none for the pump's, the default)."""
+    return f"tab={TABS[active - 1]}" if 1 <= active <= len(TABS) else ""
+
+
 def notices_text(notices: list[str]) -> str:
     """The link's ignored values, MAX_NOTICES at most (a link may carry thousands)."""
     listed = [f"- {notice}" for notice in notices[:MAX_NOTICES]]

@@ -108,7 +108,8 @@ class Sidebar(pn.viewable.Viewer):
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
         self.present_toggle.jscallback(value=ZOOM_JS)
         self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
-        self.copy_link.js_on_click(code=COPY_LINK_JS)
+        # the button itself in args: a click's cb_obj is the event, whose label is nothing
+        self.copy_link.js_on_click(args={"button": self.copy_link}, code=COPY_LINK_JS)
         self.dark_toggle = pn.widgets.Button(
             label="Light theme" if dark else "Dark theme", **button
         )
@@ -162,7 +163,10 @@ class Sidebar(pn.viewable.Viewer):
 
 COPY_LINK_JS = """
 const url = window.location.href
-const done = () => { cb_obj.label = 'Link copied' ; setTimeout(() => { cb_obj.label = 'Copy link to this state' }, 2500) }
+const done = () => {
+  button.label = 'Link copied'
+  setTimeout(() => { button.label = 'Copy link to this state' }, 2500)
+}
 if (navigator.clipboard && window.isSecureContext) {
   navigator.clipboard.writeText(url).then(done, () => window.prompt('Copy this link:', url))
 } else {

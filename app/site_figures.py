@@ -1,13 +1,16 @@
-"""The Site tab's figures: the water and the demand month by month, the tank's level over the
-year, and the loss-of-load probability against tank size."""
+"""The Site tab's figures: the demand month by month (delivered and short) before the water
+pumped, the tank's level over the record, and the loss-of-load probability against tank size."""
 
 from __future__ import annotations
 
 import math
 
-from bokeh.models import CustomJS, FactorRange, HoverTool, Span
+import numpy as np
+from bokeh.models import CustomJS, FactorRange, HoverTool, Range1d, Span
 
-from .figures import HEIGHT, draw_band, empty, legend, line, new_figure
+from .figures import HEIGHT, LABEL, empty, legend, line, new_figure
+from .site_record import span
+from .views import refill
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
@@ -23,61 +26,146 @@ for (const axis of plot.below) {  // the axis (a legend lies below too)
 """
 
 
+DRY = "days short of water"  # the level figure's rug, in its legend when there are any
+CUT = 2.5  # pumped water above CUT times the largest month's demand is cut, its number written
+
+
 def monthly_figure(s: dict, c: dict):
-    """Water pumped (bars) and demanded (a line) each calendar month [m³]."""
-    s["monthly"] = empty("month", "pumped", "demand", "delivered")
+    """Each calendar month's demand [m³] as a stacked bar, delivered and short (in a warning
+    colour), in front of the water pumped (an outlined bar, cut at the figure's top with its
+    number written when it dwarfs the demand: ``water_range``)."""
+    s["monthly"] = empty("month", "pumped", "demand", "delivered", "shortfall", "cut", "cut_at")
     fig = new_figure(
-        "Water each month", "month", "water [m³]", SITE_HEIGHT, x_range=FactorRange(*MONTHS)
+        "Water each month",
+        "month",
+        "water [m³]",
+        SITE_HEIGHT,
+        x_range=FactorRange(*MONTHS),
+        y_range=Range1d(0, 1),
     )
     fig.js_on_change("outer_width", CustomJS(args=dict(plot=fig, angle=math.pi / 3), code=TILT_JS))
-    fig.y_range.start = 0
-    bars = fig.vbar(
-        x="month", top="pumped", width=0.7, source=s["monthly"], color=c["flow"], alpha=0.8
-    )
-    demand = fig.scatter(
-        "month", "demand", source=s["monthly"], marker="dash", size=30, line_width=4,
-        color=c["load"],
+    source = s["monthly"]
+    pumped = fig.vbar(
+        x="month", top="pumped", width=0.85, source=source, fill_color=c["ghost"],
+        fill_alpha=0.25, line_color=c["ghost"], line_width=2,
     )  # fmt: skip
-    delivered = fig.scatter(
-        "month", "delivered", source=s["monthly"], marker="circle", size=9, color=c["ink"]
+    delivered = fig.vbar(x="month", top="delivered", width=0.5, source=source, color=c["flow"])
+    short = fig.vbar(
+        x="month", bottom="delivered", top="demand", width=0.5, source=source, color=c["best"]
     )
+    fig.text(
+        x="month", y="cut_at", text="cut", source=source, angle=math.pi / 2, text_align="right",
+        text_baseline="middle", text_font_size=LABEL, text_color=c["ink"],
+    )  # fmt: skip
     fig.add_tools(
         HoverTool(
-            renderers=[bars],
+            renderers=[pumped],
             tooltips=[
                 ("month", "@month"),
                 ("pumped", "@pumped{0.0} m³"),
-                ("delivered", "@delivered{0.0} m³"),
                 ("demand", "@demand{0.0} m³"),
+                ("delivered", "@delivered{0.0} m³"),
+                ("short", "@shortfall{0.0} m³"),
             ],
         )
     )
-    legend(fig, {"pumped": bars, "demand": demand, "delivered": delivered})
+    legend(fig, {"delivered": delivered, "short of the demand": short, "pumped": pumped})
     return fig
 
 
+def water_range(pumped, demand) -> tuple[float, list[str]]:
+    """The monthly figure's top [m³] and each month's written number: every bar in view, unless
+    the water pumped would crush the demand's bars (more than CUT times the largest month's
+    demand): then the figure stops at CUT times it and a month pumped beyond shows its number."""
+    most_asked = max(demand, default=0.0)
+    most_pumped = max(pumped, default=0.0)
+    if most_asked <= 0.0 or most_pumped <= CUT * most_asked:
+        return 1.08 * max(most_pumped, most_asked, 1e-9), ["" for _ in pumped]
+    top = CUT * most_asked
+    return top, [f"{p:,.0f} " if p > top else "" for p in pumped]
+
+
+def show_monthly(source, fig, monthly) -> None:
+    """A year's months (``windpump.MonthTable``) in the monthly figure, cut at ``water_range``."""
+    top, cut = water_range(monthly.pumped, monthly.demand)
+    refill(
+        source,
+        {
+            "month": [MONTHS[m - 1] for m in monthly.month],
+            "pumped": np.asarray(monthly.pumped),
+            "demand": np.asarray(monthly.demand),
+            "delivered": np.asarray(monthly.delivered),
+            "shortfall": np.asarray(monthly.shortfall),
+            "cut": cut,
+            "cut_at": np.full(len(cut), 0.98 * top),
+        },
+    )
+    fig.y_range.end = top
+
+
 def level_figure(s: dict, c: dict):
-    """The water in the tank over the year [m³], each day's lowest to highest, under the tank's
-    size: (figure, the tank's line)."""
-    s["level"] = empty("t", "lower", "upper")
+    """The water in the tank each day [m³]: its mean, filled from the bottom as water in a tank
+    (opaque enough to read without an outline, so a tank that fills and empties every few days
+    is a comb of water, not a scribble of lines), and the days short of water (a rug along the
+    bottom), under the tank's size: (figure, the tank's line). Each day's range is in the hover.
+    """
+    s["level"] = empty("t", "lower", "upper", "mean")
+    s["dry"] = empty("t", "top")
     fig = new_figure(
         "The tank over the year", "day of the year", "water in the tank [m³]", SITE_HEIGHT
     )
     fig.y_range.start = 0
-    band = draw_band(fig, s["level"], c["integrated"])
+    mean = fig.varea(x="t", y1=0.0, y2="mean", source=s["level"], color=c["integrated"], alpha=0.8)
+    dry = fig.vbar(x="t", top="top", width=0.9, source=s["dry"], color=c["load"])
     size = Span(
         location=0, dimension="width", line_color=c["ink"], line_width=2, line_dash="dashed"
     )
     fig.add_layout(size)
+    edge = fig.line("t", "mean", source=s["level"], line_alpha=0.0)  # for the hover alone
     fig.add_tools(
         HoverTool(
-            renderers=[band[1]],
-            tooltips=[("day", "@t{0}"), ("level", "@lower{0.0} to @upper{0.0} m³")],
+            renderers=[edge],
+            tooltips=[
+                ("day", "@t{0}"),
+                ("mean", "@mean{0.0} m³"),
+                ("range", "@lower{0.0} to @upper{0.0} m³"),
+            ],
             mode="vline",
         )
     )
-    legend(fig, {"lowest to highest each day": band})
+    legend(fig, {"water in the tank": mean, DRY: dry})
     return fig, size
+
+
+def show_level(sources: dict, fig, supplied, tank: float) -> None:
+    """A year's tank (``windpump.Supply``) in the level figure: each day's mean (its range for
+    the hover), the days short of water, the title and axis by the record's span."""
+    days = np.arange(supplied.hours) / 24.0
+    x, lower, upper, mean = daily_band(days, supplied.level)
+    refill(sources["level"], {"t": x, "lower": lower, "upper": upper, "mean": mean})
+    dry = np.flatnonzero(supplied.dry) + 0.5
+    rug = 0.05 * max(tank, float(np.max(upper, initial=0.0)), 1e-3)  # [m³] the rug's height
+    refill(sources["dry"], {"t": dry, "top": np.full(dry.size, rug)})
+    for item in fig.legend[0].items:  # an empty rug draws a blank swatch: left out
+        if item.label.value == DRY:
+            item.visible = bool(dry.size)
+    over = span(supplied.hours)
+    fig.title.text = f"The tank over {over}"
+    fig.xaxis.axis_label = "day of the year" if over == "the year" else "day"
+
+
+def daily_band(days: np.ndarray, values: np.ndarray):
+    """Each day's lowest, highest and mean value (a year of hours: 365 points, under the
+    figure's pixels): (day's middle, lower, upper, mean)."""
+    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
+    edges = np.searchsorted(days, np.arange(whole))
+    edges = np.unique(edges[edges < len(days)])
+    return (
+        days[edges] + 0.5,
+        np.minimum.reduceat(values, edges),
+        np.maximum.reduceat(values, edges),
+        np.add.reduceat(values, edges) / np.diff(np.append(edges, len(values))),
+    )
 
 
 def lolp_figure(s: dict, c: dict):

@@ -101,16 +101,41 @@ class SiteRecords:
         )
         self.message.visible = True
 
-    def describe(self, site: str, hub: float, supplied) -> str:
-        """A line on the record and the year: where, how long, the mean wind at the hub."""
+    def describe(self, site: str, hub: float) -> str:
+        """A line on the record: where, the station, the hub's height."""
         record = sample(site) if site != UPLOADED else self.uploaded
         where = SITES.get(site, f"the uploaded file *{self.uploaded_name}*")
         name = f" ({record.name})" if record is not None and record.name else ""
-        return f"**{where}**{name}, the hub at {hub:g} m. {supply_text(supplied)}"
+        return f"**{where}**{name}, the hub at {hub:g} m."
 
 
-def supply_text(supplied) -> str:
-    """What the year's run says of itself: its starts, or why it never starts."""
+HOURS_IN_A_YEAR = (8760, 8784)  # a typical year, a leap year
+ATTENDED_HINT = (
+    "Choose “Attended” under “Restart after a calm” to have someone start it whenever the wind "
+    "can carry it."
+)
+
+
+def span(hours: int) -> str:
+    """The record's span in words: "the year" (8760 or 8784 h), "N days" or "N h"."""
+    if hours in HOURS_IN_A_YEAR:
+        return "the year"
+    if hours % 24 == 0:
+        days = hours // 24
+        return f"{days} day{'' if days == 1 else 's'}"
+    return f"{hours} h"
+
+
+def supply_status(supplied) -> tuple[str, str]:
+    """What the year's run says of itself, as a status box's (text, alert type): its starts, or
+    why it never starts (and, when it restarts on its own, the tab's option that helps)."""
     if supplied.why:
-        return f"The pump never starts: {supplied.why}."
-    return f"The pump starts {supplied.starts} time(s) over the year."
+        hint = f" {ATTENDED_HINT}" if supplied.restart == "self" else ""
+        why = supplied.why[0].upper() + supplied.why[1:]
+        return f"**The pump never starts.** {why}.{hint}", "warning"
+    starts = supplied.starts
+    return (
+        f"**The pump runs** {supplied.totals.running_hours:,d} h of {span(supplied.hours)}, "
+        f"starting {starts:,d} time{'' if starts == 1 else 's'}.",
+        "success",
+    )

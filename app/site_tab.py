@@ -23,17 +23,24 @@ from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
 from .sidebar import PromptSlider
-from .site_figures import LOLP_TARGET, MONTHS, level_figure, lolp_figure, monthly_figure
+from .site_figures import (
+    LOLP_TARGET,
+    level_figure,
+    lolp_figure,
+    monthly_figure,
+    show_level,
+    show_monthly,
+)
 from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
-from .site_record import SiteRecords
-from .styles import CAPTION_CSS, TEXT
+from .site_record import SiteRecords, span, supply_status
+from .styles import CAPTION_CSS, COMPACT, TEXT
 from .tab import Tab
 from .views import refill
 
 log = logging.getLogger("windpump.app")
 
 SITE_READOUTS = {
-    "site_water": "Pumped · delivered [m³/year]",
+    "site_water": "Pumped · delivered [m³ over {span}]",  # "[m³/year]" for a year
     "site_lolp": "Loss of load",
     "dry_days": "Dry days",
     "dry_spell": "Longest dry spell",
@@ -46,8 +53,9 @@ CAPTION = (
     "The design on the sliders in the site's hourly wind at the hub, hour by hour "
     "(the quasi-steady year: in each hour's wind the pump runs as the averaged theory "
     "says, stopping below V_stop). The tank takes what is pumped and gives the demand; "
-    "the loss-of-load probability is the share of the year's demand it could not "
-    "give, and a dry day one with any. Dashed: the tank's size, and 5 %."
+    "the loss-of-load probability is the share of the demand it could not give, and a day "
+    "short of water one with any. A month's pumped water cut at the top has its number "
+    "written; the tank's water is each day's mean. Dashed: the tank's size, and 5 %."
 )
 
 
@@ -62,7 +70,7 @@ class SiteTab(Tab):
     """The Site tab: ``inputs`` are the page's (the design), ``site`` the tab's own (in the
     link); ``reveal`` scrolls an upload's outcome into view."""
 
-    title, waiting = "Site", "Computing the site's year…"
+    title, waiting = "Site", "Computing the water at the site…"
 
     def __init__(self, inputs, site: SiteInputs, reveal, dark: bool = False):
         super().__init__(dark)
@@ -89,9 +97,15 @@ class SiteTab(Tab):
         self.note = pn.pane.Markdown(
             "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]
         )
+        self.status = pn.pane.Alert(
+            "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
+        )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.computing = pn.pane.Alert(
-            "**Computing the year…**", alert_type="info", visible=False, stylesheets=TEXT
+            "**Computing the water at the site…**",
+            alert_type="info",
+            visible=False,
+            stylesheets=TEXT,
         )
         self.supplied: windpump.Supply | None = None  # the year drawn
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
@@ -195,19 +209,8 @@ class SiteTab(Tab):
         return min(self.site.param["tank"].bounds[1], 10.0 * math.ceil(wanted / 10.0))
 
     def _draw_year(self, supplied) -> None:
-        monthly = supplied.monthly
-        refill(
-            self.sources["monthly"],
-            {
-                "month": [MONTHS[m - 1] for m in monthly.month],
-                "pumped": np.asarray(monthly.pumped),
-                "demand": np.asarray(monthly.demand),
-                "delivered": np.asarray(monthly.delivered),
-            },
-        )
-        days = np.arange(len(supplied.level)) / 24.0
-        x, lower, upper = daily_band(days, supplied.level)
-        refill(self.sources["level"], {"t": x, "lower": lower, "upper": upper})
+        show_monthly(self.sources["monthly"], self.monthly, supplied.monthly)
+        show_level(self.sources, self.level, supplied, self.site.tank)
         self.tank_line.location = self.site.tank
         refill(self.sources["lolp_here"], {"tank": [self.site.tank], "lolp": [100 * supplied.lolp]})
         self._readouts(supplied)
@@ -221,9 +224,12 @@ class SiteTab(Tab):
             "dry_spell": f"{supplied.longest_dry_spell:d} days",
             "tank_for_5": number_text(self.tank_5, "m³"),
         }
+        over = span(supplied.hours)
         for name, value in shown.items():
-            self.readouts[name].show(SITE_READOUTS[name], value)
-        self.note.object = self.records.describe(self.site.site, self.site.hub, supplied)
+            label = SITE_READOUTS[name].format(span=over)
+            self.readouts[name].show(label.replace("m³ over the year", "m³/year"), value)
+        self.note.object = self.records.describe(self.site.site, self.site.hub)
+        self.status.object, self.status.alert_type = supply_status(supplied)
 
     def failed(self, message: str) -> None:
         self.computing.visible = False
@@ -290,6 +296,7 @@ class SiteTab(Tab):
             self.computing,
             self.error,
             self.note,
+            self.status,
             pn.FlexBox(
                 controls, boxed(self.monthly, 2), flex_wrap="wrap", sizing_mode="stretch_width"
             ),
@@ -309,16 +316,3 @@ def follow(widget, inputs, name: str) -> None:
         inputs.param.update(**{name: widget.value})
     widget.param.watch(lambda event: setattr(inputs, name, event.new), "value")
     inputs.param.watch(lambda event: setattr(widget, "value", event.new), name)
-
-
-def daily_band(days: np.ndarray, values: np.ndarray):
-    """Each day's lowest and highest value (a year of hours: 365 points, under the figure's
-    pixels): (day's middle, lower, upper)."""
-    whole = int(np.ceil(days[-1] + 1e-9)) if len(days) else 0
-    edges = np.searchsorted(days, np.arange(whole))
-    edges = np.unique(edges[edges < len(days)])
-    return (
-        days[edges] + 0.5,
-        np.minimum.reduceat(values, edges),
-        np.maximum.reduceat(values, edges),
-    )

@@ -17,7 +17,6 @@ from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
 from windpump_app.inputs import PRESETS, PumpInputs
-from windpump_app.readouts import PRESENTATION_CSS
 from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
@@ -482,9 +481,7 @@ def test_presentation_mode_enlarges_text_and_lines(app):
         if hasattr(r.glyph, "line_width")
     ]
     assert all(b > a for a, b in zip(widths, larger, strict=True))
-    assert PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets
     app.sidebar.present_toggle.value = False
-    assert PRESENTATION_CSS not in app.readouts["mean_flow"].stylesheets
     assert app.pump.speed.figure.title.text_font_size == title
 
 
@@ -655,7 +652,6 @@ def test_pinning_before_the_views_exist_builds_them():
 def test_presentation_mode_comes_from_the_link(raw, presentation, notice):
     app = Explorer(query={"presentation": [raw]})
     assert app.presentation is presentation and app.sidebar.present_toggle.value is presentation
-    assert (PRESENTATION_CSS in app.readouts["mean_flow"].stylesheets) is presentation
     assert (float(app.pump.speed.figure.title.text_font_size[:-2]) > 16) is presentation
     assert app.notices.visible is notice
     if notice:

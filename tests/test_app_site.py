@@ -14,6 +14,7 @@ import pytest
 
 import windpump
 from windpump_app.explorer import Explorer
+from windpump_app.site_inputs import RESTARTS
 
 SEED = windpump.Design.seed_example()
 SITE_TAB = 4  # Wind pump, Mechanisms, Wind, Design map, Site
@@ -46,12 +47,16 @@ def check_drawn(app, supplied, tank: float) -> None:
     np.testing.assert_array_equal(monthly["pumped"], np.asarray(supplied.monthly.pumped))
     np.testing.assert_array_equal(monthly["demand"], np.asarray(supplied.monthly.demand))
     np.testing.assert_array_equal(monthly["delivered"], np.asarray(supplied.monthly.delivered))
-    # each day's lowest and highest level: the year's 8760 hours as 365 rows of 24
+    np.testing.assert_array_equal(monthly["shortfall"], np.asarray(supplied.monthly.shortfall))
+    # each day's lowest, highest and mean level: the year's 8760 hours as 365 rows of 24
     days = np.asarray(supplied.level).reshape(365, 24)
     level = data(app, "level")
     np.testing.assert_array_equal(level["lower"], days.min(axis=1))
     np.testing.assert_array_equal(level["upper"], days.max(axis=1))
+    np.testing.assert_allclose(level["mean"], days.mean(axis=1), rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(level["t"], np.arange(365) + 0.5)
+    # the days short of water, a rug along the bottom
+    np.testing.assert_allclose(data(app, "dry")["t"], np.flatnonzero(supplied.dry) + 0.5)
     here = data(app, "lolp_here")
     assert here["tank"] == [tank] and here["lolp"] == [100 * supplied.lolp]
     assert app.site.tank_line.location == tank
@@ -95,11 +100,61 @@ def test_the_design_on_the_sliders_is_the_sites(app):
     check_drawn(app, supplied, 5.0)
 
 
-def test_a_pump_that_never_starts_says_why(app):
+def test_a_pump_that_never_starts_says_why_in_a_warning_box(app):
+    assert app.site.status.alert_type == "success" and "starting" in app.site.status.object
     app.site_inputs.restart = "self"  # T_0 = 0: no torque at rest
     supplied = windpump.supply(SEED, windpump.sample_site("greensboro"), 10.0, 5.0, restart="self")
     assert supplied.why
-    assert "never starts" in app.site.note.object
+    status = app.site.status
+    assert status.alert_type == "warning" and "never starts" in status.object
+    assert supplied.why[1:] in status.object  # the core's words, capitalised
+    assert "“Attended”" in status.object and "restart=" not in status.object
+    assert RESTARTS["attended"].startswith("Attended")  # the option it points to
+
+
+def test_the_monthly_chart_shows_the_shortfall_on_the_demands_scale(app):
+    """A small tank at Greensboro: ~700 m³ pumped in March against ~60 m³ asked for. The
+    figure's top stays near the demand (its bars readable), the months cut there name their
+    water, and the shortfall is a bar of its own colour on the delivered one."""
+    app.set_values(T_0=0.3)
+    app.site_inputs.param.update(hub=15.0, demand=2.0, tank=5.0, restart="self")
+    _, supplied = year(design=SEED.with_ratios(T_0=0.3), hub=15.0, demand=2.0, restart="self")
+    table = supplied.monthly
+    assert table.pumped.max() > 5 * table.demand.max() and supplied.lolp > 0.1  # the case
+    top = app.site.monthly.y_range.end
+    assert table.demand.max() < top <= 3 * table.demand.max()
+    cut = data(app, "monthly")["cut"]
+    for pumped, label in zip(table.pumped, cut, strict=True):
+        assert label == (f"{pumped:,.0f} " if pumped > top else "")
+    short = [
+        r for r in app.site.monthly.renderers if getattr(r.glyph, "bottom", None) == "delivered"
+    ]
+    assert len(short) == 1 and short[0].glyph.top == "demand"
+    app.site_inputs.param.update(demand=20.0)  # pumped no longer dwarfs the demand: all in view
+    _, supplied = year(design=SEED.with_ratios(T_0=0.3), hub=15.0, demand=20.0, restart="self")
+    assert app.site.monthly.y_range.end >= supplied.monthly.pumped.max()
+    assert set(data(app, "monthly")["cut"]) == {""}
+
+
+def test_a_short_record_is_labelled_by_its_span_not_a_year(app):
+    app.set_values(T_0=0.3)
+    app.site_inputs.restart = "self"
+    app.site.upload.param.update(value=hourly_csv(3), filename="three.csv")
+    assert app.site_inputs.site == "uploaded", app.site.upload_message.object
+    html = app.site.readouts["site_water"].object
+    assert "[m³ over 3 days]" in html and "year" not in html
+    assert "of 3 days" in app.site.status.object and "year" not in app.site.status.object
+    assert app.site.level.title.text == "The tank over 3 days"
+    rug = [i for i in app.site.level.legend[0].items if i.label.value == "days short of water"]
+    assert rug[0].visible is False  # none short: no blank swatch
+    assert "year" not in app.site.level.xaxis.axis_label
+    seventy = b"".join(hourly_csv(3).splitlines(keepends=True)[:71])  # a header, 70 hours
+    app.site.upload.param.update(value=seventy, filename="short.csv")
+    assert "[m³ over 70 h]" in app.site.readouts["site_water"].object
+    app.site_inputs.site = "greensboro"
+    assert "[m³/year]" in app.site.readouts["site_water"].object
+    assert app.site.level.title.text == "The tank over the year"
+    assert rug[0].visible is True
 
 
 def test_the_link_carries_every_control_and_a_tampered_value_is_ignored():
@@ -211,3 +266,42 @@ def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monke
         assert ticks == [] and not app.site.computing.visible
     finally:
         pn.state.curdoc = None
+
+
+def test_the_link_remembers_the_tab_both_ways():
+    """``tab=site`` (etc.) opens the page on that tab, the pump's tab (the default) left out; a
+    click on a tab is written into a served page's link."""
+    from windpump_app.link import TABS
+
+    app = Explorer(query={"tab": [b"site"], "site": [b"sand_point"]})
+    location = Location()
+    app.follow_in_link(location)  # as main.py: before the page (and its tabs) is built
+    tabs = app.main()
+    assert tabs.active == SITE_TAB and app.site_tab.built and not app.notices.visible
+    assert app.link_query().split("&") == ["site=sand_point", "tab=site"]
+    tabs.active = 2
+    assert location.search == "?site=sand_point&tab=wind"
+    tabs.active = 0
+    assert location.search == "?site=sand_point"
+    for index, name in enumerate(TABS, start=1):
+        opened = Explorer(query={"tab": [name.encode()]})
+        assert opened.main().active == index and opened.link_query() == f"tab={name}"
+    wrong = Explorer(query={"tab": [b"nowhere"]})
+    assert wrong.main().active == 0 and wrong.link_query() == ""
+    assert "Tab (tab) = “nowhere” ignored" in wrong.notices.object
+
+
+def test_every_tabs_readouts_grow_with_presentation_mode(app):
+    """Presentation mode sets the page's zoom in the browser (styles.ZOOM_JS): a readout's label
+    and value are sized by it, the Site and Wind tabs' as the pump's (their sizes were fixed)."""
+    import re
+
+    from windpump_app.styles import ZOOM_VARIABLE
+
+    readouts = [*app.readouts.readouts.values(), *app.site.readouts.values()]
+    readouts += app.wind.readouts.values()
+    for readout in readouts:
+        css = "".join(readout.stylesheets)
+        for part in ("label", "value"):
+            size = re.search(rf"\.readout \.{part} \{{font-size: ([^;]*);", css).group(1)
+            assert ZOOM_VARIABLE in size, (readout.readout_name, part, size)

@@ -445,6 +445,8 @@ def test_the_link_reads_as_the_sliders_and_reset_leaves_it_bare(page):
     page.get_by_role("button", name="Copy link to this state").click()
     page.wait_for_function("() => window.__copied !== null", timeout=30_000)
     assert urlparse(page.evaluate("() => window.__copied")).query == "h=4&T_m=0.7"
+    page.get_by_role("button", name="Link copied").wait_for(timeout=10_000)  # it says so
+    page.get_by_role("button", name="Copy link to this state").wait_for(timeout=10_000)  # then back
     page.get_by_role("button", name="Reset to the paper's example").click()
     wait_for_link(page, "")  # the defaults are not written
     assert page.problems == []

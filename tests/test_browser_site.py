@@ -53,6 +53,39 @@ def test_the_site_tab_shows_the_year_and_follows_the_demand(browser, url):
         page.close()
 
 
+# A readout's label and value font sizes [px], found through the shadow roots by its data-name
+READOUT_SIZES = """(name) => {
+  const walk = (root) => {
+    const hit = root.querySelector(`[data-name=${name}]`);
+    if (hit) return hit;
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) { const found = walk(el.shadowRoot); if (found) return found; }
+    }
+    return null;
+  };
+  const value = walk(document), label = value.parentNode.querySelector('.label');
+  return [label, value].map(el => parseFloat(getComputedStyle(el).fontSize));
+}"""
+
+
+def test_a_link_opens_the_site_tab_and_presentation_enlarges_its_readouts(browser, url):
+    """``?tab=site`` opens on the Site tab; presentation mode enlarges every tab's readouts,
+    labels by a quarter and numbers by half, as the pump's (the Site tab's stayed at 14 and 20 px)."""
+    for query, zoom in (("?tab=site", 1.0), ("?tab=site&presentation=true", 1.25)):
+        page = open_page(browser, url, 1280, 720, query)
+        try:
+            page.wait_for_function(
+                f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')", timeout=60_000
+            )
+            assert page.get_by_role("tab", name="Site").get_attribute("aria-selected") == "true"
+            for name in ("site_lolp", "mean_flow"):  # the Site tab's and the pump tab's
+                value = 20 * (2 * zoom - 1)  # the numbers grow by half (30 px)
+                assert page.evaluate(READOUT_SIZES, name) == [14 * zoom, value], (query, name)
+            assert page.problems == []
+        finally:
+            page.close()
+
+
 def test_a_weather_file_over_the_limit_is_refused_in_the_page(browser, url):
     """The page's size check (uploads.js) knows the Site tab's upload: 10 MB, said in the tab."""
     page = open_page(browser, url)

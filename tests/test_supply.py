@@ -137,10 +137,22 @@ def test_without_torque_at_rest_it_never_starts_and_says_why():
     year = supply(Design.seed_example(), hourly_record([9.0] * 48), 1.0, 2.0)
     assert not year.running.any() and year.pumped.sum() == 0.0
     assert "T_0 = 0" in year.why and year.lolp == 1.0
+    assert "someone must start it" in year.why
+    assert "restart" not in year.why and "'" not in year.why  # words, not Python
     attended = supply(
         Design.seed_example(), hourly_record([9.0] * 48), 1.0, 2.0, restart="attended"
     )
     assert attended.running.all() and attended.why == "" and attended.lolp == 0.0
+
+
+def test_a_wind_that_never_reaches_the_threshold_is_said_in_words():
+    V_stop, V_start = thresholds(SELF_STARTING)
+    calm = hourly_record([0.5 * V_stop] * 24)
+    alone = supply(SELF_STARTING, calm, 1.0, 0.0)
+    assert f"never reaches {V_start:.3g} m/s (V_start)" in alone.why
+    attended = supply(SELF_STARTING, calm, 1.0, 0.0, restart="attended")
+    assert f"never reaches {V_stop:.3g} m/s (V_stop)" in attended.why
+    assert "=" not in alone.why + attended.why
 
 
 def test_months_from_the_record_or_from_1_january():

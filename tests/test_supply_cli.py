@@ -53,12 +53,63 @@ def test_tank_prints_the_size():
     )
     assert done.returncode == 0, done.stderr
     size = windpump.tank_for(DESIGN, windpump.sample_site("sand_point"), 3.0, 0.05)
-    assert done.stdout.split()[:3] == ["tank", f"{size:.6g}", "m^3"]
+    lines = done.stdout.splitlines()
+    assert lines[-1].split()[:3] == ["tank", f"{size:.6g}", "m^3"]
+    # what it sized for, echoed: the site, its height, the demand and the target
+    assert lines[0].startswith("site") and "at 10 m" in lines[0] and "over 8760 h" in lines[0]
+    assert lines[1].split() == [
+        "demand",
+        "3",
+        "m^3/day,",
+        "loss",
+        "of",
+        "load",
+        "at",
+        "most",
+        "0.05",
+    ]
+
+
+def test_tank_says_why_no_tank_is_enough():
+    """Exit 0 (an answer, documented in its --help), and the reason supply gives."""
+    done = windpump_command("tank", "--site", "greensboro", "--demand", "1", "--hub-height", "15")
+    assert done.returncode == 0, done.stderr
+    assert "at 15 m" in done.stdout
+    never = windpump.supply(
+        windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0
+    )
+    last = done.stdout.splitlines()[-1]
+    assert "none is enough: the pump never runs" in last and never.why in last
+    assert "--restart attended" in last
+    assert "Exit code 0" in windpump_command("tank", "--help").stdout.replace("\n", " ")
+
+
+def test_a_short_record_has_fixed_decimals_and_its_own_span(tmp_path):
+    path = tmp_path / "mast.csv"
+    hours = [f"2026-06-0{1 + h // 24}T{h % 24:02d}:00,{6.0 + (h % 5)}" for h in range(72)]
+    path.write_text("time,speed\n" + "\n".join(hours) + "\n")
+    done = windpump_command(
+        "supply", "--weather", str(path), "--demand", "2", "--tank", "1", "--set", "T_0=0.3"
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert "over 72 h" in lines[0]
+    year = windpump.supply(DESIGN, windpump.read_weather(path), 2.0, 1.0)
+    june = next(line for line in lines if line.startswith("Jun")).split()
+    table = year.monthly
+    assert june[1:5] == [
+        f"{x:.1f}"
+        for x in (table.pumped[0], table.demand[0], table.delivered[0], table.shortfall[0])
+    ]
+    passes = "1 pass)" if year.passes == 1 else f"{year.passes} passes)"
+    assert any(line.startswith("spilled") and line.endswith(passes) for line in lines)
 
 
 def test_supply_says_why_a_pump_never_runs():
     done = windpump_command("supply", "--site", "greensboro", "--demand", "1")
     assert done.returncode == 0 and "never runs" in done.stdout and "T_0 = 0" in done.stdout
+    said = next(line for line in done.stdout.splitlines() if line.startswith("never runs"))
+    assert "--restart attended" in said and "restart=" not in said
 
 
 @pytest.mark.parametrize(
@@ -66,7 +117,19 @@ def test_supply_says_why_a_pump_never_runs():
     [
         (["supply", "--site", "greensboro", "--demand", "-1"], "demand"),
         (["supply", "--site", "greensboro", "--demand", "1", "--tank", "-1"], "tank"),
-        (["supply", "--site", "greensboro", "--demand", "1", "--hub-height", "0"], "hub_height"),
+        (
+            ["supply", "--site", "greensboro", "--demand", "1", "--hub-height", "0"],
+            "> 0 and <= 500",
+        ),
+        (["supply", "--site", "greensboro", "--demand", "1", "--workers", "2"], "--workers apply"),
+        (
+            ["supply", "--site", "greensboro", "--demand", "1", "--turbulence", "0.1"],
+            "--turbulence apply only with --full",
+        ),
+        (
+            ["supply", "--site", "greensboro", "--demand", "1", "--csv", "/no/such/dir/h.csv"],
+            "--csv /no/such/dir/h.csv",
+        ),
         (["tank", "--site", "greensboro", "--demand", "1", "--lolp", "1"], "lolp"),
         (["tank", "--weather", "/no/such/file.csv", "--demand", "1"], "cannot read"),
         (["supply", "--site", "greensboro", "--demand", "1", "--profile", "1,2"], "profile"),
@@ -77,6 +140,14 @@ def test_failures_are_one_line_and_exit_1(args, message):
     assert done.returncode == 1 and done.stdout == ""
     assert len(done.stderr.splitlines()) == 1 and message in done.stderr
     assert done.stderr.startswith(f"windpump {args[0]}: error:")
+
+
+def test_a_weather_files_error_names_the_file(tmp_path):
+    path = tmp_path / "gappy.csv"
+    path.write_text("time,speed\n0,4\n3600,5\n10800,6\n")
+    done = windpump_command("supply", "--weather", str(path), "--demand", "1")
+    assert done.returncode == 1
+    assert done.stderr.startswith(f"windpump supply: error: --weather {path}: line 4: a gap of 2 h")
 
 
 def test_supply_in_full_from_a_csv(tmp_path):

@@ -173,6 +173,28 @@ def test_an_epw_with_a_missing_wind_is_refused_at_its_line(tmp_path):
         read_weather(path)
 
 
+def test_an_epw_hour_at_fault_is_quoted_in_the_files_own_dates(tmp_path):
+    rows = [(1999, 1, 1, h + 1, 3.0) for h in range(24) if h != 12]
+    path = tmp_path / "skip.epw"
+    path.write_text(epw_text(rows))
+    with pytest.raises(LabDataError, match="line 21") as error:  # 8 header lines, the 13th row
+        read_weather(path)
+    assert "“1999,1,1,14,0” skips" in str(error.value) and "2001" not in str(error.value)
+    path = tmp_path / "gap.csv"  # a TMY3's own date and time
+    lines = tmy3_lines()
+    path.write_text("\n".join(lines[:10] + lines[11:]) + "\n")
+    with pytest.raises(LabDataError, match="line 11") as error:
+        read_weather(path)
+    assert f"“{','.join(lines[11].split(',')[:2])}” skips"  # line 11 now in str(error.value)
+
+
+def test_at_height_0_says_the_whole_range():
+    record = WindRecord(np.array([0.0, 1.0]), np.array([3.0, 4.0]))
+    for z in (0.0, 1e6):
+        with pytest.raises(ParameterError, match="> 0 and <= 500"):
+            record.at_height(z)
+
+
 def test_read_weather_reads_the_wind_tabs_csv(tmp_path):
     path = tmp_path / "mast.csv"
     path.write_text("time,speed\n2026-01-31T23:00,4\n2026-01-31T23:30,5\n2026-02-01T00:00,6\n")

@@ -1,5 +1,8 @@
 """The command line's site commands: ``windpump supply`` (a year of water with a tank) and
 ``windpump tank`` (the tank a demand needs), registered by :mod:`windpump.cli`.
+
+Both exit with 0 when they answer (``tank`` also when no tank is enough: it says why), 1 on an
+error (one line on stderr), 2 for a command line argparse cannot read.
 """
 
 from __future__ import annotations
@@ -8,9 +11,11 @@ import argparse
 import csv
 import io
 import math
-import sys
+import os
+from pathlib import Path
 
 from .errors import ParameterError
+from .labdata import LabDataError
 from .units import LITRES_PER_M3
 from .wind import WindRecord
 from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
@@ -23,13 +28,19 @@ def add_commands(commands, design_options) -> None:
     year.add_argument("--tank", type=float, default=0.0, help="tank capacity [m^3] (0: none)")
     year.add_argument("--full", action="store_true", help="integrate the year in full (minutes)")
     year.add_argument(
-        "--turbulence", type=float, default=0.0, help="--full: gusts' turbulence intensity (0)"
+        "--turbulence", type=float, default=None, help="--full: gusts' turbulence intensity (0)"
     )
-    year.add_argument("--workers", type=int, default=1, help="--full: processes (1)")
+    year.add_argument("--workers", type=int, default=None, help="--full: processes (1)")
     year.add_argument("--csv", metavar="FILE", help="write the hours here")
     year.set_defaults(run=supply_command)
 
-    sizing = commands.add_parser("tank", help="the smallest tank for a loss-of-load probability")
+    sizing = commands.add_parser(
+        "tank",
+        help="the smallest tank for a loss-of-load probability",
+        description="The smallest tank [m^3] whose quasi-steady year loses at most --lolp of the "
+        "demand. Exit code 0 with the size, and also when no tank is enough (it says why); "
+        "1 on an error.",
+    )
     _site_options(sizing, design_options)
     sizing.add_argument(
         "--lolp", type=float, default=0.05, help="loss-of-load probability allowed (0.05)"
@@ -59,7 +70,10 @@ def site_record(args: argparse.Namespace) -> WindRecord:
     if args.site:
         record = sample_site(args.site)
     else:
-        record = read_weather(args.weather, height=args.height)
+        try:
+            record = read_weather(args.weather, height=args.height)
+        except LabDataError as error:  # the line at fault, in the file named
+            raise LabDataError(f"--weather {args.weather}: {error}") from None
     if args.hub_height is not None or args.shear != 1 / 7:
         hub = record.height if args.hub_height is None else args.hub_height
         try:
@@ -86,12 +100,19 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump supply``: the month table and the year's figures; the hours in --csv."""
     from .cli import chosen_design
 
+    full_only = [
+        f"--{name}" for name in ("turbulence", "workers") if getattr(args, name) is not None
+    ]
+    if full_only and not args.full:
+        raise ValueError(f"{' and '.join(full_only)} apply only with --full")
+    if args.csv:
+        check_writable(args.csv)
     design = chosen_design(args)
     record = site_record(args)
     options: dict = {"restart": args.restart, "profile": profile(args.profile)}
     if args.full:
-        options.update(method="full", turbulence=args.turbulence, progress=None)
-        if args.workers > 1:
+        options.update(method="full", turbulence=args.turbulence or 0.0, progress=None)
+        if (args.workers or 1) > 1:
             import concurrent.futures
 
             with concurrent.futures.ProcessPoolExecutor(args.workers) as pool:
@@ -103,18 +124,47 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
     for line in report(year, record):
         print(line)
     if args.csv:
-        with open(args.csv, "w", encoding="utf-8", newline="") as file:
-            file.write(hours_csv(year))
+        try:
+            with open(args.csv, "w", encoding="utf-8", newline="") as file:
+                file.write(hours_csv(year))
+        except OSError as error:
+            raise OSError(f"--csv {args.csv}: {error.strerror or error}") from None
         print(f"hours written to {args.csv}")
     return 0
+
+
+def check_writable(path: str) -> None:
+    """``--csv``'s file can be written (checked before a year is computed), or an OSError
+    naming it."""
+    target = Path(path)
+    folder = target.parent
+    if target.is_dir():
+        raise OSError(f"--csv {path}: a folder, not a file")
+    if not folder.is_dir():
+        raise OSError(f"--csv {path}: there is no folder {folder}")
+    if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
+        raise OSError(f"--csv {path}: not allowed to write there")
+
+
+def attended_hint(year: Supply) -> str:
+    """How the command line's user has someone restart the pump, when that would help."""
+    if year.why and year.restart == "self":
+        return " (--restart attended has someone do it, whenever the wind can carry it)"
+    return ""
+
+
+def site_line(year: Supply, record: WindRecord) -> str:
+    return (
+        f"site                 {record.name or 'the record'} at {record.height:g} m, "
+        f"mean wind {float(year.V.mean()):.3g} m/s over {year.hours} h"
+    )
 
 
 def report(year: Supply, record: WindRecord) -> list[str]:
     """The lines ``windpump supply`` prints: the site, the month table, the figures."""
     totals = year.totals
     lines = [
-        f"site                 {record.name or 'the record'} at {record.height:g} m, "
-        f"mean wind {float(year.V.mean()):.3g} m/s over {year.hours} h",
+        site_line(year, record),
         f"V_stop, V_start      {year.V_stop:.3g} m/s, "
         + ("none (no torque at rest)" if year.V_start is None else f"{year.V_start:.3g} m/s"),
         "",
@@ -123,26 +173,26 @@ def report(year: Supply, record: WindRecord) -> list[str]:
     table = year.monthly
     for i, month in enumerate(table.month):
         lines.append(
-            f"{MONTH_NAMES[month - 1]:<5}{table.pumped[i]:>12.4g}{table.demand[i]:>10.4g}"
-            f"{table.delivered[i]:>10.4g}{table.shortfall[i]:>10.4g}"
+            f"{MONTH_NAMES[month - 1]:<5}{table.pumped[i]:>12.1f}{table.demand[i]:>10.1f}"
+            f"{table.delivered[i]:>10.1f}{table.shortfall[i]:>10.1f}"
             f"{table.running_hours[i]:>8d}{table.starts[i]:>8d}"
         )
     lines += [
-        f"{'year':<5}{totals.pumped:>12.4g}{totals.demand:>10.4g}{totals.delivered:>10.4g}"
-        f"{totals.shortfall:>10.4g}{totals.running_hours:>8d}{totals.starts:>8d}",
+        f"{'year':<5}{totals.pumped:>12.1f}{totals.demand:>10.1f}{totals.delivered:>10.1f}"
+        f"{totals.shortfall:>10.1f}{totals.running_hours:>8d}{totals.starts:>8d}",
         "(water in m^3)",
         "",
         f"loss-of-load prob.   {year.lolp:.4g}",
         f"dry days             {year.dry_days} (longest spell {year.longest_dry_spell} days)",
-        f"spilled              {totals.spilled:.4g} m^3 (tank {year.tank:g} m^3, "
-        f"{year.passes} passes)",
+        f"spilled              {totals.spilled:.1f} m^3 (tank {year.tank:g} m^3, "
+        f"{year.passes} pass{'' if year.passes == 1 else 'es'})",
     ]
     if year.why:
-        lines.append(f"never runs           {year.why}")
+        lines.append(f"never runs           {year.why}{attended_hint(year)}")
     if year.quasi_steady is not None:
         gap = year.quasi_steady_gap
         shown = "n/a" if math.isnan(gap) else f"{gap:+.2%}"
-        lines.append(f"quasi-steady year    {year.quasi_steady.totals.pumped:.4g} m^3 ({shown})")
+        lines.append(f"quasi-steady year    {year.quasi_steady.totals.pumped:.1f} m^3 ({shown})")
     return lines
 
 
@@ -159,19 +209,30 @@ def hours_csv(year: Supply) -> str:
 
 
 def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
-    """``windpump tank``: the smallest tank for --lolp, in m^3 (and litres)."""
+    """``windpump tank``: what it sizes for (site, hub, demand, target), then the smallest tank
+    for --lolp in m^3 (and litres), or why none is enough."""
     from .cli import chosen_design
 
     design = chosen_design(args)
     record = site_record(args)
-    size = tank_for(
-        design, record, args.demand, args.lolp, restart=args.restart, profile=profile(args.profile)
-    )
+    options: dict = {"restart": args.restart, "profile": profile(args.profile)}
+    size = tank_for(design, record, args.demand, args.lolp, **options)
+    year = supply(design, record, args.demand, 0.0, **options)  # quasi-steady: quick
+    print(site_line(year, record))
+    print(f"demand               {args.demand:g} m^3/day, loss of load at most {args.lolp:g}")
     if math.isinf(size):
-        print(
-            f"no tank is enough: the year pumps less than {1 - args.lolp:.4g} of the demand",
-            file=sys.stdout,
-        )
+        print(f"tank                 none is enough: {no_tank_why(year, args.lolp)}")
         return 0
     print(f"tank                 {size:.6g} m^3 ({size * LITRES_PER_M3:.0f} L)")
     return 0
+
+
+def no_tank_why(year: Supply, lolp: float) -> str:
+    """Why no tank meets the target: the pump never runs, or it pumps too little."""
+    if year.why:
+        return f"the pump never runs: {year.why}{attended_hint(year)}"
+    totals = year.totals
+    return (
+        f"the year pumps {totals.pumped:.1f} m^3 of the {totals.demand:.1f} m^3 asked for, "
+        f"less than {1 - lolp:.4g} of it"
+    )

@@ -172,10 +172,10 @@ def _contents(source) -> tuple[bytes, str, str]:
 
 
 def _height(height: object) -> float:
-    from .validation import positive
+    from .validation import real
 
-    value = positive("height", height, "m")
-    if value > MAX_HEIGHT:
+    value = real("height", height, "m")
+    if not 0.0 < value <= MAX_HEIGHT:
         raise ParameterError("height", value, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
     return value
 
@@ -196,7 +196,7 @@ def _tmy3(iotools, text: str, stem: str) -> WindRecord:
     station = str(meta.get("Name", "")).strip().strip('"').strip()
     state = str(meta.get("State", "")).strip()
     name = f"{station}, {state}" if station and state else station or stem
-    return _hourly(data, data["wind_speed"], name, TMY3_HEADER_LINES, labelled_at_end=True)
+    return _hourly(data, data["wind_speed"], name, text, TMY3_HEADER_LINES, labelled_at_end=True)
 
 
 def _epw(iotools, text: str, stem: str) -> WindRecord:
@@ -208,7 +208,7 @@ def _epw(iotools, text: str, stem: str) -> WindRecord:
     if missing.size:
         line = EPW_HEADER_LINES + int(missing[0]) + 1
         raise LabDataError(f"the wind speed is missing (EPW's {EPW_MISSING_WIND:g})", line)
-    return _hourly(data, data["wind_speed"], name, EPW_HEADER_LINES, labelled_at_end=False)
+    return _hourly(data, data["wind_speed"], name, text, EPW_HEADER_LINES, labelled_at_end=False)
 
 
 def _read(reader, text: str, **options):
@@ -223,10 +223,13 @@ def _read(reader, text: str, **options):
         raise LabDataError(f"not a weather file pvlib can read: {message}") from None
 
 
-def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) -> WindRecord:
-    """The record of an hourly file, checked line by line. pvlib labels a TMY3 hour at its end
-    (as the file does: its month is the label's less an hour), an EPW hour at its start (it
-    takes an hour off the file's end label)."""
+def _hourly(
+    data, speed, name: str, text: str, header_lines: int, labelled_at_end: bool
+) -> WindRecord:
+    """The record of an hourly file (``text``), checked line by line. pvlib labels a TMY3 hour at
+    its end (as the file does: its month is the label's less an hour), an EPW hour at its start
+    (it takes an hour off the file's end label). A line at fault is quoted by its own date and
+    hour, not pvlib's (whose year is coerced to one)."""
     V = speed.to_numpy(dtype=float)
     index = data.index
     seconds = (index - index[0]).total_seconds().to_numpy(dtype=float)
@@ -238,9 +241,17 @@ def _hourly(data, speed, name: str, header_lines: int, labelled_at_end: bool) ->
     steps = np.diff(seconds)
     for i in np.flatnonzero(steps != SECONDS_PER_HOUR)[:1]:
         what = "skips an hour or more" if steps[i] > 0 else "does not come after the line before"
-        raise LabDataError(f"the hour {index[i + 1]} {what}", header_lines + int(i) + 2)
+        line = header_lines + int(i) + 2
+        raise LabDataError(f"the hour {_when(text, line, labelled_at_end)} {what}", line)
     month = ((index - _HOUR) if labelled_at_end else index).month.to_numpy(dtype=np.int8)
     return WindRecord(_frozen(seconds), _frozen(V), ANEMOMETER, name, _frozen(month, np.int8))
+
+
+def _when(text: str, line: int, tmy3: bool) -> str:
+    """A weather file's line's own date and hour, as the file writes them: a TMY3's
+    ``MM/DD/YYYY,HH:MM``, an EPW's ``year,month,day,hour,minute``."""
+    fields = text.splitlines()[line - 1].split(",")
+    return "“" + ",".join(field.strip() for field in fields[: 2 if tmy3 else 5]) + "”"
 
 
 def _csv_rows(data: bytes) -> tuple[np.ndarray | None, list[int]]:

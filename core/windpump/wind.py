@@ -111,8 +111,8 @@ class WindRecord:
         WindRecord
             The same times and months, at height z.
         """
-        z = positive("z", z, "m")
-        if z > MAX_HEIGHT:
+        z = real("z", z, "m")
+        if not 0.0 < z <= MAX_HEIGHT:  # the whole range, for 0 as for 1e6
             raise ParameterError("z", z, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
         shear = real("shear", shear)
         if not 0.0 <= shear <= 1.0:

@@ -154,7 +154,8 @@ class Supply:
     method : str
         ``"quasi-steady"`` or ``"full"``.
     why : str
-        Why the pump never runs, when it does not ("" otherwise).
+        Why the pump never runs, when it does not ("" otherwise), in words (a caller adds how
+        its user has someone start it, for ``restart="self"``).
     name : str
         The site's name.
     quasi_steady : Supply or None
@@ -414,19 +415,37 @@ def _quasi_steady_year(design: Design, V: np.ndarray, month: np.ndarray, restart
     else:
         kernels.hysteresis(V, math.inf if V_start is None else V_start, V_stop, attended, running)
         if not running.any():
-            need = V_stop if attended else V_start
-            why = f"the wind never reaches {'V_stop' if attended else 'V_start'} = {need:.3g} m/s"
+            need = V_stop if attended or V_start is None else V_start  # (V_start: not None)
+            why = _never_reached(need, attended)
     pumped = np.where(running, steady_flow(design, V) * SECONDS_PER_HOUR, 0.0)
     return _Year(V, month, running, pumped, V_stop, V_start, why)
 
 
 def _never_starts(V_start: float | None) -> str:
+    """Why a pump that restarts on its own never does, in words a user acts on (a caller adds
+    how its user has someone start it)."""
     if V_start is None:
         return (
-            "the windmill has no torque at rest (T_0 = 0): it never starts on its own; "
-            "restart='attended' has someone start it"
+            "the windmill has no torque at rest (T_0 = 0), so no wind starts it on its own: "
+            "someone must start it"
         )
-    return "the windmill's torque at rest is too small to start the pump in any wind"
+    return (
+        "the windmill's torque at rest is too small to start the pump in any wind: "
+        "someone must start it"
+    )
+
+
+def _never_reached(need: float, attended: bool) -> str:
+    """Why a pump never runs in this record: the wind it needs never blows."""
+    if attended:
+        return (
+            f"the wind never reaches {need:.3g} m/s (V_stop), the least in which the windmill "
+            "can carry the pump"
+        )
+    return (
+        f"the wind never reaches {need:.3g} m/s (V_start), the least in which the pump starts "
+        "on its own"
+    )
 
 
 def _with_tank(year: _Year, demand: np.ndarray, tank: float, **fields) -> Supply:

@@ -547,12 +547,12 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     from . import _kernels
 
     swept = design.stroke_volume * (run.strokes - run.strokes[0])
-    volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot  # Eq. (16)
+    # Eq. (16); with a leak hole the kernel's flow factor is the delivered flow's, not the swept
+    volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot
     friction = leak = np.zeros_like(run.t)
     if run.leaked is not None:  # the real machine
         if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
             volume = swept - run.leaked
-            flow = face_flows(run.theta, run.theta_dot, design).sum(axis=0)
         friction = run.friction_loss
         # The kernel integrates the load's excess over the static head; the static head's work
         # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's.

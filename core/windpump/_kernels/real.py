@@ -32,6 +32,7 @@ import functools
 import math
 import typing
 
+import numpy as np
 from numba import types
 from numba.extending import overload
 
@@ -66,6 +67,7 @@ from .model import (
     load_work,
     phase,
     piston_over_R,
+    segment_at,
     segment_start,
     windmill_torque_on_crank,
 )
@@ -311,6 +313,7 @@ _entry(angle_rates)(_ideal_angle_rates, _real_angle_rates)
 _entry(time_rates)(_ideal_time_rates, _real_time_rates)
 
 
+
 def _no_row(row, theta, segment, machine):
     return None
 
@@ -526,6 +529,41 @@ _entry(leak_scale)(
     lambda width, machine: math.inf,
     lambda width, machine: LEAK_RTOL_FACTOR * machine.real.AR * width,
 )
+
+
+@kernel
+def _leaky_flow_factor(rows, row, theta_dot, machine):
+    """``Q / (2 A R theta_dot)`` of the delivering faces whose |lever arms| ``rows[row, 1:]``
+    holds (0 at rest): Q = sum max(A R |a_k| theta_dot - q_L, 0)."""
+    real = machine.real
+    if not theta_dot > 0.0:
+        return 0.0
+    Q = 0.0
+    for k in range(machine.cylinders):
+        Q += delivered_flow(real.AR * rows[row, 1 + k] * theta_dot, real.q_L)
+    return 0.5 * Q / (real.AR * theta_dot)
+
+
+@kernel
+def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
+    """With a leak hole, each sample's delivered flow over ``2 A R theta_dot`` [-] (0 at rest):
+    what the driver's flow factor is for a tight piston, ``2 R A (this) theta_dot`` the flow.
+    The lever arms at the grid angles g pi / n_per_stroke are tabulated; a sample off them
+    computes its own."""
+    period = 2 * n_per_stroke
+    delta = math.pi / n_per_stroke
+    levers, own = np.empty((period, ROW)), np.empty((1, ROW))
+    for row in range(period):
+        _sums(levers[row], row * delta, (row * machine.cylinders) // n_per_stroke, machine, False)
+    factors = np.empty(theta.shape[0])
+    for i in range(theta.shape[0]):
+        g = int(round(theta[i] / delta))
+        if g * delta == theta[i]:
+            factors[i] = _leaky_flow_factor(levers, g % period, theta_dot[i], machine)
+        else:
+            _sums(own[0], theta[i], segment_at(theta[i], machine), machine, False)
+            factors[i] = _leaky_flow_factor(own, 0, theta_dot[i], machine)
+    return factors
 
 
 def work_rows(machine):

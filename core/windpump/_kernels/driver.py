@@ -26,6 +26,7 @@ from .real import (
     inertia_ratio,
     leak_scale,
     next_leak_kink,
+    step_rows,
     work_at,
     work_rows,
     write_work,
@@ -548,8 +549,9 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
     stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
     ok, y, k7, err, dense = dp5_step(
-        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment, machine
-    )
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, step_rows(scratch_rows, machine),
+        segment, machine,
+    )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
 
@@ -632,8 +634,9 @@ def in_angle(
                 aux, rows = scratch, scratch_rows
                 stage_values(theta_i, h_step, segment, machine, aux, rows)
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, rows, segment, machine
-            )
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, calm), segment,
+                machine,
+            )  # fmt: skip
             steps += 1
             at_wind_kink = ok and kink < y[2] <= t_end
             if at_wind_kink:  # V(t) has a kink inside: the sub-step goes only as far as it

@@ -353,8 +353,7 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
         # The ideal machine runs at least as fast, and its averaged theory is in closed form (a
         # leak hole's takes a quadrature a wind speed: seconds for a day's record); a real run's
         # kinks and harmonics take up to ~3 steps a switch.
-        ideal = design.replace(**{name: DEFAULTS[name] for name in REAL_MACHINE})
-        return REAL_STEPS_PER_SWITCH * estimated_steps(ideal, t_end, record)
+        return REAL_STEPS_PER_SWITCH * estimated_steps(ideal_of(design), t_end, record)
     per_speed = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
     switches_per_radian = design.cylinders / math.pi
     if record is None:
@@ -370,6 +369,14 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
 
 REAL_STEPS_PER_SWITCH = 3.0
 DEFAULTS = {field.name: field.default for field in dataclasses.fields(Design)}
+
+
+def ideal_of(design: Design) -> Design:
+    """The design as the paper's ideal machine: every field of the real machine at its default
+    (the design itself when it is ideal)."""
+    if design.is_ideal:
+        return design
+    return design.replace(**{name: DEFAULTS[name] for name in REAL_MACHINE})
 
 
 def check_work(design: Design, t_end: float, record: WindRecord | None = None) -> None:
@@ -686,14 +693,15 @@ def first_capacity(
     """A first guess of the sample count, from the averaged theory's running speed (the output
     grows past it if needed), never above ``bound``.
 
-    With a leak hole, the running speed of the same pump without it: the hole relieves the load
-    only where a face sweeps less than it passes (the seed example's 6 mm hole runs it 0.02 %
-    faster), and its averaged theory is a quadrature, ~3 ms a run."""
+    For a real machine, the ideal machine's running speed (:func:`ideal_of`, closed form): it
+    runs at least as fast but for a leak hole, which relieves the load only where a face sweeps
+    less than the hole passes (the seed example's 6 mm hole runs it 0.02 % faster); the real
+    machine's averaged theory is a quadrature (a hole's ~3 ms a run, a rising main's 0.3 ms),
+    and room never written costs nothing."""
     if sample_dt is not None:
         return int(min(math.ceil(bound), t_end / sample_dt + 64))
-    tight = design if design.d_leak == 0.0 else design.replace(d_leak=0.0)
     try:
-        speed = max(theta_dot0, steady_speeds(tight)[0])
+        speed = max(theta_dot0, steady_speeds(ideal_of(design))[0])
     except StallError:
         speed = theta_dot0
     expected = 1.05 * speed * t_end / (math.pi / samples_per_stroke) + 64

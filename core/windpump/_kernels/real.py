@@ -603,6 +603,19 @@ def _step_rows(rows, machine):
 _entry(step_rows)(lambda rows, machine: rows, _step_rows)
 
 
+def split_sizes_by_parity(m, m_other, machine):
+    """After a segment, (the next segment's sub-steps, the other parity's): the ideal machine
+    keeps one m for every segment, (m, m_other) as they are; the real machine one per parity,
+    swapped, for its two parities load the crank differently (a single cylinder's delivering
+    half has the main's friction and the hole's kinks, its intake half none: one m for both
+    made every delivering segment fail its first sub-step and go on off the tables)."""
+
+
+_entry(split_sizes_by_parity)(
+    lambda m, m_other, machine: (m, m_other), lambda m, m_other, machine: (m_other, m)
+)
+
+
 def work_rows(machine):
     """How many rows the work quadratures take in the output: 1, or WORKS."""
 

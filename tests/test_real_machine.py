@@ -149,6 +149,17 @@ def test_any_real_machine_closes_its_energy_and_delivers_at_most_what_it_sweeps(
     assert np.all(np.diff(run.volume) >= -2e-6 * run.swept_volume[-1])  # to its accuracy
 
 
+@pytest.mark.parametrize("name", ["leak hole", "every effect", "two double-acting"])
+@pytest.mark.parametrize("sample_dt", [None, 0.37])
+def test_a_leaky_runs_flow_is_what_its_faces_deliver(name, sample_dt):
+    # The kernel computes the delivered flow (the lever arms tabulated on the output grid);
+    # numpy's face_flows computes it again from the samples' angles and speeds.
+    run = windpump.simulate(DESIGNS[name], 30.0, sample_dt=sample_dt)
+    faces = windpump.face_flows(run.theta, run.theta_dot, run.design).sum(axis=0)
+    assert np.any(faces == 0.0) and np.any(faces > 0.0)  # the hole takes some samples' flow
+    np.testing.assert_allclose(run.flow, faces, rtol=1e-12, atol=1e-12 * faces.max())
+
+
 def test_the_kernel_returns_no_real_rows_for_the_ideal_machine():
     run = _kernels.run(kernel_machine(SEED), math.pi / 2, 3.0, 1.0, 16, None, 1e-8, 10**6, 64)
     assert run.leaked is None and run.friction_loss is None

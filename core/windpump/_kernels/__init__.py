@@ -72,7 +72,8 @@ class KernelRun(typing.NamedTuple):
     theta_dot: np.ndarray  # [rad/s]
     shaft_work: np.ndarray  # [J]
     strokes: np.ndarray  # stroke volumes 2 R A delivered since theta = 0 [-]
-    flow_factor: np.ndarray  # sum of f2 (Eq. 16) over the delivering faces [-]
+    flow_factor: np.ndarray  # sum of f2 (Eq. 16) over the delivering faces [-]; with a leak
+    # hole the delivered flow over 2 R A theta_dot
     outcome: int  # REACHED_T_END, STALLED, RESTING or OVER_BUDGET
     steps: int  # Dormand-Prince steps taken, rejected ones included
     stops: np.ndarray  # times the crank came to rest and waited for the wind [s]
@@ -122,6 +123,10 @@ def run(
     )
     out, n = ran.out, ran.samples
     t, theta, theta_dot, strokes, flow, work = (out[row, :n].copy() for row in range(driver.ROWS))
+    if machine.real is not None and machine.real.q_L > 0.0:  # the delivered flow's factor
+        from .real import leaky_flow_factors
+
+        flow = leaky_flow_factors(theta, theta_dot, samples_per_stroke, machine)
     real = [out[row, :n].copy() for row in range(driver.ROWS, out.shape[0])]
     times, kinds = ran.events[0, : ran.event_count], ran.events[1, : ran.event_count]
     return KernelRun(

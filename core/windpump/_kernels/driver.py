@@ -2,7 +2,8 @@
 
 Between switches (every pi / n of crank angle, see :mod:`.model`) the crank angle is the
 independent variable (:mod:`.stepping`), and a segment is split into m equal sub-steps, m chosen
-from the error estimates of the previous segment. Every segment of the same parity loads the crank
+from the error estimates of the previous segment (for the real machine, of the previous segment
+of the same parity; a leak's kink cuts a sub-step in two and the split goes on). Every segment of the same parity loads the crank
 the same way (a shift of 2 pi / n turns cylinder k into k - 1), so what a split needs at its stage
 nodes is tabulated once per run. Where theta is a poor variable (the crank near rest) or a step
 would pass t_end, the run goes on in time as far as the next grid angle or switch.
@@ -26,6 +27,8 @@ from .real import (
     inertia_ratio,
     leak_scale,
     next_leak_kink,
+    split_sizes_by_parity,
+    step_rows,
     work_at,
     work_rows,
     write_work,
@@ -531,6 +534,13 @@ def split_of(m, full, theta, width, n_per_stroke, sample_dt, segment, machine):
 
 
 @inline_kernel
+def rest_of_sub_step(theta, first, i, m_seg, h, end):
+    """The length from theta, a leak's kink inside sub-step i of a split from ``first``, to
+    where that sub-step ends (the segment's end after the last)."""
+    return (end if i == m_seg - 1 else first + (i + 1) * h) - theta
+
+
+@inline_kernel
 def leak_cut(theta_i, h, leak_kink):
     """A sub-step's length: h, or as far as a leak's kink inside it. Returns (length, whether
     it ends on the kink)."""
@@ -548,36 +558,41 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
     stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
     ok, y, k7, err, dense = dp5_step(
-        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, scratch_rows, segment, machine
-    )
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, step_rows(scratch_rows, machine),
+        segment, machine,
+    )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
 
 @inline_kernel
-def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h,
-                  machine):  # fmt: skip
+def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, whole, m,
+                  width, h, machine):  # fmt: skip
     """The state after sub-step i, accepted, to theta_new: (u_free, t, W, theta, u, theta_dot,
-    k1, the worst scaled error so far, i + 1, m, ON_KINK or SPLIT_DONE). Past a kink (up to
-    round-off in its time) the run goes on from there in a new split: past a wind record's, of m
-    sub-steps from the errors so far; a leak's keeps m (the split before it may be a segment's
-    short tail)."""
+    k1, the worst scaled error so far, the next sub-step's index, m, ON_KINK or SPLIT_DONE).
+    Past a wind record's kink (up to round-off in its time) the run goes on from there in a new
+    split of m sub-steps from the errors so far. Past a leak's kink the split goes on: the rest of
+    sub-step i (its index kept), off the tables, then its next sub-steps on them. Only ``whole``
+    sub-steps (not cut by a leak's kink) count in the worst error, from which m follows."""
     theta_dot = math.sqrt(2.0 * u_new / inertia_ratio(theta_new, machine))
-    worst = max(worst, scaled)
+    if whole:
+        worst = max(worst, scaled)
     status = SPLIT_DONE
-    if at_kink:
-        if at_wind_kink:
-            m = next_split_size(width, h, worst)
+    if at_wind_kink:
+        m = next_split_size(width, h, worst)
         status = ON_KINK
-    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i + 1, m, status
+    if at_wind_kink or not at_kink:
+        i += 1
+    return y[0], y[2], y[3], theta_new, u_new, theta_dot, k7, worst, i, m, status
 
 
 @inline_kernel
-def after_split(status, i, m_seg, full, m, width, h, worst, segment):
-    """After a split's sub-steps: on to the next segment when they all were taken (m from their
-    worst scaled error), else on from part of this one. Returns (segment, full, m)."""
+def after_split(status, i, m_seg, full, m, width, h, worst, segment, past_leak, wholes):
+    """After a split's sub-steps: on to the next segment when they all were taken (m from the
+    worst scaled error of those a leak's kink did not cut, if any), else on from part of this one
+    (from its start only when no step was taken). Returns (segment, full, m)."""
     if status != SPLIT_DONE:
-        return segment, full and i == 0, m
-    if full or m_seg > 1:  # a single sub-step of a segment's tail is short by position
+        return segment, full and i == 0 and not past_leak, m
+    if (full or m_seg > 1) and wholes:  # a single sub-step of a tail is short by position
         m = next_split_size(width, h, worst)
     return segment + 1, True, m
 
@@ -598,6 +613,7 @@ def in_angle(
     t_end, rtol, max_steps = limits
     strokes_table, flow_table, work_table, inertia_table = at_grid
     calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
+    m_other = m  # the real machine's sub-steps of a segment of the other parity
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -614,26 +630,31 @@ def in_angle(
         k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
         leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
         first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
+        past_leak = False  # theta is a leak's kink inside sub-step i: its rest is off the tables
+        wholes = False  # the split took a sub-step that a leak's kink did not cut
         while i < m_seg:
             if steps >= max_steps:
                 status = OUT_OF_STEPS
                 break
-            theta_i = first + i * h
-            if use_table:
+            theta_i, h_i = first + i * h, h
+            if past_leak:
+                theta_i, h_i = theta, rest_of_sub_step(theta, first, i, m_seg, h, end)
+            if use_table and not past_leak:
                 aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
                 aux, rows = scratch, scratch_rows
-                stage_values(theta_i, h, segment, machine, aux, rows)
+                stage_values(theta_i, h_i, segment, machine, aux, rows)
             if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
                 break
-            h_step, at_kink = leak_cut(theta_i, h, leak[0])
+            h_step, at_kink = leak_cut(theta_i, h_i, leak[0])
             if at_kink:
                 aux, rows = scratch, scratch_rows
                 stage_values(theta_i, h_step, segment, machine, aux, rows)
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, rows, segment, machine
-            )
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, calm), segment,
+                machine,
+            )  # fmt: skip
             steps += 1
             at_wind_kink = ok and kink < y[2] <= t_end
             if at_wind_kink:  # V(t) has a kink inside: the sub-step goes only as far as it
@@ -669,14 +690,24 @@ def in_angle(
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
                     dense,
                 )  # fmt: skip
+            whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
+            wholes = wholes or whole
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
-                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, m, width, h, calm
-            )
+                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, whole, m, width,
+                h, calm,
+            )  # fmt: skip
             if at_wind_kink:
                 kink = next_kink(max(t, kink), machine.wind)
             if status == ON_KINK:
                 break
-        segment, full, m = after_split(status, i, m_seg, full, m, width, h, worst, segment)
+            past_leak = at_kink
+            if past_leak:  # on to the leak's next kink
+                leak = (leak[1], math.inf, leak[2])
+        segment, full, m = after_split(
+            status, i, m_seg, full, m, width, h, worst, segment, past_leak, wholes
+        )
+        if status == SPLIT_DONE:
+            m, m_other = split_sizes_by_parity(m, m_other, calm)
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

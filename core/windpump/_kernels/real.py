@@ -32,6 +32,7 @@ import functools
 import math
 import typing
 
+import numpy as np
 from numba import types
 from numba.extending import overload
 
@@ -66,6 +67,7 @@ from .model import (
     load_work,
     phase,
     piston_over_R,
+    segment_at,
     segment_start,
     windmill_torque_on_crank,
 )
@@ -311,6 +313,19 @@ _entry(angle_rates)(_ideal_angle_rates, _real_angle_rates)
 _entry(time_rates)(_ideal_time_rates, _real_time_rates)
 
 
+@overload(time_rates, jit_options=JIT_OPTIONS)
+def _time_rates_of_tuples(t, theta, theta_dot, row, segment, machine):
+    """The ANGLE domain's steps take :func:`step_rows`' tuples, which ``rates`` types in its
+    TIME branch too (never taken there): a stub for them."""
+    if not isinstance(row, types.BaseTuple):
+        return None
+
+    def never(t, theta, theta_dot, row, segment, machine):
+        return theta_dot, math.nan, 0.0, (math.nan, math.nan, math.nan, math.nan)
+
+    return never
+
+
 def _no_row(row, theta, segment, machine):
     return None
 
@@ -525,6 +540,79 @@ LEAK_RTOL_FACTOR = 100.0  # a run's leaked volume to ~1e-6 of its swept volume, 
 _entry(leak_scale)(
     lambda width, machine: math.inf,
     lambda width, machine: LEAK_RTOL_FACTOR * machine.real.AR * width,
+)
+
+
+@kernel
+def _leaky_flow_factor(rows, row, theta_dot, machine):
+    """``Q / (2 A R theta_dot)`` of the delivering faces whose |lever arms| ``rows[row, 1:]``
+    holds (0 at rest): Q = sum max(A R |a_k| theta_dot - q_L, 0)."""
+    real = machine.real
+    if not theta_dot > 0.0:
+        return 0.0
+    Q = 0.0
+    for k in range(machine.cylinders):
+        Q += delivered_flow(real.AR * rows[row, 1 + k] * theta_dot, real.q_L)
+    return 0.5 * Q / (real.AR * theta_dot)
+
+
+@kernel
+def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
+    """With a leak hole, each sample's delivered flow over ``2 A R theta_dot`` [-] (0 at rest):
+    what the driver's flow factor is for a tight piston, ``2 R A (this) theta_dot`` the flow.
+    The lever arms at the grid angles g pi / n_per_stroke are tabulated; a sample off them
+    computes its own."""
+    period = 2 * n_per_stroke
+    delta = math.pi / n_per_stroke
+    levers, own = np.empty((period, ROW)), np.empty((1, ROW))
+    for row in range(period):
+        _sums(levers[row], row * delta, (row * machine.cylinders) // n_per_stroke, machine, False)
+    factors = np.empty(theta.shape[0])
+    for i in range(theta.shape[0]):
+        g = int(round(theta[i] / delta))
+        if g * delta == theta[i]:
+            factors[i] = _leaky_flow_factor(levers, g % period, theta_dot[i], machine)
+        else:
+            _sums(own[0], theta[i], segment_at(theta[i], machine), machine, False)
+            factors[i] = _leaky_flow_factor(own, 0, theta_dot[i], machine)
+    return factors
+
+
+def step_rows(rows, machine):
+    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples (the ideal
+    machine's: ``rows`` as they are). A stage's row taken from the array is a view, whose
+    reference is counted atomically as it is made and dropped: 14 atomic operations a step, a
+    third of the time of the real machine's steps (eta_t alone)."""
+
+
+@kernel
+def _row(rows, stage):
+    return (
+        rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
+        rows[stage, 4], rows[stage, 5], rows[stage, 6], rows[stage, 7],
+    )  # fmt: skip
+
+
+def _step_rows(rows, machine):
+    return (
+        _row(rows, 0), _row(rows, 1), _row(rows, 2), _row(rows, 3), _row(rows, 4),
+        _row(rows, 5), _row(rows, 6),
+    )  # fmt: skip
+
+
+_entry(step_rows)(lambda rows, machine: rows, _step_rows)
+
+
+def split_sizes_by_parity(m, m_other, machine):
+    """After a segment, (the next segment's sub-steps, the other parity's): the ideal machine
+    keeps one m for every segment, (m, m_other) as they are; the real machine one per parity,
+    swapped, for its two parities load the crank differently (a single cylinder's delivering
+    half has the main's friction and the hole's kinks, its intake half none: one m for both
+    made every delivering segment fail its first sub-step and go on off the tables)."""
+
+
+_entry(split_sizes_by_parity)(
+    lambda m, m_other, machine: (m, m_other), lambda m, m_other, machine: (m_other, m)
 )
 
 

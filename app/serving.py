@@ -9,6 +9,8 @@ import gc
 import threading
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
 
 _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
@@ -139,3 +141,39 @@ def first_run_when_ready(session_id: str, document, explorer) -> Callable:
         document.add_next_tick_callback(first_run)
 
     return run
+
+
+# Heavy work of one page (a wind record read and run, a map, a year) runs here, not on the
+# server's event loop, which every page's moves wait for. The compiled kernels release the GIL
+# (windpump._kernels.jit), so two threads use the two cores; Python parts share the GIL in 5 ms
+# turns, so the loop keeps answering meanwhile.
+OFF_THE_LOOP = ThreadPoolExecutor(max_workers=2, thread_name_prefix="heavy work")
+
+
+def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:
+    """Run ``work()`` off the event loop, then ``then(result)`` on it, under the page's lock.
+
+    Served (``pn.state.curdoc`` has a session): ``work`` in ``OFF_THE_LOOP`` and ``then`` as the
+    document's next-tick callback (the one Bokeh call that is safe from another thread). Not
+    served (a notebook, the tests): both at once, in order. An exception of ``work`` is handed
+    to ``then`` as its result.
+    """
+    import panel as pn
+
+    document = pn.state.curdoc
+    if document is None or document.session_context is None:
+        then(_outcome(work))
+        return
+
+    def done(future) -> None:
+        result = future.result()
+        document.add_next_tick_callback(lambda: then(result))
+
+    OFF_THE_LOOP.submit(_outcome, work).add_done_callback(done)
+
+
+def _outcome(work: Callable[[], Any]) -> Any:
+    try:
+        return work()
+    except Exception as error:  # handed to ``then``, which says it on the page
+        return error

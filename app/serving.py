@@ -177,3 +177,37 @@ def _outcome(work: Callable[[], Any]) -> Any:
         return work()
     except Exception as error:  # handed to ``then``, which says it on the page
         return error
+
+
+# When the page's websocket closes (Wi-Fi dropped, the server or its process restarted): say so at
+# the top of the page, ask the server for a small static file every 2 s, and once it answers,
+# reopen the page at its current address (its link, which holds the design) with ?restored=true,
+# which the new page says (link.RESTORED) and drops from its link. Behind the proxy
+# (app/proxy.py) the answer comes from a live process, and the page reopens there.
+RECONNECT_JS = """
+if (document.getElementById("windpump-offline") !== null) return
+const banner = document.createElement("div")
+banner.id = "windpump-offline"
+banner.setAttribute("role", "alert")
+banner.style.cssText = "position:fixed;top:0;left:0;right:0;z-index:10000;padding:8px 16px;" +
+  "background:#f0ad4e;color:#222;font:16px sans-serif;text-align:center"
+banner.textContent = "The connection to the server was lost: reconnecting… (this page's " +
+  "link holds its design, nothing to retype)"
+document.body.appendChild(banner)
+const probe = new URL("static/extensions/panel/css/alerts.css", window.location.href)
+const again = new URL(window.location.href)
+again.searchParams.set("restored", "true")
+const attempt = () => {
+  fetch(probe, {cache: "no-store"})
+    .then((r) => { if (r.ok) window.location.replace(again.href); else setTimeout(attempt, 2000) })
+    .catch(() => setTimeout(attempt, 2000))
+}
+setTimeout(attempt, 1000)
+"""
+
+
+def reopen_when_reconnected(document) -> None:
+    """Give ``document``'s page RECONNECT_JS for when its connection is lost."""
+    from bokeh.models import CustomJS
+
+    document.js_on_event("connection_lost", CustomJS(code=RECONNECT_JS))

@@ -88,20 +88,25 @@ class Student:
     sliders: dict = field(default_factory=dict)  # title -> (id, step)
     acknowledged: asyncio.Event = field(default_factory=asyncio.Event)
     watchers: list = field(default_factory=list)  # called with every ModelChanged received
+    cookies: dict = field(default_factory=dict)  # as a browser keeps them (a proxy's stickiness)
 
     async def open(self) -> None:
         self.opened = time.perf_counter()
-        page = await AsyncHTTPClient().fetch(HTTPRequest(self.url, request_timeout=WAIT))
+        page = await AsyncHTTPClient().fetch(
+            HTTPRequest(self.url, request_timeout=WAIT, headers=self.cookie_header())
+        )
+        self.keep_cookies(page.headers)
         token = TOKEN.search(page.body.decode()).group(1)
         parsed = urlparse(self.url)
         ws_url = f"ws://{parsed.netloc}{parsed.path}/ws"
+        headers = {"Origin": f"http://{parsed.netloc}", **self.cookie_header()}
         self.ws = await websocket_connect(
-            HTTPRequest(
-                ws_url, request_timeout=WAIT, headers={"Origin": f"http://{parsed.netloc}"}
-            ),
+            HTTPRequest(ws_url, request_timeout=WAIT, headers=headers),
             subprotocols=["bokeh", token],
             max_message_size=64 * 1024 * 1024,
         )
+        self.ws_cookies = dict(self.cookies)
+        self.keep_cookies(self.ws.headers)  # the handshake's answer (behind a proxy)
         self.listening = asyncio.ensure_future(self.listen())
         # The server reads nothing before its ACK (its session is made meanwhile)
         await asyncio.wait_for(self.acknowledged.wait(), WAIT)
@@ -110,6 +115,15 @@ class Student:
         await self.loaded()
         if self.to_readout is None:  # the server was compiling: the readout follows in a patch
             await asyncio.wait_for(self.readout_changed.wait(), WAIT)
+
+    def cookie_header(self) -> dict:
+        cookie = "; ".join(f"{name}={value}" for name, value in self.cookies.items())
+        return {"Cookie": cookie} if cookie else {}
+
+    def keep_cookies(self, headers) -> None:
+        for line in headers.get_list("Set-Cookie"):
+            name, _, value = line.split(";", 1)[0].partition("=")
+            self.cookies[name.strip()] = value.strip()
 
     async def loaded(self) -> None:
         """What a page sends once BokehJS has rendered it: its browser's facts, document_ready."""

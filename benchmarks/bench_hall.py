@@ -220,12 +220,7 @@ class Student:
         """Every model of the document with its attributes; the readout and the sliders found."""
         self.register(doc["roots"])
         for model_id, model in self.models.items():
-            text = html.unescape(str(model.get("text")))
-            if READOUTS in text:
-                self.readout_ids.add(model_id)
-            if READOUT in text:
-                self.readout_id = model_id
-                self.saw_readout()
+            self.saw_text(model_id, html.unescape(str(model.get("text"))))
             title = model.get("title")
             if model["type"].endswith("Slider") and title in MOVES:
                 self.sliders[title] = (model_id, model.get("step", 0.1))
@@ -240,8 +235,17 @@ class Student:
                 watcher(event)
             if model in self.models:
                 self.models[model][event["attr"]] = event["new"]
-            if model in self.readout_ids and event["attr"] == "text":
-                self.saw_readout()
+            if event["attr"] == "text" and isinstance(event["new"], str):
+                self.saw_text(model, html.unescape(event["new"]))
+
+    def saw_text(self, model_id: str, text: str) -> None:
+        """A model's text, as received: a readout's (a move's answer) or not."""
+        if READOUTS in text:
+            self.readout_ids.add(model_id)
+        if READOUT in text:
+            self.readout_id = model_id
+        if model_id in self.readout_ids:
+            self.saw_readout()
 
     def saw_readout(self) -> None:
         if self.readout_id is None or "L/s" not in html.unescape(

@@ -92,9 +92,10 @@ class Student:
 
     async def open(self) -> None:
         self.opened = time.perf_counter()
-        page = await AsyncHTTPClient().fetch(
-            HTTPRequest(self.url, request_timeout=WAIT, headers=self.cookie_header())
+        request = HTTPRequest(
+            self.url, connect_timeout=WAIT, request_timeout=WAIT, headers=self.cookie_header()
         )
+        page = await AsyncHTTPClient().fetch(request)
         self.keep_cookies(page.headers)
         token = TOKEN.search(page.body.decode()).group(1)
         parsed = urlparse(self.url)
@@ -512,6 +513,8 @@ SERVE = ["--unused-session-lifetime", "30000", "--check-unused-sessions", "2000"
 
 def run(n: int, minutes: float, upload: bool) -> Hall:
     """One hall of ``n`` on a fresh `panel serve app/`."""
+    # Each student's browser opens its own connections: not Tornado's default pool of 10
+    AsyncHTTPClient.configure(None, max_clients=MAX_SESSIONS + 1)
     if not 1 <= n <= MAX_SESSIONS:
         raise SystemExit(f"1 <= N <= {MAX_SESSIONS}")
     with served_app(*SERVE) as (address, server):

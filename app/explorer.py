@@ -21,11 +21,13 @@ import windpump
 from .figures import present
 from .inputs import PRESETS
 from .link import (
+    RESTORED,
     PageLink,
     notices_text,
     page_query,
     presentation_from,
     readable,
+    restored_from,
     tab_from,
     tab_query,
     text,
@@ -81,7 +83,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self.sources = self.pump.sources
         self.sidebar = Sidebar(self.inputs, self.dark, self._csv, self._show_lab_points)
         self.readouts = Readouts()
-        self._build_messages()
+        self._build_messages(restored_from(query))
         self._build_tabs()
         self._wire()
         if not defer_views:
@@ -103,9 +105,16 @@ class Explorer(Session, pn.viewable.Viewer):
         else:
             self.readouts.status.object, self.readouts.status.alert_type = COMPILING, "info"
 
-    def _build_messages(self) -> None:
+    def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
             "", alert_type="warning", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
+        )
+        self.restored = pn.pane.Alert(
+            RESTORED,
+            alert_type="info",
+            visible=restored,
+            stylesheets=TEXT,
+            sizing_mode="stretch_width",
         )
 
     def _build_tabs(self) -> None:
@@ -352,6 +361,7 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def pump_tab(self) -> pn.Column:
         return pn.Column(
+            self.restored,
             self.notices,
             self.error,
             self.readouts.row,

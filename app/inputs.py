@@ -261,7 +261,7 @@ def _decoded(raw) -> str:
 COUNTS = ("cylinders", "seed")
 
 # Keys the page itself uses, not inputs.
-IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab"}
+IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab", "restored"}
 
 # name: (values, one sentence saying what to look at)
 PRESETS = {

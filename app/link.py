@@ -64,6 +64,19 @@ def tab_query(active: int) -> str:
     return f"tab={TABS[active - 1]}" if 1 <= active <= len(TABS) else ""
 
 
+# A page whose connection was lost reopens itself from its link once the server answers again
+# (serving.reopen_when_reconnected), with ?restored=true, which this says and the link drops.
+RESTORED = (
+    "**The connection to the server was lost and is back.** This page was reopened from its "
+    "link, which holds its design: nothing to retype."
+)
+
+
+def restored_from(query: dict) -> bool:
+    """``?restored=true``: the page was reopened after its connection was lost."""
+    return text(query.get("restored", [b""])) == "true"
+
+
 def notices_text(notices: list[str]) -> str:
     """The link's ignored values, MAX_NOTICES at most (a link may carry thousands)."""
     listed = [f"- {notice}" for notice in notices[:MAX_NOTICES]]

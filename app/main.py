@@ -15,6 +15,7 @@ from .serving import (
     READOUTS_FIRST,
     SOLVER_READY,
     first_run_when_ready,
+    reopen_when_reconnected,
     session_closed,
     stylesheets_from_this_server,
     without_mathjax,
@@ -29,6 +30,7 @@ without_webgl()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)
+reopen_when_reconnected(document)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(session_closed)

@@ -10,6 +10,7 @@ Every number comes from ``windpump``.
 from __future__ import annotations
 
 import functools
+import logging
 import math
 
 import numpy as np
@@ -25,12 +26,16 @@ from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 from .buttons import ActionButton
 from .envelope import band
 from .figures import palette
+from .inputs import clipped
 from .readouts import Readout
+from .serving import off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen
 from .views import refill
 from .wind_figures import curve_figure, day_figures
+
+log = logging.getLogger("windpump.app")
 
 WIND_READOUTS = {
     "day_litres": "This day, in full [L/day]",
@@ -72,6 +77,18 @@ def record_water_text(litres: float, per_day: float, duration: float) -> tuple[s
         f"This record ({duration_text(duration)}), in full",
         f"{litres:,.0f} L ({per_day:,.0f} L/day at this rate)",
     )
+
+
+def read_record(data: bytes) -> windpump.wind.WindRecord | str:
+    """A wind CSV read, or the sentence that refuses it (its size, its content, its length)."""
+    try:
+        check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
+        record = read_csv(data)
+    except LabDataError as error:
+        return f"This wind file cannot be used: {error}"
+    if record.t[-1] > 400 * SECONDS_PER_DAY:
+        return "This wind file is longer than 400 days; cut it shorter."
+    return record
 
 
 def _same_day(a: tuple, b: tuple) -> bool:
@@ -126,6 +143,7 @@ class WindTab(Tab):
             source.name = f"windtab_{name}"  # for a browser: get_model_by_name
         self.last_run: windpump.SimulationResult | None = None
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
+        self._ready_day: tuple | None = None  # ((design, record, theta0, kick), its day), run ahead
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
         )
@@ -187,8 +205,12 @@ class WindTab(Tab):
         )
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
+        ready, self._ready_day = self._ready_day, None
         try:
-            day = windpump.run_in_wind(design, record, inputs.theta0, inputs.theta_dot0)
+            if ready is not None and _same_day(run_of, ready[0]):
+                day = ready[1]  # run off the loop as the record was read (load_data)
+            else:
+                day = windpump.run_in_wind(design, record, inputs.theta0, inputs.theta_dot0)
         except ValueError as error:
             self.error.object = f"The day cannot be run: {error}"
             self.error.visible = True
@@ -238,15 +260,13 @@ class WindTab(Tab):
         with its message and the day's wind stays as it was."""
         if data is None:
             return False
-        try:
-            check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
-            record = read_csv(data)
-        except LabDataError as error:
-            self.upload_message.object = f"This wind file cannot be used: {error}"
-            self.upload_message.visible = True
-            return False
-        if record.t[-1] > 400 * SECONDS_PER_DAY:
-            self.upload_message.object = "This wind file is longer than 400 days; cut it shorter."
+        return self.accept(read_record(data), name)
+
+    def accept(self, record: windpump.wind.WindRecord | str, name: str) -> bool:
+        """``record`` (read by ``read_record``) becomes the day's wind; a refusal is said."""
+        self.upload_message.alert_type = "danger"
+        if isinstance(record, str):
+            self.upload_message.object = record
             self.upload_message.visible = True
             return False
         self.measured, self.measured_name = record, name or "uploaded"
@@ -270,10 +290,43 @@ class WindTab(Tab):
 
     def load_data(self, data: bytes | None) -> None:
         """A measured wind CSV for the day; a bad file is refused and the day stays as it was.
-        Either outcome is scrolled into view."""
+        Either outcome is scrolled into view.
+
+        Reading it and running the pump through it (seconds for a week of wind) happen off the
+        server's event loop (``serving.off_the_loop``), so the other pages' moves are answered
+        meanwhile; the tab says it is working until the day is drawn."""
         if data is None:
             return
-        if self.load(data, self.upload.filename or ""):
+        name = self.upload.filename or ""
+        self.upload_message.object = f"Reading {clipped(name) or 'the file'} and running the day…"
+        self.upload_message.alert_type = "info"
+        self.upload_message.visible = True
+        design, theta0, kick = (
+            self.inputs.design_at_v_ref(),
+            self.inputs.theta0,
+            self.inputs.theta_dot0,
+        )
+
+        def work() -> tuple:
+            record = read_record(data)
+            if isinstance(record, str):
+                return record, None
+            try:
+                return record, (
+                    (design, record, theta0, kick_in_wind(design, kick)),
+                    windpump.run_in_wind(design, record, theta0, kick),
+                )
+            except ValueError:  # the day's redraw says why
+                return record, None
+
+        off_the_loop(work, lambda outcome: self._loaded(outcome, name))
+
+    def _loaded(self, outcome, name: str) -> None:
+        if isinstance(outcome, Exception):  # a bug: say so, log it, keep the session alive
+            log.error("reading a wind file failed", exc_info=outcome)
+            outcome = (f"This wind file cannot be used: {type(outcome).__name__}: {outcome}", None)
+        record, self._ready_day = outcome
+        if self.accept(record, name):
             self.redraw()
             self.reveal.show(WIND_DAY_NOTE)
         else:

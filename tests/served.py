@@ -126,6 +126,19 @@ def require_chromium() -> None:
     pytest.skip(f"{CHROMIUM} is not installed (apt-get install -y chromium)")
 
 
+def require_nginx() -> None:
+    """Skip on a user's machine without Debian's nginx; in CI its absence is a failure."""
+    import pytest
+
+    from windpump_app import proxy
+
+    if Path(proxy.NGINX).exists():
+        return
+    if os.environ.get("CI"):
+        pytest.fail(f"CI must run the proxy tests, but {proxy.NGINX} is missing")
+    pytest.skip(f"{proxy.NGINX} is not installed (apt-get install -y nginx)")
+
+
 def resident_memory(pid: int) -> int:
     """Resident set size of a process [bytes], from /proc."""
     for line in Path(f"/proc/{pid}/status").read_text().splitlines():

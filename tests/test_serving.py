@@ -89,3 +89,29 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready():
         assert started == [True] and shown == [True]
     finally:
         serving.SOLVER_READY.set()
+
+
+def test_closing_sessions_tidy_once_after_the_last_closes(monkeypatch):
+    """A class leaving: one full collection after the last page closes, not one per page (each
+    blocks every other page for a second or more)."""
+    import asyncio
+
+    from windpump_app import serving
+
+    runs = []
+    monkeypatch.setattr(serving.gc, "collect", lambda: runs.append("collect"))
+
+    async def leave():
+        tidy = serving.Tidy(quiet=0.2, every=0.5)
+        for _ in range(20):
+            tidy.closed()
+            await asyncio.sleep(0.01)
+        await asyncio.sleep(0.4)
+        assert runs == ["collect"]
+        tidy.closed()  # another leaves soon after: it waits for `every` since the last run
+        await asyncio.sleep(0.2)
+        assert runs == ["collect"]
+        await asyncio.sleep(0.5)
+        assert runs == ["collect", "collect"]
+
+    asyncio.run(leave())

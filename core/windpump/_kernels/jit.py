@@ -38,11 +38,14 @@ def kernel(function, *, by_value=False, **options):
     An install without a writable ``__pycache__`` (read-only site-packages, no
     ``NUMBA_CACHE_DIR``) has no cache locator: numba refuses ``cache=True`` there, so compile
     without caching rather than fail the import.
+
+    Every kernel releases the GIL while it runs (``nogil``): a server that runs a long one (a
+    week of wind) in a thread keeps answering its other pages meanwhile.
     """
     try:
-        dispatcher = njit(cache=True, **OPTIONS, **options)(function)
+        dispatcher = njit(cache=True, nogil=True, **OPTIONS, **options)(function)
     except RuntimeError:  # "cannot cache function ...: no locator available"
-        dispatcher = njit(cache=False, **OPTIONS, **options)(function)
+        dispatcher = njit(cache=False, nogil=True, **OPTIONS, **options)(function)
     if not by_value:
         dispatcher.__class__ = OneSpecialisation  # the same dispatcher, typing calls by type
     return dispatcher

@@ -1,0 +1,155 @@
+"""Several `panel serve app/` processes behind nginx with sticky sessions: one command for a
+class larger than one process carries.
+
+    python -m windpump_app.proxy --processes 4 --port 8080 [--address 0.0.0.0] [--host NAME:PORT]
+
+starts ``--processes`` servers on free loopback ports and nginx (Debian's ``/usr/sbin/nginx``, as
+a child process, its configuration ``app/nginx.conf`` filled in and written to a temporary
+directory) listening on ``--address:--port``; students open ``http://NAME:PORT/app``. Ctrl-C stops
+them all. See docs/instructors.rst, "More students than one process carries".
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+
+APP = Path(__file__).resolve().parent
+NGINX = "/usr/sbin/nginx"
+CONFIG = APP / "nginx.conf"
+
+
+def free_port(address: str = "127.0.0.1") -> int:
+    with socket.socket() as s:
+        s.bind((address, 0))
+        return s.getsockname()[1]
+
+
+def nginx_config(listen: str, ports: list[int], prefix: str) -> str:
+    """``app/nginx.conf`` for nginx listening on ``listen`` (address:port) in front of the
+    servers on 127.0.0.1 at ``ports``, its files under ``prefix``."""
+    backends = [f"127.0.0.1:{port}" for port in ports]
+    servers = "\n".join(f"    server {b} max_fails=1 fail_timeout=10s;" for b in backends)
+    sticky = "\n".join(f'    "{b}" {b};' for b in backends)
+    text = CONFIG.read_text(encoding="utf-8")
+    for field, value in (("@PREFIX@", prefix), ("@SERVERS@", servers), ("@STICKY@", sticky)):
+        text = text.replace(field, value)
+    return text.replace("@LISTEN@", listen)
+
+
+def panel_command(port: int, origins: list[str], *extra: str) -> list[str]:
+    command = [sys.executable, "-m", "panel", "serve", str(APP), "--port", str(port)]
+    command += ["--address", "127.0.0.1", "--use-xheaders"]
+    for origin in origins:
+        command += ["--allow-websocket-origin", origin]
+    return [*command, *extra]
+
+
+@contextlib.contextmanager
+def hall(
+    processes: int,
+    listen: str,
+    origins: list[str],
+    *extra: str,
+    log_to=None,
+    timeout: float = 180.0,
+) -> Iterator[tuple[list[subprocess.Popen], subprocess.Popen, list[int]]]:
+    """Start ``processes`` servers and nginx in front of them; yield (servers, nginx, ports);
+    stop them all afterwards. Waits, at most ``timeout`` s, until each server answers."""
+    if not Path(NGINX).exists():
+        raise RuntimeError(f"{NGINX} is missing: apt-get install -y nginx")
+    ports = [free_port() for _ in range(processes)]
+    started: list[subprocess.Popen] = []
+    with tempfile.TemporaryDirectory(prefix="windpump-nginx-") as prefix:
+        try:
+            for port in ports:
+                command = panel_command(port, origins, *extra)
+                started.append(subprocess.Popen(command, stdout=log_to, stderr=log_to))
+            for port, server in zip(ports, started, strict=True):
+                wait_until_up(f"http://127.0.0.1:{port}/static/js/bokeh.min.js", server, timeout)
+            config = Path(prefix) / "nginx.conf"
+            config.write_text(nginx_config(listen, ports, prefix), encoding="utf-8")
+            proxy = subprocess.Popen(
+                [NGINX, "-p", prefix, "-c", str(config), "-e", f"{prefix}/error.log"],
+                stdout=log_to,
+                stderr=log_to,
+            )
+            started.append(proxy)
+            host, port = listen.rsplit(":", 1)
+            wait_until_up(f"http://{_local(host)}:{port}/static/js/bokeh.min.js", proxy, 30)
+            yield started[:-1], proxy, ports
+        finally:
+            for process in reversed(started):
+                stop(process)
+
+
+def _local(host: str) -> str:
+    return "127.0.0.1" if host in ("0.0.0.0", "", "*") else host
+
+
+def wait_until_up(url: str, process: subprocess.Popen, timeout: float) -> None:
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            with urllib.request.urlopen(url, timeout=5) as response:
+                if response.status == 200:
+                    return
+        except OSError:
+            pass
+        if process.poll() is not None or time.monotonic() > deadline:
+            raise RuntimeError(f"{url} did not answer within {timeout:.0f} s")
+        time.sleep(0.25)
+
+
+def stop(process: subprocess.Popen) -> None:
+    if process.poll() is None:
+        process.send_signal(signal.SIGTERM)
+        try:
+            process.wait(timeout=15)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait(timeout=15)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--processes", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--port", type=int, default=8080)
+    parser.add_argument("--address", default="0.0.0.0", help="nginx listens here")
+    parser.add_argument(
+        "--host",
+        action="append",
+        default=[],
+        help="NAME:PORT students type (repeatable; default: this machine's names)",
+    )
+    args, extra = parser.parse_known_args(argv)
+    origins = args.host or [f"{name}:{args.port}" for name in _names()]
+    listen = f"{args.address}:{args.port}"
+    with hall(args.processes, listen, origins, *extra) as (servers, proxy, ports):
+        print(f"{len(servers)} servers on 127.0.0.1:{','.join(map(str, ports))}; nginx on {listen}")
+        print(f"students open http://{origins[0]}/app  (Ctrl-C stops them all)", flush=True)
+        with contextlib.suppress(KeyboardInterrupt):
+            while all(p.poll() is None for p in (*servers, proxy)):
+                time.sleep(1.0)
+    return 0
+
+
+def _names() -> list[str]:
+    names = ["localhost", "127.0.0.1", socket.gethostname()]
+    with contextlib.suppress(OSError):
+        names.append(socket.gethostbyname(socket.gethostname()))
+    return list(dict.fromkeys(names))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,546 @@
+"""A lecture hall at the protocol level: N students open the explorer within a few seconds and move
+its sliders, each a websocket client that speaks Bokeh's protocol as the page does but draws nothing.
+
+Run: python benchmarks/bench_hall.py [N ...] [--minutes M] [--upload]
+     (N = 30 100 200 by default; each hall on a fresh `panel serve app/` on loopback)
+
+Each student: GETs the page (the server builds its session), opens the page's websocket with the
+token the page carries, pulls the document (PULL-DOC-REQ -> PULL-DOC-REPLY), sends what a loaded
+page sends (its browser's facts, then ``document_ready``), and then, every 5-20 s at random, moves
+one slider to a random value on its step, as the page does (``value``, then ``value_throttled``).
+Recorded per student: the time from its GET to its readouts (the mean-flow readout's text arriving)
+and each move's round trip (the PATCH-DOC sent -> the PATCH-DOC that changes the readouts). For the
+server: its CPU and resident memory, sampled every half second. Printed: percentiles, the server's
+CPU per page (while the hall opens), memory per idle session and after the hall has closed.
+
+``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
+and the others' round trips are split into before/while/after.
+
+Bounded: N <= 400 sessions, at most ``--minutes`` of moves (default 1), every wait has a timeout,
+and it talks only to 127.0.0.0/8.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import html
+import json
+import os
+import random
+import re
+import sys
+import time
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+from urllib.parse import urlparse
+
+from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+from tornado.websocket import websocket_connect
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from served import cpu_seconds, resident_memory, served_app  # noqa: E402
+
+MAX_SESSIONS = 400
+OPEN_WITHIN = 10.0  # [s] the students open the page within this
+MOVE_EVERY = (5.0, 20.0)  # [s] a student's pause between two moves
+WAIT = 300.0  # [s] the longest a page's opening is waited for
+MOVE_WAIT = 60.0  # [s] the longest a move's readouts are waited for
+SAMPLE_EVERY = 0.5  # [s] the server's CPU and memory
+# The sliders a student moves, by their title on the page: (lowest, highest) value sent, inside the
+# slider's range and where the paper's example still runs (a stalled design shows no new flow).
+MOVES = {
+    "Head h [m]": (1.0, 6.0),
+    "Windmill torque Tₘ [N·m]": (0.5, 1.5),
+    "Duration t_end [s]": (200.0, 900.0),
+}
+TOKEN = re.compile(r'"token":"([^"]+)"')
+READOUT = 'data-name="mean_flow"'
+READOUTS = 'class="readout"'  # every readout of the row: a move changes at least one
+
+
+def loopback(url: str) -> str:
+    host = urlparse(url).hostname or ""
+    if not host.startswith("127."):
+        raise SystemExit(f"bench_hall talks only to loopback (127.0.0.0/8), not {host}")
+    return url
+
+
+# -- one student ---------------------------------------------------------------------------------
+
+
+@dataclass
+class Student:
+    """One student's page at the protocol level, and what it measured."""
+
+    url: str
+    rng: random.Random
+    opened: float = 0.0  # [s] perf_counter of the GET
+    to_readout: float | None = None  # [s] GET -> the readout's text
+    moves: list[tuple[float, float]] = field(default_factory=list)  # (sent at, round trip [s])
+    errors: list[str] = field(default_factory=list)
+    models: dict = field(default_factory=dict)  # id -> {"type", "name", attributes...} as received
+    readout_id: str | None = None
+    readout_ids: set = field(default_factory=set)
+    waiting: dict = field(default_factory=dict)  # reqid -> future of the server's answer
+    readout_changed: asyncio.Event = field(default_factory=asyncio.Event)
+    sliders: dict = field(default_factory=dict)  # title -> (id, step)
+    acknowledged: asyncio.Event = field(default_factory=asyncio.Event)
+    watchers: list = field(default_factory=list)  # called with every ModelChanged received
+    cookies: dict = field(default_factory=dict)  # as a browser keeps them (a proxy's stickiness)
+
+    async def open(self) -> None:
+        self.opened = time.perf_counter()
+        request = HTTPRequest(
+            self.url, connect_timeout=WAIT, request_timeout=WAIT, headers=self.cookie_header()
+        )
+        page = await AsyncHTTPClient().fetch(request)
+        self.keep_cookies(page.headers)
+        token = TOKEN.search(page.body.decode()).group(1)
+        parsed = urlparse(self.url)
+        ws_url = f"ws://{parsed.netloc}{parsed.path}/ws"
+        headers = {"Origin": f"http://{parsed.netloc}", **self.cookie_header()}
+        self.ws = await websocket_connect(
+            HTTPRequest(ws_url, request_timeout=WAIT, headers=headers),
+            subprotocols=["bokeh", token],
+            max_message_size=64 * 1024 * 1024,
+        )
+        self.ws_cookies = dict(self.cookies)
+        self.keep_cookies(self.ws.headers)  # the handshake's answer (behind a proxy)
+        self.listening = asyncio.ensure_future(self.listen())
+        # The server reads nothing before its ACK (its session is made meanwhile)
+        await asyncio.wait_for(self.acknowledged.wait(), WAIT)
+        reply = await self.request("PULL-DOC-REQ", {})
+        self.read_document(reply["doc"])
+        await self.loaded()
+        if self.to_readout is None:  # the server was compiling: the readout follows in a patch
+            await asyncio.wait_for(self.readout_changed.wait(), WAIT)
+
+    def cookie_header(self) -> dict:
+        cookie = "; ".join(f"{name}={value}" for name, value in self.cookies.items())
+        return {"Cookie": cookie} if cookie else {}
+
+    def keep_cookies(self, headers) -> None:
+        for line in headers.get_list("Set-Cookie"):
+            name, _, value = line.split(";", 1)[0].partition("=")
+            self.cookies[name.strip()] = value.strip()
+
+    async def loaded(self) -> None:
+        """What a page sends once BokehJS has rendered it: its browser's facts, document_ready."""
+        browser = next(
+            (i for i, m in self.models.items() if m["type"].endswith("BrowserInfo")), None
+        )
+        facts = {
+            "dark_mode": False,
+            "device_pixel_ratio": 1,
+            "language": "en-US",
+            "timezone": "UTC",
+        }
+        for attr, value in facts.items() if browser else ():
+            await self.patch([changed(browser, attr, value)])
+        ready = {"type": "event", "name": "document_ready", "values": {"type": "map"}}
+        event = {"kind": "MessageSent", "msg_type": "bokeh_event", "msg_data": ready}
+        await self.patch([event])
+
+    async def move(self) -> None:
+        """Move one slider to a random value on its step; time until the readout changes."""
+        title = self.rng.choice([t for t in MOVES if t in self.sliders])
+        model, step = self.sliders[title]
+        low, high = MOVES[title]
+        current = self.models[model].get("value")
+        value = current
+        while value == current:
+            value = round(low + step * self.rng.randrange(int((high - low) / step) + 1), 6)
+        self.readout_changed.clear()
+        sent = time.perf_counter()
+        await self.patch([changed(model, "value", value)], wait=False)
+        await self.patch([changed(model, "value_throttled", value)], wait=False)
+        self.models[model]["value"] = value
+        try:
+            await asyncio.wait_for(self.readout_changed.wait(), MOVE_WAIT)
+        except TimeoutError:
+            self.errors.append(f"no readout within {MOVE_WAIT:.0f} s of moving {title} to {value}")
+            return
+        self.moves.append((sent, time.perf_counter() - sent))
+
+    # -- Bokeh's protocol: a message is a header, metadata and content frame, then its buffers --
+
+    async def send(self, msgtype: str, content: dict, msgid: str | None = None) -> str:
+        msgid = msgid or uuid.uuid4().hex
+        for part in ({"msgid": msgid, "msgtype": msgtype}, {}, content):
+            await self.ws.write_message(json.dumps(part))
+        return msgid
+
+    async def request(self, msgtype: str, content: dict) -> dict:
+        answer = asyncio.get_running_loop().create_future()
+        msgid = uuid.uuid4().hex
+        self.waiting[msgid] = answer
+        await self.send(msgtype, content, msgid)
+        return await asyncio.wait_for(answer, WAIT)
+
+    async def patch(self, events: list, wait: bool = True) -> None:
+        if wait:
+            await self.request("PATCH-DOC", {"events": events})
+        else:
+            await self.send("PATCH-DOC", {"events": events})
+
+    async def listen(self) -> None:
+        while True:
+            header = await self.ws.read_message()
+            if header is None:
+                return
+            header = json.loads(header)
+            await self.ws.read_message()  # metadata
+            content = json.loads(await self.ws.read_message())
+            for _ in range(2 * header.get("num_buffers", 0)):  # each: its id, then its bytes
+                await self.ws.read_message()
+            kind = header["msgtype"]
+            if kind == "ACK":
+                self.acknowledged.set()
+            if kind == "ERROR":
+                self.errors.append(content.get("text", "ERROR"))
+            if "reqid" in header and header["reqid"] in self.waiting:
+                self.waiting.pop(header["reqid"]).set_result(content)
+            if kind == "PATCH-DOC":
+                self.apply(content["events"])
+
+    def register(self, value) -> None:
+        """Every model defined in ``value`` (a document's roots, a patch's new value)."""
+        if isinstance(value, dict):
+            if value.get("type") == "object" and "id" in value and "name" in value:
+                attributes = value.get("attributes", {})
+                self.models[value["id"]] = {"type": value["name"], **attributes}
+            for item in value.values():
+                self.register(item)
+        elif isinstance(value, list):
+            for item in value:
+                self.register(item)
+
+    def read_document(self, doc: dict) -> None:
+        """Every model of the document with its attributes; the readout and the sliders found."""
+        self.register(doc["roots"])
+        for model_id, model in self.models.items():
+            self.saw_text(model_id, html.unescape(str(model.get("text"))))
+            title = model.get("title")
+            if model["type"].endswith("Slider") and title in MOVES:
+                self.sliders[title] = (model_id, model.get("step", 0.1))
+
+    def apply(self, events: list) -> None:
+        for event in events:
+            if event.get("kind") != "ModelChanged":
+                continue
+            model = event["model"]["id"]
+            self.register(event["new"])
+            for watcher in list(self.watchers):
+                watcher(event)
+            if model in self.models:
+                self.models[model][event["attr"]] = event["new"]
+            if event["attr"] == "text" and isinstance(event["new"], str):
+                self.saw_text(model, html.unescape(event["new"]))
+
+    def saw_text(self, model_id: str, text: str) -> None:
+        """A model's text, as received: a readout's (a move's answer) or not."""
+        if READOUTS in text:
+            self.readout_ids.add(model_id)
+        if READOUT in text:
+            self.readout_id = model_id
+        if model_id in self.readout_ids:
+            self.saw_readout()
+
+    def saw_readout(self) -> None:
+        if self.readout_id is None or "L/s" not in html.unescape(
+            str(self.models[self.readout_id].get("text"))
+        ):
+            return  # not a number yet (compiling)
+        if self.to_readout is None:
+            self.to_readout = time.perf_counter() - self.opened
+        self.readout_changed.set()
+
+    def close(self) -> None:
+        if getattr(self, "ws", None) is not None:
+            self.ws.close()
+        if getattr(self, "listening", None) is not None:
+            self.listening.cancel()
+
+
+def changed(model: str, attr: str, new) -> dict:
+    return {"kind": "ModelChanged", "model": {"id": model}, "attr": attr, "new": new}
+
+
+# -- the server, watched -------------------------------------------------------------------------
+
+
+class Watch:
+    """The server's CPU seconds and resident memory, sampled every SAMPLE_EVERY seconds."""
+
+    def __init__(self, pid: int):
+        self.pid = pid
+        self.samples: list[tuple[float, float, int]] = []  # (perf_counter, CPU [s], RSS [bytes])
+
+    def sample(self) -> tuple[float, float, int]:
+        now = (time.perf_counter(), cpu_seconds(self.pid), resident_memory(self.pid))
+        self.samples.append(now)
+        return now
+
+    async def run(self) -> None:
+        while True:
+            self.sample()
+            await asyncio.sleep(SAMPLE_EVERY)
+
+    async def quiet(self, within: float = 120.0, busy: float = 0.1) -> None:
+        """Wait until the server uses under ``busy`` of a core for two seconds (or ``within`` s)."""
+        deadline = time.perf_counter() + within
+        while time.perf_counter() < deadline:
+            _, before, _ = self.sample()
+            await asyncio.sleep(2.0)
+            _, after, _ = self.sample()
+            if after - before < 2.0 * busy:
+                return
+
+    def peak(self) -> int:
+        return max(rss for _, _, rss in self.samples)
+
+
+# -- a hall --------------------------------------------------------------------------------------
+
+
+@dataclass
+class Hall:
+    """What one hall measured."""
+
+    n: int
+    to_readout: list[float]
+    open_seconds: float  # [s] first GET -> last readout
+    cpu_per_page: float  # [s] the server's CPU from the first GET until it was quiet, per page
+    memory: dict[str, int]  # before, idle (all connected), peak, after (closed, settled)
+    moves: list[float]  # [s] round trips while students move at their own pace
+    burst: list[float]  # [s] round trips of BURST students moving at the same moment
+    upload: dict[str, list[float]]  # round trips before/while/after one student's 10 MB upload
+    errors: list[str]
+
+
+BURST = 30  # students who move at the same moment
+
+
+async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -> Hall:
+    rng = random.Random(n)
+    students = [Student(url, random.Random(rng.random())) for _ in range(n)]
+    delays = sorted(rng.uniform(0.0, OPEN_WITHIN) for _ in range(n))
+    sampling = asyncio.ensure_future(watch.run())
+    await watch.quiet(within=30.0)
+    _, cpu0, before = watch.sample()
+    started = time.perf_counter()
+
+    async def arrive(student: Student, delay: float) -> None:
+        await asyncio.sleep(delay)
+        try:
+            await asyncio.wait_for(student.open(), WAIT)
+        except Exception as error:  # noqa: BLE001 - recorded, the hall goes on
+            student.errors.append(f"opening: {error!r}")
+
+    await asyncio.gather(*(arrive(s, d) for s, d in zip(students, delays, strict=True)))
+    opened = time.perf_counter() - started
+    await watch.quiet()
+    _, cpu1, idle = watch.sample()
+    here = [s for s in students if s.to_readout is not None]
+    burst = await moving_at_once(here[:BURST])
+    paced, around = await moving(here, minutes, url if upload else None)
+    for student in students:
+        student.close()
+    sampling.cancel()
+    after = await settled(watch, before)
+    return Hall(
+        n=n,
+        to_readout=[s.to_readout for s in here],
+        open_seconds=opened,
+        cpu_per_page=(cpu1 - cpu0) / n,
+        memory={"before": before, "idle": idle, "peak": watch.peak(), "after": after},
+        moves=paced,
+        burst=burst,
+        upload=around,
+        errors=[e for s in students for e in s.errors],
+    )
+
+
+async def moving_at_once(students: list[Student]) -> list[float]:
+    """Every one of ``students`` moves a slider at the same moment: their round trips."""
+    counts = [len(s.moves) for s in students]
+    await asyncio.gather(*(s.move() for s in students))
+    return [rt for s, k in zip(students, counts, strict=True) for _, rt in s.moves[k:]]
+
+
+async def moving(students: list[Student], minutes: float, upload_to: str | None):
+    """Each student moves a slider every 5-20 s for ``minutes``; with ``upload_to``, one more
+    student loads a 10 MB wind record meanwhile. The round trips, and those before / while /
+    after the upload (by when the move was sent)."""
+    end = time.perf_counter() + 60.0 * minutes
+    first = [len(s.moves) for s in students]
+
+    async def pace(student: Student) -> None:
+        while True:
+            await asyncio.sleep(student.rng.uniform(*MOVE_EVERY))
+            if time.perf_counter() >= end:
+                return
+            await student.move()
+
+    tasks = [pace(s) for s in students]
+    window: list[float] = []
+    if upload_to is not None:
+        tasks.append(one_upload(upload_to, end, window))
+    await asyncio.gather(*tasks)
+    sent = [(t, rt) for s, k in zip(students, first, strict=True) for t, rt in s.moves[k:]]
+    around: dict[str, list[float]] = {"before": [], "while": [], "after": []}
+    if window:
+        for t, rt in sent:
+            phase = "before" if t < window[0] else "while" if t <= window[1] else "after"
+            around[phase].append(rt)
+    return [rt for _, rt in sent], around
+
+
+SETTLE_WITHIN = 90.0  # [s] the longest the memory after a hall is waited for
+
+
+async def settled(watch: Watch, target: int) -> int:
+    """The server's memory once it falls within 10 % of ``target`` or SETTLE_WITHIN s pass."""
+    deadline = time.perf_counter() + SETTLE_WITHIN
+    while True:
+        _, _, rss = watch.sample()
+        if rss <= 1.1 * target or time.perf_counter() > deadline:
+            return rss
+        await asyncio.sleep(2.0)
+
+
+# -- one student loads a 10 MB wind record -------------------------------------------------------
+
+UPLOAD_NAME = "hall-wind-10MB.csv"
+UPLOAD_BYTES = 9_900_000  # the page takes up to 10 MB
+
+
+def wind_record(size: int) -> bytes:
+    """A wind CSV of ``size`` bytes at most (the page's limit is 10 MB): one sample a second."""
+    rng = random.Random(24)
+    lines, total, t = ["time_s,wind_m_s"], 0, 0
+    while total < size - 40:
+        line = f"{t},{5.0 + 3.0 * rng.random():.6f}"
+        lines.append(line)
+        total += len(line) + 1
+        t += 1
+    return "\n".join(lines).encode()
+
+
+async def one_upload(url: str, end: float, window: list[float]) -> None:
+    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it (the
+    FileInput's value in base64); ``window`` gets (sent, shown) [perf_counter]."""
+    import base64
+
+    student = Student(url, random.Random(0))
+    await student.open()
+    await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
+    panels = [i for i, m in student.models.items() if m["type"] == "TabPanel"]
+    wind = next(i for i in panels if student.models[i].get("title") == "Wind")
+    tabs = next(
+        (i, m)
+        for i, m in student.models.items()
+        if m["type"].endswith("Tabs") and wind in [t.get("id") for t in m.get("tabs", [])]
+    )
+    index = [t.get("id") for t in tabs[1]["tabs"]].index(wind)
+    await student.patch([changed(tabs[0], "active", index)])
+    deadline = time.perf_counter() + WAIT
+    wind_input = lambda m: "wind-upload" in m.get("css_classes", [])  # noqa: E731
+    while not any(wind_input(m) for m in student.models.values()):
+        if time.perf_counter() > deadline:
+            raise TimeoutError("the Wind tab's upload never arrived")
+        await asyncio.sleep(0.2)
+    upload = next(i for i, m in student.models.items() if wind_input(m))
+    data = base64.b64encode(wind_record(UPLOAD_BYTES)).decode()
+    shown = asyncio.Event()
+    student.watchers.append(lambda e: UPLOAD_NAME in str(e.get("new")) and shown.set())
+    window.append(time.perf_counter())
+    await student.patch(
+        [
+            changed(upload, "mime_type", "text/csv"),
+            changed(upload, "filename", UPLOAD_NAME),
+            changed(upload, "value", data),
+        ],
+        wait=False,
+    )
+    await asyncio.wait_for(shown.wait(), WAIT)
+    window.append(time.perf_counter())
+    student.close()
+
+
+# -- the report ----------------------------------------------------------------------------------
+
+
+def percentiles(values: list[float], unit: float = 1.0, fmt: str = "{:.2f}") -> str:
+    if not values:
+        return "none"
+    ordered = sorted(values)
+    pick = lambda q: ordered[min(len(ordered) - 1, int(q * len(ordered)))]  # noqa: E731
+    parts = [f"p{int(q * 100)} {fmt.format(pick(q) * unit)}" for q in (0.5, 0.9, 0.95)]
+    return ", ".join(parts) + f", max {fmt.format(ordered[-1] * unit)} ({len(values)})"
+
+
+def report(hall: Hall) -> None:
+    mb = 1e6
+    memory = hall.memory
+    print(f"hall of {hall.n}: opened within {OPEN_WITHIN:.0f} s, load {os.getloadavg()[0]:.1f}")
+    print(
+        f"  readouts [s]: {percentiles(hall.to_readout)}; all {len(hall.to_readout)} within "
+        f"{hall.open_seconds:.1f} s of the first GET"
+    )
+    print(f"  server CPU per page: {hall.cpu_per_page:.3f} s (page, websocket, views, until quiet)")
+    print(f"  moves at their own pace, round trip [ms]: {percentiles(hall.moves, 1e3, '{:.0f}')}")
+    print(f"  {BURST} moving at once, round trip [ms]: {percentiles(hall.burst, 1e3, '{:.0f}')}")
+    for phase, trips in hall.upload.items():
+        print(f"  others' moves {phase} a 10 MB upload [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
+    per_session = (memory["idle"] - memory["before"]) / hall.n / mb
+    print(
+        f"  server memory [MB]: before {memory['before'] / mb:.0f}, {hall.n} idle "
+        f"{memory['idle'] / mb:.0f} ({per_session:.2f} a session), peak "
+        f"{memory['peak'] / mb:.0f}, after closing {memory['after'] / mb:.0f} "
+        f"({memory['after'] / memory['before']:.2f}x before)"
+    )
+    if hall.errors:
+        print(f"  errors ({len(hall.errors)}): {hall.errors[:3]}")
+
+
+# Closed sessions are dropped 30 s after their last connection (checked every 2 s), so the
+# memory after a hall can be read within a minute; `panel serve app/` alone keeps them 10 min.
+SERVE = ["--unused-session-lifetime", "30000", "--check-unused-sessions", "2000"]
+
+
+def run(n: int, minutes: float, upload: bool) -> Hall:
+    """One hall of ``n`` on a fresh `panel serve app/`."""
+    # Each student's browser opens its own connections: not Tornado's default pool of 10
+    AsyncHTTPClient.configure(None, max_clients=MAX_SESSIONS + 1)
+    if not 1 <= n <= MAX_SESSIONS:
+        raise SystemExit(f"1 <= N <= {MAX_SESSIONS}")
+    with served_app(*SERVE) as (address, server):
+        loopback(address)
+        warm = Student(address, random.Random(0))  # imports, caches: not the hall's cost
+        asyncio.run(asyncio.wait_for(warm_up(warm), WAIT))
+        hall = asyncio.run(a_hall(address, n, minutes, Watch(server.pid), upload))
+    report(hall)
+    return hall
+
+
+async def warm_up(student: Student) -> None:
+    await student.open()
+    await student.move()
+    student.close()
+
+
+def main(argv: list[str] | None = None) -> list[Hall]:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("n", nargs="*", type=int, default=[30, 100, 200])
+    parser.add_argument("--minutes", type=float, default=1.0, help="of moves (default 1)")
+    parser.add_argument("--upload", action="store_true", help="one student loads 10 MB")
+    args = parser.parse_args(argv)
+    print(f"bench_hall on {os.cpu_count()} cores, load {os.getloadavg()}")
+    return [run(n, min(args.minutes, 10.0), args.upload) for n in args.n]
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+"""Two `panel serve app/` processes behind nginx (app/proxy.py, app/nginx.conf), on loopback:
+students spread over both, each page's websocket reaches the process that built it, and with one
+process killed its pages reopen on the other from their link, saying so.
+
+Talks only to 127.0.0.1; a handful of protocol-level students (benchmarks/bench_hall.py)."""
+
+from __future__ import annotations
+
+import asyncio
+import html
+import random
+import sys
+from pathlib import Path
+from urllib.parse import urlparse
+
+import pytest
+
+from windpump_app import proxy
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import bench_hall  # noqa: E402
+
+STUDENTS = 6
+COOKIE = "windpump_process"
+
+
+def test_the_config_names_every_process_and_listens_where_asked(tmp_path):
+    text = proxy.nginx_config("127.0.0.1:8081", [5001, 5002], str(tmp_path))
+    assert "listen 127.0.0.1:8081;" in text
+    assert text.count("server 127.0.0.1:5001") == 1 and text.count("server 127.0.0.1:5002") == 1
+    assert '"127.0.0.1:5002" 127.0.0.1:5002;' in text
+    assert "@" not in text.replace("@pool", "")  # every field filled in
+
+
+def shown_text(student, needle: str) -> bool:
+    return any(needle in html.unescape(str(m.get("text", ""))) for m in student.models.values())
+
+
+async def a_class_behind_the_proxy(url: str, servers, ports):
+    students = [bench_hall.Student(url, random.Random(k)) for k in range(STUDENTS)]
+    for student in students:  # one after the other: round robin alternates
+        await asyncio.wait_for(student.open(), 300)
+    for student in students:
+        await student.move()
+    seen = {"built on": [s.ws_cookies[COOKIE] for s in students]}
+    seen["connected to"] = [s.cookies[COOKIE] for s in students]
+    seen["moves"] = [len(s.moves) for s in students]
+    # One process dies: its pages lose their websocket and reopen from their link, as the page's
+    # script does (serving.RECONNECT_JS), with ?restored=true.
+    victim = f"127.0.0.1:{ports[0]}"
+    servers[0].kill()
+    servers[0].wait(timeout=30)
+    lost = [s for s in students if s.cookies[COOKIE] == victim]
+    reopened = []
+    for student in lost:
+        student.close()
+        head = student.models[student.sliders["Head h [m]"][0]]["value"]
+        again = bench_hall.Student(f"{url}?h={head:g}&restored=true", random.Random(0))
+        again.cookies = dict(student.cookies)  # the browser still names the dead process
+        await asyncio.wait_for(again.open(), 300)
+        value = again.models[again.sliders["Head h [m]"][0]]["value"]
+        reopened.append((head, value, again.cookies[COOKIE], shown_text(again, "was lost")))
+        again.close()
+    for student in students:
+        student.close()
+    return seen, victim, reopened
+
+
+@pytest.mark.timeout(900)
+def test_sessions_spread_stick_and_reopen_on_the_other_process():
+    from served import require_nginx
+
+    require_nginx()
+    port = proxy.free_port()
+    origin = f"127.0.0.1:{port}"
+    with proxy.hall(2, origin, [origin]) as (servers, _nginx, ports):
+        url = f"http://{origin}/app"
+        assert urlparse(url).hostname == "127.0.0.1"
+        seen, victim, reopened = asyncio.run(a_class_behind_the_proxy(url, servers, ports))
+    backends = {f"127.0.0.1:{p}" for p in ports}
+    assert set(seen["built on"]) == backends  # spread over both
+    assert seen["connected to"] == seen["built on"]  # each websocket reached its page's process
+    assert seen["moves"] == [1] * STUDENTS  # each move answered (by its own process)
+    assert reopened, "no page was on the killed process"
+    for head, value, now_on, notice in reopened:
+        assert value == pytest.approx(head)  # the state from the link
+        assert now_on != victim and now_on in backends
+        assert notice  # "The connection to the server was lost and is back"
+
+
+@pytest.mark.browser
+@pytest.mark.timeout(600)
+def test_a_page_that_loses_its_server_says_so_and_reopens_from_its_link(tmp_path):
+    """Wi-Fi drops, or the server restarts: the page says it lost the connection, and once the
+    server answers again it reopens from its link (its design kept) and says it was restored."""
+    from playwright.sync_api import sync_playwright
+
+    from served import CHROMIUM, CHROMIUM_FLAGS, DEEP_TEXT, require_chromium
+
+    require_chromium()
+    port = proxy.free_port()
+    origin = f"127.0.0.1:{port}"
+    log = (tmp_path / "server.log").open("w")
+
+    def serve():
+        server = proxy.subprocess.Popen(proxy.panel_command(port, [origin]), stdout=log, stderr=log)
+        proxy.wait_until_up(f"http://{origin}/static/js/bokeh.min.js", server, 180)
+        return server
+
+    server = serve()
+    try:
+        with sync_playwright() as playwright:
+            browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
+            page = browser.new_page()
+            page.set_default_timeout(120_000)
+            page.goto(f"http://{origin}/app?h=4.2")
+            page.wait_for_function(f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null")
+            proxy.stop(server)
+            page.wait_for_selector("#windpump-offline")
+            assert "lost" in page.inner_text("#windpump-offline")
+            server = serve()
+            page.wait_for_url("**restored=true**")
+            page.get_by_text("The connection to the server was lost and is back").wait_for()
+            page.wait_for_function("() => !window.location.search.includes('restored')")
+            assert "h=4.2" in page.url  # the design, from the link, and the notice not kept in it
+            assert page.locator(".bk-slider-title", has_text="Head h [m]: 4.2").count() == 1
+            browser.close()
+    finally:
+        proxy.stop(server)

@@ -205,26 +205,35 @@ class PumpInputs(param.Parameterized):
     def _read_number(self, key: str, text: str) -> tuple[float | None, str]:
         """A link's number for slider ``key``, on the slider's step (None if refused), and what
         to tell the student about it ("" if nothing)."""
-        label, (low, high) = self.param[key].label, self.param[key].bounds
-        try:
-            value = float(text)
-        except ValueError:
-            value = math.nan
-        shown = f"{label} ({key}) = “{clipped(text)}”"
-        if not (math.isfinite(value) and low <= value <= high):
-            return None, f"{shown} ignored: it must be a number from {low:g} to {high:g}."
-        if key in COUNTS and value != round(value):
-            return None, f"{shown} ignored: it must be a whole number from {low:g} to {high:g}."
-        if value == self.param[key].default:  # a default off the slider's grid (θ₀ = π/2)
-            return value, ""
-        step = self.param[key].step
-        snapped = on_grid(value, step)
-        if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):  # float noise
-            return snapped, ""
-        return (
-            snapped,
-            f"{shown} taken as {link_text(key, snapped)} (its slider moves in steps of {step:g}).",
-        )
+        return read_slider_number(self.param[key], key, text, link_text, whole=key in COUNTS)
+
+
+def read_slider_number(
+    parameter: param.Number, key: str, text: str, shown_as, *, whole: bool = False
+) -> tuple[float | None, str]:
+    """A link's ``key=text`` for a slider's ``parameter``: the value on the slider's step (None
+    if refused) and what to tell the student ("" if nothing); ``shown_as(key, value)`` writes a
+    value as the link does."""
+    low, high = parameter.bounds
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    shown = f"{parameter.label} ({key}) = “{clipped(text)}”"
+    if not (math.isfinite(value) and low <= value <= high):
+        return None, f"{shown} ignored: it must be a number from {low:g} to {high:g}."
+    if whole and value != round(value):
+        return None, f"{shown} ignored: it must be a whole number from {low:g} to {high:g}."
+    if value == parameter.default:  # a default off the slider's grid (θ₀ = π/2)
+        return value, ""
+    step = parameter.step
+    snapped = on_grid(value, step)
+    if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):  # float noise
+        return snapped, ""
+    return (
+        snapped,
+        f"{shown} taken as {shown_as(key, snapped)} (its slider moves in steps of {step:g}).",
+    )
 
 
 def step_decimals(step: float) -> int:

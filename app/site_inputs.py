@@ -4,12 +4,11 @@ rule, as a ``param.Parameterized``, and their part of the page's link (short key
 
 from __future__ import annotations
 
-import math
 from urllib.parse import urlencode
 
 import param
 
-from .inputs import clipped, on_grid, step_decimals
+from .inputs import clipped, read_slider_number, step_decimals
 
 # The records that ship with pvlib, by their link value
 SITES = {"greensboro": "Greensboro, NC (TMY3)", "sand_point": "Sand Point, AK (TMY3)"}
@@ -95,17 +94,4 @@ class SiteInputs(param.Parameterized):
         return None, f"{shown} ignored: it must be one of {', '.join(allowed)}."
 
     def _read_number(self, key: str, text: str) -> tuple[float | None, str]:
-        label, (low, high) = self.param[key].label, self.param[key].bounds
-        try:
-            value = float(text)
-        except ValueError:
-            value = math.nan
-        shown = f"{label} ({key}) = “{clipped(text)}”"
-        if not (math.isfinite(value) and low <= value <= high):
-            return None, f"{shown} ignored: it must be a number from {low:g} to {high:g}."
-        step = self.param[key].step
-        snapped = on_grid(value, step)
-        if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):
-            return snapped, ""
-        taken = self.link_text(key, snapped)
-        return snapped, f"{shown} taken as {taken} (its slider moves in steps of {step:g})."
+        return read_slider_number(self.param[key], key, text, self.link_text)

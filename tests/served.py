@@ -11,8 +11,6 @@ import socket
 import subprocess
 import sys
 import tempfile
-import time
-import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -101,18 +99,17 @@ def server_log(process: subprocess.Popen) -> str:
 
 
 def wait_until_up(url: str, process: subprocess.Popen, log, timeout: float) -> None:
-    deadline = time.monotonic() + timeout
-    while True:
-        try:
-            with urllib.request.urlopen(url, timeout=10) as response:
-                if response.status == 200:
-                    return
-        except OSError:
-            pass
-        if process.poll() is not None or time.monotonic() > deadline:
-            log.seek(0)
-            raise RuntimeError(f"panel serve did not come up within {timeout:.0f} s:\n{log.read()}")
-        time.sleep(0.25)
+    """The proxy's wait (:func:`windpump_app.proxy.wait_until_up`), with the server's log when
+    it does not come up."""
+    from windpump_app import proxy
+
+    try:
+        proxy.wait_until_up(url, process, timeout)
+    except RuntimeError:
+        log.seek(0)
+        raise RuntimeError(
+            f"panel serve did not come up within {timeout:.0f} s:\n{log.read()}"
+        ) from None
 
 
 def require_chromium() -> None:

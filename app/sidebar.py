@@ -56,6 +56,22 @@ def card_header(title: str) -> pn.pane.HTML:
     return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
 
 
+def closed_card(title: str, build: Callable[[], list]) -> pn.Card:
+    """A collapsed card whose contents, ``build()``, are made the first time it opens (a click on
+    its header, or ``collapsed = False`` on the server) and kept: a card left closed costs the
+    page none of its models."""
+    card = pn.Card(
+        header=card_header(title), collapsed=True, sizing_mode="stretch_width", stylesheets=TEXT
+    )
+
+    def fill(_event) -> None:
+        if not card.collapsed and not card.objects:
+            card.objects = build()
+
+    card.param.watch(fill, "collapsed")
+    return card
+
+
 class Sliders(dict):
     """The sliders of the pump's inputs by name (FORMATS), each built when first asked for: those
     of a closed card or of a tab not yet opened cost the page nothing."""
@@ -138,21 +154,10 @@ class Sidebar(pn.viewable.Viewer):
         """A collapsed card of the sliders that sit in ``place`` (FORMATS), empty until first
         opened (by the student, or by a preset or a link that sets one of its inputs): a page
         whose cards stay closed sends none of their ~60 models."""
-        card = pn.Card(
-            header=card_header(title),
-            collapsed=True,
-            sizing_mode="stretch_width",
-            stylesheets=TEXT,
+        return closed_card(
+            title,
+            lambda: [self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place],
         )
-        card.param.watch(lambda event: self._fill(event.obj, place), "collapsed")
-        return card
-
-    def _fill(self, card: pn.Card, place: str) -> None:
-        """An opened card's sliders, built the first time it opens."""
-        if not card.collapsed and not card.objects:
-            card.objects = [
-                self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place
-            ]
 
     def __panel__(self) -> pn.Column:
         main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]

@@ -83,6 +83,8 @@ if (!window.__windpumpKeyboard) {
     (event) => {
       const target = event.composedPath()[0]
       if (target instanceof HTMLElement && target.classList.contains("bk-tab")) annotateSoon()
+      // a card's sliders are built when it first opens
+      else if (event.composedPath().some((el) => el.classList?.contains("card-header"))) annotateSoon()
     },
     true,
   )

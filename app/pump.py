@@ -9,7 +9,7 @@ from bokeh.models import ColumnDataSource, Range1d
 import windpump
 
 from .machine import MachineView
-from .sidebar import card_header
+from .sidebar import closed_card
 from .styles import TEXT
 from .views import CloseupView, EnergyView, FlowView, OperatingView, SpeedView, StallView
 
@@ -70,12 +70,9 @@ class PumpViews:
         panels = [view.panel(styles=VIEW_FLEX) for view in self.views]
         # After the views, across the page: beside the machine it made the first row of views
         # taller than its neighbours, and a band of blank space under them.
-        about = pn.Card(
-            pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width"),
-            header=card_header("What is this machine?"),
-            collapsed=True,
-            sizing_mode="stretch_width",
-            stylesheets=TEXT,
+        about = closed_card(
+            "What is this machine?",
+            lambda: [pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width")],
         )
         return [*panels, about]
 

@@ -56,6 +56,41 @@ def card_header(title: str) -> pn.pane.HTML:
     return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
 
 
+def closed_card(title: str, build: Callable[[], list]) -> pn.Card:
+    """A collapsed card whose contents, ``build()``, are made the first time it opens (a click on
+    its header, or ``collapsed = False`` on the server) and kept: a card left closed costs the
+    page none of its models."""
+    card = pn.Card(
+        header=card_header(title), collapsed=True, sizing_mode="stretch_width", stylesheets=TEXT
+    )
+
+    def fill(_event) -> None:
+        if not card.collapsed and not card.objects:
+            card.objects = build()
+
+    card.param.watch(fill, "collapsed")
+    return card
+
+
+class Sliders(dict):
+    """The sliders of the pump's inputs by name (FORMATS), each built when first asked for: those
+    of a closed card or of a tab not yet opened cost the page nothing."""
+
+    def __init__(self, inputs: PumpInputs):
+        super().__init__()
+        self.inputs = inputs
+
+    def __missing__(self, name: str) -> PromptSlider:
+        fmt, _place = FORMATS[name]
+        self[name] = built = PromptSlider.from_param(
+            self.inputs.param[name],
+            format=fmt,
+            stylesheets=[*TEXT, FOCUS_CSS],
+            sizing_mode="stretch_width",
+        )
+        return built
+
+
 class Sidebar(pn.viewable.Viewer):
     """The controls. Their actions are the page's: it wires the buttons (``reset_button``,
     ``pin_button``, ``clear_button``, ``preset``) to itself; ``run_csv()`` is the file to download
@@ -63,15 +98,7 @@ class Sidebar(pn.viewable.Viewer):
 
     def __init__(self, inputs: PumpInputs, dark: bool, run_csv: Callable, show_points: Callable):
         super().__init__()
-        self.sliders = {
-            name: PromptSlider.from_param(
-                inputs.param[name],
-                format=fmt,
-                stylesheets=[*TEXT, FOCUS_CSS],
-                sizing_mode="stretch_width",
-            )
-            for name, (fmt, _main) in FORMATS.items()
-        }
+        self.sliders = Sliders(inputs)
         self.switches = {
             name: pn.widgets.Checkbox.from_param(
                 inputs.param[name], stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
@@ -124,13 +151,12 @@ class Sidebar(pn.viewable.Viewer):
             self.real_card.collapsed = False
 
     def card(self, title: str, place: str) -> pn.Card:
-        """A collapsed card of the sliders that sit in ``place`` (FORMATS)."""
-        return pn.Card(
-            *(self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place),
-            header=card_header(title),
-            collapsed=True,
-            sizing_mode="stretch_width",
-            stylesheets=TEXT,
+        """A collapsed card of the sliders that sit in ``place`` (FORMATS), empty until first
+        opened (by the student, or by a preset or a link that sets one of its inputs): a page
+        whose cards stay closed sends none of their sliders (28 of its 184 models)."""
+        return closed_card(
+            title,
+            lambda: [self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place],
         )
 
     def __panel__(self) -> pn.Column:

@@ -635,6 +635,10 @@ def test_a_served_page_gets_its_readouts_first_and_its_views_when_loaded():
     )  # and the card about the machine
     app.show_views()  # once only
     assert len(app.pump.results.objects) == len(app.pump.views) + 1
+    about = app.pump.results.objects[-1]  # its text is made when it first opens
+    assert about.collapsed and about.objects == []
+    about.collapsed = False
+    assert "stall criterion" in about.objects[0].object
 
 
 def test_pinning_before_the_views_exist_builds_them():

@@ -35,11 +35,33 @@ def app():
 def test_the_real_machine_has_its_own_card_closed_on_the_ideal_machine(app):
     card = app.sidebar.real_card
     assert card.collapsed and "Real machine" in card.header.object
+    assert list(card.objects) == []  # its sliders are built when it first opens
+    card.collapsed = False  # as the student's click does
+    assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
+    card.collapsed = True  # closed again, it keeps them
     assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
     labels = [app.sidebar.sliders[name].name for name in SETTINGS]
     assert labels[0].endswith("[kg]") and labels[2].endswith("[m]")
     assert labels[3].endswith("[mm]") and labels[5].endswith("[mm]")  # diameters in mm
     assert app.inputs.design() == SEED and app.inputs.design().is_ideal
+
+
+def test_the_closed_cards_cost_the_page_no_sliders_until_opened():
+    app = Explorer()
+    bar = app.sidebar
+    assert bar.more_card.objects == [] and bar.real_card.objects == []
+    built = set(bar.sliders)  # the sliders built so far
+    assert built.isdisjoint(SETTINGS) and "t_end" not in built
+    bar.more_card.collapsed = False
+    assert bar.sliders["t_end"] in bar.more_card.objects and bar.real_card.objects == []
+
+
+def test_a_link_that_sets_the_real_machine_opens_its_card_with_its_sliders():
+    app = Explorer(query={"d_leak_mm": [b"3"]})
+    card = app.sidebar.real_card
+    assert not card.collapsed and app.inputs.d_leak_mm == 3.0
+    assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
+    assert app.sidebar.sliders["d_leak_mm"].value == 3.0  # the slider shows the link's value
 
 
 @pytest.mark.parametrize("name", SETTINGS)
@@ -133,6 +155,7 @@ def test_the_leak_preset_is_a_tight_pump_that_cannot_start_given_a_hole(app):
     assert design == SEED.replace(T_0=0.25, d_leak=0.003)
     assert (app.inputs.theta0, app.inputs.theta_dot0) == (4.71, 0.0)
     assert not app.sidebar.real_card.collapsed and not app.error.visible
+    assert app.sidebar.sliders["d_leak_mm"] in app.sidebar.real_card.objects  # built as it opened
     tight = design.replace(d_leak=0.0)
     # the tight piston's load at rest at theta0 (mid-upstroke) beats the windmill's R+ T_0 ...
     load_at_rest = design.rho_w * design.g * design.h * design.A * design.R

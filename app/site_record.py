@@ -14,7 +14,7 @@ from windpump.labdata import LabDataError, check_file_size
 
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
-from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen
+from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
 
 WHAT = "a year of hourly weather (a TMY3 or EPW file is about 1.5 MB)"
 SUFFIXES = (".csv", ".epw", ".txt", ".tsv")
@@ -93,13 +93,9 @@ class SiteRecords:
 
     def refuse_size(self, size: int) -> None:
         """The page stopped a file over the limit before sending it: say so."""
-        if size <= WIND_MAX_BYTES:
-            return  # not a size the page refuses: a tampered value
-        self.message.object = (
-            f"This weather file cannot be used: it has {size:,} bytes; at most "
-            f"{WIND_MAX_BYTES:,} are read ({WHAT})."
-        )
-        self.message.visible = True
+        message = refused_size("weather", size, WHAT)
+        if message is not None:
+            self.message.object, self.message.visible = message, True
 
     def describe(self, site: str, hub: float) -> str:
         """A line on the record: where, the station, the hub's height."""

@@ -106,6 +106,17 @@ class Reveal(pn.widgets.TextInput):
         self.value = f"{css_class}\t{self._count}"
 
 
+def refused_size(kind: str, size: int, what: str) -> str | None:
+    """What to say when the page stopped a ``kind`` file ("wind", "weather") of ``size`` bytes
+    before sending it; None for a size the page does not refuse (a tampered value)."""
+    if size <= WIND_MAX_BYTES:
+        return None
+    return (
+        f"This {kind} file cannot be used: it has {size:,} bytes; at most "
+        f"{WIND_MAX_BYTES:,} are read ({what})."
+    )
+
+
 def chosen(upload: pn.widgets.FileInput) -> bytes | None:
     """The chosen file's content, or None before one is chosen: Panel reports an empty file as
     None (the value it had), so only its name tells that one was chosen."""

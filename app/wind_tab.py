@@ -31,7 +31,7 @@ from .readouts import Readout
 from .serving import off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
-from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen
+from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen, refused_size
 from .views import refill
 from .wind_figures import curve_figure, day_figures
 
@@ -276,13 +276,9 @@ class WindTab(Tab):
 
     def refuse_size(self, size: int) -> None:
         """The page stopped a wind file over the limit before sending it: say so here."""
-        if size <= WIND_MAX_BYTES:
-            return  # not a size the page refuses: a tampered value
-        self.upload_message.object = (
-            f"This wind file cannot be used: it has {size:,} bytes; at most "
-            f"{WIND_MAX_BYTES:,} are read (a day at one sample a second is about 1.5 MB)."
-        )
-        self.upload_message.visible = True
+        message = refused_size("wind", size, "a day at one sample a second is about 1.5 MB")
+        if message is not None:
+            self.upload_message.object, self.upload_message.visible = message, True
 
     def forget(self) -> None:
         self.measured, self.measured_name = None, ""

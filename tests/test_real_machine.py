@@ -258,3 +258,64 @@ def test_the_kernels_face_loads_are_the_numpy_sides(levers, theta_dot, leak, L_m
     assert load == pytest.approx(float(expected_load[0]), rel=1e-12, abs=1e-12 * scale)
     assert Q == pytest.approx(float(expected_Q[0]), rel=1e-12, abs=1e-18)
     assert arms == pytest.approx(sum(levers), rel=1e-15, abs=0.0)
+
+
+def _numpy_frozen_friction(design, theta, e):
+    """The rising main's friction torque [N m] at theta when the energy J theta_dot^2 / (2 I_eff)
+    is e, from the numpy side: faces_load's load less the static head's (no hole)."""
+    J = float(reciprocating.crank_inertia(design, theta))
+    theta_dot = math.sqrt(2.0 * e * design.I_eff / J)
+    levers = windpump.kinematics.face_levers(np.array([theta]), design)
+    load, _ = windpump.loads.faces_load(levers, theta_dot, design)
+    static = design.load_torque * levers.sum()
+    return float(load[0]) - static
+
+
+@st.composite
+def _mains(draw):
+    """Real machines with a rising main and no hole, any cylinders and masses."""
+    return SEED.replace(
+        m_r=draw(st.floats(0.0, 5.0)), L_main=draw(st.floats(0.1, 60.0)),
+        D_main=draw(st.floats(0.01, 0.1)), cylinders=draw(st.integers(1, 6)),
+        double_acting=draw(st.booleans()), L=SEED.R * draw(st.floats(1.05, 20.0)),
+    )  # fmt: skip
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(design=_mains(), theta=st.floats(-20.0, 20.0), e=st.floats(1e-3, 1e4))
+def test_the_kernels_frozen_friction_is_the_numpy_sides(design, theta, e):
+    """The kernels' friction split at a frozen energy (c(theta) e_ref I_eff: its own copy of the
+    main's friction, kept for speed) is faces_load's friction at that energy's speed."""
+    from windpump._kernels import model, real
+
+    machine = kernel_machine(design)
+    segment = model.segment_at(theta, machine)
+    compiled = real.friction_density(theta, segment, machine) * e * design.I_eff
+    expected = _numpy_frozen_friction(design, theta, e)
+    scale = design.load_torque * 1e-12 * design.cylinders
+    assert compiled == pytest.approx(expected, rel=1e-11, abs=scale)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    design=_mains(), segment=st.integers(-6, 6), ends=st.tuples(st.floats(0, 1), st.floats(0, 1))
+)
+def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(design, segment, ends):
+    """C between two angles of a segment (Gauss-Legendre on pieces, in the kernels) against
+    scipy's quad of the numpy side's friction per unit energy over I_eff."""
+    from scipy.integrate import quad
+
+    from windpump._kernels import model, real
+
+    machine = kernel_machine(design)
+    width = math.pi / design.cylinders
+    start = model.segment_start(segment, machine)
+    a, b = (start + width * f for f in sorted(ends))
+    compiled = real.friction_between(a, b, segment, machine)
+
+    def density(theta):
+        return _numpy_frozen_friction(design, theta, 1.0) / design.I_eff
+
+    expected, _ = quad(density, a, b, epsabs=0.0, epsrel=1e-13, limit=200)
+    whole, _ = quad(density, start, start + width, epsabs=0.0, epsrel=1e-13, limit=200)
+    assert compiled == pytest.approx(expected, rel=0.0, abs=1e-10 * whole + 1e-300)

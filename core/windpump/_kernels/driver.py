@@ -21,12 +21,28 @@ from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
     ROW,
+    at_time,
     conservative_torque,
     conservative_work,
+    end_works,
+    fill_friction,
     fill_row,
+    friction_at,
+    friction_since,
+    frozen_energy,
+    frozen_record,
+    frozen_start,
+    frozen_work,
+    grid_aux,
+    grid_inertia,
+    grid_inertias,
+    grid_works,
     inertia_ratio,
+    inertia_table,
     leak_scale,
+    less_frozen,
     next_leak_kink,
+    set_grid_inertia,
     split_sizes_by_parity,
     step_rows,
     work_at,
@@ -73,11 +89,12 @@ def faces(machine):
 @kernel
 def grid_tables(n_per_stroke, machine):
     """At the grid angles g pi / n_per_stroke of one revolution: strokes delivered since theta = 0,
-    the flow factor, the conservative work since the segment began, and J / I_eff."""
+    the flow factor, the conservative work since the segment began, and J / I_eff (for the real
+    machine with C since the segment began: :func:`~.real.grid_inertias`)."""
     rows = 2 * n_per_stroke
     delta = math.pi / n_per_stroke
     strokes, flows, works = np.empty(rows), np.empty(rows), np.empty(rows)
-    inertias = np.empty(rows)
+    inertias = inertia_table(rows, machine)
     for row in range(rows):
         theta = row * delta
         segment = (row * machine.cylinders) // n_per_stroke
@@ -88,7 +105,7 @@ def grid_tables(n_per_stroke, machine):
             # the side without them keeps round-off (sin pi = 1.2e-16) out of the flow.
             flows[row] = min(flows[row], flow_factor(theta, segment - 1, machine))
         works[row] = conservative_work(theta, segment, machine)
-        inertias[row] = inertia_ratio(theta, machine)
+        set_grid_inertia(inertias, row, grid_inertias(theta, segment, machine))
     return strokes, flows, works, inertias
 
 
@@ -96,23 +113,28 @@ def grid_tables(n_per_stroke, machine):
 def tabulate_segment(parity, m, machine, tables, rows, built):
     """For each of m equal sub-steps of a segment of this parity: the conservative work at its 7
     stage nodes and (column 7) the conservative torque at its start [N m]; and the real machine's
-    rows at the nodes."""
+    rows at the nodes (C since the segment began in their column 7)."""
     start = segment_start(parity, machine)
     h = (segment_start(parity + 1, machine) - start) / m
+    c_at = 0.0
     for i in range(m):
-        stage_values(start + i * h, h, parity, machine, tables[parity, m, i], rows[parity, m, i])
+        sub_rows = rows[parity, m, i]
+        stage_values(start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at)
+        c_at = friction_at(sub_rows[6, 7], machine)
     built[parity, m] = True
 
 
 @kernel
-def stage_values(theta, h, segment, machine, aux, rows):
+def stage_values(theta, h, segment, machine, aux, rows, c_at):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
-    at its nodes, then the conservative torque at theta) and the real machine's ``rows``."""
+    at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
+    C from c_at = C(theta) in their column 7)."""
     for stage in range(7):
         node = theta + NODES[stage] * h
         aux[stage] = conservative_work(node, segment, machine)
         fill_row(rows[stage], node, segment, machine)
     aux[7] = conservative_torque(theta, segment, machine)
+    fill_friction(rows, theta, h, c_at, segment, without_wind(machine))
 
 
 @kernel
@@ -211,10 +233,11 @@ def time_of_sample(target, t, t_end_step, rate_start, rate_end, dense, h):
 
 @kernel
 def record_in_step(
-    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, segment, machine
+    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, frozen, segment, machine
 ):
     """Samples at the times j sample_dt that an ANGLE sub-step from (theta_i, t, W) to y passed,
-    from its continuous extension; returns (out, n, the next j)."""
+    from its continuous extension (the real machine's frozen friction's :func:`~.real.frozen_record`
+    in ``frozen``). Returns (out, n, the next j)."""
     more = int(y[2] / sample_dt) - j + 2
     if more > 0 and n + more > out.shape[1]:
         out = with_room(out, n, more)
@@ -222,10 +245,12 @@ def record_in_step(
         target = j * sample_dt
         sigma = time_of_sample(target, t, y[2], k1[2], k7[2], dense[1], h)
         theta = theta_i + sigma * h
-        u = conservative_work(theta, segment, machine) + dense_value(
-            sigma, u_free, y[0], k1[0], k7[0], dense[0], h
-        )
-        W_j = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h)
+        aux, W_j = at_time(
+            conservative_work(theta, segment, machine),
+            work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h), frozen, theta_i, theta, segment,
+            machine,
+        )  # fmt: skip
+        u = aux + dense_value(sigma, u_free, y[0], k1[0], k7[0], dense[0], h)
         theta_dot = math.sqrt(2.0 * max(u, 0.0) / inertia_ratio(theta, machine))
         n = record_anywhere(out, n, target, theta, theta_dot, W_j, segment, machine, False)
         j += 1
@@ -409,23 +434,28 @@ def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment
 @kernel
 def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                        inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                       dense):  # fmt: skip
+                       dense, frozen):  # fmt: skip
     """Samples at the grid angles g delta a sub-step from (theta_i, t, W) to (theta_new, y)
-    passed, from its continuous extension; the segment's end is a grid angle by index, whatever
-    the round-off in g delta, of the :class:`Grid` (``at_grid`` holds :func:`grid_tables`).
-    Returns (out, n, the next g)."""
+    passed, from its continuous extension (the real machine's frozen friction's
+    :func:`~.real.frozen_record` in ``frozen``); the segment's end is a grid angle by index,
+    whatever the round-off in g delta, of the :class:`Grid` (``at_grid`` holds
+    :func:`grid_tables`). Returns (out, n, the next g)."""
     delta, period, per_revolution = grid
     while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
         row = g % period
         if g == end_grid:
-            u_g, t_g, W_g = u_new, y[2], y[3]
+            u_g, t_g, W_g = u_new, y[2], end_works(y, frozen)
         else:
             sigma = (g * delta - theta_i) / h_step
-            u_g = work_table[row] + dense_value(sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step)
+            u_g = grid_aux(work_table[row], frozen, inertia_table, row) + dense_value(
+                sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
+            )
             t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
-            W_g = work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step)
+            W_g = grid_works(
+                work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step), frozen, inertia_table, row
+            )
         strokes = (g // period) * per_revolution + strokes_table[row]
-        theta_dot_g = math.sqrt(2.0 * u_g / inertia_table[row])
+        theta_dot_g = math.sqrt(2.0 * u_g / grid_inertia(inertia_table, row))
         n = record(out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False)
         g += 1
     return n, g
@@ -551,15 +581,15 @@ def leak_cut(theta_i, h, leak_kink):
 
 @kernel
 def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
-                 segment, machine):  # fmt: skip
+                 c_at, e_ref, segment, machine):  # fmt: skip
     """A sub-step from theta_i that passed a wind record's kink, taken again only as far as it,
     from where the step's continuous extension puts the kink's time (the rest of the segment
     follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows)
+    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at)
     ok, y, k7, err, dense = dp5_step(
-        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch, step_rows(scratch_rows, machine),
-        segment, machine,
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
+        step_rows(scratch_rows, e_ref, machine), segment, machine,
     )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
@@ -614,6 +644,8 @@ def in_angle(
     strokes_table, flow_table, work_table, inertia_table = at_grid
     calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
     m_other = m  # the real machine's sub-steps of a segment of the other parity
+    # The real machine's C (the frozen friction's, :mod:`.real`) since the segment began
+    c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -621,13 +653,17 @@ def in_angle(
         if use_table and not built[parity, m_seg]:
             tabulate_segment(parity, m_seg, machine, tables, row_tables, built)
         work = 0.0 if full else conservative_work(theta, segment, machine)
-        u_free = u - work  # u less the conservative work: only the windmill (and losses) change it
+        e_ref = frozen_energy(u, calm)  # the real machine's friction frozen at this energy
+        # u less the conservative work (and the frozen friction's): only the windmill and the
+        # rest of the losses change it
+        u_free = frozen_start(u, work, e_ref, c_at, calm)
         if use_table:
             rows = row_tables[parity, m_seg, 0]
         else:
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
-        k1 = rates(ANGLE, theta, u_free, t, work, rows[0], machine, segment)
+            rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
+        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, calm)[0], machine, segment)
         leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
         first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
         past_leak = False  # theta is a leak's kink inside sub-step i: its rest is off the tables
@@ -643,27 +679,29 @@ def in_angle(
                 aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
                 aux, rows = scratch, scratch_rows
-                stage_values(theta_i, h_i, segment, machine, aux, rows)
+                stage_values(theta_i, h_i, segment, machine, aux, rows, c_at)
             if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
                 break
             h_step, at_kink = leak_cut(theta_i, h_i, leak[0])
             if at_kink:
                 aux, rows = scratch, scratch_rows
-                stage_values(theta_i, h_step, segment, machine, aux, rows)
+                stage_values(theta_i, h_step, segment, machine, aux, rows, c_at)
+            c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, calm), segment,
-                machine,
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, e_ref, calm),
+                segment, machine,
             )  # fmt: skip
             steps += 1
             at_wind_kink = ok and kink < y[2] <= t_end
             if at_wind_kink:  # V(t) has a kink inside: the sub-step goes only as far as it
                 ok, y, k7, err, dense, h_step = step_to_kink(
                     kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch, scratch_rows,
-                    segment, machine,
+                    c_at, e_ref, segment, machine,
                 )  # fmt: skip
                 steps += 1
                 at_kink = True
+                c_end = friction_at(scratch_rows[6, 7], calm)
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             if y[2] > t_end:
                 status = IN_TIME  # the sub-step would pass t_end: go on in time
@@ -676,11 +714,13 @@ def in_angle(
                 last, end, end_work[parity], theta_i, h_step, use_table and not at_kink, aux[6],
                 segment, calm,
             )  # fmt: skip
-            u_new = y[0] + work
+            u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
+            W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
+            frozen = frozen_record(e_ref, c_at, W_new, calm)
             if sample_dt is not None:
                 out, n, j = record_in_step(
                     out, n, j, sample_dt, theta_i, h_step, t, W, u_free, y, k1, k7, dense,
-                    segment, machine,
+                    frozen, segment, machine,
                 )  # fmt: skip
             else:
                 if n + int(h / grid.delta) + 2 > out.shape[1]:  # (a call per sample: +20 %)
@@ -688,13 +728,14 @@ def in_angle(
                 n, g = record_grid_angles(
                     out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                    dense,
+                    dense, frozen,
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
+            c_at = c_end
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
-                y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, whole, m, width,
-                h, calm,
+                (y[0], y[1], y[2], W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
+                at_wind_kink, whole, m, width, h, calm,
             )  # fmt: skip
             if at_wind_kink:
                 kink = next_kink(max(t, kink), machine.wind)
@@ -708,6 +749,7 @@ def in_angle(
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
+            c_at = 0.0
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

@@ -13,7 +13,9 @@ In the angle domain the state is ``e - Lambda(theta)``, with ``e = J theta_dot^2
 and Lambda the closed-form work of the weights and of the static head ``rho_w g h A |x'|`` on
 every face in its delivering half (as the ideal machine's): what is left to integrate is the
 windmill's transmitted work less the *excess* of the load over the static head (the rising main's
-friction; a leak hole's relief, negative, where a slow face delivers nothing). The quadratures
+friction; a leak hole's relief, negative, where a slow face delivers nothing), less the main's
+friction frozen at the energy where each split of a segment begins, whose work is tabulated like
+Lambda (docs/model.rst, "The rising main's friction, split at a frozen energy"). The quadratures
 ``W = (shaft work, volume leaked back, friction loss, excess load work)`` are integrated with it, so
 a Runge-Kutta step keeps their linear relation exactly and the energy balance closes to round-off
 as the ideal machine's does; the leak's loss is the static head's work on the swept volume plus
@@ -21,9 +23,10 @@ the excess, less the water lifted and the friction (:func:`windpump.power_budget
 
 The pointwise equations (Eq. 1 and its derivatives, the hole's flow, the face's pressure) are
 :mod:`.equations`' functions, shared with the numpy side. The sums over faces and cylinders are
-twins of :func:`windpump.loads.faces_load`, :func:`windpump.loads.weight_torque` and
+twins of :func:`windpump.loads.faces_load` (and its friction at a frozen energy,
+:func:`friction_density`), :func:`windpump.loads.weight_torque` and
 :func:`windpump.reciprocating.crank_inertia`, kept for speed; tests/test_real_machine.py holds
-each pair together to 1e-12.
+each pair together to 1e-11 or closer.
 """
 
 from __future__ import annotations
@@ -55,6 +58,7 @@ from .dopri5 import (
     E5,
     E6,
     E7,
+    NODES,
     dense_value,
 )  # fmt: skip
 from .jit import OPTIONS, kernel
@@ -79,7 +83,7 @@ lever_arm_slope = kernel(equations.lever_arm_slope)  # (d^2x/dphi^2)/R [-]
 delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 
-ROW = 8  # a stage's row: the inertia ratio j, then |lever arm| of each cylinder's delivering face
+ROW = 8  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -205,16 +209,19 @@ def _face_loads(theta_dot, row, machine):
 
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
-    theta_dot = math.sqrt(2.0 * (x0 + aux) / row[0])
+    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref: :func:`step_rows`)
+    theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
     load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
-    # relief) is integrated, and so is the water lifted and the friction.
-    excess = load - machine.load_torque * arms
+    # relief) is integrated, and so is the water lifted and the friction; of the friction, less
+    # its frozen part (at e_ref: :func:`friction_density`), whose work e_ref C is tabulated.
+    frozen = _frozen_friction(arms, row[0], row[8], machine)
+    excess = load - machine.load_torque * arms - frozen
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
-    friction = real.rho_g * h_f * Q * per_radian
+    friction = real.rho_g * h_f * Q * per_radian - frozen
     return rate, per_radian, per_radian, (drive, leaked, friction, excess)
 
 
@@ -335,6 +342,329 @@ def _fill_row(row, theta, segment, machine):
 
 
 _entry(fill_row)(_no_row, _fill_row)
+
+
+# -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
+#
+# Without a hole the friction torque is rho_w g K (A R arms)^3 theta_dot^2, and theta_dot^2 =
+# 2 e / j: it is c(theta) e I_eff with c a function of the angle alone. Frozen at e_ref (the
+# energy where a split of a segment begins) its work is e_ref C(theta), C = int c from the
+# segment's start, tabulated like Lambda; only c (e - e_ref) and a hole's share are integrated.
+
+
+def _gauss(points):
+    """Gauss-Legendre nodes and weights on [0, 1], as tuples (numba's constants)."""
+    x, w = np.polynomial.legendre.leggauss(points)
+    return tuple(float(v) for v in 0.5 * (x + 1.0)), tuple(float(v) for v in 0.5 * w)
+
+
+GAUSS4, GAUSS8 = _gauss(4), _gauss(8)
+# Eq. (1) is analytic but for sqrt((L/R)^2 - sin^2 phi), which vanishes acosh(L/R) off the real
+# axis: Gauss-Legendre on pieces of length p converges as (d/p)^(-2 points) for that distance d.
+# Pieces at most EIGHT_POINTS d (and LONGEST_PIECE) long take 8 points, at most FOUR_POINTS d
+# (and LONGEST_FOUR: the faces' cubed arms have the harmonics 3 theta) 4: C to ~1e-12 of itself.
+EIGHT_POINTS, FOUR_POINTS = 0.7, 0.12
+LONGEST_PIECE, LONGEST_FOUR = math.pi / 4, 0.15
+
+
+@kernel
+def _frozen_friction(arms, j, e_ref, machine):
+    """The rising main's friction torque [N m] of delivering faces whose |lever arms| sum to
+    ``arms``, as without a hole, at the speed ``theta_dot^2 = 2 e_ref / j``: ``rho_w g K (A R
+    arms)^3 theta_dot^2`` (:func:`windpump.loads.faces_load`, its friction)."""
+    real = machine.real
+    q = real.AR * arms
+    return real.rho_g * real.friction * q * q * q * (2.0 * e_ref / j)
+
+
+@kernel
+def friction_density(theta, segment, machine):
+    """c(theta) [1/rad]: the frozen friction's torque per unit e_ref, over I_eff, at theta."""
+    real = machine.real
+    squares = arms = 0.0
+    for k in range(machine.cylinders):
+        a = lever_arm(theta - phase(k, machine), machine.L_over_R)
+        squares += a * a
+        if delivering_face(segment, k, machine) != NEITHER:
+            arms += abs(a)
+    j = 1.0 + real.mass_ratio * squares
+    return _frozen_friction(arms, j, 1.0, machine) * machine.inv_I_eff
+
+
+@kernel
+def friction_between(a, b, segment, machine):
+    """int_a^b c(theta) dtheta [-] inside a segment (where c is smooth: no face starts or stops
+    inside), by Gauss-Legendre on equal pieces, as many as the rod's ratio asks."""
+    reach = math.acosh(machine.L_over_R)  # how far off the real axis Eq. (1) is analytic
+    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (b - a) / pieces
+    total = 0.0
+    for p in range(pieces):
+        start = a + p * length
+        if length <= min(FOUR_POINTS * reach, LONGEST_FOUR):
+            x, w = GAUSS4
+            for q in range(4):
+                total += w[q] * friction_density(start + x[q] * length, segment, machine)
+        else:
+            x, w = GAUSS8
+            for q in range(8):
+                total += w[q] * friction_density(start + x[q] * length, segment, machine)
+    return total * length
+
+
+def fill_friction(rows, theta, h, c_at, segment, machine):
+    """Write C at a sub-step's 7 stage nodes into ``rows[:, 7]``, from ``c_at`` = C(theta), once
+    ``rows`` holds the nodes' rows (:func:`fill_row`); nothing for the ideal machine (zeros
+    without a rising main)."""
+
+
+def _interpolatory_weights():
+    """w[s][k]: the integral from the step's start to its stage node s (1 to 4, C2 to C5) of the
+    polynomial through a function's values at the 6 distinct nodes (0, C2 ... C5, 1), per unit
+    step length: exact for degree 5."""
+    nodes = NODES[:6]
+    vandermonde = np.vander(nodes, increasing=True)
+    powers = np.arange(1, 7)
+    weights = []
+    for target in nodes[1:5]:
+        moments = target**powers / powers  # int_0^target x^p dx
+        weights.append(tuple(float(v) for v in np.linalg.solve(vandermonde.T, moments)))
+    return tuple(weights)
+
+
+INTERPOLATORY = _interpolatory_weights()
+
+
+@kernel
+def _density_of_row(row, machine):
+    """c at a stage node from its row (j, then the delivering faces' |lever arms|)."""
+    arms = 0.0
+    for k in range(machine.cylinders):
+        arms += row[1 + k]
+    return _frozen_friction(arms, row[0], 1.0, machine) * machine.inv_I_eff
+
+
+def _fill_friction(rows, theta, h, c_at, segment, machine):
+    # The end's C enters the state: Gauss-Legendre. The inner nodes' C only moves the stages'
+    # speeds, whose rates depend on it weakly (~1e-4 of it per radian at the seed's speed):
+    # the polynomial through c at the nodes (rows filled) is ample.
+    if machine.real.friction == 0.0:
+        for stage in range(7):
+            rows[stage, 7] = 0.0
+        return
+    c0, c1, c2 = (
+        _density_of_row(rows[0], machine),
+        _density_of_row(rows[1], machine),
+        _density_of_row(rows[2], machine),
+    )
+    c3, c4, c5 = (
+        _density_of_row(rows[3], machine),
+        _density_of_row(rows[4], machine),
+        _density_of_row(rows[5], machine),
+    )
+    rows[0, 7] = c_at
+    for stage in range(1, 5):
+        w = INTERPOLATORY[stage - 1]
+        rows[stage, 7] = c_at + h * (
+            w[0] * c0 + w[1] * c1 + w[2] * c2 + w[3] * c3 + w[4] * c4 + w[5] * c5
+        )
+    end = c_at + friction_between(theta, theta + h, segment, machine)
+    rows[5, 7] = end
+    rows[6, 7] = end
+
+
+_entry(fill_friction)(lambda rows, theta, h, c_at, segment, machine: None, _fill_friction)
+
+
+def friction_since(theta_i, theta, c_at, segment, machine):
+    """C(theta) from C(theta_i) = c_at [-] (0.0 for the ideal machine, or without a main)."""
+
+
+def _friction_since(theta_i, theta, c_at, segment, machine):
+    if machine.real.friction == 0.0:
+        return 0.0
+    return c_at + friction_between(theta_i, theta, segment, machine)
+
+
+_entry(friction_since)(lambda theta_i, theta, c_at, segment, machine: 0.0, _friction_since)
+
+
+def frozen_energy(u, machine):
+    """e_ref for a split that begins at energy u [J/(kg m^2)]: u with a rising main, else 0.0."""
+
+
+_entry(frozen_energy)(
+    lambda u, machine: 0.0, lambda u, machine: u if machine.real.friction != 0.0 else 0.0
+)
+
+
+def frozen_start(u, work, e_ref, c_at, machine):
+    """x0 where a split begins at energy u, the conservative work there being ``work``:
+    ``u - work``, and for the real machine plus the frozen friction's work e_ref C (C = c_at)."""
+
+
+_entry(frozen_start)(
+    lambda u, work, e_ref, c_at, machine: u - work,
+    lambda u, work, e_ref, c_at, machine: u - (work - e_ref * c_at),
+)
+
+
+def less_frozen(work, e_ref, C, machine):
+    """The aux at a node: the conservative work there, less e_ref C for the real machine."""
+
+
+_entry(less_frozen)(
+    lambda work, e_ref, C, machine: work, lambda work, e_ref, C, machine: work - e_ref * C
+)
+
+
+def friction_at(value, machine):
+    """C at a stage node, ``value`` being its row's column 7; 0.0 for the ideal machine (whose
+    rows hold no C). Given the number, not the rows: an array handed to a helper, even inlined,
+    costs a reference-count pair per call."""
+
+
+_entry(friction_at)(lambda value, machine: 0.0, lambda value, machine: value)
+
+
+def frozen_work(W, e_ref, dC, machine):
+    """The work quadratures with the frozen friction's work over a change dC of C added to the
+    friction and the excess load, ``e_ref I_eff dC`` [J]; the ideal machine's W as it is."""
+
+
+def _frozen_work(W, e_ref, dC, machine):
+    work = e_ref * dC / machine.inv_I_eff
+    return W[0], W[1], W[2] + work, W[3] + work
+
+
+_entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
+
+
+def frozen_record(e_ref, c_at, W_new, machine):
+    """What the recorders need of a sub-step's frozen friction: None for the ideal machine, else
+    (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended)."""
+
+
+_entry(frozen_record)(
+    lambda e_ref, c_at, W_new, machine: None,
+    lambda e_ref, c_at, W_new, machine: (e_ref, e_ref / machine.inv_I_eff, c_at, W_new),
+)
+
+
+def _is_none(frozen) -> bool:
+    return isinstance(frozen, types.NoneType)
+
+
+def grid_aux(work, frozen, table, row):
+    """A grid sample's aux inside a sub-step: its conservative work ``work``, less e_ref C for
+    the real machine (C from :func:`inertia_table`'s second row)."""
+
+
+@overload(grid_aux, jit_options=JIT_OPTIONS)
+def _grid_aux(work, frozen, table, row):
+    if _is_none(frozen):
+        return lambda work, frozen, table, row: work
+    return lambda work, frozen, table, row: work - frozen[0] * table[1, row]
+
+
+def grid_works(W, frozen, table, row):
+    """A grid sample's works inside a sub-step: the integrated ``W``, with the real machine's
+    frozen friction's work since the sub-step began."""
+
+
+@overload(grid_works, jit_options=JIT_OPTIONS)
+def _grid_works(W, frozen, table, row):
+    if _is_none(frozen):
+        return lambda W, frozen, table, row: W
+
+    def works(W, frozen, table, row):
+        extra = frozen[1] * (table[1, row] - frozen[2])
+        return W[0], W[1], W[2] + extra, W[3] + extra
+
+    return works
+
+
+def at_time(work, W, frozen, theta_i, theta, segment, machine):
+    """A sample's aux and works at an angle theta off the grid inside a sub-step from theta_i
+    (:func:`grid_aux`, :func:`grid_works`; C from the sub-step's start)."""
+
+
+@overload(at_time, jit_options=JIT_OPTIONS)
+def _at_time(work, W, frozen, theta_i, theta, segment, machine):
+    if _is_none(frozen):
+        return lambda work, W, frozen, theta_i, theta, segment, machine: (work, W)
+
+    def at(work, W, frozen, theta_i, theta, segment, machine):
+        e_ref, e_ref_I, c_at, _ = frozen
+        C = friction_since(theta_i, theta, c_at, segment, machine)
+        extra = e_ref_I * (C - c_at)
+        return work - e_ref * C, (W[0], W[1], W[2] + extra, W[3] + extra)
+
+    return at
+
+
+def end_works(y, frozen):
+    """The works where a sub-step ends: ``y[3]`` (the ideal machine's), or the frozen record's."""
+
+
+@overload(end_works, jit_options=JIT_OPTIONS)
+def _end_works(y, frozen):
+    if _is_none(frozen):
+        return lambda y, frozen: y[3]
+    return lambda y, frozen: frozen[3]
+
+
+def grid_inertias(theta, segment, machine):
+    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C since
+    the segment began."""
+
+
+def _grid_inertias(theta, segment, machine):
+    return inertia_ratio(theta, machine), friction_since(
+        segment_start(segment, machine), theta, 0.0, segment, machine
+    )
+
+
+_entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
+
+
+def inertia_table(rows, machine):
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (2, rows)."""
+
+
+_entry(inertia_table)(
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((2, rows))
+)
+
+
+def set_grid_inertia(table, row, values):
+    """table[row] = values (1-D), or table[:, row] = values (2-D)."""
+
+
+@overload(set_grid_inertia, jit_options=JIT_OPTIONS)
+def _set_grid_inertia(table, row, values):
+    if table.ndim == 1:
+
+        def set_one(table, row, values):
+            table[row] = values
+
+        return set_one
+
+    def set_two(table, row, values):
+        table[0, row], table[1, row] = values
+
+    return set_two
+
+
+def grid_inertia(table, row):
+    """J / I_eff at a grid angle (:func:`inertia_table`)."""
+
+
+@overload(grid_inertia, jit_options=JIT_OPTIONS)
+def _grid_inertia(table, row):
+    if table.ndim == 1:
+        return lambda table, row: table[row]
+    return lambda table, row: table[0, row]
 
 
 # -- The work quadratures: a float (the shaft work) or a tuple of WORKS. -------------------------
@@ -578,29 +908,30 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
     return factors
 
 
-def step_rows(rows, machine):
-    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples (the ideal
+def step_rows(rows, e_ref, machine):
+    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
+    (column 7) times the frozen energy e_ref in its place and e_ref after it (the ideal
     machine's: ``rows`` as they are). A stage's row taken from the array is a view, whose
     reference is counted atomically as it is made and dropped: 14 atomic operations a step, a
     third of the time of the real machine's steps (eta_t alone)."""
 
 
 @kernel
-def _row(rows, stage):
+def _row(rows, stage, e_ref):
     return (
         rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
-        rows[stage, 4], rows[stage, 5], rows[stage, 6], rows[stage, 7],
+        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref,
     )  # fmt: skip
 
 
-def _step_rows(rows, machine):
+def _step_rows(rows, e_ref, machine):
     return (
-        _row(rows, 0), _row(rows, 1), _row(rows, 2), _row(rows, 3), _row(rows, 4),
-        _row(rows, 5), _row(rows, 6),
+        _row(rows, 0, e_ref), _row(rows, 1, e_ref), _row(rows, 2, e_ref), _row(rows, 3, e_ref),
+        _row(rows, 4, e_ref), _row(rows, 5, e_ref), _row(rows, 6, e_ref),
     )  # fmt: skip
 
 
-_entry(step_rows)(lambda rows, machine: rows, _step_rows)
+_entry(step_rows)(lambda rows, e_ref, machine: rows, _step_rows)
 
 
 def split_sizes_by_parity(m, m_other, machine):

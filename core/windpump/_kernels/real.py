@@ -15,10 +15,10 @@ every face in its delivering half (as the ideal machine's): what is left to inte
 windmill's transmitted work less the *excess* of the load over the static head (the rising main's
 friction; a leak hole's relief, negative, where a slow face delivers nothing), less the main's
 friction frozen at the energy where each split of a segment begins, whose work is tabulated like
-Lambda (docs/model.rst, "The rising main's friction, split at a frozen energy"). The quadratures
-``W = (shaft work, volume leaked back, friction loss, excess load work)`` are integrated with it, so
-a Runge-Kutta step keeps their linear relation exactly and the energy balance closes to round-off
-as the ideal machine's does; the leak's loss is the static head's work on the swept volume plus
+Lambda (docs/model.rst, "The real machine": the main's friction split at a frozen energy). The
+quadratures ``W = (shaft work, volume leaked back, friction loss, excess load work)`` are
+integrated with it, so a Runge-Kutta step keeps their linear relation exactly and the energy
+balance closes to round-off as the ideal machine's does; the leak's loss is the static head's work on the swept volume plus
 the excess, less the water lifted and the friction (:func:`windpump.power_budget`).
 
 The pointwise equations (Eq. 1 and its derivatives, the hole's flow, the face's pressure) are

@@ -119,22 +119,24 @@ def tabulate_segment(parity, m, machine, tables, rows, built):
     c_at = 0.0
     for i in range(m):
         sub_rows = rows[parity, m, i]
-        stage_values(start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at)
+        stage_values(
+            start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at, NOT_KNOWN
+        )
         c_at = friction_at(sub_rows[6, 7], machine)
     built[parity, m] = True
 
 
 @kernel
-def stage_values(theta, h, segment, machine, aux, rows, c_at):
+def stage_values(theta, h, segment, machine, aux, rows, c_at, known):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
     at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
-    C from c_at = C(theta) in their column 7)."""
+    C from c_at = C(theta) in their column 7, or from ``known``: :func:`~.real.fill_friction`)."""
     for stage in range(7):
         node = theta + NODES[stage] * h
         aux[stage] = conservative_work(node, segment, machine)
         fill_row(rows[stage], node, segment, machine)
     aux[7] = conservative_torque(theta, segment, machine)
-    fill_friction(rows, theta, h, c_at, segment, without_wind(machine))
+    fill_friction(rows, theta, h, c_at, known, segment, without_wind(machine))
 
 
 @kernel
@@ -563,6 +565,16 @@ def split_of(m, full, theta, width, n_per_stroke, sample_dt, segment, machine):
     return end, segment % 2, end_grid, m_seg, use_table, h
 
 
+NOT_KNOWN = (math.nan, 0.0)  # no tabled C to start from (:func:`~.real.fill_friction`)
+
+
+@inline_kernel
+def tabled_end(i, m_seg, first, h, end, C):
+    """(Where tabled sub-step i of a split ends, the real machine's C there), for the pieces a
+    hole's kink cuts from it."""
+    return (end if i == m_seg - 1 else first + (i + 1) * h), C
+
+
 @inline_kernel
 def rest_of_sub_step(theta, first, i, m_seg, h, end):
     """The length from theta, a leak's kink inside sub-step i of a split from ``first``, to
@@ -586,7 +598,7 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     from where the step's continuous extension puts the kink's time (the rest of the segment
     follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at)
+    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, NOT_KNOWN)
     ok, y, k7, err, dense = dp5_step(
         ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
         step_rows(scratch_rows, e_ref, machine), segment, machine,
@@ -679,14 +691,20 @@ def in_angle(
                 aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
                 aux, rows = scratch, scratch_rows
-                stage_values(theta_i, h_i, segment, machine, aux, rows, c_at)
+                known = NOT_KNOWN
+                if use_table:  # (rows of a split into more sub-steps than the tables hold: none)
+                    known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
+                stage_values(theta_i, h_i, segment, machine, aux, rows, c_at, known)
             if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
                 break
             h_step, at_kink = leak_cut(theta_i, h_i, leak[0])
             if at_kink:
                 aux, rows = scratch, scratch_rows
-                stage_values(theta_i, h_step, segment, machine, aux, rows, c_at)
+                known = NOT_KNOWN
+                if use_table:  # (rows of a split into more sub-steps than the tables hold: none)
+                    known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
+                stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, e_ref, calm),

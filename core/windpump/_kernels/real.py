@@ -412,10 +412,11 @@ def friction_between(a, b, segment, machine):
     return total * length
 
 
-def fill_friction(rows, theta, h, c_at, segment, machine):
+def fill_friction(rows, theta, h, c_at, known, segment, machine):
     """Write C at a sub-step's 7 stage nodes into ``rows[:, 7]``, from ``c_at`` = C(theta), once
     ``rows`` holds the nodes' rows (:func:`fill_row`); nothing for the ideal machine (zeros
-    without a rising main)."""
+    without a rising main). ``known`` is (an angle at or past the sub-step's end, C there), from
+    the tables, or (NaN, 0.0)."""
 
 
 def _interpolatory_weights():
@@ -444,7 +445,7 @@ def _density_of_row(row, machine):
     return _frozen_friction(arms, row[0], 1.0, machine) * machine.inv_I_eff
 
 
-def _fill_friction(rows, theta, h, c_at, segment, machine):
+def _fill_friction(rows, theta, h, c_at, known, segment, machine):
     # The end's C enters the state: Gauss-Legendre. The inner nodes' C only moves the stages'
     # speeds, whose rates depend on it weakly (~1e-4 of it per radian at the seed's speed):
     # the polynomial through c at the nodes (rows filled) is ample.
@@ -468,12 +469,24 @@ def _fill_friction(rows, theta, h, c_at, segment, machine):
         rows[stage, 7] = c_at + h * (
             w[0] * c0 + w[1] * c1 + w[2] * c2 + w[3] * c3 + w[4] * c4 + w[5] * c5
         )
-    end = c_at + friction_between(theta, theta + h, segment, machine)
-    rows[5, 7] = end
-    rows[6, 7] = end
+    rows[5, 7] = rows[6, 7] = _friction_at_end(theta, h, c_at, known, segment, machine)
 
 
-_entry(fill_friction)(lambda rows, theta, h, c_at, segment, machine: None, _fill_friction)
+@kernel
+def _friction_at_end(theta, h, c_at, known, segment, machine):
+    """C at theta + h [-]: C(theta) = c_at plus its integral, or a known C nearer (a tabled
+    sub-step's end: a piece a hole's kink cut from it ends there, or near it), less the
+    integral from there back."""
+    anchor, c_anchor = known
+    end = theta + h
+    if abs(anchor - end) <= 1e-12 * max(1.0, abs(anchor)):
+        return c_anchor
+    if end < anchor < end + h:
+        return c_anchor - friction_between(end, anchor, segment, machine)
+    return c_at + friction_between(theta, end, segment, machine)
+
+
+_entry(fill_friction)(lambda rows, theta, h, c_at, known, segment, machine: None, _fill_friction)
 
 
 def friction_since(theta_i, theta, c_at, segment, machine):

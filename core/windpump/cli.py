@@ -44,6 +44,8 @@ options of panel serve, passed on (all of them: its own help follows), e.g.:
   --num-procs N         serve from N processes (0: one per core)
 """
 RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
+# The explorer's link gives these fields in millimetres (?d_leak_mm=3); --set takes metres.
+LINK_MILLIMETRES = {"d_leak_mm": "d_leak", "D_main_mm": "D_main"}
 MAX_FILE_BYTES = 50_000_000
 
 
@@ -149,7 +151,11 @@ def chosen_design(args: argparse.Namespace) -> Design:
     """The design of --design and --set."""
     design = Design.seed_example()
     if args.design:
-        design = Design.from_json(read_text(args.design))
+        text = read_text(args.design)
+        try:
+            design = Design.from_json(text)
+        except ValueError as error:  # which file, as sweep says it
+            raise ValueError(f"{cut(args.design)}: {error}") from None
     changes: dict[str, Any] = dict(parse_setting(text) for text in args.set)
     ratios = {name: changes.pop(name) for name in RATIOS if name in changes}
     return design.with_ratios(**ratios, **changes)
@@ -159,9 +165,23 @@ def parse_setting(text: str) -> tuple[str, object]:
     """``NAME=VALUE`` as (name, value), the value typed as the field is."""
     name, equals, value = text.partition("=")
     name, value = name.strip(), value.strip()
-    if not equals or name not in (*UNITS, *RATIOS):
-        known = ", ".join((*UNITS, *RATIOS))
+    known = ", ".join((*UNITS, *RATIOS))
+    if not equals:
         raise ValueError(f"--set {shown(text)}: expected NAME=VALUE with NAME one of {known}")
+    if name in LINK_MILLIMETRES:  # a name copied from the explorer's link
+        field = LINK_MILLIMETRES[name]
+        try:
+            hint = f"--set {field}={float(value) / 1000:g}"
+        except ValueError:
+            hint = f"--set {field}=VALUE"
+        raise ValueError(
+            f"--set {shown(text)}: {name} is the explorer's link name: use {field}, "
+            f"{hint} (in metres)"
+        )
+    if name not in (*UNITS, *RATIOS):
+        raise ValueError(
+            f"--set {shown(text)}: {cut(name)} is not a field of the design; one of {known}"
+        )
     return name, typed(name, value)
 
 

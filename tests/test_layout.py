@@ -187,6 +187,39 @@ def test_presentation_mode_enlarges_the_sidebar_captions_status_and_notes(browse
         page.close()
 
 
+# Every collapsed card's chevron, as drawn: Panel 1.9's listpanel.css strokes it with a variable the
+# page's theme does not define, which leaves it unpainted (stroke "none"); and every slider title
+# wider than its box (Bokeh keeps a title on one line: a long one loses its value past the edge).
+CHEVRONS = """() => { const out = []; const walk = (r) => {
+  for (const svg of r.querySelectorAll('.card-button > svg')) out.push(getComputedStyle(svg).stroke);
+  for (const el of r.querySelectorAll('*')) if (el.shadowRoot) walk(el.shadowRoot); };
+  walk(document); return out; }"""
+CUT_TITLES = """() => { const out = []; const walk = (r) => {
+  for (const el of r.querySelectorAll('.bk-slider-title'))
+    if (el.scrollWidth > el.clientWidth + 1) out.push(el.textContent);
+  for (const el of r.querySelectorAll('*')) if (el.shadowRoot) walk(el.shadowRoot); };
+  walk(document); return out; }"""
+
+
+@pytest.mark.parametrize("query", ["?presentation=true", "?presentation=true&theme=dark"])
+def test_the_cards_show_their_chevron_and_every_slider_its_value(browser, url, query):
+    """A newcomer sees that "More parameters" and "Real machine" open (a chevron, painted in
+    the text's colour), and, with both open in presentation mode at 1280×720, every slider's
+    title and value in full ("Leak hole discharge coefficient: 0.60" wraps, not cut)."""
+    page = open_page(browser, url, 1280, 720, query)
+    try:
+        strokes = page.evaluate(CHEVRONS)
+        assert len(strokes) >= 2 and "none" not in strokes, strokes
+        for title in ("More parameters", "Real machine"):
+            page.get_by_text(title).first.click()
+        page.locator(".bk-slider-title", has_text="Leak hole discharge coefficient").wait_for()
+        time.sleep(1.0)
+        assert page.evaluate(CUT_TITLES) == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize("tab", ["Mechanisms", "Design map"])
 def test_a_short_tab_does_not_scroll_into_blank_space(browser, url, tab):
     """Panel keeps hidden tabs laid out; the page must be as long as the tab shown, not the

@@ -365,10 +365,9 @@ class StallView(View):
         refill(self.sources["stall"], data)
         self.figure.xaxis.axis_label = f"Eqs. (14, 15) [×10{superscript(power)}]"
         verdict = "runs" if seen.margin > 1 else "stalls"
+        margin = "∞" if math.isinf(seen.margin) else f"{seen.margin:.3f}"  # a leak hole, h = 0
         # two short lines: one long line was cut on a phone and in presentation mode
-        self.figure.title.text = (
-            f"Stall criterion, Eq. (22)\nmargin {seen.margin:.3f}: it {verdict}"
-        )
+        self.figure.title.text = f"Stall criterion, Eq. (22)\nmargin {margin}: it {verdict}"
 
 
 class OperatingView(View):

@@ -257,3 +257,5 @@ def test_a_pump_that_never_stalls_reads_so_not_inf(query):
     assert math.isinf(windpump.stall_margin(app.inputs.design()))
     shown = app.readouts["margin"].object
     assert "inf" not in shown and "∞ (never stalls)" in shown
+    app.show_views()  # the stall view's title says it too
+    assert app.pump.stall.figure.title.text.endswith("margin ∞: it runs")

@@ -258,6 +258,45 @@ def test_the_waterfall_labels_end_inside_their_figure(browser, url, width, heigh
         page.close()
 
 
+# The smallest distance [px] between neighbouring tick labels of each vertical axis of a figure
+# titled so, with the labels' font size [px]: the Wind tab's second axis once stacked nine labels
+# (0 to 0.16 by 0.02) 14-17 px apart in 18 px type.
+TICK_GAPS = """(title) => {
+  const out = [];
+  for (const model of window.Bokeh.documents[0].all_models) {
+    if (model.type !== 'LinearAxis' && model.constructor.__name__ !== 'LinearAxis') continue;
+    const view = window.Bokeh.index.find_one(model);
+    if (!view || !view.tick_coords || view.dimension !== 1) continue;
+    const plot = view.parent;
+    if (!plot.model.title || plot.model.title.text !== title) continue;
+    const frame = plot.frame, range = model.y_range_name;
+    const scale = range === 'default' ? frame.y_scale : frame.y_scales.get(range);
+    const ys = view.tick_coords.major[1].map(y => scale.compute(y));
+    const gap = Math.min(...ys.slice(1).map((y, i) => Math.abs(y - ys[i])));
+    out.push([model.axis_label, gap, parseFloat(model.major_label_text_font_size)]);
+  }
+  return out;
+}"""
+
+
+@pytest.mark.parametrize(
+    "width, height, query", [(1280, 720, "&presentation=true"), (390, 844, "")]
+)
+def test_the_wind_curves_tick_labels_do_not_overlap(browser, url, width, height, query):
+    page = open_page(browser, url, width, height, "?tab=wind" + query)
+    try:
+        title = "Water against steady wind"
+        page.wait_for_function(f"(t) => ({TICK_GAPS})(t).length === 2", arg=title, timeout=60_000)
+        time.sleep(1.0)
+        gaps = page.evaluate(TICK_GAPS, title)
+        assert [label for label, _, _ in gaps] == ["mean flow [L/s]", "Weibull density [s/m]"]
+        crowded = [(label, gap, font) for label, gap, font in gaps if gap < 1.5 * font]
+        assert crowded == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize("tab", ["Mechanisms", "Design map"])
 def test_a_short_tab_does_not_scroll_into_blank_space(browser, url, tab):
     """Panel keeps hidden tabs laid out; the page must be as long as the tab shown, not the

@@ -143,6 +143,18 @@ def test_a_bad_design_file_is_named_in_its_error(tmp_path, text, words, command)
     assert len(lines) == 1 and words in lines[0], done.stderr
 
 
+@pytest.mark.parametrize("command", ["simulate", "map", "sweep", "supply", "tank", "serve"])
+def test_every_commands_help_says_what_it_does(command):
+    """``windpump COMMAND --help`` opens with a sentence on what the command does, not the bare
+    list of options (a newcomer's ``windpump supply --help`` had none)."""
+    if command == "serve":  # its help is panel serve's, after its own
+        pytest.importorskip("panel")
+    done = windpump_command(command, "--help")
+    assert done.returncode == 0
+    before_options = done.stdout.split("\noptions:")[0].split("\n\n")
+    assert len(before_options) >= 2 and before_options[1].strip()[:1].isupper(), done.stdout
+
+
 def test_a_command_line_argparse_cannot_read_exits_2():
     done = windpump_command("simulate", "--t-end", "soon")
     assert done.returncode == 2 and "--t-end" in done.stderr

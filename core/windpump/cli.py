@@ -85,14 +85,26 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    simulate = commands.add_parser("simulate", help="run a design in full and summarise it")
+    simulate = commands.add_parser(
+        "simulate",
+        help="run a design in full and summarise it",
+        description="Run a design in full (Eq. 12) and print the averaged theory's stall margin, "
+        "speeds and time constant (Eqs. 21, 22, 25) beside the run's flow and volume; --csv "
+        "writes its samples.",
+    )
     design_options(simulate)
     run_options(simulate)
     simulate.add_argument("--csv", metavar="FILE", help="write the run's samples here")
     simulate.add_argument("--litres", action="store_true", help="volume and flow in L in the CSV")
     simulate.set_defaults(run=simulate_command)
 
-    mapping = commands.add_parser("map", help="the design map over gear ratio and head")
+    mapping = commands.add_parser(
+        "map",
+        help="the design map over gear ratio and head",
+        description="Water a day over the sprocket ratio R+ and the head h, with the stall "
+        "boundary and the best ratio (the averaged theory, or --numeric from full runs): a CSV, "
+        "and a PNG with --png.",
+    )
     design_options(mapping)
     mapping.add_argument("--gear-ratios", metavar="FROM:TO:N", help="default R+/8:2R+:200")
     mapping.add_argument("--heads", metavar="FROM:TO:N", help="default 0:3h:200")
@@ -101,7 +113,12 @@ def build_parser() -> argparse.ArgumentParser:
     mapping.add_argument("--png", metavar="FILE", help="draw the map here (needs matplotlib)")
     mapping.set_defaults(run=map_command)
 
-    sweeping = commands.add_parser("sweep", help="run a table of designs")
+    sweeping = commands.add_parser(
+        "sweep",
+        help="run a table of designs",
+        description="Run a table of designs (a CSV row, or a JSON design, each) on this "
+        "machine's processes or a dask scheduler, and write a row of figures for each.",
+    )
     sweeping.add_argument("file", metavar="FILE", help="designs: .csv (a row each) or .json")
     design_options(sweeping, base="the design each row changes")
     run_options(sweeping)

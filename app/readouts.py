@@ -8,6 +8,8 @@ alone; a change of stylesheets or of an alert's type still goes through Panel's 
 
 from __future__ import annotations
 
+import math
+
 import panel as pn
 
 import windpump
@@ -90,7 +92,7 @@ class Readouts(pn.viewable.Viewer):
                 "Spin-up time τ, Eq. (25)",
                 f"{seen.tau:.1f} s" if seen.tau and started else "–",
             ),
-            "margin": ("Stall margin, Eq. (22)", f"{seen.margin:.3f}"),
+            "margin": ("Stall margin, Eq. (22)", margin_text(seen.margin)),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
             "ripple": ("Speed ripple", f"{100 * figures.speed_ripple:.3f} %" if figures else "–"),
             "efficiency": efficiency_readout(seen),
@@ -112,6 +114,12 @@ class Readouts(pn.viewable.Viewer):
 
     def __panel__(self) -> pn.Column:
         return pn.Column(self.row, self.status, sizing_mode="stretch_width")
+
+
+def margin_text(margin: float) -> str:
+    """The stall margin (Eq. 22) as a class reads it: endless (the core's inf, a leak hole or no
+    head: no load at rest) in words."""
+    return "∞ (never stalls)" if math.isinf(margin) else f"{margin:.3f}"
 
 
 def percent(value: float) -> str:

@@ -56,12 +56,20 @@ def card_header(title: str) -> pn.pane.HTML:
     return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
 
 
+# The card's chevron, in the text's colour: Panel 1.9 strokes it with --background-text-color,
+# which the Bootstrap template does not define, and so draws nothing (nothing says it opens).
+CHEVRON_CSS = ".card-button > svg { stroke: currentColor; }"
+
+
 def closed_card(title: str, build: Callable[[], list]) -> pn.Card:
     """A collapsed card whose contents, ``build()``, are made the first time it opens (a click on
     its header, or ``collapsed = False`` on the server) and kept: a card left closed costs the
     page none of its models."""
     card = pn.Card(
-        header=card_header(title), collapsed=True, sizing_mode="stretch_width", stylesheets=TEXT
+        header=card_header(title),
+        collapsed=True,
+        sizing_mode="stretch_width",
+        stylesheets=[*TEXT, CHEVRON_CSS],
     )
 
     def fill(_event) -> None:

@@ -16,7 +16,8 @@ from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
 from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
 
-WHAT = "a year of hourly weather (a TMY3 or EPW file is about 1.5 MB)"
+WHAT = "a year of hourly weather"  # the core's refusal: "(... needs far fewer)"
+SIZE = f"{WHAT}, a TMY3 or EPW file, is about 1.5 MB"  # the page's refusal: "(...)"
 SUFFIXES = (".csv", ".epw", ".txt", ".tsv")
 
 
@@ -93,7 +94,7 @@ class SiteRecords:
 
     def refuse_size(self, size: int) -> None:
         """The page stopped a file over the limit before sending it: say so."""
-        message = refused_size("weather", size, WHAT)
+        message = refused_size("weather", size, SIZE)
         if message is not None:
             self.message.object, self.message.visible = message, True
 

@@ -20,7 +20,8 @@ def px(size: float) -> str:
 
 TEXT = [
     f":host {{ font-size: {px(16)}; }}",
-    f".bk-slider-title {{ font-size: {px(15)}; }}",
+    # a long title wraps (Bokeh keeps it on one line, and its value went past the sidebar's edge)
+    f".bk-slider-title {{ font-size: {px(15)}; white-space: normal; }}",
     f".bk-btn, .bk-input, select, input {{ font-size: {px(15)}; }}",
 ]
 COMPACT = [

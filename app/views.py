@@ -291,6 +291,7 @@ class EnergyView(View):
             text_font_size=LABEL, x_offset=6, color=self.colors["ink"],
         )  # fmt: skip
         fig.x_range.start = 0
+        fig.xaxis.ticker.desired_num_ticks = 3  # "10000 15000 20000" ran together at 300 px
 
     def update(self, seen, bins):
         refill(self.sources["losses"], self.waterfall(seen.energy_totals))
@@ -310,7 +311,8 @@ class EnergyView(View):
         share = [100.0 * v / W if W > 0 else 0.0 for v in values]
         labels = [f"{v:,.0f} J, {p:.0f} %" for v, p in zip(values, share, strict=True)]
         labels[4] = labels[4] if spin >= 0 else f"{-spin:,.0f} J given back"
-        self.figure.x_range.end = 1.8 * max(max(right), 1e-9)  # room for the labels
+        # room for the labels: "11,967 J, 100 %" at 19 px beside a bar of 1/2.4 of a 300 px frame
+        self.figure.x_range.end = 2.4 * max(max(right), 1e-9)
         return {
             "step": list(self.STEPS),
             "left": left,
@@ -365,10 +367,9 @@ class StallView(View):
         refill(self.sources["stall"], data)
         self.figure.xaxis.axis_label = f"Eqs. (14, 15) [×10{superscript(power)}]"
         verdict = "runs" if seen.margin > 1 else "stalls"
+        margin = "∞" if math.isinf(seen.margin) else f"{seen.margin:.3f}"  # a leak hole, h = 0
         # two short lines: one long line was cut on a phone and in presentation mode
-        self.figure.title.text = (
-            f"Stall criterion, Eq. (22)\nmargin {seen.margin:.3f}: it {verdict}"
-        )
+        self.figure.title.text = f"Stall criterion, Eq. (22)\nmargin {margin}: it {verdict}"
 
 
 class OperatingView(View):

@@ -247,3 +247,15 @@ def test_the_deep_well_preset_runs_as_the_issues_equations_say(app):
     assert ref.friction_loss > 0.0  # the rising main takes its share
     kicked_lower = real_reference_run(design, 120.0, app.inputs.theta0, 3.0)
     assert kicked_lower.stalled  # the paper's 3 rad/s kick is below this pump's alpha-
+
+
+@pytest.mark.parametrize("query", [{"d_leak_mm": [b"3"]}, {"h": [b"0"]}])
+def test_a_pump_that_never_stalls_reads_so_not_inf(query):
+    """A leak hole (no load at rest) or no head gives an endless stall margin (the core's inf,
+    Eq. 22): the readout says so in words a class reads, not Python's "inf"."""
+    app = Explorer(query=query)
+    assert math.isinf(windpump.stall_margin(app.inputs.design()))
+    shown = app.readouts["margin"].object
+    assert "inf" not in shown and "∞ (never stalls)" in shown
+    app.show_views()  # the stall view's title says it too
+    assert app.pump.stall.figure.title.text.endswith("margin ∞: it runs")

@@ -13,8 +13,10 @@ import param
 import pytest
 
 import windpump
+from windpump.labdata import LabDataError
 from windpump_app.explorer import Explorer
 from windpump_app.site_inputs import RESTARTS
+from windpump_app.site_record import read_upload
 
 SEED = windpump.Design.seed_example()
 SITE_TAB = 4  # Wind pump, Mechanisms, Wind, Design map, Site
@@ -239,6 +241,13 @@ def test_a_file_the_page_refused_is_reported_in_the_site_tab(app):
     app.sidebar.refused_upload.value = f"{12_000_000}\t1\tsite\tyear.epw"
     message = app.site.upload_message
     assert message.visible and "12,000,000 bytes" in message.object
+    # one pair of brackets: "(a year of hourly weather (a TMY3 or EPW file is about 1.5 MB))" read
+    # as a slip; and the core's own refusal says what the file holds in one clause too
+    assert message.object.endswith(
+        "(a year of hourly weather, a TMY3 or EPW file, is about 1.5 MB)."
+    )
+    with pytest.raises(LabDataError, match=r"\(a year of hourly weather needs far fewer\)$"):
+        read_upload(b"0" * 10_000_001, "year.csv")
     assert not app.wind_tab.built and not app.sidebar.lab.message.visible
     assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
 

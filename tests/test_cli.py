@@ -101,8 +101,11 @@ def test_set_takes_the_real_machines_fields(tmp_path):
         (["simulate", "--set", "Cd_leak=0"], "Cd_leak = 0.0 is not allowed: Cd_leak must be"),
         (["simulate", "--set", "L_main=-3"], "L_main = -3.0 m is not allowed: L_main must be"),
         (["simulate", "--set", "m_r=heavy"], "m_r = 'heavy' is not allowed: m_r must be a number"),
-        (["simulate", "--set", "bore=1"], "expected NAME=VALUE"),
+        (["simulate", "--set", "bore=1"], "--set 'bore=1': bore is not a field of the design"),
         (["simulate", "--set", "h"], "expected NAME=VALUE"),
+        # the explorer's link names are in millimetres: say which field it is, in metres
+        (["simulate", "--set", "d_leak_mm=3"], "d_leak_mm is the explorer's link name: use d_leak"),
+        (["simulate", "--set", "D_main_mm=25"], "--set D_main=0.025 (in metres)"),
         (["simulate", "--set", "double_acting=maybe"], "double_acting"),
         (["simulate", "--t-end", "1e9"], "t_end"),
         (["simulate", "--design", "no-such-file.json"], "no-such-file.json"),
@@ -118,6 +121,38 @@ def test_errors_are_one_line_and_exit_1(args, words):
     assert done.stdout == ""
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("windpump ") and words in lines[0]
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("", "pump.json: not JSON"),
+        ('{"fields": {"h": 3}}', 'pump.json: not a design file: it needs "schema"'),
+        (SEED.replace(m_r=15.0).to_json().replace('"m_r": 15.0', '"m_r": -2'), "pump.json: m_r"),
+    ],
+    ids=["empty", "no-schema", "negative-m_r"],
+)
+@pytest.mark.parametrize("command", ["simulate", "map", "tank"])
+def test_a_bad_design_file_is_named_in_its_error(tmp_path, text, words, command):
+    """Every command's --design names the file it could not read, as ``sweep`` does."""
+    (tmp_path / "pump.json").write_text(text)
+    site = ["--site", "greensboro", "--demand", "2"] if command == "tank" else []
+    done = windpump_command(command, "--design", str(tmp_path / "pump.json"), *site)
+    assert done.returncode == 1 and done.stdout == ""
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and words in lines[0], done.stderr
+
+
+@pytest.mark.parametrize("command", ["simulate", "map", "sweep", "supply", "tank", "serve"])
+def test_every_commands_help_says_what_it_does(command):
+    """``windpump COMMAND --help`` opens with a sentence on what the command does, not the bare
+    list of options (a newcomer's ``windpump supply --help`` had none)."""
+    if command == "serve":  # its help is panel serve's, after its own
+        pytest.importorskip("panel")
+    done = windpump_command(command, "--help")
+    assert done.returncode == 0
+    before_options = done.stdout.split("\noptions:")[0].split("\n\n")
+    assert len(before_options) >= 2 and before_options[1].strip()[:1].isupper(), done.stdout
 
 
 def test_a_command_line_argparse_cannot_read_exits_2():

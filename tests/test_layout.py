@@ -187,6 +187,116 @@ def test_presentation_mode_enlarges_the_sidebar_captions_status_and_notes(browse
         page.close()
 
 
+# Every collapsed card's chevron, as drawn: Panel 1.9's listpanel.css strokes it with a variable the
+# page's theme does not define, which leaves it unpainted (stroke "none"); and every slider title
+# wider than its box (Bokeh keeps a title on one line: a long one loses its value past the edge).
+CHEVRONS = """() => { const out = []; const walk = (r) => {
+  for (const svg of r.querySelectorAll('.card-button > svg')) out.push(getComputedStyle(svg).stroke);
+  for (const el of r.querySelectorAll('*')) if (el.shadowRoot) walk(el.shadowRoot); };
+  walk(document); return out; }"""
+CUT_TITLES = """() => { const out = []; const walk = (r) => {
+  for (const el of r.querySelectorAll('.bk-slider-title'))
+    if (el.scrollWidth > el.clientWidth + 1) out.push(el.textContent);
+  for (const el of r.querySelectorAll('*')) if (el.shadowRoot) walk(el.shadowRoot); };
+  walk(document); return out; }"""
+
+
+@pytest.mark.parametrize("query", ["?presentation=true", "?presentation=true&theme=dark"])
+def test_the_cards_show_their_chevron_and_every_slider_its_value(browser, url, query):
+    """A newcomer sees that "More parameters" and "Real machine" open (a chevron, painted in
+    the text's colour), and, with both open in presentation mode at 1280×720, every slider's
+    title and value in full ("Leak hole discharge coefficient: 0.60" wraps, not cut)."""
+    page = open_page(browser, url, 1280, 720, query)
+    try:
+        strokes = page.evaluate(CHEVRONS)
+        assert len(strokes) >= 2 and "none" not in strokes, strokes
+        for title in ("More parameters", "Real machine"):
+            page.get_by_text(title).first.click()
+        page.locator(".bk-slider-title", has_text="Leak hole discharge coefficient").wait_for()
+        time.sleep(1.0)
+        assert page.evaluate(CUT_TITLES) == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+# The text glyphs a figure draws that end past its frame's right edge, measured with the canvas's
+# font: the waterfall's "11,967 J, 100 %" lost its "%" in presentation mode and on a phone.
+CUT_GLYPH_TEXT = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name);
+  const view = window.Bokeh.index.find_one(model);
+  const frame = view.frame.bbox, scale = view.frame.x_scale, cut = [];
+  const ctx = document.createElement('canvas').getContext('2d');
+  const v = (p) => (p !== null && typeof p === 'object' && 'value' in p) ? p.value : p;
+  for (const r of model.renderers) {
+    const g = r.glyph;
+    if (!g || !('text' in g) || !('x_offset' in g)) continue;
+    const data = r.data_source.data, text = data[g.text.field], x = data[g.x.field];
+    ctx.font = `${v(g.text_font_size)} helvetica`;
+    for (let i = 0; i < text.length; i++) {
+      const end = scale.compute(x[i]) + v(g.x_offset) + ctx.measureText(text[i]).width;
+      if (end > frame.right + 1) cut.push([text[i], end, frame.right]);
+    }
+  }
+  return cut;
+}"""
+
+
+@pytest.mark.parametrize(
+    "width, height, query", [(1280, 720, "?presentation=true"), (390, 844, "")]
+)
+def test_the_waterfall_labels_end_inside_their_figure(browser, url, width, height, query):
+    page = open_page(browser, url, width, height, query)
+    try:
+        settled(page)
+        page.wait_for_function(
+            "() => window.Bokeh.documents[0].get_model_by_name('energy_figure') !== null"
+        )
+        assert page.evaluate(CUT_GLYPH_TEXT, "energy_figure") == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+# The smallest distance [px] between neighbouring tick labels of each vertical axis of a figure
+# titled so, with the labels' font size [px]: the Wind tab's second axis once stacked nine labels
+# (0 to 0.16 by 0.02) 14-17 px apart in 18 px type.
+TICK_GAPS = """(title) => {
+  const out = [];
+  for (const model of window.Bokeh.documents[0].all_models) {
+    if (model.type !== 'LinearAxis' && model.constructor.__name__ !== 'LinearAxis') continue;
+    const view = window.Bokeh.index.find_one(model);
+    if (!view || !view.tick_coords || view.dimension !== 1) continue;
+    const plot = view.parent;
+    if (!plot.model.title || plot.model.title.text !== title) continue;
+    const frame = plot.frame, range = model.y_range_name;
+    const scale = range === 'default' ? frame.y_scale : frame.y_scales.get(range);
+    const ys = view.tick_coords.major[1].map(y => scale.compute(y));
+    const gap = Math.min(...ys.slice(1).map((y, i) => Math.abs(y - ys[i])));
+    out.push([model.axis_label, gap, parseFloat(model.major_label_text_font_size)]);
+  }
+  return out;
+}"""
+
+
+@pytest.mark.parametrize(
+    "width, height, query", [(1280, 720, "&presentation=true"), (390, 844, "")]
+)
+def test_the_wind_curves_tick_labels_do_not_overlap(browser, url, width, height, query):
+    page = open_page(browser, url, width, height, "?tab=wind" + query)
+    try:
+        title = "Water against steady wind"
+        page.wait_for_function(f"(t) => ({TICK_GAPS})(t).length === 2", arg=title, timeout=60_000)
+        time.sleep(1.0)
+        gaps = page.evaluate(TICK_GAPS, title)
+        assert [label for label, _, _ in gaps] == ["mean flow [L/s]", "Weibull density [s/m]"]
+        crowded = [(label, gap, font) for label, gap, font in gaps if gap < 1.5 * font]
+        assert crowded == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize("tab", ["Mechanisms", "Design map"])
 def test_a_short_tab_does_not_scroll_into_blank_space(browser, url, tab):
     """Panel keeps hidden tabs laid out; the page must be as long as the tab shown, not the

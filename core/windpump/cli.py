@@ -44,6 +44,8 @@ options of panel serve, passed on (all of them: its own help follows), e.g.:
   --num-procs N         serve from N processes (0: one per core)
 """
 RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
+# The explorer's link gives these fields in millimetres (?d_leak_mm=3); --set takes metres.
+LINK_MILLIMETRES = {"d_leak_mm": "d_leak", "D_main_mm": "D_main"}
 MAX_FILE_BYTES = 50_000_000
 
 
@@ -83,14 +85,26 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
-    simulate = commands.add_parser("simulate", help="run a design in full and summarise it")
+    simulate = commands.add_parser(
+        "simulate",
+        help="run a design in full and summarise it",
+        description="Run a design in full (Eq. 12) and print the averaged theory's stall margin, "
+        "speeds and time constant (Eqs. 21, 22, 25) beside the run's flow and volume; --csv "
+        "writes its samples.",
+    )
     design_options(simulate)
     run_options(simulate)
     simulate.add_argument("--csv", metavar="FILE", help="write the run's samples here")
     simulate.add_argument("--litres", action="store_true", help="volume and flow in L in the CSV")
     simulate.set_defaults(run=simulate_command)
 
-    mapping = commands.add_parser("map", help="the design map over gear ratio and head")
+    mapping = commands.add_parser(
+        "map",
+        help="the design map over gear ratio and head",
+        description="Water a day over the sprocket ratio R+ and the head h, with the stall "
+        "boundary and the best ratio (the averaged theory, or --numeric from full runs): a CSV, "
+        "and a PNG with --png.",
+    )
     design_options(mapping)
     mapping.add_argument("--gear-ratios", metavar="FROM:TO:N", help="default R+/8:2R+:200")
     mapping.add_argument("--heads", metavar="FROM:TO:N", help="default 0:3h:200")
@@ -99,7 +113,12 @@ def build_parser() -> argparse.ArgumentParser:
     mapping.add_argument("--png", metavar="FILE", help="draw the map here (needs matplotlib)")
     mapping.set_defaults(run=map_command)
 
-    sweeping = commands.add_parser("sweep", help="run a table of designs")
+    sweeping = commands.add_parser(
+        "sweep",
+        help="run a table of designs",
+        description="Run a table of designs (a CSV row, or a JSON design, each) on this "
+        "machine's processes or a dask scheduler, and write a row of figures for each.",
+    )
     sweeping.add_argument("file", metavar="FILE", help="designs: .csv (a row each) or .json")
     design_options(sweeping, base="the design each row changes")
     run_options(sweeping)
@@ -149,7 +168,11 @@ def chosen_design(args: argparse.Namespace) -> Design:
     """The design of --design and --set."""
     design = Design.seed_example()
     if args.design:
-        design = Design.from_json(read_text(args.design))
+        text = read_text(args.design)
+        try:
+            design = Design.from_json(text)
+        except ValueError as error:  # which file, as sweep says it
+            raise ValueError(f"{cut(args.design)}: {error}") from None
     changes: dict[str, Any] = dict(parse_setting(text) for text in args.set)
     ratios = {name: changes.pop(name) for name in RATIOS if name in changes}
     return design.with_ratios(**ratios, **changes)
@@ -159,9 +182,23 @@ def parse_setting(text: str) -> tuple[str, object]:
     """``NAME=VALUE`` as (name, value), the value typed as the field is."""
     name, equals, value = text.partition("=")
     name, value = name.strip(), value.strip()
-    if not equals or name not in (*UNITS, *RATIOS):
-        known = ", ".join((*UNITS, *RATIOS))
+    known = ", ".join((*UNITS, *RATIOS))
+    if not equals:
         raise ValueError(f"--set {shown(text)}: expected NAME=VALUE with NAME one of {known}")
+    if name in LINK_MILLIMETRES:  # a name copied from the explorer's link
+        field = LINK_MILLIMETRES[name]
+        try:
+            hint = f"--set {field}={float(value) / 1000:g}"
+        except ValueError:
+            hint = f"--set {field}=VALUE"
+        raise ValueError(
+            f"--set {shown(text)}: {name} is the explorer's link name: use {field}, "
+            f"{hint} (in metres)"
+        )
+    if name not in (*UNITS, *RATIOS):
+        raise ValueError(
+            f"--set {shown(text)}: {cut(name)} is not a field of the design; one of {known}"
+        )
     return name, typed(name, value)
 
 

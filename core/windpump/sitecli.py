@@ -23,7 +23,13 @@ from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
 def add_commands(commands, design_options) -> None:
     """Add ``supply`` and ``tank`` to the command line's subparsers."""
-    year = commands.add_parser("supply", help="a year of water at a site, with a tank")
+    year = commands.add_parser(
+        "supply",
+        help="a year of water at a site, with a tank",
+        description="A year at a site, hour by hour (the quasi-steady year, or --full): the "
+        "water pumped, delivered and short month by month for a demand and a tank, the "
+        "loss-of-load probability and the dry days. Exit code 0, 1 on an error.",
+    )
     _site_options(year, design_options)
     year.add_argument("--tank", type=float, default=0.0, help="tank capacity [m^3] (0: none)")
     year.add_argument("--full", action="store_true", help="integrate the year in full (minutes)")

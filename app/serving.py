@@ -348,14 +348,17 @@ class DrawAfterMoves:
     tick, 30 moves arriving at once interleaved the plots of the first with the readouts of the
     last, and the views of a hall's pages were built in one turn of the loop (59 s for 100,
     every move meanwhile waiting). Here a page asks for a drawing (``later``); the drawings run
-    one per turn of the event loop, each after the messages read meanwhile, and never while a
-    change Panel has read is still to be applied (a move waiting for its run). The same drawing
+    one per turn of the event loop, each after the messages read meanwhile, and not while a
+    change Panel has read is still to be applied (a move waiting for its run), for at most
+    ``patience`` seconds (a hall that never stops moving still gets its plots). The same drawing
     asked for again before it ran (a page's ``_plot_latest``: it draws the latest run) runs once.
     """
 
-    def __init__(self, retry: float = 0.005):
+    def __init__(self, retry: float = 0.005, patience: float = 0.5):
         self.retry = retry  # [s] how soon to look again while moves are pending
+        self.patience = patience  # [s] the longest the next drawing waits for moves
         self.queue: dict[Callable[[], None], Any] = {}  # drawing -> its document, in order
+        self.waiting_since: float | None = None  # time.monotonic() the next drawing first waited
         self.scheduled = False
 
     def later(self, document, draw: Callable[[], None]) -> None:
@@ -373,9 +376,13 @@ class DrawAfterMoves:
 
     def _next(self) -> None:
         self.scheduled = False
-        if moves_pending():
+        now = time.monotonic()
+        if self.waiting_since is None:
+            self.waiting_since = now
+        if moves_pending() and now - self.waiting_since < self.patience:
             self._schedule(self.retry)
             return
+        self.waiting_since = None
         draw = next(iter(self.queue))
         # Under the document's lock, as its curdoc, at the head of the loop's next turn; the
         # next drawing is looked at after that turn's messages (a timer runs after the I/O)

@@ -320,3 +320,27 @@ def test_a_patch_message_is_bokehs_own_with_references_made_when_met():
     ]
     assert still_new[0] == still_new[1] and len(still_new[0]) == len(before) - 1
     assert new.id in str(messages[1].content) and '"text": "other"' not in str(messages[1].content)
+
+
+def test_plots_wait_for_moves_no_longer_than_their_patience():
+    """A change Panel never applies (its page closed meanwhile) holds no page's plots for ever."""
+    import asyncio
+
+    from panel.io.state import state
+
+    from windpump_app.serving import DrawAfterMoves
+
+    drawing, order, gone = DrawAfterMoves(retry=0.001, patience=0.05), [], LoopDocument()
+
+    async def stuck() -> None:
+        state._change_callbacks[gone] = {"never": lambda: None}
+        drawing.later(LoopDocument(), lambda: order.append("plots"))
+        await asyncio.sleep(0.01)
+        assert order == []  # waits for the move...
+        await asyncio.sleep(0.2)  # ...for its patience
+
+    try:
+        asyncio.run(stuck())
+    finally:
+        state._change_callbacks.pop(gone, None)
+    assert order == ["plots"]

@@ -17,7 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
-from .serving import SOLVER_READY
+from .serving import SOLVER_READY, TIDY, watch_the_loop
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -48,6 +48,7 @@ def on_server_loaded(_server_context) -> None:
     however busy the server; accept long links; and load the solver from numba's cache before
     the server answers, or, on a first start after an install, compile it in the background
     while pages open (they run their first design once it is ready)."""
+    watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
     servers = bokeh_servers()
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")
@@ -57,6 +58,7 @@ def on_server_loaded(_server_context) -> None:
     accept_long_links(http_servers())
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
+        TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
         return
     # A first start: compile while the server answers, so a page's browser loads meanwhile
     # (serving.first_run_when_ready runs its design once the solver is ready).

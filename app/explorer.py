@@ -37,6 +37,7 @@ from .mechanisms import Mechanisms
 from .page import page
 from .pump import PumpViews, name_sources
 from .readouts import Readouts
+from .serving import DRAW_AFTER_MOVES
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
@@ -224,7 +225,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self._to_plot = seen
         document = pn.state.curdoc
         if document is not None and document.session_context is not None:
-            document.add_next_tick_callback(self._plot_latest)
+            DRAW_AFTER_MOVES.later(document, self._plot_latest)  # after others' readouts
         else:  # in-process (a notebook, the tests): at once
             self._plot(seen)
 

@@ -14,7 +14,9 @@ from .keyboard import keyboard_and_screen_readers
 from .serving import (
     READOUTS_FIRST,
     SOLVER_READY,
+    TIDY,
     first_run_when_ready,
+    lighter_patches,
     reopen_when_reconnected,
     session_closed,
     stylesheets_from_this_server,
@@ -27,6 +29,7 @@ pn.extension(notifications=False)
 document = pn.state.curdoc
 without_mathjax()
 without_webgl()
+lighter_patches()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)
@@ -48,6 +51,8 @@ with document.models.freeze():  # one walk of the models for the page, not one p
 # meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner.
 session_id = document.session_context.id
 READOUTS_FIRST.opened(session_id)
+TIDY.opened()
+TIDY.settle()  # its objects frozen, out of every later collection's walk (serving.Tidy)
 # partial, not a lambda: Bokeh clears this module's globals once the session has started
 if ready:
     pn.state.onload(partial(READOUTS_FIRST.loaded, session_id, document, explorer.show_views))

@@ -6,7 +6,9 @@ import asyncio
 import ctypes
 import ctypes.util
 import gc
+import json
 import math
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -29,40 +31,146 @@ def session_closed(session_context) -> None:  # Bokeh requires exactly this sign
 
 
 class Tidy:
-    """Frees what closed sessions held and hands it back to the operating system (glibc keeps
-    freed arenas otherwise, and a server that runs through a lecture only grows), once, after
-    the sessions stop closing.
+    """When the server collects its garbage: never a walk of every open page on the event loop
+    while students move, and what closed sessions held handed back to the operating system.
 
-    A full ``gc.collect()`` walks every live object of every open page: with 60 pages open it
-    blocks the server's event loop for 1.1-1.4 s (measured). Run for each closing session, a
-    class leaving stalled every page still open for minutes; here it runs ``quiet`` seconds after
-    the last session closed, at most once every ``every`` seconds.
+    Python's automatic full collection (generation 2) walks every live object. With 100 pages
+    open (3.5 million objects) one took 1.8-2.6 s of the event loop, and the heap growing while a
+    hall opens triggers one at every 25 % of growth: nineteen in the first 70 s of a hall of 100,
+    ~10 s in all, and later ones while the students moved (measured with ``LoopWatch``). Here a
+    page's objects, once it is built and sent (``settle``), are frozen (``gc.freeze()``: moved
+    to a permanent generation no collection walks), after a collection of what is not frozen
+    yet: one page's worth, ~35k objects. Later collections walk only what the moves made since.
+    What a page's build leaves in reference cycles and lets go of later is frozen with it
+    (~0.4 MB a page) until the next ``run``.
+
+    Frozen objects are not freed when their session closes: ``closed`` unfreezes and collects
+    everything (``run``; with 60 pages open 1.1-1.4 s of the loop), ``quiet`` seconds after the
+    last session closed, at most once every ``every`` seconds, and only once the sessions closed
+    since the last run are at least ``share`` of those still open (or none is): at most that
+    share of dead pages is kept, as Python's own rule for full collections keeps it.
     """
 
-    def __init__(self, quiet: float = 5.0, every: float = 60.0):
+    def __init__(self, quiet: float = 5.0, every: float = 60.0, share: float = 0.25):
         self.quiet = quiet  # [s]
         self.every = every  # [s]
+        self.share = share
         self.last = -math.inf  # time.monotonic() of the last run
         self.pending = None  # the IOLoop's handle of the run to come
+        self.open = 0  # sessions open
+        self.dead = 0  # sessions closed since the last run
+
+    def opened(self) -> None:
+        self.open += 1
 
     def closed(self) -> None:
         from tornado.ioloop import IOLoop
 
+        self.open = max(0, self.open - 1)
+        self.dead += 1
+        if self.dead < self.share * self.open:
+            return
         loop = IOLoop.current()
         if self.pending is not None:
             loop.remove_timeout(self.pending)
         delay = max(self.quiet, self.last + self.every - time.monotonic())
         self.pending = loop.call_later(delay, self.run)
 
+    def settle(self) -> None:
+        """A page is built (or its views): collect what is not frozen yet (that page, what the
+        moves since left), then freeze what lives, which no collection walks again. Called at
+        once, not later: a hall's pages are built in one turn of the loop, one after another."""
+        gc.collect()
+        gc.freeze()
+
     def run(self) -> None:
+        """Free what the closed sessions held: every object walked once, then frozen again."""
         self.pending = None
         self.last = time.monotonic()
+        self.dead = 0
+        gc.unfreeze()
         gc.collect()
+        gc.freeze()
         if _LIBC is not None and hasattr(_LIBC, "malloc_trim"):
             _LIBC.malloc_trim(0)
 
 
 TIDY = Tidy()
+
+
+class LoopWatch:
+    """What holds up the server's event loop, written to a file as JSON lines: every garbage
+    collection of generation 2 (or longer than ``slow`` seconds), and every time the loop ran a
+    timer ``slow`` seconds or more late. Off unless the server is started with
+    ``WINDPUMP_LOOP_WATCH=<file>`` (``benchmarks/bench_hall.py --watch`` does that); each line
+    holds ``t`` (``time.time()`` [s] at its end), ``kind`` ("gc" or "lag"), ``seconds``, and for
+    a collection its ``generation``, ``collected`` and the objects ``tracked`` after it.
+    """
+
+    def __init__(self, path: str, slow: float = 0.05, every: float = 0.05):
+        self.path = path
+        self.slow = slow  # [s]
+        self.every = every  # [s] the lag timer's period
+        self.started: float | None = None  # perf_counter() of the collection under way
+
+    def on_gc(self, phase: str, info: dict) -> None:
+        """A ``gc.callbacks`` entry."""
+        if phase == "start":
+            self.started = time.perf_counter()
+            return
+        if self.started is None:
+            return
+        seconds, self.started = time.perf_counter() - self.started, None
+        if info["generation"] == 2 or seconds >= self.slow:
+            tracked = len(gc.get_objects(2)) if info["generation"] == 2 else None
+            self.write(
+                "gc",
+                seconds,
+                generation=info["generation"],
+                collected=info["collected"],
+                tracked=tracked,
+            )
+
+    def late(self, expected: float) -> float:
+        """The timer due at ``expected`` [perf_counter] ran now: write it if ``slow`` late."""
+        lag = time.perf_counter() - expected
+        if lag >= self.slow:
+            self.write("lag", lag)
+        return lag
+
+    def write(self, kind: str, seconds: float, **more) -> None:
+        line = {"t": time.time(), "kind": kind, "seconds": round(seconds, 4), **more}
+        with open(self.path, "a") as out:
+            out.write(json.dumps(line) + "\n")
+
+    def start(self, loop: asyncio.AbstractEventLoop) -> None:
+        """Watch the collections and ``loop`` (a timer every ``every`` seconds) until ``stop``."""
+        gc.callbacks.append(self.on_gc)
+        self.ticking = True
+
+        def tick(expected: float) -> None:
+            self.late(expected)
+            if self.ticking:
+                loop.call_later(self.every, tick, time.perf_counter() + self.every)
+
+        loop.call_later(self.every, tick, time.perf_counter() + self.every)
+
+    def stop(self) -> None:
+        self.ticking = False
+        if self.on_gc in gc.callbacks:
+            gc.callbacks.remove(self.on_gc)
+
+
+def watch_the_loop() -> LoopWatch | None:
+    """A LoopWatch on the running loop if ``WINDPUMP_LOOP_WATCH`` names a file, else nothing."""
+    path = os.environ.get("WINDPUMP_LOOP_WATCH")
+    if not path:
+        return None
+    from tornado.ioloop import IOLoop
+
+    watch = LoopWatch(path)
+    watch.start(IOLoop.current().asyncio_loop)  # type: ignore[attr-defined]
+    return watch
 
 
 def without_mathjax() -> None:
@@ -91,6 +199,74 @@ def without_webgl() -> None:
     server.bundle_resources = bundle_without_webgl
 
 
+def lighter_patches() -> None:
+    """Bokeh (3.9) starts every PATCH-DOC message by listing every model of its document and
+    making each one's reference (``Serializer(references=doc.models.synced_references)``): ~600
+    models a page here, for a message that changes one readout. Measured with py-spy while 30
+    students moved at once, it was a fifth of the server's event loop. Here a model's reference
+    is made when the message meets it (``SyncedSerializer``); the message is the same."""
+    from bokeh.document.json import PatchJson
+    from bokeh.protocol.messages.patch_doc import patch_doc
+
+    if getattr(patch_doc.create, "lighter", False):
+        return
+
+    def create(cls, events, **metadata):
+        if not events:
+            raise ValueError("PATCH-DOC message requires at least one event")
+        docs = {event.document for event in events}
+        if len(docs) != 1:
+            raise ValueError("PATCH-DOC message configured with events for more than one document")
+        [doc] = docs
+        serializer = SyncedSerializer(doc.models)
+        patch_json = PatchJson(events=serializer.encode(events))
+        doc.models.flush_synced(lambda model: not serializer.has_ref(model))
+        message = cls(cls.create_header(), metadata, patch_json)
+        message.add_buffers(*serializer.buffers)
+        return message
+
+    create.lighter = True  # type: ignore[attr-defined]
+    create.bokeh = patch_doc.create  # type: ignore[attr-defined]
+    patch_doc.create = classmethod(create)  # type: ignore[method-assign,assignment]
+
+
+def _serializer_class():
+    from bokeh.core.serialization import Serializer
+    from bokeh.model import Model
+
+    class SyncedSerializer(Serializer):
+        """Bokeh's serializer, knowing the synced models of a document (those the browser has)
+        as it meets them rather than all of them beforehand."""
+
+        def __init__(self, models) -> None:
+            super().__init__()
+            self._models = models  # the document's DocumentModelManager
+
+        def _synced(self, obj: Any) -> bool:
+            if id(obj) in self._references:
+                return True
+            models = self._models
+            if (
+                isinstance(obj, Model)
+                and models._models.get(obj.id) is obj
+                and obj not in models._new_models
+            ):
+                self._references[id(obj)] = obj.ref
+                return True
+            return False
+
+        def has_ref(self, obj: Any) -> bool:
+            return self._synced(obj)
+
+        def get_ref(self, obj: Any):
+            return self._references[id(obj)] if self._synced(obj) else None
+
+    return SyncedSerializer
+
+
+SyncedSerializer = _serializer_class()
+
+
 def stylesheets_from_this_server(document) -> None:
     """Make every stylesheet Panel creates in ``document`` point at this server, not the HoloViz CDN.
 
@@ -117,7 +293,16 @@ class ReadoutsFirst:
     session (this module outlives them); a page alone gets its views at once.
     """
 
-    def __init__(self, patience: float = 15.0, forget_after: float = 180.0, poll: float = 0.25):
+    def __init__(
+        self,
+        patience: float = 15.0,
+        forget_after: float = 180.0,
+        poll: float = 0.25,
+        settled: Callable[[], None] = lambda: None,
+        draw: Callable[[Any, Callable[[], None]], None] = lambda _document, draw: draw(),
+    ):
+        self.settled = settled  # called once a page is built and sent, and once its views are
+        self.draw = draw  # draw(document, show): when a page's views are built
         self.patience = patience  # [s] the longest a loaded page's views wait for the others
         self.forget_after = forget_after  # [s] a page that never loads stops holding others back
         self.poll = poll  # [s]
@@ -139,18 +324,84 @@ class ReadoutsFirst:
     def loaded(self, session_id: str, document, show_views: Callable[[], None]) -> None:
         """The page of ``session_id`` shows its readouts: show its views once the others do."""
         self.closed(session_id)
+        self.settled()
         self._show_when_free(document, show_views, time.monotonic())
 
     def _show_when_free(self, document, show_views: Callable[[], None], since: float) -> None:
         if not self.others_loading() or time.monotonic() - since >= self.patience:
-            show_views()
+
+            def show() -> None:
+                show_views()
+                self.settled()
+
+            self.draw(document, show)
             return
         document.add_timeout_callback(
             lambda: self._show_when_free(document, show_views, since), int(self.poll * 1e3)
         )
 
 
-READOUTS_FIRST = ReadoutsFirst()
+class DrawAfterMoves:
+    """The server's order of drawing: every pending move's readouts first, then plots and views,
+    one page's at a time.
+
+    A move's readouts go out as soon as its run is done; its page's plots (~10-40 ms) and a
+    page's views once it has loaded (~0.3 s) are drawn afterwards. Drawn on each page's next
+    tick, 30 moves arriving at once interleaved the plots of the first with the readouts of the
+    last, and the views of a hall's pages were built in one turn of the loop (59 s for 100,
+    every move meanwhile waiting). Here a page asks for a drawing (``later``); the drawings run
+    one per turn of the event loop, each after the messages read meanwhile, and not while a
+    change Panel has read is still to be applied (a move waiting for its run), for at most
+    ``patience`` seconds (a hall that never stops moving still gets its plots). The same drawing
+    asked for again before it ran (a page's ``_plot_latest``: it draws the latest run) runs once.
+    """
+
+    def __init__(self, retry: float = 0.005, patience: float = 0.5):
+        self.retry = retry  # [s] how soon to look again while moves are pending
+        self.patience = patience  # [s] the longest the next drawing waits for moves
+        self.queue: dict[Callable[[], None], Any] = {}  # drawing -> its document, in order
+        self.waiting_since: float | None = None  # time.monotonic() the next drawing first waited
+        self.scheduled = False
+
+    def later(self, document, draw: Callable[[], None]) -> None:
+        """Run ``draw`` under ``document``'s lock once no move is waiting."""
+        self.queue.setdefault(draw, document)
+        self._schedule(0.0)
+
+    def _schedule(self, delay: float) -> None:
+        if self.scheduled or not self.queue:
+            return
+        from tornado.ioloop import IOLoop
+
+        self.scheduled = True
+        IOLoop.current().call_later(delay, self._next)  # a timer: after the I/O of its turn
+
+    def _next(self) -> None:
+        self.scheduled = False
+        now = time.monotonic()
+        if self.waiting_since is None:
+            self.waiting_since = now
+        if moves_pending() and now - self.waiting_since < self.patience:
+            self._schedule(self.retry)
+            return
+        self.waiting_since = None
+        draw = next(iter(self.queue))
+        # Under the document's lock, as its curdoc, at the head of the loop's next turn; the
+        # next drawing is looked at after that turn's messages (a timer runs after the I/O)
+        self.queue.pop(draw).add_next_tick_callback(draw)
+        self._schedule(0.0)
+
+
+def moves_pending() -> bool:
+    """Whether Panel has read a change of some page that it has not applied yet (its callbacks
+    wait in ``state._change_callbacks``; a private part of Panel, read defensively)."""
+    from panel.io.state import state
+
+    return any(getattr(state, "_change_callbacks", {}).values())
+
+
+DRAW_AFTER_MOVES = DrawAfterMoves()
+READOUTS_FIRST = ReadoutsFirst(settled=TIDY.settle, draw=DRAW_AFTER_MOVES.later)
 
 
 # Set once the server's solver is compiled or loaded from numba's cache. A first start after an

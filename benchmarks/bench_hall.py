@@ -16,6 +16,11 @@ CPU per page (while the hall opens), memory per idle session and after the hall 
 ``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
 and the others' round trips are split into before/while/after.
 
+``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
+``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
+report sets them beside the slow round trips: how many of those had a collection or a late loop
+during their flight.
+
 Bounded: N <= 400 sessions, at most ``--minutes`` of moves (default 1), every wait has a timeout,
 and it talks only to 127.0.0.0/8.
 """
@@ -318,9 +323,13 @@ class Hall:
     burst: list[float]  # [s] round trips of BURST students moving at the same moment
     upload: dict[str, list[float]]  # round trips before/while/after one student's 10 MB upload
     errors: list[str]
+    flights: list[tuple[float, float]] = field(default_factory=list)  # (sent, round trip) [s]
+    # the sent times in time.time(); every move's, the hall's opening to its end
 
 
 BURST = 30  # students who move at the same moment
+BURSTS = 3  # times they do, BURST_PAUSE [s] apart
+BURST_PAUSE = 2.0
 
 
 async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -> Hall:
@@ -344,8 +353,13 @@ async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -
     await watch.quiet()
     _, cpu1, idle = watch.sample()
     here = [s for s in students if s.to_readout is not None]
-    burst = await moving_at_once(here[:BURST])
+    burst: list[float] = []
+    for _ in range(BURSTS):
+        burst += await moving_at_once(here[:BURST])
+        await asyncio.sleep(BURST_PAUSE)
     paced, around = await moving(here, minutes, url if upload else None)
+    wall = time.time() - time.perf_counter()  # perf_counter -> time.time()
+    flights = [(wall + sent, trip) for s in here for sent, trip in s.moves]
     for student in students:
         student.close()
     sampling.cancel()
@@ -360,6 +374,7 @@ async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -
         burst=burst,
         upload=around,
         errors=[e for s in students for e in s.errors],
+        flights=flights,
     )
 
 
@@ -492,7 +507,10 @@ def report(hall: Hall) -> None:
     )
     print(f"  server CPU per page: {hall.cpu_per_page:.3f} s (page, websocket, views, until quiet)")
     print(f"  moves at their own pace, round trip [ms]: {percentiles(hall.moves, 1e3, '{:.0f}')}")
-    print(f"  {BURST} moving at once, round trip [ms]: {percentiles(hall.burst, 1e3, '{:.0f}')}")
+    print(
+        f"  {BURST} moving at once ({BURSTS} times), round trip [ms]: "
+        f"{percentiles(hall.burst, 1e3, '{:.0f}')}"
+    )
     for phase, trips in hall.upload.items():
         print(f"  others' moves {phase} a 10 MB upload [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
     per_session = (memory["idle"] - memory["before"]) / hall.n / mb
@@ -506,23 +524,75 @@ def report(hall: Hall) -> None:
         print(f"  errors ({len(hall.errors)}): {hall.errors[:3]}")
 
 
+# -- what held up the server's loop (--watch) ---------------------------------------------------
+
+SLOW_TRIP = 0.5  # [s] a round trip this long or longer is looked into
+
+
+def read_watch(path: str) -> list[dict]:
+    """The lines a server with WINDPUMP_LOOP_WATCH=path wrote (serving.LoopWatch)."""
+    if not os.path.exists(path):
+        return []
+    with open(path) as lines:
+        return [json.loads(line) for line in lines if line.strip()]
+
+
+def stalls(events: list[dict], flights: list[tuple[float, float]]) -> list[str]:
+    """What held up the loop beside the slow round trips: lines of the report."""
+    start = min((sent for sent, _ in flights), default=0.0)
+    end = max((sent + trip for sent, trip in flights), default=0.0)
+    events = [e for e in events if start <= e["t"] - e["seconds"] and e["t"] <= end]
+    full = [e["seconds"] for e in events if e["kind"] == "gc" and e["generation"] == 2]
+    young = [e["seconds"] for e in events if e["kind"] == "gc" and e["generation"] < 2]
+    lags = [e["seconds"] for e in events if e["kind"] == "lag"]
+    slow = [(sent, trip) for sent, trip in flights if trip >= SLOW_TRIP]
+
+    def during(kind: str, sent: float, trip: float) -> bool:
+        return any(
+            e["kind"] == kind and e["t"] - e["seconds"] < sent + trip and e["t"] > sent
+            for e in events
+            if e["kind"] != "gc" or e["generation"] == 2 or e["seconds"] >= 0.2
+        )
+
+    with_gc = sum(during("gc", sent, trip) for sent, trip in slow)
+    with_lag = sum(during("lag", sent, trip) for sent, trip in slow)
+    longest = lambda xs: f"{max(xs):.2f}" if xs else "-"  # noqa: E731
+    return [
+        f"  while moving: {len(full)} full collections ({sum(full):.1f} s, longest "
+        f"{longest(full)} s), {len(young)} slow young ones; the loop late by >= 50 ms "
+        f"{len(lags)} times ({sum(lags):.1f} s, longest {longest(lags)} s)",
+        f"  round trips of {SLOW_TRIP} s or more: {len(slow)} of {len(flights)}; with a full "
+        f"collection in flight {with_gc}, with the loop late in flight {with_lag}",
+    ]
+
+
 # Closed sessions are dropped 30 s after their last connection (checked every 2 s), so the
 # memory after a hall can be read within a minute; `panel serve app/` alone keeps them 10 min.
 SERVE = ["--unused-session-lifetime", "30000", "--check-unused-sessions", "2000"]
 
 
-def run(n: int, minutes: float, upload: bool) -> Hall:
-    """One hall of ``n`` on a fresh `panel serve app/`."""
+def run(n: int, minutes: float, upload: bool, watch: bool = False) -> Hall:
+    """One hall of ``n`` on a fresh `panel serve app/`; ``watch``: what held up its loop."""
     # Each student's browser opens its own connections: not Tornado's default pool of 10
     AsyncHTTPClient.configure(None, max_clients=MAX_SESSIONS + 1)
     if not 1 <= n <= MAX_SESSIONS:
         raise SystemExit(f"1 <= N <= {MAX_SESSIONS}")
-    with served_app(*SERVE) as (address, server):
-        loopback(address)
-        warm = Student(address, random.Random(0))  # imports, caches: not the hall's cost
-        asyncio.run(asyncio.wait_for(warm_up(warm), WAIT))
-        hall = asyncio.run(a_hall(address, n, minutes, Watch(server.pid), upload))
+    watched = f"/tmp/bench_hall-watch-{os.getpid()}-{n}.jsonl" if watch else ""
+    if watched and os.path.exists(watched):
+        os.remove(watched)
+    os.environ["WINDPUMP_LOOP_WATCH"] = watched  # the server inherits it; empty: not watched
+    try:
+        with served_app(*SERVE) as (address, server):
+            loopback(address)
+            warm = Student(address, random.Random(0))  # imports, caches: not the hall's cost
+            asyncio.run(asyncio.wait_for(warm_up(warm), WAIT))
+            hall = asyncio.run(a_hall(address, n, minutes, Watch(server.pid), upload))
+    finally:
+        del os.environ["WINDPUMP_LOOP_WATCH"]
     report(hall)
+    if watched:
+        print("\n".join(stalls(read_watch(watched), hall.flights)))
+        print(f"  (the server's watch: {watched})")
     return hall
 
 
@@ -537,9 +607,10 @@ def main(argv: list[str] | None = None) -> list[Hall]:
     parser.add_argument("n", nargs="*", type=int, default=[30, 100, 200])
     parser.add_argument("--minutes", type=float, default=1.0, help="of moves (default 1)")
     parser.add_argument("--upload", action="store_true", help="one student loads 10 MB")
+    parser.add_argument("--watch", action="store_true", help="what holds up the server's loop")
     args = parser.parse_args(argv)
     print(f"bench_hall on {os.cpu_count()} cores, load {os.getloadavg()}")
-    return [run(n, min(args.minutes, 10.0), args.upload) for n in args.n]
+    return [run(n, min(args.minutes, 10.0), args.upload, args.watch) for n in args.n]
 
 
 if __name__ == "__main__":

@@ -22,7 +22,7 @@ def test_a_small_hall_opens_moves_and_uploads(monkeypatch, capsys):
     (hall,) = bench_hall.main(["3", "--minutes", "0.25", "--upload"])
     assert hall.errors == []
     assert len(hall.to_readout) == 3
-    assert len(hall.burst) == 3  # every student moving at once is answered
+    assert len(hall.burst) == 3 * bench_hall.BURSTS  # every student moving at once is answered
     assert len(hall.moves) >= 3
     assert all(trip > 0 for trip in hall.moves + hall.burst)
     assert hall.upload["while"] is not None

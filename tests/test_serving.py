@@ -61,13 +61,19 @@ class TickDocument(Document):
         self.pending.append(callback)
 
 
-def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready():
+def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready(monkeypatch):
     """The page's onload waits off the event loop for the compile, then, on the document's next
-    tick, runs its first design and goes on as any page (its views through ReadoutsFirst)."""
+    tick, runs its first design and goes on as any page (its views through ReadoutsFirst, drawn
+    on a later tick)."""
     import asyncio
     import threading
 
     from windpump_app import serving
+
+    monkeypatch.setattr(serving.READOUTS_FIRST, "settled", lambda: None)
+    monkeypatch.setattr(
+        serving.READOUTS_FIRST, "draw", lambda document, show: document.add_next_tick_callback(show)
+    )
 
     started, shown = [], []
 
@@ -86,7 +92,9 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready():
         asyncio.run(asyncio.wait_for(onload(), timeout=60))
         assert started == [] and len(document.pending) == 1  # nothing ran off the lock
         document.run_pending()
-        assert started == [True] and shown == [True]
+        assert started == [True] and shown == []
+        document.run_pending()
+        assert shown == [True]
     finally:
         serving.SOLVER_READY.set()
 
@@ -115,3 +123,224 @@ def test_closing_sessions_tidy_once_after_the_last_closes(monkeypatch):
         assert runs == ["collect", "collect"]
 
     asyncio.run(leave())
+
+
+# -- garbage collections: never a walk of every open page while students move ------------------
+
+
+def test_a_built_page_is_frozen_out_of_later_collections_until_sessions_close():
+    """Once a page is built, ``settle`` freezes it: a full collection during a move walks what
+    the move made, not the page; ``run`` (sessions closed) unfreezes, collects and freezes again."""
+    import gc
+
+    from windpump_app.explorer import Explorer
+    from windpump_app.serving import Tidy
+
+    tidy, walked = Tidy(), []
+
+    def count(phase, info):  # the objects a collection is about to walk
+        if phase == "start":
+            walked.append(sum(len(gc.get_objects(g)) for g in range(info["generation"] + 1)))
+
+    try:
+        page = Explorer()
+        tidy.settle()
+        frozen = gc.get_freeze_count()
+        assert not any(o is page.readouts for o in gc.get_objects())  # out of every walk
+        gc.callbacks.append(count)
+        page.set_values(h=4.0)  # a move
+        gc.collect()  # even a full collection during it
+        gc.callbacks.remove(count)
+        assert page.seen.design.h == 4.0
+        assert walked and max(walked) < frozen / 4
+        tidy.run()  # sessions closed: all walked once, what lives frozen again
+        assert gc.get_freeze_count() > 0
+        assert not any(o is page.readouts for o in gc.get_objects())
+    finally:
+        if count in gc.callbacks:
+            gc.callbacks.remove(count)
+        gc.unfreeze()
+
+
+def test_closed_sessions_are_collected_once_they_are_a_quarter_of_those_open(monkeypatch):
+    """Frozen pages are freed only by a full walk: it waits until the dead pages are a quarter
+    of the live ones (or none is open), as Python's own rule for full collections does."""
+    import asyncio
+
+    from windpump_app import serving
+
+    runs = []
+    for name in ("collect", "freeze", "unfreeze"):
+        monkeypatch.setattr(serving.gc, name, lambda name=name: runs.append(name))
+
+    async def a_class() -> None:
+        tidy = serving.Tidy(quiet=0.05, every=0.0)
+        for _ in range(9):
+            tidy.opened()
+        tidy.closed()  # 1 dead, 8 open
+        await asyncio.sleep(0.2)
+        assert runs == []
+        tidy.closed()  # 2 dead, 7 open: 2 >= 7/4
+        await asyncio.sleep(0.2)
+        assert runs == ["unfreeze", "collect", "freeze"] and tidy.dead == 0
+        for _ in range(7):  # the rest leave: collected once after the last
+            tidy.closed()
+        await asyncio.sleep(0.2)
+        assert runs[3:] == ["unfreeze", "collect", "freeze"] and tidy.open == 0
+
+    asyncio.run(a_class())
+
+
+def test_the_loop_watch_writes_full_collections_and_a_stalled_loop(tmp_path):
+    import asyncio
+    import gc
+    import json
+    import time
+
+    from windpump_app.serving import LoopWatch
+
+    path = tmp_path / "watch.jsonl"
+    watch = LoopWatch(str(path), slow=0.2, every=0.02)
+
+    async def stall() -> None:
+        watch.start(asyncio.get_running_loop())
+        await asyncio.sleep(0.05)
+        time.sleep(0.3)  # a callback holding the loop
+        await asyncio.sleep(0.05)
+        gc.collect()
+        watch.stop()
+
+    try:
+        asyncio.run(stall())
+    finally:
+        watch.stop()
+    lines = [json.loads(line) for line in path.read_text().splitlines()]
+    lags = [line["seconds"] for line in lines if line["kind"] == "lag"]
+    full = [line for line in lines if line["kind"] == "gc" and line["generation"] == 2]
+    assert lags and max(lags) >= 0.25
+    assert full and full[-1]["tracked"] is not None
+    assert watch.on_gc not in gc.callbacks
+
+
+# -- the server's order of drawing: readouts of every pending move, then plots -------------------
+
+
+class LoopDocument:
+    """A Bokeh document's next-tick callbacks, run by the event loop."""
+
+    def add_next_tick_callback(self, callback):
+        from tornado.ioloop import IOLoop
+
+        IOLoop.current().add_callback(callback)
+
+
+def test_readouts_of_queued_moves_go_out_before_any_plots():
+    """Two pages' moves queue: A's run is done (its readouts sent, its plots asked for), B's is
+    read by Panel and waits for its turn. B's readouts go out before A's plots are drawn; a
+    page's plots asked for twice before they are drawn are drawn once."""
+    import asyncio
+
+    from panel.io.state import state
+    from tornado.ioloop import IOLoop
+
+    from windpump_app.serving import DrawAfterMoves
+
+    drawing, order = DrawAfterMoves(retry=0.001), []
+    a, b = LoopDocument(), LoopDocument()
+
+    def plots(page):
+        return lambda: order.append(f"plots {page}")
+
+    plots_a, plots_b = plots("A"), plots("B")
+
+    def move_b() -> None:  # Panel applies B's change: its run, its readouts
+        del state._change_callbacks[b]
+        order.append("readouts B")
+        drawing.later(b, plots_b)
+
+    async def moves() -> None:
+        state._change_callbacks[b] = {"b": move_b}  # read, not applied yet
+        order.append("readouts A")
+        drawing.later(a, plots_a)
+        drawing.later(a, plots_a)
+        await asyncio.sleep(0.01)  # the turns a page's next tick would take
+        IOLoop.current().call_later(0.0, move_b)  # Panel's own timer (Syncable._debounce = 0)
+        await asyncio.sleep(0.1)
+
+    try:
+        asyncio.run(moves())
+    finally:
+        state._change_callbacks.pop(b, None)
+    assert order == ["readouts A", "readouts B", "plots A", "plots B"]
+
+
+def test_a_patch_message_is_bokehs_own_with_references_made_when_met():
+    """serving.lighter_patches: the PATCH-DOC of a changed text, a new model and a column of
+    numbers is the message Bokeh makes, and the same models are left new."""
+    import json
+
+    import numpy as np
+    from bokeh.document import Document
+    from bokeh.models import Column, ColumnDataSource, Div
+    from bokeh.protocol.messages.patch_doc import patch_doc
+
+    from windpump_app.serving import lighter_patches
+
+    lighter_patches()
+    ours = patch_doc.create
+    bokeh = ours.__func__.bokeh
+
+    document, events = Document(), []
+    source = ColumnDataSource({"y": np.arange(5.0)})
+    text, other = Div(text="before"), Div(text="other")
+    document.add_root(Column(text, other))
+    document.add_root(source)
+    document.models.flush_synced()  # the browser has them
+    document.on_change(events.append)
+    text.text = "after"
+    source.data = {"y": np.arange(7.0)}
+    new = Div(text="new")
+    document.roots[0].children.append(new)
+    document.add_root(Div(text="added, then left out of the events"))
+    events = [e for e in events if "left out" not in str(getattr(e, "model", ""))][:3]
+    before = set(document.models._new_models)
+    messages, still_new = [], []
+    for create in (bokeh, ours):
+        document.models._new_models = set(before)
+        messages.append(create(events))
+        still_new.append(document.models._new_models)
+
+    def content(message) -> str:  # a buffer's id is new in every message: named by its place
+        place = {id(buffer): k for k, buffer in enumerate(message.buffers)}
+        return json.dumps(message.content, default=lambda b: f"buffer {place[id(b)]}")
+
+    assert content(messages[0]) == content(messages[1])
+    assert [bytes(b.data) for b in messages[0].buffers] == [
+        bytes(b.data) for b in messages[1].buffers
+    ]
+    assert still_new[0] == still_new[1] and len(still_new[0]) == len(before) - 1
+    assert new.id in str(messages[1].content) and '"text": "other"' not in str(messages[1].content)
+
+
+def test_plots_wait_for_moves_no_longer_than_their_patience():
+    """A change Panel never applies (its page closed meanwhile) holds no page's plots for ever."""
+    import asyncio
+
+    from panel.io.state import state
+
+    from windpump_app.serving import DrawAfterMoves
+
+    drawing, order, gone = DrawAfterMoves(retry=0.001, patience=0.05), [], LoopDocument()
+
+    async def stuck() -> None:
+        state._change_callbacks[gone] = {"never": lambda: None}
+        drawing.later(LoopDocument(), lambda: order.append("plots"))
+        await asyncio.sleep(0.01)
+        assert order == []  # waits for the move...
+        await asyncio.sleep(0.2)  # ...for its patience
+
+    try:
+        asyncio.run(stuck())
+    finally:
+        state._change_callbacks.pop(gone, None)
+    assert order == ["plots"]

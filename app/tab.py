@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
+from functools import partial
 
 import panel as pn
 
@@ -122,11 +123,14 @@ class PageTabs:
         )
         placed: set[int] = set()
 
+        def place(index: int) -> None:
+            tab = self.open(self.tabs[index - 1])  # data first: a figure sent empty warns
+            strip[index] = (tab.title, tab)
+
         def chosen(event) -> None:
             if event.new >= 1 and event.new not in placed:
                 placed.add(event.new)
-                tab = self.open(self.tabs[event.new - 1])  # data first: a figure sent empty warns
-                strip[event.new] = (tab.title, tab)
+                later(partial(place, event.new))
 
         strip.param.watch(chosen, "active")
         strip.jscallback(active=GUARD_NEW_UPLOADS_JS)
@@ -139,3 +143,19 @@ class PageTabs:
     def figures(self) -> list:
         """The figures of the tabs built so far."""
         return [figure for tab in self.tabs if tab.built for figure in tab.figures()]
+
+
+def later(build: Callable[[], None]) -> None:
+    """``build`` on a served page's next tick, after this change's other watchers have sent what
+    they change (the link's ``tab=``: a tab's day or year takes seconds to run, and a link copied
+    meanwhile named the tab before); at once in-process (a notebook, the tests)."""
+    document = pn.state.curdoc
+    if document is None or document.session_context is None:
+        build()
+        return
+
+    def held() -> None:
+        with pn.io.hold():
+            build()
+
+    document.add_next_tick_callback(held)

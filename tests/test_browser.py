@@ -452,6 +452,33 @@ def test_the_link_reads_as_the_sliders_and_reset_leaves_it_bare(page):
     assert page.problems == []
 
 
+LINK_BEFORE_TAB = """() => {
+  window.__tabInLink = null  // at the link's first tab=wind: were the Wind tab's models there?
+  const built = () => [...window.Bokeh.documents[0].all_models].some(
+    (m) => typeof m.name === "string" && m.name.startsWith("windtab_"))
+  const every = setInterval(() => {
+    if (window.location.search.includes("tab=wind")) {
+      window.__tabInLink = built()
+      clearInterval(every)
+    }
+  }, 5)
+}"""
+
+
+def test_a_tab_chosen_is_in_the_link_before_it_is_built(page):
+    """The Wind tab runs a day when first chosen (seconds): its tab= is in the link at once, so a
+    link copied meanwhile opens on it."""
+    page.evaluate(LINK_BEFORE_TAB)
+    page.get_by_role("tab", name="Wind", exact=True).click()
+    page.wait_for_function("() => window.__tabInLink !== null", timeout=60_000)
+    assert page.evaluate("() => window.__tabInLink") is False
+    page.wait_for_function(
+        "() => window.Bokeh.documents[0].get_model_by_name('windtab_litres') !== null",
+        timeout=120_000,
+    )
+    assert page.problems == []
+
+
 def test_a_link_opens_cleaned_with_a_word_for_what_it_ignored(browser, url):
     query = "?foo=1&h=5&h=3.0999999999999996&cylinders=2.5&T_m=0.8"
     page = open_page(browser, url, query=query)

@@ -16,7 +16,7 @@ import typing
 
 import numpy as np
 
-from .dopri5 import NODES, dense_value, step_factor
+from .dopri5 import dense_value, step_factor
 from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
@@ -27,6 +27,7 @@ from .real import (
     end_works,
     fill_friction,
     fill_row,
+    fill_stages,
     friction_at,
     friction_since,
     frozen_energy,
@@ -131,10 +132,7 @@ def stage_values(theta, h, segment, machine, aux, rows, c_at, known):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
     at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
     C from c_at = C(theta) in their column 7, or from ``known``: :func:`~.real.fill_friction`)."""
-    for stage in range(7):
-        node = theta + NODES[stage] * h
-        aux[stage] = conservative_work(node, segment, machine)
-        fill_row(rows[stage], node, segment, machine)
+    fill_stages(aux, rows, theta, h, segment, machine)
     aux[7] = conservative_torque(theta, segment, machine)
     fill_friction(rows, theta, h, c_at, known, segment, without_wind(machine))
 

@@ -344,6 +344,58 @@ def _fill_row(row, theta, segment, machine):
 _entry(fill_row)(_no_row, _fill_row)
 
 
+def fill_stages(aux, rows, theta, h, segment, machine):
+    """At a step's 7 stage nodes theta + NODES h: the conservative work into ``aux[:7]``
+    (:func:`conservative_work`) and, for the real machine, the rows (:func:`fill_row`)."""
+
+
+def _ideal_stages(aux, rows, theta, h, segment, machine):
+    for stage in range(7):
+        node = theta + NODES[stage] * h
+        aux[stage] = conservative_work(node, segment, machine)
+        fill_row(rows[stage], node, segment, machine)
+
+
+@kernel
+def _real_stages(aux, rows, theta, h, segment, machine):
+    # conservative_work and fill_row at once: one sin, cos and root per node and cylinder (Eq. 1
+    # and its lever arm share them), the segment's start once per cylinder, the last node (the
+    # 6th and 7th are both theta + h) once, and no row views (an atomic reference pair each).
+    # Each sum is accumulated in the order of those functions (in aux, and the rows' columns 0
+    # and 7, which fill_friction writes afterwards), so the numbers are theirs.
+    real = machine.real
+    L_over_R = machine.L_over_R
+    start = segment_start(segment, machine)
+    for stage in range(6):
+        aux[stage] = rows[stage, 0] = rows[stage, 7] = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        face = delivering_face(segment, k, machine)
+        x_start = piston_over_R(start - lag, L_over_R)
+        for stage in range(6):
+            phi = theta + NODES[stage] * h - lag
+            s, c = math.sin(phi), math.cos(phi)
+            root = math.sqrt(L_over_R * L_over_R - s * s)
+            x = L_over_R + 1.0 - (root + c) - x_start  # piston_over_R, since the start
+            a = s * (1.0 + c / root)  # lever_arm
+            if face != NEITHER:
+                aux[stage] += face * x
+            rows[stage, 7] += x
+            rows[stage, 0] += a * a
+            rows[stage, 1 + k] = abs(a) if face != NEITHER else 0.0
+    for stage in range(6):
+        work = machine.load_torque * machine.inv_I_eff * aux[stage]
+        weights = rows[stage, 7] * (real.weight_torque * machine.inv_I_eff)
+        aux[stage] = work + (weights if real.weight_torque != 0.0 else 0.0)
+        rows[stage, 0] = 1.0 + real.mass_ratio * rows[stage, 0]
+    aux[6] = aux[5]
+    for column in range(1 + machine.cylinders):
+        rows[6, column] = rows[5, column]
+
+
+_entry(fill_stages)(_ideal_stages, _real_stages)
+
+
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
 #
 # Without a hole the friction torque is rho_w g K (A R arms)^3 theta_dot^2, and theta_dot^2 =

@@ -359,8 +359,9 @@ def _ideal_stages(aux, rows, theta, h, segment, machine):
 @kernel
 def _real_stages(aux, rows, theta, h, segment, machine):
     # conservative_work and fill_row at once: one sin, cos and root per node and cylinder (Eq. 1
-    # and its lever arm share them), the segment's start once per cylinder, the last node (the
-    # 6th and 7th are both theta + h) once, and no row views (an atomic reference pair each).
+    # and its lever arm, in one function, share them: LLVM computes them once), the segment's
+    # start once per cylinder, the last node (the 6th and 7th are both theta + h) once, and no
+    # row views (an atomic reference pair each): 0.49 -> 0.17 us a sub-step (one cylinder).
     # Each sum is accumulated in the order of those functions (in aux, and the rows' columns 0
     # and 7, which fill_friction writes afterwards), so the numbers are theirs.
     real = machine.real
@@ -374,10 +375,8 @@ def _real_stages(aux, rows, theta, h, segment, machine):
         x_start = piston_over_R(start - lag, L_over_R)
         for stage in range(6):
             phi = theta + NODES[stage] * h - lag
-            s, c = math.sin(phi), math.cos(phi)
-            root = math.sqrt(L_over_R * L_over_R - s * s)
-            x = L_over_R + 1.0 - (root + c) - x_start  # piston_over_R, since the start
-            a = s * (1.0 + c / root)  # lever_arm
+            x = piston_over_R(phi, L_over_R) - x_start
+            a = lever_arm(phi, L_over_R)
             if face != NEITHER:
                 aux[stage] += face * x
             rows[stage, 7] += x

@@ -819,7 +819,16 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
     if target >= 1.0:
         return math.nan
     lo, hi = (0.0, 0.5 * math.pi) if rising else (0.5 * math.pi, math.pi)
-    psi = target if rising else math.pi - target
+    # From the arm's slope at the dead centre it is nearest, 1 + R/L at the top, 1 - R/L at the
+    # bottom: |a| is odd about a dead centre, so the first iterate is off by O(target^3).
+    at_top = (dead_centre == 0.0) == rising
+    offset = target / (1.0 + 1.0 / L_over_R if at_top else 1.0 - 1.0 / L_over_R)
+    psi = offset if rising else math.pi - offset
+    if not lo < psi < hi:
+        psi = target if rising else math.pi - target
+    # Converged to the round-off of the arm's angle dead_centre + psi (below it, past pi, the
+    # iterates wandered in the round-off until the bracket closed: 9 iterations, not 3)
+    close = 4e-16 * dead_centre
     for _ in range(100):
         residual = sign * lever_arm(dead_centre + psi, L_over_R) - target
         if residual == 0.0:
@@ -830,11 +839,11 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
             hi = psi
         slope = sign * lever_arm_slope(dead_centre + psi, L_over_R)
         guess = psi - residual / slope if slope != 0.0 else -1.0
-        if abs(guess - psi) <= 4e-16 * psi:  # converged (the iterate may sit on the bracket)
+        if abs(guess - psi) <= 4e-16 * psi + close:  # converged (it may sit on the bracket)
             return guess
         if not lo < guess < hi:
             guess = 0.5 * (lo + hi)
-        if abs(guess - psi) <= 4e-16 * guess or hi - lo <= 4e-16 * hi:
+        if abs(guess - psi) <= 4e-16 * guess + close or hi - lo <= 4e-16 * hi + close:
             return guess
         psi = guess
     return psi
@@ -856,7 +865,7 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
         lag = phase(k, machine)
         half = math.floor((middle - lag) / math.pi)  # the face's half turn: it began at half pi
         dead_centre = math.pi * (half % 2)  # reduced: Newton's iterates keep their digits
-        sign = 1.0 if lever_arm(middle - lag, machine.L_over_R) > 0.0 else -1.0
+        sign = 1.0 if half % 2 == 0 else -1.0  # the arm's, as sin's: positive in an even half
         for rising in (True, False):  # near the dead centre it left, and near the next
             psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
             kink = lag + half * math.pi + psi

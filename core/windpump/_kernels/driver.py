@@ -423,7 +423,8 @@ def next_split_size(width, h, worst):
 @inline_kernel
 def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment, machine):
     """Where a sub-step ends and the conservative work there: the segment's end, exactly, after
-    its last sub-step; else from the tables (``aux``) when the step was the tabulated one."""
+    its last sub-step; else from its stage values (``aux``: its last node is the end) unless
+    they are of a longer step (one a wind record's kink cut short after a tabled one)."""
     if last:
         return end, end_work
     theta_new = theta_i + h_step
@@ -727,7 +728,7 @@ def in_angle(
                 break
             last = i == m_seg - 1 and not at_kink
             theta_new, work = sub_step_end(
-                last, end, end_work[parity], theta_i, h_step, use_table and not at_kink, aux[6],
+                last, end, end_work[parity], theta_i, h_step, not at_wind_kink, aux[6],
                 segment, calm,
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)

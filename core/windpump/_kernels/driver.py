@@ -16,7 +16,7 @@ import typing
 
 import numpy as np
 
-from .dopri5 import NODES, dense_value, step_factor
+from .dopri5 import dense_value, step_factor
 from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
@@ -27,6 +27,7 @@ from .real import (
     end_works,
     fill_friction,
     fill_row,
+    fill_stages,
     friction_at,
     friction_since,
     frozen_energy,
@@ -131,10 +132,7 @@ def stage_values(theta, h, segment, machine, aux, rows, c_at, known):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
     at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
     C from c_at = C(theta) in their column 7, or from ``known``: :func:`~.real.fill_friction`)."""
-    for stage in range(7):
-        node = theta + NODES[stage] * h
-        aux[stage] = conservative_work(node, segment, machine)
-        fill_row(rows[stage], node, segment, machine)
+    fill_stages(aux, rows, theta, h, segment, machine)
     aux[7] = conservative_torque(theta, segment, machine)
     fill_friction(rows, theta, h, c_at, known, segment, without_wind(machine))
 
@@ -425,7 +423,8 @@ def next_split_size(width, h, worst):
 @inline_kernel
 def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment, machine):
     """Where a sub-step ends and the conservative work there: the segment's end, exactly, after
-    its last sub-step; else from the tables (``aux``) when the step was the tabulated one."""
+    its last sub-step; else from its stage values (``aux``: its last node is the end) unless
+    they are of a longer step (one a wind record's kink cut short after a tabled one)."""
     if last:
         return end, end_work
     theta_new = theta_i + h_step
@@ -729,7 +728,7 @@ def in_angle(
                 break
             last = i == m_seg - 1 and not at_kink
             theta_new, work = sub_step_end(
-                last, end, end_work[parity], theta_i, h_step, use_table and not at_kink, aux[6],
+                last, end, end_work[parity], theta_i, h_step, not at_wind_kink, aux[6],
                 segment, calm,
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)

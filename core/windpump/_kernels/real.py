@@ -344,6 +344,57 @@ def _fill_row(row, theta, segment, machine):
 _entry(fill_row)(_no_row, _fill_row)
 
 
+def fill_stages(aux, rows, theta, h, segment, machine):
+    """At a step's 7 stage nodes theta + NODES h: the conservative work into ``aux[:7]``
+    (:func:`conservative_work`) and, for the real machine, the rows (:func:`fill_row`)."""
+
+
+def _ideal_stages(aux, rows, theta, h, segment, machine):
+    for stage in range(7):
+        node = theta + NODES[stage] * h
+        aux[stage] = conservative_work(node, segment, machine)
+        fill_row(rows[stage], node, segment, machine)
+
+
+@kernel
+def _real_stages(aux, rows, theta, h, segment, machine):
+    # conservative_work and fill_row at once: one sin, cos and root per node and cylinder (Eq. 1
+    # and its lever arm, in one function, share them: LLVM computes them once), the segment's
+    # start once per cylinder, the last node (the 6th and 7th are both theta + h) once, and no
+    # row views (an atomic reference pair each): 0.49 -> 0.17 us a sub-step (one cylinder).
+    # Each sum is accumulated in the order of those functions (in aux, and the rows' columns 0
+    # and 7, which fill_friction writes afterwards), so the numbers are theirs.
+    real = machine.real
+    L_over_R = machine.L_over_R
+    start = segment_start(segment, machine)
+    for stage in range(6):
+        aux[stage] = rows[stage, 0] = rows[stage, 7] = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        face = delivering_face(segment, k, machine)
+        x_start = piston_over_R(start - lag, L_over_R)
+        for stage in range(6):
+            phi = theta + NODES[stage] * h - lag
+            x = piston_over_R(phi, L_over_R) - x_start
+            a = lever_arm(phi, L_over_R)
+            if face != NEITHER:
+                aux[stage] += face * x
+            rows[stage, 7] += x
+            rows[stage, 0] += a * a
+            rows[stage, 1 + k] = abs(a) if face != NEITHER else 0.0
+    for stage in range(6):
+        work = machine.load_torque * machine.inv_I_eff * aux[stage]
+        weights = rows[stage, 7] * (real.weight_torque * machine.inv_I_eff)
+        aux[stage] = work + (weights if real.weight_torque != 0.0 else 0.0)
+        rows[stage, 0] = 1.0 + real.mass_ratio * rows[stage, 0]
+    aux[6] = aux[5]
+    for column in range(1 + machine.cylinders):
+        rows[6, column] = rows[5, column]
+
+
+_entry(fill_stages)(_ideal_stages, _real_stages)
+
+
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
 #
 # Without a hole the friction torque is rho_w g K (A R arms)^3 theta_dot^2, and theta_dot^2 =
@@ -768,7 +819,16 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
     if target >= 1.0:
         return math.nan
     lo, hi = (0.0, 0.5 * math.pi) if rising else (0.5 * math.pi, math.pi)
-    psi = target if rising else math.pi - target
+    # From the arm's slope at the dead centre it is nearest, 1 + R/L at the top, 1 - R/L at the
+    # bottom: |a| is odd about a dead centre, so the first iterate is off by O(target^3).
+    at_top = (dead_centre == 0.0) == rising
+    offset = target / (1.0 + 1.0 / L_over_R if at_top else 1.0 - 1.0 / L_over_R)
+    psi = offset if rising else math.pi - offset
+    if not lo < psi < hi:
+        psi = target if rising else math.pi - target
+    # Converged to the round-off of the arm's angle dead_centre + psi (below it, past pi, the
+    # iterates wandered in the round-off until the bracket closed: 9 iterations, not 3)
+    close = 4e-16 * dead_centre
     for _ in range(100):
         residual = sign * lever_arm(dead_centre + psi, L_over_R) - target
         if residual == 0.0:
@@ -779,11 +839,11 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
             hi = psi
         slope = sign * lever_arm_slope(dead_centre + psi, L_over_R)
         guess = psi - residual / slope if slope != 0.0 else -1.0
-        if abs(guess - psi) <= 4e-16 * psi:  # converged (the iterate may sit on the bracket)
+        if abs(guess - psi) <= 4e-16 * psi + close:  # converged (it may sit on the bracket)
             return guess
         if not lo < guess < hi:
             guess = 0.5 * (lo + hi)
-        if abs(guess - psi) <= 4e-16 * guess or hi - lo <= 4e-16 * hi:
+        if abs(guess - psi) <= 4e-16 * guess + close or hi - lo <= 4e-16 * hi + close:
             return guess
         psi = guess
     return psi
@@ -805,7 +865,7 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
         lag = phase(k, machine)
         half = math.floor((middle - lag) / math.pi)  # the face's half turn: it began at half pi
         dead_centre = math.pi * (half % 2)  # reduced: Newton's iterates keep their digits
-        sign = 1.0 if lever_arm(middle - lag, machine.L_over_R) > 0.0 else -1.0
+        sign = 1.0 if half % 2 == 0 else -1.0  # the arm's, as sin's: positive in an even half
         for rising in (True, False):  # near the dead centre it left, and near the next
             psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
             kink = lag + half * math.pi + psi

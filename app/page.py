@@ -50,7 +50,7 @@ NARROW_CSS = """
   #content { flex-direction: column; flex-wrap: nowrap; overflow: hidden !important; }
   #content > #main {
     order: -1; flex: 1 1 0; min-height: 0; max-height: none !important; width: 100%;
-    overflow-y: auto !important; overflow-x: hidden !important;
+    overflow-y: auto !important; overflow-x: hidden !important; padding: 4px 6px 12px 4px;
   }
   #content > #sidebar {  /* outranks the template's width */
     order: 1; flex: 0 0 auto; height: 42% !important; max-width: 100% !important;

@@ -28,7 +28,6 @@ READOUT_CSS = f"""
 @media (max-width: 700px) {{
   :host {{margin: 3px 4px !important}}
   .readout {{min-width: 0; padding: 1px 8px}}
-  .readout .label {{font-size: 13px}}
   .readout .value {{font-size: 18px}}
 }}
 """

@@ -371,6 +371,12 @@ TICK_GAPS = """(title) => {
 }"""
 
 
+FRAME_HEIGHT = """(title) => {
+  for (const model of window.Bokeh.documents[0].all_models)
+    if (model.title && model.title.text === title) return window.Bokeh.index.find_one(model).frame.bbox.height;
+}"""
+
+
 @pytest.mark.parametrize(
     "width, height, query", [(1280, 720, "&presentation=true"), (390, 844, "")]
 )
@@ -384,6 +390,8 @@ def test_the_wind_curves_tick_labels_do_not_overlap(browser, url, width, height,
         assert [label for label, _, _ in gaps] == ["mean flow [L/s]", "Weibull density [s/m]"]
         crowded = [(label, gap, font) for label, gap, font in gaps if gap < 1.5 * font]
         assert crowded == []
+        if "presentation" in query:  # its legend in three rows once left the plot 90-140 px
+            assert page.evaluate(FRAME_HEIGHT, title) >= 200
         assert page.problems == []
     finally:
         page.close()

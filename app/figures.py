@@ -88,6 +88,9 @@ def present(fig, large: bool) -> None:
     if getattr(fig, "_presented", False) == large:
         return
     fig._presented = large
+    heights = getattr(fig, "_heights", None)  # grow_in_presentation
+    if heights is not None:
+        fig.height = heights[large]
     size = PRESENTATION_SIZES if large else {v: k for k, v in PRESENTATION_SIZES.items()}
     fig.title.text_font_size = size.get(fig.title.text_font_size, fig.title.text_font_size)
     for axis in (*fig.xaxis, *fig.yaxis):
@@ -108,6 +111,12 @@ def present(fig, large: bool) -> None:
         font = getattr(glyph, "text_font_size", None)
         if isinstance(font, str) and font in size:
             glyph.text_font_size = size[font]
+
+
+def grow_in_presentation(fig, height: int) -> None:
+    """Draw ``fig`` ``height`` px high in presentation mode (``present``), its own height else:
+    for a figure whose larger text (a legend below in more rows) leaves its plot too little room."""
+    fig._heights = {False: fig.height, True: height}
 
 
 def empty(*columns: str) -> ColumnDataSource:

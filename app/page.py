@@ -39,14 +39,25 @@ CITATION_CSS = [
     "@media (max-width: 700px) { :host { display: none !important; } }",
 ]
 
-# Below 700 px the sidebar stacks above the views and the page scrolls as one column.
+# Below 700 px (a phone held upright) the screen splits: the tabs, whose readouts answer every
+# move, above; the controls below, in a pane of their own that scrolls, in reach of a thumb and
+# hidden by the header's toggle. A student who moves a slider sees the readouts change without
+# scrolling (the sidebar once stacked ~900 px of controls above the readouts).
 NARROW_CSS = """
 #header .title { white-space: normal; }
 @media (max-width: 700px) {
   #header .title { font-size: 1.05rem; }
-  #content { flex-direction: column; flex-wrap: nowrap; overflow-y: auto !important; }
-  #content > #sidebar { max-width: 100% !important; width: 100% !important; }  /* outranks the template's */
-  #sidebar, #sidebar > * { max-height: none !important; height: auto !important; overflow: visible !important; }  /* no scroll of its own */
-  #main { max-height: none !important; overflow: visible !important; width: 100%; }
+  #content { flex-direction: column; flex-wrap: nowrap; overflow: hidden !important; }
+  #content > #main {
+    order: -1; flex: 1 1 0; min-height: 0; max-height: none !important; width: 100%;
+    overflow-y: auto !important; overflow-x: hidden !important; padding: 4px 6px 12px 4px;
+  }
+  #content > #sidebar {  /* outranks the template's width */
+    order: 1; flex: 0 0 auto; height: 42% !important; max-width: 100% !important;
+    width: 100% !important; overflow-y: auto !important; overflow-x: hidden !important;
+    border-right: none; border-top: 1px solid var(--bs-border-color);
+    box-shadow: 0 -4px 8px rgba(0, 0, 0, 0.15);
+  }
+  #content > #sidebar.collapsing { height: 0 !important; width: 100% !important; }
 }
 """

@@ -25,7 +25,14 @@ READOUT_CSS = f"""
 .readout {{border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}}
 .readout .label {{font-size: {px(14)}; color: inherit; opacity: 0.85}}
 .readout .value {{font-size: calc(20px * (2 * var({ZOOM_VARIABLE}, 1) - 1)); font-weight: bold}}
+@media (max-width: 700px) {{
+  :host {{margin: 3px 4px !important}}
+  .readout {{min-width: 0; padding: 1px 8px}}
+  .readout .value {{font-size: 18px}}
+}}
 """
+# On a phone the readouts share the top half of the screen with nothing else (page.NARROW_CSS):
+# tighter boxes put two or three in a row, and the status under them stays in view.
 READOUTS = (
     "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",
 )  # fmt: skip

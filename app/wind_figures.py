@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from bokeh.models import HoverTool, LinearAxis, Range1d, Span
 
-from .figures import TICKS, draw_band, empty, legend, line, new_figure
+from .figures import HEIGHT, TICKS, draw_band, empty, grow_in_presentation, legend, line, new_figure
 
 
 def curve_figure(s: dict, c: dict):
@@ -61,6 +61,10 @@ def curve_figure(s: dict, c: dict):
             "steady wind V": here,
         },
     )
+    # In presentation mode its legend (three items, 18 px) takes three rows below a plot ~440 px
+    # wide: at HEIGHT the plot kept 90-140 px. The plot keeps ~240 px, the legend below the fold
+    # of a 1280×720 projector.
+    grow_in_presentation(fig, round(1.3 * HEIGHT))
     return fig, stop_span, start_span
 
 

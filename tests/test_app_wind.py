@@ -204,3 +204,17 @@ def test_the_kick_slider_does_not_rerun_the_day_of_a_windmill_that_starts_on_its
     assert app.wind.last_run is day
     app.set_values(T_0=0.0)  # now it needs the kick: a new day, kicked at 5 rad/s
     assert app.wind.last_run.theta_dot[0] == 5.0
+
+
+def test_presentation_mode_gives_the_steady_wind_plot_room_for_its_larger_legend(app):
+    """Its legend's three items take three rows in presentation mode: the figure grows by the
+    rows' height, and shrinks back when presentation mode is turned off."""
+    curve = app.wind.curve
+    usual = curve.height
+    app.presentation = True
+    grown = curve.height
+    app.presentation = False
+    assert grown >= usual + 3 * 25  # three rows of 18-px labels and 28-px swatches, about
+    assert curve.height == usual
+    app.presentation = True
+    assert curve.height == grown  # as often as it is turned on

@@ -7,7 +7,10 @@ from __future__ import annotations
 import time
 
 import pytest
-from test_browser import ARTIFACTS, SIZES, open_page
+from playwright.sync_api import expect
+from test_browser import ARTIFACTS, SIZES, handle, open_page, text
+
+from served import DEEP_TEXT
 
 pytestmark = pytest.mark.browser
 
@@ -130,11 +133,100 @@ def test_a_wide_screen_leaves_no_blank_band_between_rows_of_views(browser, url):
         page.close()
 
 
+PHONE = (390, 844)
+
+
+def in_first_screen(page, locator) -> None:
+    """Wholly on the screen, below the header (not under it) and not clipped by a pane's edge."""
+    expect(locator).to_be_in_viewport(ratio=1.0)
+    box = locator.evaluate(
+        "(el) => { const b = el.getBoundingClientRect();"
+        " return {y: b.y, bottom: b.bottom, screen: window.innerHeight} }"
+    )
+    header = page.locator("#header").bounding_box()
+    assert bottom(header) - 1 <= box["y"] and box["bottom"] <= box["screen"], box
+
+
+@pytest.mark.parametrize("query", ["", "?theme=dark", "?presentation=true"])
+def test_a_phone_shows_the_readouts_while_a_slider_is_moved(browser, url, query):
+    """At 390×844 a student drags a slider with a finger and sees, on the same screen and without
+    scrolling, the readouts and the status answer it: the tabs above, the controls below (the
+    sidebar once stood ~900 px of controls above the readouts, 1.5 screens of scrolling)."""
+    page = open_page(browser, url, *PHONE, query)
+    try:
+        page.get_by_text("Running.").first.wait_for()
+        status = page.locator(".alert").filter(visible=True)  # the status, whatever it says
+        expect(status).to_have_count(1)
+        readouts = [page.locator(f"[data-name={n}]") for n in ("mean_flow", "margin", "energy")]
+        head = handle(page, "Head h [m]")
+        for shown in [*readouts, status, head]:
+            in_first_screen(page, shown)
+        before = text(page, "mean_flow")
+        box = head.bounding_box()
+        x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+        page.mouse.move(x, y)
+        page.mouse.down()
+        page.mouse.move(x + 60, y, steps=6)
+        page.mouse.up()
+        page.wait_for_function(
+            f"(b) => ({DEEP_TEXT})('[data-name=mean_flow]') !== b", arg=before, timeout=60_000
+        )
+        for shown in [*readouts, status, head]:  # nothing scrolled away meanwhile
+            in_first_screen(page, shown)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"phone-moved{query.replace('?', '-')}.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_phone_hides_and_shows_its_controls_with_the_header_toggle(browser, url):
+    """The header's toggle hides the controls' pane (the views take the whole screen) and brings
+    it back; the sidebar's own scroll holds the controls below its first screen."""
+    page = open_page(browser, url, *PHONE)
+    try:
+        main, sidebar = page.locator("#main"), page.locator("#sidebar")
+        with_controls = main.bounding_box()
+        assert bottom(with_controls) <= sidebar.bounding_box()["y"] + 1  # above, not beside
+        assert page.evaluate("() => document.querySelector('#content').scrollHeight") <= PHONE[1]
+        download = page.get_by_role("button", name="Download this run (CSV)")
+        download.scroll_into_view_if_needed()  # scrolls the controls' pane, not the page
+        in_first_screen(page, download)
+        in_first_screen(page, page.locator("[data-name=mean_flow]"))
+        page.locator("#sidebar-toggle").click()
+        expect(sidebar).to_be_hidden()
+        page.wait_for_function(
+            f"() => document.querySelector('#main').clientHeight > {PHONE[1] - 80}"
+        )
+        page.locator("#sidebar-toggle").click()
+        expect(sidebar).to_be_visible()
+        page.wait_for_function(
+            "(h) => Math.abs(document.querySelector('#main').clientHeight - h) < 2",
+            arg=with_controls["height"],
+        )
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("query", ["?restored=true", "?h=-3"])
+def test_a_phone_says_a_restored_connection_or_a_refused_value_first(browser, url, query):
+    """The notices stand above the readouts, at the top of a phone's screen."""
+    page = open_page(browser, url, *PHONE, query)
+    try:
+        said = "connection to the server was lost" if "restored" in query else "were ignored"
+        notice = page.locator(".alert", has_text=said).filter(visible=True).first
+        in_first_screen(page, notice)
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 @pytest.mark.parametrize("width, height", SIZES)
 @pytest.mark.parametrize("query", ["", "?presentation=true"])
 def test_nothing_scrolls_sideways_and_no_canvas_text_is_cut(browser, url, width, height, query):
-    """The element that scrolls (the page's #content on a phone, #main beside the sidebar) never
-    scrolls sideways, and every figure's title and axis labels fit inside it."""
+    """The element that scrolls (#main, above the controls on a phone, beside them elsewhere)
+    never scrolls sideways, and every figure's title and axis labels fit inside it."""
     page = open_page(browser, url, width, height, query)
     try:
         settled(page)
@@ -144,12 +236,12 @@ def test_nothing_scrolls_sideways_and_no_canvas_text_is_cut(browser, url, width,
         assert {n: c for n, c in cut.items() if c} == {}
         header = page.locator("#header").bounding_box()
         assert header["height"] <= 70, "the header keeps to one line"
-        if width < 700:  # the page scrolls as one column: nothing in a scroll of its own
-            inner = page.evaluate(
-                "() => { const s = document.querySelector('#sidebar');"
-                " return s.scrollHeight - s.clientHeight }"
+        if width < 700:  # two panes, each scrolling on its own: the page itself does not
+            outer = page.evaluate(
+                "() => { const c = document.querySelector('#content');"
+                " return c.scrollHeight - c.clientHeight }"
             )
-            assert inner <= 1, f"the sidebar hides {inner} px in a scroll of its own"
+            assert outer <= 1, f"the page scrolls {outer} px around its two panes"
             scrubber = page.locator(
                 ".bk-input-group", has=page.locator(".bk-slider-title", has_text="time t [s]")
             )
@@ -279,6 +371,12 @@ TICK_GAPS = """(title) => {
 }"""
 
 
+FRAME_HEIGHT = """(title) => {
+  for (const model of window.Bokeh.documents[0].all_models)
+    if (model.title && model.title.text === title) return window.Bokeh.index.find_one(model).frame.bbox.height;
+}"""
+
+
 @pytest.mark.parametrize(
     "width, height, query", [(1280, 720, "&presentation=true"), (390, 844, "")]
 )
@@ -292,6 +390,8 @@ def test_the_wind_curves_tick_labels_do_not_overlap(browser, url, width, height,
         assert [label for label, _, _ in gaps] == ["mean flow [L/s]", "Weibull density [s/m]"]
         crowded = [(label, gap, font) for label, gap, font in gaps if gap < 1.5 * font]
         assert crowded == []
+        if "presentation" in query:  # its legend in three rows once left the plot 90-140 px
+            assert page.evaluate(FRAME_HEIGHT, title) >= 200
         assert page.problems == []
     finally:
         page.close()

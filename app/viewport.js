@@ -1,0 +1,70 @@
+// The pump's views are built by the server when the page first shows them (viewport.py). Each
+// stands as a placeholder (CSS class `placeholder_class` and `view-<name>`) until then; when one
+// comes within `margin` of a screen of the browser's viewport, its name joins the views seen, and
+// the names seen so far are written into a hidden text input (CSS class `channel_class`), which
+// the server reads. A placeholder that is not displayed (another tab is open) is not seen.
+// Checked on every scroll and resize, and twice a second until every view is seen (a layout that
+// moves without a scroll: a tab chosen, the sidebar collapsed, a view above grown). Runs once a
+// page, on Bokeh's document_ready.
+if (!window.__windpumpViewsSeen) {
+  window.__windpumpViewsSeen = true
+  const seen = new Set()
+  let found = []
+
+  const channel = () => {
+    for (const doc of window.Bokeh.documents) {
+      for (const model of doc.all_models) {
+        if (Array.isArray(model.css_classes) && model.css_classes.includes(channel_class)) return model
+      }
+    }
+    return null
+  }
+
+  const walk = (root, out) => {
+    out.push(...root.querySelectorAll("." + placeholder_class))
+    for (const el of root.querySelectorAll("*")) if (el.shadowRoot) walk(el.shadowRoot, out)
+    return out
+  }
+
+  const nameOf = (el) => {
+    const named = [...el.classList].find((c) => c.startsWith("view-") && c !== placeholder_class)
+    return named == null ? null : named.slice("view-".length)
+  }
+
+  const check = () => {
+    if (found.length === 0 || found.some((el) => !el.isConnected)) found = walk(document, [])
+    const height = window.innerHeight, reach = margin * height
+    let more = false
+    for (const el of found) {
+      const name = nameOf(el)
+      if (name == null || seen.has(name)) continue
+      const box = el.getBoundingClientRect()
+      if (box.width === 0 || box.height === 0) continue // not displayed
+      if (box.top < height + reach && box.bottom > -reach) {
+        seen.add(name)
+        more = true
+      }
+    }
+    if (more) {
+      const model = channel()
+      if (model != null) model.value = names.filter((name) => seen.has(name)).join(" ")
+    }
+    return names.every((name) => seen.has(name))
+  }
+
+  let pending = false
+  const soon = () => {
+    if (pending) return
+    pending = true
+    setTimeout(() => {
+      pending = false
+      check()
+    }, 100)
+  }
+  document.addEventListener("scroll", soon, true) // capturing: the page's scrolling elements too
+  window.addEventListener("resize", soon)
+  const every = setInterval(() => {
+    if (document.visibilityState === "visible" && check()) clearInterval(every)
+  }, 500)
+  check()
+}

@@ -34,7 +34,7 @@ from .link import (
 )
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
-from .page import page
+from .page import PHONE_ONLY, WIDE_ONLY, page
 from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
 from .session import Session
@@ -114,12 +114,17 @@ class Explorer(Session, pn.viewable.Viewer):
         self.notices = pn.pane.Alert(
             "", alert_type="warning", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
         )
-        self.restored = pn.pane.Alert(
-            RESTORED,
-            alert_type="info",
-            visible=restored,
-            stylesheets=TEXT,
-            sizing_mode="stretch_width",
+        # Above the pump's readouts beside the sidebar; on a phone, where the sidebar comes first,
+        # at the top of the sidebar (page.above_sidebar): at the top of what each screen shows.
+        self.restored, self.restored_on_phone = (
+            pn.pane.Alert(
+                RESTORED,
+                alert_type="info",
+                visible=restored,
+                stylesheets=[*TEXT, css],
+                sizing_mode="stretch_width",
+            )
+            for css in (WIDE_ONLY, PHONE_ONLY)
         )
 
     def _build_tabs(self) -> None:
@@ -404,4 +409,10 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def template(self) -> pn.template.BootstrapTemplate:
         """The page: the sidebar beside the tabs, under the title."""
-        return page(self.sidebar.__panel__(), self.main(), self.dark, self.presentation)
+        return page(
+            self.sidebar.__panel__(),
+            self.main(),
+            self.dark,
+            self.presentation,
+            above_sidebar=self.restored_on_phone,
+        )

@@ -8,9 +8,12 @@ from .keyboard import PAGE_FOCUS_CSS
 from .styles import px, zoom_css
 
 
-def page(sidebar, main, dark: bool, presentation: bool) -> pn.template.BootstrapTemplate:
+def page(
+    sidebar, main, dark: bool, presentation: bool, above_sidebar=None
+) -> pn.template.BootstrapTemplate:
     """The page in Panel's Bootstrap template: ``sidebar`` beside ``main``, in the ``dark`` theme
-    or not, its HTML zoomed for ``presentation`` mode (``styles.zoom_css``)."""
+    or not, its HTML zoomed for ``presentation`` mode (``styles.zoom_css``); ``above_sidebar``
+    (a notice for a phone, ``PHONE_ONLY``) at the sidebar's top."""
     template = pn.template.BootstrapTemplate(
         title="Wind pump explorer",
         header=[
@@ -18,7 +21,7 @@ def page(sidebar, main, dark: bool, presentation: bool) -> pn.template.Bootstrap
                 "M. Louge, <i>A simple wind-pump analysis</i> (2010)", stylesheets=CITATION_CSS
             )
         ],
-        sidebar=[sidebar],
+        sidebar=[sidebar] if above_sidebar is None else [above_sidebar, sidebar],
         main=[main],
         sidebar_width=330,
         header_background="#0b4f8a",
@@ -38,6 +41,10 @@ CITATION_CSS = [
     f":host {{ color: white; font-size: {px(18)}; align-self: center; margin-left: 1em; }}",
     "@media (max-width: 700px) { :host { display: none !important; } }",
 ]
+
+# A component's stylesheet: shown on a phone only (where the sidebar comes first), or beside it only.
+PHONE_ONLY = "@media (min-width: 701px) { :host { display: none !important; } }"
+WIDE_ONLY = "@media (max-width: 700px) { :host { display: none !important; } }"
 
 # Below 700 px the sidebar stacks above the views and the page scrolls as one column.
 NARROW_CSS = """

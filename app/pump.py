@@ -15,7 +15,7 @@ from .figures import present
 from .machine import ASPECT, MachineView
 from .sidebar import closed_card
 from .styles import TEXT
-from .viewport import ViewsSeen, placeholder
+from .viewport import ViewsSeen, placeholder, placeholder_html
 from .views import (
     CloseupView,
     EnergyView,
@@ -77,30 +77,25 @@ class PumpViews:
         self.large = False
         self._drawn_linkage: tuple | None = None
         self.channel = ViewsSeen()  # the page writes the views it has seen here
-        self.slots = {name: self._slot(name) for name in ORDER}
-        # After the views, across the page: beside the machine it made the first row of views
-        # taller than its neighbours, and a band of blank space under them.
-        about = closed_card(
-            "What is this machine?",
-            lambda: [pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width")],
-        )
+        self.slots: dict[str, pn.viewable.Viewable] = {name: self._slot(name) for name in ORDER}
+        self.about: pn.Card | None = None  # with the first view built
         self.results = pn.FlexBox(
             *self.slots.values(),
-            about,
             flex_wrap="wrap",
             sizing_mode="stretch_width",
             styles=VIEW_FLEX_ROW,
         )
 
-    def _slot(self, name: str) -> pn.Column:
-        """A view's place on the page: its placeholder until it is built, then its drawing;
-        its caption under it throughout."""
+    def _slot(self, name: str) -> pn.pane.HTML:
+        """A view's place on the page until it is built: a placeholder of its height, with its
+        caption under it."""
+        return placeholder(name, self._placeholder_html(name), styles=VIEW_FLEX)
+
+    def _placeholder_html(self, name: str) -> str:
+        kind = KINDS[name]
         if name == "machine":
-            stand_in = placeholder(name, TITLES[name], MACHINE_CONTROLS, aspect=ASPECT)
-        else:
-            stand_in = placeholder(name, TITLES[name], self._height(name, KINDS[name].height))
-        caption = caption_pane(KINDS[name].caption)
-        return pn.Column(stand_in, caption, sizing_mode="stretch_width", styles=VIEW_FLEX)
+            return placeholder_html(TITLES[name], kind.caption, MACHINE_CONTROLS, aspect=ASPECT)
+        return placeholder_html(TITLES[name], kind.caption, self._height(name, kind.height))
 
     def _height(self, name: str, base: int) -> int:
         """A view's height [px]: ``base``, larger below the first screen in presentation mode
@@ -135,9 +130,25 @@ class PumpViews:
             view.base_height = view.figure.height
             self._restyle_view(name, view)
             self._draw_new(name, view)
-            caption = self.slots[name].objects[-1]
-            self.slots[name].objects = [view.drawing(), caption]
+            self.slots[name] = pn.Column(
+                view.drawing(),
+                caption_pane(view.caption),
+                sizing_mode="stretch_width",
+                styles=VIEW_FLEX,
+            )
+        if new:  # one change of the box, not one per view: Panel walks the page's models for each
+            self.results.objects = [*self.slots.values(), self._about()]
         return new
+
+    def _about(self) -> pn.Card:
+        """After the views, across the page: beside the machine it made the first row of views
+        taller than its neighbours, and a band of blank space under them."""
+        if self.about is None:
+            self.about = closed_card(
+                "What is this machine?",
+                lambda: [pn.pane.Markdown(ABOUT, stylesheets=TEXT, sizing_mode="stretch_width")],
+            )
+        return self.about
 
     def _make(self, name: str) -> View:
         makers: dict[str, Callable[[], View]] = {
@@ -185,7 +196,7 @@ class PumpViews:
             self._restyle_view(name, view)
         for name, slot in self.slots.items():
             if name not in self.built and name != "machine":
-                slot.objects[0].height = self._height(name, KINDS[name].height)
+                slot.object = self._placeholder_html(name)
 
     def _restyle_view(self, name: str, view: View) -> None:
         present(view.figure, self.large)

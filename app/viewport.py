@@ -23,11 +23,14 @@ CHANNEL_CLASS = "views-seen"
 PLACEHOLDER_CLASS = "view-placeholder"  # and view-<name>, which names the view it stands for
 MARGIN = 0.0  # [screens] a view this close below (or above) the viewport is built already
 
+# The placeholder's box, then the view's caption as its own pane (styles.CAPTION_CSS) sets it.
 PLACEHOLDER_CSS = [
     f""":host {{ font-size: {px(16)}; }}
-.placeholder {{ box-sizing: border-box; height: 100%; display: flex; align-items: center;
+.placeholder {{ box-sizing: border-box; display: flex; align-items: center;
   justify-content: center; border: 1px dashed rgba(128, 128, 128, 0.5); border-radius: 4px;
-  color: inherit; opacity: 0.7; }}"""
+  color: inherit; opacity: 0.7; }}
+.caption {{ font-size: {px(15)}; margin: 0 8px; }}
+.caption p {{ margin: 2px 0; }}"""
 ]
 
 
@@ -43,22 +46,30 @@ class ViewsSeen(pn.widgets.TextInput):
         return [name for name in known if name in said]
 
 
-def placeholder(name: str, title: str, height: int | None, aspect: float | None = None):
-    """What stands for view ``name`` until it is built: its own height (``height`` [px], or a
-    box of width / height ``aspect`` and ``height`` [px] of controls under it), saying what
-    comes."""
+def placeholder_html(title: str, caption: str, height: int, aspect: float | None = None) -> str:
+    """A placeholder's box saying what comes (``height`` [px] high, or of width / height
+    ``aspect`` with ``height`` [px] of controls under it), and the view's caption under it."""
     box = (
         f"height: {height}px;"
         if aspect is None
-        else f"height: auto; aspect-ratio: {aspect}; max-width: 900px; margin-bottom: {height}px;"
+        else f"aspect-ratio: {aspect}; max-width: 900px; margin-bottom: {height}px;"
     )
+    return (
+        f'<div class="placeholder" style="{box}">Drawing {title}…</div>'
+        f'<div class="caption"><p>{caption}</p></div>'
+    )
+
+
+def placeholder(name: str, html: str, **options) -> pn.pane.HTML:
+    """What stands for view ``name`` until it is built (``placeholder_html``): one pane, the
+    page's layout as it will be once the view is drawn."""
     return pn.pane.HTML(
-        f'<div class="placeholder" style="{box}">Drawing {title}…</div>',
-        height=height if aspect is None else None,
+        html,
         sizing_mode="stretch_width",
-        margin=0,  # as the figure's pane: the page's layout is the same once it is drawn
+        margin=0,
         css_classes=[PLACEHOLDER_CLASS, f"view-{name}"],
         stylesheets=PLACEHOLDER_CSS,
+        **options,
     )
 
 

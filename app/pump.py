@@ -11,7 +11,7 @@ from bokeh.models import ColumnDataSource, Range1d
 
 import windpump
 
-from .figures import present
+from .figures import lean, present
 from .machine import ASPECT, MachineView
 from .sidebar import closed_card
 from .styles import TEXT
@@ -121,6 +121,7 @@ class PumpViews:
         new = [name for name in ORDER if name in set(names) and name not in self.built]
         for name in new:
             view = self._make(name)
+            lean(view.figure)
             view.figure.name = f"{name}_figure"
             self.built[name] = view
             self.sources.update(view.sources)

@@ -179,3 +179,17 @@ def test_reset_clears_lab_points_for_views_built_later():
     app.see_views(["operating"])
     assert len(app.sources["data"].data["omega"]) == 0
     assert not app.pump.operating.items["lab data"].visible
+
+
+def test_the_views_send_no_copies_of_their_glyphs():
+    """Nothing selects or mutes here: the browser makes those glyphs if ever asked (``"auto"``)."""
+    from bokeh.models import GlyphRenderer
+
+    app = served()
+    app.see_views(list(ORDER))
+    renderers = [
+        r for view in app.pump.views for r in view.figure.renderers if isinstance(r, GlyphRenderer)
+    ]
+    assert len(renderers) > 30
+    assert {(r.nonselection_glyph, r.muted_glyph) for r in renderers} == {("auto", "auto")}
+    assert all(r.glyph is not None and r.glyph.id for r in renderers)

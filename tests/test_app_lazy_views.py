@@ -193,3 +193,24 @@ def test_the_views_send_no_copies_of_their_glyphs():
     assert len(renderers) > 30
     assert {(r.nonselection_glyph, r.muted_glyph) for r in renderers} == {("auto", "auto")}
     assert all(r.glyph is not None and r.glyph.id for r in renderers)
+
+
+def test_pages_asking_the_same_run_share_it_and_it_goes_with_the_last():
+    """A class opening the default page holds the paper's run once, not once a page."""
+    import gc
+
+    from windpump_app.session import SHARED_RUNS
+
+    first, second = Explorer(defer_views=True), Explorer(defer_views=True)
+    assert first.seen is second.seen
+    np.testing.assert_array_equal(first.seen.run.theta_dot, expected().run.theta_dot)
+    second.set_values(h=4.0)  # its own run now; the first keeps the paper's
+    assert second.seen is not first.seen and second.seen.design.h == 4.0
+    assert first.seen.design == SEED
+    third = Explorer(defer_views=True, query={"h": [b"4"]})  # asks what the second holds
+    assert third.seen is second.seen
+    key = (second.seen.design, 600.0, math.pi / 2, 3.0)
+    assert SHARED_RUNS.get(key) is second.seen
+    del second, third
+    gc.collect()
+    assert SHARED_RUNS.get(key) is None  # no page holds it: gone

@@ -77,7 +77,7 @@ class PumpViews:
         self.large = False
         self._drawn_linkage: tuple | None = None
         self.channel = ViewsSeen()  # the page writes the views it has seen here
-        self.slots: dict[str, pn.viewable.Viewable] = {name: self._slot(name) for name in ORDER}
+        self.slots = {name: self._slot(name) for name in ORDER}
         self.about: pn.Card | None = None  # with the first view built
         self.results = pn.FlexBox(
             *self.slots.values(),
@@ -86,10 +86,11 @@ class PumpViews:
             styles=VIEW_FLEX_ROW,
         )
 
-    def _slot(self, name: str) -> pn.pane.HTML:
-        """A view's place on the page until it is built: a placeholder of its height, with its
-        caption under it."""
-        return placeholder(name, self._placeholder_html(name), styles=VIEW_FLEX)
+    def _slot(self, name: str) -> pn.Column:
+        """A view's place on the page: until it is built, a placeholder of its height with its
+        caption under it; then the view and its caption."""
+        stand_in = placeholder(name, self._placeholder_html(name))
+        return pn.Column(stand_in, sizing_mode="stretch_width", styles=VIEW_FLEX)
 
     def _placeholder_html(self, name: str) -> str:
         kind = KINDS[name]
@@ -131,14 +132,11 @@ class PumpViews:
             view.base_height = view.figure.height
             self._restyle_view(name, view)
             self._draw_new(name, view)
-            self.slots[name] = pn.Column(
-                view.drawing(),
-                caption_pane(view.caption),
-                sizing_mode="stretch_width",
-                styles=VIEW_FLEX,
-            )
-        if new:  # one change of the box, not one per view: Panel walks the page's models for each
-            self.results.objects = [*self.slots.values(), self._about()]
+            # The slot's content, not the box's: a new list of the box's children makes the
+            # browser lay the whole box out again, and the page scroll back to its top.
+            self.slots[name].objects = [view.drawing(), caption_pane(view.caption)]
+        if new and self.about is None:
+            self.results.append(self._about())
         return new
 
     def _about(self) -> pn.Card:
@@ -197,7 +195,7 @@ class PumpViews:
             self._restyle_view(name, view)
         for name, slot in self.slots.items():
             if name not in self.built and name != "machine":
-                slot.object = self._placeholder_html(name)
+                slot.objects[0].object = self._placeholder_html(name)
 
     def _restyle_view(self, name: str, view: View) -> None:
         present(view.figure, self.large)

@@ -31,6 +31,25 @@ if (!window.__windpumpViewsSeen) {
     return named == null ? null : named.slice("view-".length)
   }
 
+  // While the server swaps a placeholder for its view, the view's place is empty for a moment:
+  // the page would be shorter and the browser would scroll it up. The place keeps the
+  // placeholder's height until a second after the view has replaced it.
+  const held = []
+  const hold = (el, px) => {
+    const place = el.getRootNode().host
+    if (place == null) return
+    place.style.minHeight = `${px}px`
+    held.push({el, place, since: null})
+  }
+  const release = () => {
+    for (const h of held) {
+      if (h.el.isConnected) continue
+      if (h.since == null) h.since = Date.now()
+      else if (Date.now() - h.since > 1000) h.place.style.minHeight = ""
+    }
+    held.splice(0, held.length, ...held.filter((h) => h.place.style.minHeight !== ""))
+  }
+
   const check = () => {
     if (found.length === 0 || found.some((el) => !el.isConnected)) found = walk(document, [])
     const height = window.innerHeight, reach = margin * height
@@ -43,13 +62,15 @@ if (!window.__windpumpViewsSeen) {
       if (box.top < height + reach && box.bottom > -reach) {
         seen.add(name)
         more = true
+        hold(el, box.height)
       }
     }
+    release()
     if (more) {
       const model = channel()
       if (model != null) model.value = names.filter((name) => seen.has(name)).join(" ")
     }
-    return names.every((name) => seen.has(name))
+    return names.every((name) => seen.has(name)) && held.length === 0
   }
 
   let pending = false

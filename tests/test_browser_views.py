@@ -59,6 +59,16 @@ def test_a_projector_page_builds_its_first_screen_and_the_rest_when_scrolled(bro
     try:
         time.sleep(3.0)  # anything the page would ask for unscrolled has been asked for
         assert built(page) == {"speed", "machine"}
+        # a jump to the lower half: the views there come, and the page stays where it was put
+        at = page.evaluate(
+            f"() => {{ const s = {SCROLLER}; s.scrollTop = 0.6 * s.scrollHeight;"
+            " return s.scrollTop }"
+        )
+        for name in ("energy", "stall", "operating"):
+            page.wait_for_function(HAS_DATA, arg=FILLED[name], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)  # laid out
+        assert abs(page.evaluate(f"() => {SCROLLER}.scrollTop") - at) <= 2
+        page.evaluate(f"() => {{ {SCROLLER}.scrollTop = 0 }}")  # then from the top to the end
         scroll_down_by_screens(page, 720)
         for name in ORDER:
             page.wait_for_function(HAS_DATA, arg=FILLED[name], timeout=60_000, polling=POLL_MS)

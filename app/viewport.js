@@ -31,23 +31,26 @@ if (!window.__windpumpViewsSeen) {
     return named == null ? null : named.slice("view-".length)
   }
 
-  // While the server swaps a placeholder for its view, the view's place is empty for a moment:
-  // the page would be shorter and the browser would scroll it up. The place keeps the
-  // placeholder's height until a second after the view has replaced it.
+  // While the server swaps placeholders for their views, the box holding them is laid out
+  // again and is empty for a moment: the page would be shorter and the browser would scroll it
+  // up. The box keeps its height until a second after the views have replaced them.
   const held = []
-  const hold = (el, px) => {
+  const hold = (el) => {
     const place = el.getRootNode().host
     if (place == null) return
-    place.style.minHeight = `${px}px`
+    if (!held.some((h) => h.place === place)) place.style.minHeight = `${place.getBoundingClientRect().height}px`
     held.push({el, place, since: null})
   }
   const release = () => {
     for (const h of held) {
       if (h.el.isConnected) continue
       if (h.since == null) h.since = Date.now()
-      else if (Date.now() - h.since > 1000) h.place.style.minHeight = ""
+      else if (Date.now() - h.since > 1000) h.done = true
     }
-    held.splice(0, held.length, ...held.filter((h) => h.place.style.minHeight !== ""))
+    for (const h of held) {
+      if (h.done && held.every((other) => other.place !== h.place || other.done)) h.place.style.minHeight = ""
+    }
+    held.splice(0, held.length, ...held.filter((h) => !h.done))
   }
 
   const check = () => {
@@ -62,7 +65,7 @@ if (!window.__windpumpViewsSeen) {
       if (box.top < height + reach && box.bottom > -reach) {
         seen.add(name)
         more = true
-        hold(el, box.height)
+        hold(el)
       }
     }
     release()

@@ -46,7 +46,7 @@ def plain(values):
 
 def placeholder_height(app, name) -> int:
     """The height [px] of view ``name``'s placeholder, as the page draws it."""
-    return int(re.search(r"height: (\d+)px", app.pump.slots[name].objects[0].object).group(1))
+    return int(re.search(r"height: (\d+)px", app.pump.slots[name].object).group(1))
 
 
 def lab_csv(omega, torque) -> bytes:
@@ -63,7 +63,7 @@ def test_no_view_is_built_until_the_page_says_it_shows_it():
     np.testing.assert_array_equal(app.sources["speed"].data["lower"], lower)
     np.testing.assert_array_equal(app.sources["speed"].data["upper"], upper)
     assert app.pump.results.objects[0].objects[0].object is app.pump.speed.figure
-    assert app.pump.results.objects[2].objects[0].css_classes[-1] == "view-flow"  # placeholder
+    assert app.pump.results.objects[2].css_classes[-1] == "view-flow"  # its placeholder
     app.see_views(["operating"])
     assert built(app) == {"speed", "machine", "operating"}
 

@@ -35,9 +35,9 @@ from .link import (
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
 from .page import page
-from .pump import PumpViews, name_sources
+from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
-from .serving import DRAW_AFTER_MOVES
+from .serving import DRAW_AFTER_MOVES, TIDY
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
@@ -61,7 +61,9 @@ COMPILING = (
 
 class Explorer(Session, pn.viewable.Viewer):
     """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from;
-    ``start=False`` waits for ``start()`` to run it (while the server compiles the solver)."""
+    ``start=False`` waits for ``start()`` to run it (while the server compiles the solver);
+    ``defer_views`` waits for ``show_views()`` to put the views on the page, and ``lazy_views``
+    builds each view only once the page says it shows it (``see_views``)."""
 
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
@@ -71,6 +73,7 @@ class Explorer(Session, pn.viewable.Viewer):
         bins: int | None = BINS,
         query: dict | None = None,
         defer_views: bool = False,
+        lazy_views: bool = False,
         start: bool = True,
         **params,
     ):
@@ -82,6 +85,8 @@ class Explorer(Session, pn.viewable.Viewer):
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)
         self.sources = self.pump.sources
+        self.lazy_views = lazy_views  # each view built once the page says it is seen
+        self._views_shown = False
         self.sidebar = Sidebar(self.inputs, self.dark, self._csv, self._show_lab_points)
         self.readouts = Readouts()
         self._build_messages(restored_from(query))
@@ -139,6 +144,7 @@ class Explorer(Session, pn.viewable.Viewer):
         bar.clear_button.on_click(lambda _e: self.clear_pinned())
         bar.present_toggle.link(self, value="presentation", bidirectional=True)
         bar.refused_upload.param.watch(self._on_refused_upload, "value")
+        self.pump.channel.param.watch(self._on_views_seen, "value")
         self.param.watch(self._restyle, "presentation")
 
     def start(self) -> None:
@@ -188,22 +194,41 @@ class Explorer(Session, pn.viewable.Viewer):
         return tab
 
     def show_views(self) -> None:
-        """Build the plots and the machine, draw the current run in them and put them on the page.
+        """Build the plots and the machine, draw the current run in them and put them on the page:
+        every view, or with ``lazy_views`` those the page has said it shows (``see_views``).
 
         A served page calls this once it has loaded (``pn.state.onload``): the page a student
-        opens carries the controls and readouts alone and is quick to build, which matters when
-        a class of 30 opens it at once; the ~450 models of the views follow in one message.
+        opens carries the controls, the readouts and the views' placeholders and is quick to
+        build, which matters when a class of 30 opens it at once; the views it shows follow in
+        one message (~65 models each), the others when it scrolls to them.
         """
-        if self.pump.views:
-            return
+        self._views_shown = True
+        self._build_views(self.pump.channel.names(ORDER) if self.lazy_views else ORDER)
+
+    def see_views(self, names: list[str]) -> None:
+        """The page shows (or is about to show) the views ``names``: build those not built yet
+        (once ``show_views()`` has run)."""
+        self.pump.channel.value = " ".join(
+            sorted(set(self.pump.channel.value.split()) | set(names))
+        )
+
+    def _on_views_seen(self, _event) -> None:
+        if self._views_shown and self._build_views(self.pump.channel.names(ORDER)):
+            document = pn.state.curdoc
+            if document is not None and document.session_context is not None:
+                TIDY.settle()  # built on a scroll: frozen out of later collections as its page
+
+    def _build_views(self, names) -> bool:
+        """Build the views ``names`` not built yet; whether any was."""
+        if all(name in self.pump.built for name in names):
+            return False
         document = pn.state.curdoc
         frozen = document.models.freeze() if document is not None else contextlib.nullcontext()
         with pn.io.hold(), frozen:  # one message, one walk of the page's models
-            self.pump.build()
-            if self.presentation:
-                self._restyle_views(True)
-            if self.seen is not None:
-                self._plot(self.seen)
+            if self.seen is not None and self.pump.drawn is None:
+                self._plot(self.seen)  # the latest run, which a view built now draws
+            self.pump.build(names)
+        return True
 
     # -- the one path from inputs to screen --------------------------------------------------
 
@@ -257,8 +282,7 @@ class Explorer(Session, pn.viewable.Viewer):
     def reset(self) -> None:
         """Everything back to the paper's example: inputs, pinned run, lab data, Mechanisms tab."""
         self.clear_pinned()
-        if self.pump.views:
-            self.pump.operating.show_lab_data([], [])
+        self.pump.show_lab_data([], [])
         self.sidebar.lab.hide()
         self.sidebar.preset_note.visible = False
         self.sidebar.preset.value = PRESET_PROMPT
@@ -299,7 +323,7 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def _show_lab_points(self, omega, power) -> None:
         self.show_views()
-        self.pump.operating.show_lab_data(omega, power)
+        self.pump.show_lab_data(omega, power)
 
     def _on_refused_upload(self, _event) -> None:
         """The page stopped a file over the size limit before sending it: say so where it was
@@ -325,9 +349,9 @@ class Explorer(Session, pn.viewable.Viewer):
     def _restyle_views(self, large: bool) -> None:
         """Presentation mode on (``large``) or back off, in every figure built so far: the text
         they draw on their canvas and their lines (the page's HTML follows ``styles.ZOOM_JS``)."""
-        for fig in self.figures():
+        for fig in self.page_tabs.figures():
             present(fig, large)
-        self.pump.restyle(large)
+        self.pump.restyle(large)  # and the views built later
 
     def figures(self) -> list:
         """Every figure on the page so far: the views' and those of the tabs opened."""
@@ -362,6 +386,7 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def pump_tab(self) -> pn.Column:
         return pn.Column(
+            self.pump.channel,
             self.restored,
             self.notices,
             self.error,

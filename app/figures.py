@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from bokeh.models import ColumnDataSource, CustomJS, Legend, LegendItem
+from bokeh.models import ColumnDataSource, CustomJS, GlyphRenderer, Legend, LegendItem
 from bokeh.plotting import figure
 
 WIDTH, HEIGHT = 900, 330  # WIDTH: the widest a view is drawn, so bins of 2 px: WIDTH // 2
@@ -198,6 +198,16 @@ def fit_text_in_the_browser(fig) -> None:
         axis.js_on_change("axis_label", fit)
         axis.js_on_change("axis_label_text_font_size", fit)
     fig._fit_text = fit
+
+
+def lean(fig) -> None:
+    """Drop the copies of each glyph Bokeh makes for a selection and a muted legend item (neither
+    happens here: no tool selects, no legend mutes) and let the browser make them if ever asked:
+    a page's views are ~80 models and 13 % of their message lighter."""
+    for renderer in fig.renderers:
+        if isinstance(renderer, GlyphRenderer):
+            renderer.nonselection_glyph = "auto"
+            renderer.muted_glyph = "auto"
 
 
 def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = "solid"):

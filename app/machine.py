@@ -30,7 +30,7 @@ from windpump.units import LITRES_PER_M3, MM_PER_M
 
 from .figures import LABEL, empty, palette
 from .keyboard import FOCUS_CSS
-from .styles import CAPTION_CSS, px
+from .styles import px
 from .views import View, refill
 
 PLAYER_JS = (Path(__file__).parent / "player.js").read_text(encoding="utf-8")
@@ -250,13 +250,9 @@ class MachineView(View):
             sizing_mode="stretch_width",
         )
 
-    def panel(self, **options) -> pn.Column:
-        return pn.Column(
-            pn.pane.Bokeh(self.layout, sizing_mode="stretch_width"),
-            pn.pane.HTML(f"<p>{self.caption}</p>", stylesheets=CAPTION_CSS),
-            sizing_mode="stretch_width",
-            **options,
-        )
+    def drawing(self) -> pn.pane.Bokeh:
+        """The drawing with its scrubber and Play button under it."""
+        return pn.pane.Bokeh(self.layout, sizing_mode="stretch_width")
 
     def set_design(self, d: windpump.Design) -> None:
         """The drawing's fixed parts, for a new design (nothing is sent when they are unchanged)."""

@@ -11,6 +11,7 @@ import panel as pn
 
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
+from .pump import ORDER
 from .serving import (
     READOUTS_FIRST,
     SOLVER_READY,
@@ -24,6 +25,7 @@ from .serving import (
     without_webgl,
 )
 from .uploads import guard_uploads
+from .viewport import report_views_seen
 
 pn.extension(notifications=False)
 document = pn.state.curdoc
@@ -33,6 +35,7 @@ lighter_patches()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)
+report_views_seen(document, ORDER)
 reopen_when_reconnected(document)
 logging.basicConfig(level=logging.INFO)
 
@@ -43,12 +46,16 @@ full = query.get("resolution", [b""])[0] == b"full"
 # The first start after an install compiles the solver in the background: this page opens at
 # once and runs its design when the solver is ready (serving.first_run_when_ready).
 ready = SOLVER_READY.is_set()
-explorer = Explorer(bins=None if full else BINS, query=query, defer_views=True, start=ready)
+explorer = Explorer(
+    bins=None if full else BINS, query=query, defer_views=True, lazy_views=True, start=ready
+)
 explorer.follow_in_link(pn.state.location)  # one way: the page writes its link, reads it once
 with document.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
 # The plots and the machine follow once the page has loaded, and once every other page opening
-# meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner.
+# meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner;
+# each view only once the page shows it (viewport.report_views_seen): a page nobody scrolls
+# builds the two of its first screen.
 session_id = document.session_context.id
 READOUTS_FIRST.opened(session_id)
 TIDY.opened()

@@ -4,6 +4,7 @@ one (``stale``: the last input was refused)."""
 from __future__ import annotations
 
 import logging
+import weakref
 
 import panel as pn
 import param
@@ -72,7 +73,7 @@ class Session(param.Parameterized):
         self.error.object = message
         self.error.visible = True
         if self.seen is None:  # nothing drawn yet (a link's design was rejected): show the paper's
-            self.seen = windpump.explore(SEED, 600.0)  # example behind it, marked not current
+            self.seen = shared_explore(SEED, 600.0)  # example behind it, marked not current
             with pn.io.hold():
                 self._draw(self.seen)
         self.stale = True
@@ -80,7 +81,7 @@ class Session(param.Parameterized):
 
     def explore(self) -> windpump.Exploration:
         i = self.inputs
-        return windpump.explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
+        return shared_explore(i.design(), i.t_end, i.theta0, i.theta_dot0)
 
     def run_link(self, values: dict, notices: list[str]) -> windpump.Exploration | None:
         """The run of the link's values. A value the core refuses with the others (``T_0=0.9``
@@ -109,6 +110,24 @@ class Session(param.Parameterized):
         if name in FORMATS:
             return f"{self.inputs.param[name].label} = {getattr(self.inputs, name):g} "
         return "This design "
+
+
+# The runs pages hold, by what they ran: a page asking a run another page holds (a class opening the
+# default page asks the same one thirty times) gets that one, computed once and kept once (~2.8 MB
+# for the paper's example) instead of once a page; the run goes with the last page holding it.
+SHARED_RUNS: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
+
+
+def shared_explore(design: windpump.Design, t_end: float, *start: float) -> windpump.Exploration:
+    """``windpump.explore(design, t_end, *start)`` (``start``: θ₀ [rad], θ̇₀ [rad/s]), shared with
+    every page holding the same run (the core's results are frozen: no page changes what another
+    draws)."""
+    key = (design, float(t_end), *map(float, start))
+    seen = SHARED_RUNS.get(key)
+    if seen is None:
+        seen = windpump.explore(design, t_end, *start)
+        SHARED_RUNS[key] = seen
+    return seen
 
 
 def input_name(error: Exception) -> str | None:

@@ -61,22 +61,29 @@ def level(value: float | None, t_end: float) -> dict:
     )
 
 
+def caption_pane(caption: str) -> pn.pane.HTML:
+    """A view's caption, under it on the page."""
+    return pn.pane.HTML(f"<p>{caption}</p>", stylesheets=CAPTION_CSS)
+
+
 class View:
     """A figure with a one-line caption naming its equation; subclasses fill ``sources``."""
 
     caption = ""
+    height = HEIGHT  # [px] the figure's, before presentation mode
 
     def __init__(self, dark: bool = False):
         self.sources: dict[str, ColumnDataSource] = {}
         self.dark = dark
         self.colors = palette(dark)  # the theme's: every drawn colour stands out of its background
 
+    def drawing(self) -> pn.pane.Bokeh:
+        """The figure as the page shows it, above its caption."""
+        return pn.pane.Bokeh(self.figure, sizing_mode="stretch_width")
+
     def panel(self, **options) -> pn.Column:
         return pn.Column(
-            pn.pane.Bokeh(self.figure, sizing_mode="stretch_width"),
-            pn.pane.HTML(f"<p>{self.caption}</p>", stylesheets=CAPTION_CSS),
-            sizing_mode="stretch_width",
-            **options,
+            self.drawing(), caption_pane(self.caption), sizing_mode="stretch_width", **options
         )
 
     def update(self, seen: windpump.Exploration, bins: int | None) -> None:
@@ -106,9 +113,18 @@ class TimeView(View):
     # A view with a band named ``traced`` keeps a pinned run as ``<traced>_ghost``.
     traced = ""
 
+    def band(self, seen: windpump.Exploration, bins: int | None) -> dict:
+        """The band drawn for ``seen``: its ``t``, ``lower`` and ``upper``."""
+        raise NotImplementedError
+
     def pin(self) -> None:
         """Keep the current band as a faint ghost to compare the next run with."""
         self.sources[f"{self.traced}_ghost"].data = dict(self.sources[self.traced].data)
+        self.items["pinned run"].visible = True
+
+    def pin_run(self, seen: windpump.Exploration, bins: int | None) -> None:
+        """Keep ``seen``'s band as the ghost (a run pinned before this view was built)."""
+        self.sources[f"{self.traced}_ghost"].data = self.band(seen, bins)
         self.items["pinned run"].visible = True
 
     def clear(self) -> None:
@@ -159,10 +175,13 @@ class SpeedView(TimeView):
         )
         self.hover_on(integrated[0])
 
+    def band(self, seen, bins):
+        return band_data(seen.run.t, seen.run.theta_dot, bins)
+
     def update(self, seen, bins):
         run, s = seen.run, self.sources
         t_end = float(run.t[-1])
-        refill(s["speed"], band_data(run.t, run.theta_dot, bins))
+        refill(s["speed"], self.band(seen, bins))
         refill(s["spinup"], {"t": seen.spinup_t, "speed": seen.spinup_speed})
         cycle_t, lower, upper = band(seen.cycle_t, seen.cycle_speed, bins)
         refill(s["cycle_mean"], {"t": cycle_t, "speed": 0.5 * (lower + upper)})
@@ -205,9 +224,12 @@ class FlowView(TimeView):
         )
         self.hover_on(instantaneous[0])
 
+    def band(self, seen, bins):
+        return band_data(seen.run.t, LITRES_PER_M3 * seen.run.flow, bins)
+
     def update(self, seen, bins):
         run, s = seen.run, self.sources
-        refill(s["flow"], band_data(run.t, LITRES_PER_M3 * run.flow, bins))
+        refill(s["flow"], self.band(seen, bins))
         refill(
             s["mean_flow"],
             {"t": [0.0, float(run.t[-1])], "flow": [LITRES_PER_M3 * seen.mean_flow] * 2},
@@ -338,6 +360,7 @@ class StallView(View):
         "when double-acting)."
     )
     NAMES = ("windmill: Tₘ†", "load: m R† L†/π")
+    height = HEIGHT * 3 // 4
 
     def __init__(self, dark: bool = False):
         super().__init__(dark)
@@ -352,7 +375,7 @@ class StallView(View):
             "Stall criterion, Eq. (22)",
             "dimensionless torque",
             "",
-            height=HEIGHT * 3 // 4,
+            height=self.height,
             tools="save",
             y_range=FactorRange(*self.NAMES),
         )

@@ -1,7 +1,7 @@
 """A lecture hall at the protocol level: N students open the explorer within a few seconds and move
 its sliders, each a websocket client that speaks Bokeh's protocol as the page does but draws nothing.
 
-Run: python benchmarks/bench_hall.py [N ...] [--minutes M] [--upload]
+Run: python benchmarks/bench_hall.py [N ...] [--minutes M] [--upload] [--scroll FRACTION]
      (N = 30 100 200 by default; each hall on a fresh `panel serve app/` on loopback)
 
 Each student: GETs the page (the server builds its session), opens the page's websocket with the
@@ -12,6 +12,12 @@ Recorded per student: the time from its GET to its readouts (the mean-flow reado
 and each move's round trip (the PATCH-DOC sent -> the PATCH-DOC that changes the readouts). For the
 server: its CPU and resident memory, sampled every half second. Printed: percentiles, the server's
 CPU per page (while the hall opens), memory per idle session and after the hall has closed.
+
+The page builds each view when it first shows it (``app/viewport.js`` names the views seen in a
+hidden input): each student, once loaded, names those of a first screen at 1280x720 (the crank
+speed and the machine), as that page does; ``--scroll FRACTION``: that fraction of the students
+then scroll to the bottom (1-3 s after their readouts), naming every view. A server without that
+input (before it) builds every view anyway and is sent nothing.
 
 ``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
 and the others' round trips are split into before/while/after.
@@ -63,6 +69,9 @@ MOVES = {
 TOKEN = re.compile(r'"token":"([^"]+)"')
 READOUT = 'data-name="mean_flow"'
 READOUTS = 'class="readout"'  # every readout of the row: a move changes at least one
+VIEWS_SEEN = "views-seen"  # the hidden input where the page names the views it shows
+FIRST_SCREEN = "speed machine"  # what a page at 1280x720 names once loaded
+EVERY_VIEW = "speed machine flow closeup energy stall operating"  # scrolled to the bottom
 
 
 def loopback(url: str) -> str:
@@ -94,6 +103,7 @@ class Student:
     acknowledged: asyncio.Event = field(default_factory=asyncio.Event)
     watchers: list = field(default_factory=list)  # called with every ModelChanged received
     cookies: dict = field(default_factory=dict)  # as a browser keeps them (a proxy's stickiness)
+    scrolls: bool = False  # scrolls to the bottom once its readouts are shown
 
     async def open(self) -> None:
         self.opened = time.perf_counter()
@@ -121,6 +131,9 @@ class Student:
         await self.loaded()
         if self.to_readout is None:  # the server was compiling: the readout follows in a patch
             await asyncio.wait_for(self.readout_changed.wait(), WAIT)
+        if self.scrolls:
+            await asyncio.sleep(self.rng.uniform(1.0, 3.0))
+            await self.see_views(EVERY_VIEW)
 
     def cookie_header(self) -> dict:
         cookie = "; ".join(f"{name}={value}" for name, value in self.cookies.items())
@@ -147,6 +160,14 @@ class Student:
         ready = {"type": "event", "name": "document_ready", "values": {"type": "map"}}
         event = {"kind": "MessageSent", "msg_type": "bokeh_event", "msg_data": ready}
         await self.patch([event])
+        await self.see_views(FIRST_SCREEN)
+
+    async def see_views(self, names: str) -> None:
+        """Name the views the page shows, as ``viewport.js`` does (if the page asks)."""
+        seen = lambda m: VIEWS_SEEN in (m.get("css_classes") or [])  # noqa: E731
+        channel = next((i for i, m in self.models.items() if seen(m)), None)
+        if channel is not None:
+            await self.patch([changed(channel, "value", names)])
 
     async def move(self) -> None:
         """Move one slider to a random value on its step; time until the readout changes."""
@@ -323,6 +344,7 @@ class Hall:
     burst: list[float]  # [s] round trips of BURST students moving at the same moment
     upload: dict[str, list[float]]  # round trips before/while/after one student's 10 MB upload
     errors: list[str]
+    scrolled: int = 0  # students who scrolled to the bottom
     flights: list[tuple[float, float]] = field(default_factory=list)  # (sent, round trip) [s]
     # the sent times in time.time(); every move's, the hall's opening to its end
 
@@ -332,9 +354,13 @@ BURSTS = 3  # times they do, BURST_PAUSE [s] apart
 BURST_PAUSE = 2.0
 
 
-async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -> Hall:
+async def a_hall(
+    url: str, n: int, minutes: float, watch: Watch, upload: bool, scroll: float = 0.0
+) -> Hall:
     rng = random.Random(n)
     students = [Student(url, random.Random(rng.random())) for _ in range(n)]
+    for i in random.Random(n + 1).sample(range(n), round(scroll * n)):
+        students[i].scrolls = True
     delays = sorted(rng.uniform(0.0, OPEN_WITHIN) for _ in range(n))
     sampling = asyncio.ensure_future(watch.run())
     await watch.quiet(within=30.0)
@@ -374,6 +400,7 @@ async def a_hall(url: str, n: int, minutes: float, watch: Watch, upload: bool) -
         burst=burst,
         upload=around,
         errors=[e for s in students for e in s.errors],
+        scrolled=sum(s.scrolls for s in students),
         flights=flights,
     )
 
@@ -502,6 +529,10 @@ def report(hall: Hall) -> None:
     memory = hall.memory
     print(f"hall of {hall.n}: opened within {OPEN_WITHIN:.0f} s, load {os.getloadavg()[0]:.1f}")
     print(
+        f"  views: each page names its first screen's ({FIRST_SCREEN}); {hall.scrolled} of "
+        f"{hall.n} then scroll to the bottom (every view)"
+    )
+    print(
         f"  readouts [s]: {percentiles(hall.to_readout)}; all {len(hall.to_readout)} within "
         f"{hall.open_seconds:.1f} s of the first GET"
     )
@@ -571,8 +602,9 @@ def stalls(events: list[dict], flights: list[tuple[float, float]]) -> list[str]:
 SERVE = ["--unused-session-lifetime", "30000", "--check-unused-sessions", "2000"]
 
 
-def run(n: int, minutes: float, upload: bool, watch: bool = False) -> Hall:
-    """One hall of ``n`` on a fresh `panel serve app/`; ``watch``: what held up its loop."""
+def run(n: int, minutes: float, upload: bool, watch: bool = False, scroll: float = 0.0) -> Hall:
+    """One hall of ``n`` on a fresh `panel serve app/`; ``watch``: what held up its loop;
+    ``scroll``: the fraction of students who scroll through every view."""
     # Each student's browser opens its own connections: not Tornado's default pool of 10
     AsyncHTTPClient.configure(None, max_clients=MAX_SESSIONS + 1)
     if not 1 <= n <= MAX_SESSIONS:
@@ -586,7 +618,7 @@ def run(n: int, minutes: float, upload: bool, watch: bool = False) -> Hall:
             loopback(address)
             warm = Student(address, random.Random(0))  # imports, caches: not the hall's cost
             asyncio.run(asyncio.wait_for(warm_up(warm), WAIT))
-            hall = asyncio.run(a_hall(address, n, minutes, Watch(server.pid), upload))
+            hall = asyncio.run(a_hall(address, n, minutes, Watch(server.pid), upload, scroll))
     finally:
         del os.environ["WINDPUMP_LOOP_WATCH"]
     report(hall)
@@ -608,9 +640,15 @@ def main(argv: list[str] | None = None) -> list[Hall]:
     parser.add_argument("--minutes", type=float, default=1.0, help="of moves (default 1)")
     parser.add_argument("--upload", action="store_true", help="one student loads 10 MB")
     parser.add_argument("--watch", action="store_true", help="what holds up the server's loop")
+    parser.add_argument(
+        "--scroll", type=float, default=0.0, help="fraction of students scrolling (default 0)"
+    )
     args = parser.parse_args(argv)
-    print(f"bench_hall on {os.cpu_count()} cores, load {os.getloadavg()}")
-    return [run(n, min(args.minutes, 10.0), args.upload, args.watch) for n in args.n]
+    if not 0.0 <= args.scroll <= 1.0:
+        raise SystemExit("--scroll FRACTION: 0 <= FRACTION <= 1")
+    print(f"bench_hall on {os.cpu_count()} cores, load {os.getloadavg()}, --scroll {args.scroll:g}")
+    minutes = min(args.minutes, 10.0)
+    return [run(n, minutes, args.upload, args.watch, args.scroll) for n in args.n]
 
 
 if __name__ == "__main__":

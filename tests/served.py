@@ -44,6 +44,37 @@ VIEWS_DRAWN = (
     " return s !== null && s.data.upper.length > 0 }"
 )
 
+# The pump's views are built when the page first shows them (app/viewport.js): a test that needs
+# one below the first screen scrolls to it, as a person would, and waits for it (``show_view``).
+# Scrolls the placeholder of view ``name`` into the middle of the screen, unless it is drawn.
+SCROLL_TO_VIEW = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
+  if (model !== null && window.Bokeh.index.find_one(model)) return 'drawn';
+  const walk = (root) => {
+    const hit = root.querySelector('.view-' + name);
+    if (hit) return hit;
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) { const found = walk(el.shadowRoot); if (found) return found; }
+    }
+    return null;
+  };
+  const el = walk(document);
+  if (el !== null) el.scrollIntoView({block: 'center'});
+  return el !== null ? 'scrolled' : 'missing';
+}"""
+VIEW_DRAWN = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
+  const view = model && window.Bokeh.index.find_one(model);
+  return view != null && view.el.isConnected && view.el.getBoundingClientRect().height > 0;
+}"""
+
+
+def show_view(page, name: str, timeout: float = 60_000) -> None:
+    """Scroll to the pump's view ``name`` (``speed``, ``flow``...) unless it is drawn already, and
+    wait until it is, at most ``timeout`` [ms]."""
+    page.evaluate(SCROLL_TO_VIEW, name)
+    page.wait_for_function(VIEW_DRAWN, arg=name, timeout=timeout, polling=POLL_MS)
+
 
 def free_port() -> int:
     with socket.socket() as s:

@@ -18,6 +18,7 @@ from served import (
     DEEP_TEXT,
     VIEWS_DRAWN,
     server_log,
+    show_view,
 )
 
 pytestmark = pytest.mark.browser
@@ -80,7 +81,8 @@ def open_page(browser, url, width=1400, height=1000, query=""):
     page.wait_for_function(
         f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
     )
-    page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
+    if width > 700:  # a phone shows the sidebar first: its views come when it scrolls to them
+        page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
     page.problems, page.elsewhere, page.scripts = problems, elsewhere, scripts
     page.received = received  # the server's messages over the page's websocket
     return page
@@ -182,6 +184,7 @@ def test_the_energy_view_is_on_the_main_page(page):
     run = windpump.simulate(SEED, 600.0)
     work = windpump.power_budget(run).shaft_work[-1]
     assert f"{work:,.0f} J = " in text(page, "energy")
+    show_view(page, "energy")  # below the first screen: built once scrolled to
     right = model_data(page, "losses", "right")
     assert len(right) == 6 and right[0] == pytest.approx(work, rel=1e-9)
     assert page.problems == []
@@ -640,6 +643,12 @@ def test_with_a_pinned_run_every_legend_label_shows_in_full(browser, url):
             "() => Bokeh.documents[0].get_model_by_name('speed_ghost').data.t.length > 0",
             timeout=60_000,
         )
+        for name in ("flow", "operating"):  # below the first screen
+            show_view(page, name)
+        page.wait_for_function(
+            "() => Bokeh.documents[0].get_model_by_name('flow_ghost').data.t.length > 0",
+            timeout=60_000,
+        )  # the ghost of a run pinned before the view was built
         page.wait_for_timeout(500)  # the legend is laid out on the next frame
         legends = page.evaluate(LEGEND_BOXES)
         speed = [
@@ -684,6 +693,7 @@ def test_cylinders_and_torque_at_rest_from_the_link_and_the_double_acting_box(br
         wait_for_readout(page, "mean_flow", flow_readout(design, theta_dot0=0.0))
         page.get_by_text("It starts on its own from any angle").first.wait_for(timeout=30_000)
         faces = "() => window.Bokeh.documents[0].get_model_by_name('closeup_faces').data.ys.length"
+        show_view(page, "closeup")
         page.wait_for_function(f"{faces} === 2", timeout=60_000)  # each cylinder's pulses
         box = page.get_by_role("checkbox")  # the page's one check box
         assert box.count() == 1 and page.get_by_text("Double-acting pistons").count() == 1

@@ -12,6 +12,8 @@ from test_browser import ARTIFACTS, SIZES, handle, open_page, text
 
 from served import DEEP_TEXT
 
+from served import show_view
+
 pytestmark = pytest.mark.browser
 
 FIGURES = ("speed", "machine", "flow", "closeup", "energy", "stall", "operating")
@@ -77,7 +79,7 @@ FONT_SIZE = """(text) => {
 
 def settled(page) -> None:
     """Bokeh lays figures out after their data arrive: give the layout a moment to settle."""
-    page.wait_for_function(f"(n) => ({VIEW_BOX})(n + '_figure') !== null", arg="machine")
+    show_view(page, "machine")  # on a phone, below the sidebar: scrolled to
     time.sleep(1.0)
 
 
@@ -232,6 +234,8 @@ def test_nothing_scrolls_sideways_and_no_canvas_text_is_cut(browser, url, width,
         settled(page)
         sideways = [(s, extra) for s, extra in page.evaluate(SCROLLS) if extra > 0]
         assert sideways == [], f"sideways scrolling at {width}×{height}{query}: {sideways}"
+        for name in FIGURES:  # each built once scrolled to
+            show_view(page, name)
         cut = {n: page.evaluate(CANVAS_TEXT, f"{n}_figure") for n in FIGURES if n != "machine"}
         assert {n: c for n, c in cut.items() if c} == {}
         header = page.locator("#header").bounding_box()

@@ -120,7 +120,9 @@ def test_a_page_that_loses_its_server_says_so_and_reopens_from_its_link(tmp_path
             assert "lost" in page.inner_text("#windpump-offline")
             server = serve()
             page.wait_for_url("**restored=true**")
-            page.get_by_text("The connection to the server was lost and is back").wait_for()
+            page.get_by_text("The connection to the server was lost and is back").filter(
+                visible=True
+            ).wait_for()
             page.wait_for_function("() => !window.location.search.includes('restored')")
             assert "h=4.2" in page.url  # the design, from the link, and the notice not kept in it
             assert page.locator(".bk-slider-title", has_text="Head h [m]: 4.2").count() == 1

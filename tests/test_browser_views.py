@@ -1,0 +1,118 @@
+"""The pump's views built when the page first shows them, in Debian's chromium: a page nobody
+scrolls builds its first screen's views only; scrolled, the others come with their data; a
+phone, whose first screen is the sidebar, builds none before it scrolls. And the notice of a
+restored connection at the top of what each screen shows."""
+
+from __future__ import annotations
+
+import time
+
+import pytest
+from playwright.sync_api import expect
+from test_browser import ARTIFACTS, open_page
+
+from served import POLL_MS, show_view
+
+pytestmark = pytest.mark.browser
+
+ORDER = ("speed", "machine", "flow", "closeup", "energy", "stall", "operating")
+BUILT = (
+    "() => [...Bokeh.documents[0].all_models].map(m => m.name)"
+    ".filter(n => n && n.endsWith('_figure')).map(n => n.slice(0, -'_figure'.length))"
+)
+# Each view's main data source, filled: what it draws has arrived.
+FILLED = {
+    "speed": ("speed", "upper"),
+    "machine": ("frames", "t"),
+    "flow": ("flow", "upper"),
+    "closeup": ("closeup", "flow"),
+    "energy": ("losses", "right"),
+    "stall": ("stall", "value"),
+    "operating": ("curve", "power"),
+}
+HAS_DATA = """([source, column]) => {
+  const s = window.Bokeh.documents[0].get_model_by_name(source);
+  return s !== null && s.data[column] !== undefined && s.data[column].length > 0;
+}"""
+SCROLLER = "(document.querySelector('#content').scrollHeight > document.querySelector('#content').clientHeight + 2 && getComputedStyle(document.querySelector('#content')).overflowY !== 'visible' ? document.querySelector('#content') : document.querySelector('#main'))"  # noqa: E501
+
+
+def built(page) -> set[str]:
+    return set(page.evaluate(BUILT))
+
+
+def scroll_down_by_screens(page, height: int) -> None:
+    """Scroll the page down a screen at a time to its end, pausing as a reader would."""
+    for _ in range(20):
+        at_end = page.evaluate(
+            f"(h) => {{ const s = {SCROLLER}; s.scrollTop += 0.8 * h;"
+            " return s.scrollTop + s.clientHeight >= s.scrollHeight - 1 }",
+            height,
+        )
+        time.sleep(0.5)
+        if at_end:
+            return
+
+
+def test_a_projector_page_builds_its_first_screen_and_the_rest_when_scrolled(browser, url):
+    page = open_page(browser, url, 1280, 720)
+    try:
+        time.sleep(3.0)  # anything the page would ask for unscrolled has been asked for
+        assert built(page) == {"speed", "machine"}
+        # a jump to the lower half: the views there come, and the page stays where it was put
+        at = page.evaluate(
+            f"() => {{ const s = {SCROLLER}; s.scrollTop = 0.6 * s.scrollHeight;"
+            " return s.scrollTop }"
+        )
+        for name in ("energy", "stall", "operating"):
+            page.wait_for_function(HAS_DATA, arg=FILLED[name], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)  # laid out
+        assert abs(page.evaluate(f"() => {SCROLLER}.scrollTop") - at) <= 2
+        page.evaluate(f"() => {{ {SCROLLER}.scrollTop = 0 }}")  # then from the top to the end
+        scroll_down_by_screens(page, 720)
+        for name in ORDER:
+            page.wait_for_function(HAS_DATA, arg=FILLED[name], timeout=60_000, polling=POLL_MS)
+        assert built(page) == set(ORDER)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "views-scrolled-1280x720.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_phone_builds_no_view_before_it_scrolls_to_one(browser, url):
+    """At 390×844 the sidebar fills the first screen: no view is built until the student
+    scrolls down to the views; then the crank speed comes with its data, and the views further
+    down are not built."""
+    page = open_page(browser, url, 390, 844)
+    try:
+        time.sleep(3.0)
+        assert built(page) == set()
+        show_view(page, "speed")
+        page.wait_for_function(HAS_DATA, arg=FILLED["speed"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        assert "operating" not in built(page)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "views-phone-390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("width, height", [(390, 844), (1280, 720)])
+def test_a_restored_connection_is_said_at_the_top_of_the_screen(browser, url, width, height):
+    """The page reopened after its connection was lost says so where each screen starts: on a
+    phone at the top of the sidebar, which comes first, beside it above the readouts."""
+    page = open_page(browser, url, width, height, query="?restored=true")
+    try:
+        notice = page.get_by_text("The connection to the server was lost and is back")
+        shown = notice.filter(visible=True)
+        expect(shown).to_have_count(1)
+        expect(shown).to_be_in_viewport(ratio=1.0)
+        header = page.locator("#header").bounding_box()
+        assert shown.bounding_box()["y"] >= header["y"] + header["height"] - 1  # not under it
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"restored-{width}x{height}.png"))
+        assert page.problems == []
+    finally:
+        page.close()

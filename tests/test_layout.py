@@ -10,9 +10,7 @@ import pytest
 from playwright.sync_api import expect
 from test_browser import ARTIFACTS, SIZES, handle, open_page, text
 
-from served import DEEP_TEXT
-
-from served import show_view
+from served import DEEP_TEXT, show_view
 
 pytestmark = pytest.mark.browser
 
@@ -345,9 +343,7 @@ def test_the_waterfall_labels_end_inside_their_figure(browser, url, width, heigh
     page = open_page(browser, url, width, height, query)
     try:
         settled(page)
-        page.wait_for_function(
-            "() => window.Bokeh.documents[0].get_model_by_name('energy_figure') !== null"
-        )
+        show_view(page, "energy")  # built when scrolled to, as a student sees it
         assert page.evaluate(CUT_GLYPH_TEXT, "energy_figure") == []
         assert page.problems == []
     finally:

@@ -19,7 +19,7 @@ import param
 import windpump
 
 from .figures import present
-from .inputs import PRESETS
+from .inputs import FROM_THE_LINK, PRESETS, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -155,6 +155,8 @@ class Explorer(Session, pn.viewable.Viewer):
         values, notices = self._link
         self._link = None
         seen = self.run_link(values, notices)
+        if values:  # a reopened link says what it shows, as a chosen preset does
+            self._say_what_the_link_shows()
         self.notices.object = notices_text(notices)
         self.notices.visible = bool(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
@@ -290,6 +292,15 @@ class Explorer(Session, pn.viewable.Viewer):
             self.mechanisms_tab.reset()
         self.site_inputs.param.update(**self.site_inputs.defaults())
         self.set_values(**self.inputs.defaults())
+
+    def _say_what_the_link_shows(self) -> None:
+        """The preset the link's design is (chosen, with its sentence), or that it is the link's."""
+        name = preset_of(self.inputs)
+        if name is not None:
+            self.sidebar.preset.value = name  # _on_preset: the same values, and its sentence
+        else:
+            self.sidebar.preset_note.object = FROM_THE_LINK
+            self.sidebar.preset_note.visible = True
 
     def _on_preset(self, event) -> None:
         if event.new not in PRESETS:

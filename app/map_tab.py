@@ -94,9 +94,14 @@ def mapped_colour(mapper: LogColorMapper, value: float) -> str:
     return mapper.palette[min(max(index, 0), len(mapper.palette) - 1)]
 
 
-def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float, float]:
-    """Where a contour's label goes: its middle vertex away from the map's edges (where a
-    label would be cut), else its middle vertex."""
+def label_place(
+    xs: np.ndarray, ys: np.ndarray, x_range, y_range, stall: np.ndarray | None = None
+) -> tuple[float, float, str, str]:
+    """Where a contour's label goes, (x, y, text_align, text_baseline): its middle vertex away
+    from the map's edges (where a label would be cut) whose label, aligned as ``label_anchor``
+    says or else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at
+    heads spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from
+    it."""
     finite = np.isfinite(xs) & np.isfinite(ys)
     (x0, x1), (y0, y1) = x_range, y_range
     inner = (
@@ -106,9 +111,49 @@ def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float
         & (ys > y0 + 0.05 * (y1 - y0))
         & (ys < y1 - 0.05 * (y1 - y0))
     )
-    candidates = np.flatnonzero(inner if inner.any() else finite)
-    middle = candidates[len(candidates) // 2]
-    return float(xs[middle]), float(ys[middle])
+    places = []  # at each vertex: (clearance, align, baseline), the best of its alignments
+    for x, y in zip(xs, ys, strict=True):
+        align, baseline = label_anchor(x, y, x_range, y_range)
+        aligns = [align] + (["left"] if align != "left" and x < x1 - 0.2 * (x1 - x0) else [])
+        scored = [(label_clearance(x, y, a, baseline, x_range, y_range, stall), a) for a in aligns]
+        chosen = next((s for s in scored if s[0] > LABEL_MARGIN), max(scored))
+        places.append((*chosen, baseline))
+    clearance = np.array([place[0] for place in places])
+    clear = finite & (clearance > LABEL_MARGIN)
+    if clear.any():
+        candidates = np.flatnonzero(inner & clear if (inner & clear).any() else clear)
+        at = candidates[len(candidates) // 2]
+    else:
+        at = int(np.argmax(np.where(finite, clearance, -np.inf)))
+    return float(xs[at]), float(ys[at]), places[at][1], places[at][2]
+
+
+# A contour label's size as a share of the map's width and height ("100 m³/day" at 15 px on a
+# map ~600 x 330 px), and the gap it keeps from the stall boundary, a share of the width.
+LABEL_SIZE = (0.16, 0.07)
+LABEL_MARGIN = 0.02
+
+
+def label_clearance(
+    x: float, y: float, align: str, baseline: str, x_range, y_range, stall: np.ndarray | None
+) -> float:
+    """How far right of the stall boundary a label at (x, y) so aligned starts, as a share of
+    the map's width, where the boundary is farthest right over the label's height (its ratio
+    grows with the head: at the label's top). ``stall``: the boundary's ratio at heads spanning
+    ``y_range`` evenly (non-finite: none at that head); +inf where it has none; -inf for a
+    point off the map."""
+    (x0, x1), (y0, y1) = x_range, y_range
+    if not (np.isfinite(x) and np.isfinite(y)):
+        return -math.inf
+    known = np.isfinite(stall) if stall is not None else np.array([False])
+    if not known.any():
+        return math.inf
+    heads = np.linspace(y0, y1, len(stall))
+    width, height = LABEL_SIZE
+    left = (x - x0) / (x1 - x0) - {"left": 0.0, "center": 0.5, "right": 1.0}[align] * width
+    top = (y - y0) / (y1 - y0) + {"bottom": 1.0, "middle": 0.5, "top": 0.0}[baseline] * height
+    boundary = np.interp(y0 + min(top, 1.0) * (y1 - y0), heads[known], stall[known])
+    return float(left - (boundary - x0) / (x1 - x0))
 
 
 def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
@@ -278,13 +323,13 @@ class MapTab(Tab):
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
         self.ticker.ticks = colour_ticks(self.mapper.low, self.mapper.high)
-        self._draw_contours(flow)
+        self._draw_contours(flow, stall)
         refill(self.sources["stall"], {"ratio": stall, "h": self.heads})
         refill(self.sources["best"], {"ratio": best, "h": self.heads})
 
-    def _draw_contours(self, flow: np.ndarray) -> None:
+    def _draw_contours(self, flow: np.ndarray, stall: np.ndarray) -> None:
         """The round levels' lines, each in black or white for its level's colour and labelled
-        with its value at a point of it."""
+        with its value at a point of it clear of the stall boundary (``stall``, by head)."""
         levels = contour_levels(flow)
         lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
         labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
@@ -295,17 +340,18 @@ class MapTab(Tab):
                 under = mapped_colour(self.mapper, level)
                 lines["color"].append(ink_on(under))
                 if np.isfinite(xs).any():
-                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under)
+                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under, stall)
                     for name, value in label.items():
                         labels[name].append(value)
         self.contours.line_renderer.data_source.data = lines
         self.contours.levels = [float(level) for level in levels]
         refill(self.sources["contour_labels"], labels)
 
-    def _contour_label(self, level: float, xs: np.ndarray, ys: np.ndarray, under: str) -> dict:
+    def _contour_label(
+        self, level: float, xs: np.ndarray, ys: np.ndarray, under: str, stall: np.ndarray
+    ) -> dict:
         bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
-        x, y = label_point(xs, ys, *bounds)
-        align, baseline = label_anchor(x, y, *bounds)
+        x, y, align, baseline = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float))
         return {
             "x": x,
             "y": y,

@@ -116,3 +116,41 @@ def test_a_restored_connection_is_said_at_the_top_of_the_screen(browser, url, wi
         assert page.problems == []
     finally:
         page.close()
+
+
+# Each axis of a figure: (major ticks inside its range, their spacing [px], the extent of a tick
+# label along the axis [px]: its font size across y, its widest label across x).
+TICK_ROOM = """(name) => {
+  const fig = Bokeh.documents[0].get_model_by_name(name + '_figure');
+  const ctx = document.createElement('canvas').getContext('2d');
+  const out = [];
+  const axes = [[fig.below, fig.x_range, fig.inner_width, true], [fig.left, fig.y_range, fig.inner_height, false]];
+  for (const [panels, range, room, across] of axes) {
+    const axis = panels.find(p => p.ticker !== undefined);
+    const low = Math.min(range.start, range.end), high = Math.max(range.start, range.end);
+    const major = axis.ticker.get_ticks(low, high, range, NaN).major.filter(v => v >= low && v <= high);
+    const step = major.length > 1 ? (major[1] - major[0]) / (high - low) * room : room;
+    const px = parseFloat(axis.major_label_text_font_size);
+    ctx.font = `${px}px helvetica`;
+    const size = across ? Math.max(...major.map(v => ctx.measureText(String(v)).width)) : px;
+    out.push([major.length, step, size]);
+  }
+  return out;
+}"""  # noqa: E501
+
+
+def test_a_phone_in_presentation_mode_draws_fewer_ticks_than_would_crowd(browser, url):
+    """At 390×844 in presentation mode the crank speed's tick labels (18 px) stand apart: at least
+    half a label between two labels, on both axes, and still two ticks or more."""
+    page = open_page(browser, url, 390, 844, query="?presentation=true")
+    try:
+        show_view(page, "speed")
+        page.wait_for_function(HAS_DATA, arg=FILLED["speed"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        for count, step, size in page.evaluate(TICK_ROOM, "speed"):
+            assert count >= 2 and step >= 1.5 * size, (count, step, size)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "ticks-phone-presentation-390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()

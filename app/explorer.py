@@ -42,7 +42,7 @@ from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
 from .site_tab import SITE_MESSAGE, SiteTab
-from .styles import TEXT
+from .styles import NOTICE
 from .tab import PageTabs, Tab
 from .views import BINS
 from .wind_tab import WIND_MESSAGE, WindTab
@@ -113,13 +113,13 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
-            "", alert_type="warning", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
+            "", alert_type="warning", visible=False, stylesheets=NOTICE, sizing_mode="stretch_width"
         )
         self.restored = pn.pane.Alert(
             RESTORED,
             alert_type="info",
             visible=restored,
-            stylesheets=TEXT,
+            stylesheets=NOTICE,
             sizing_mode="stretch_width",
         )
 

@@ -154,3 +154,63 @@ def test_a_phone_in_presentation_mode_draws_fewer_ticks_than_would_crowd(browser
         assert page.problems == []
     finally:
         page.close()
+
+
+def test_a_phone_shows_a_notice_the_readouts_and_the_whole_status_above_the_controls(browser, url):
+    """At 390×844 a link's notice (two values ignored), the readouts and the status under them
+    all fit the tabs' pane, above the controls' pane; the Wind tab's four readouts take two rows."""
+    page = open_page(browser, url, 390, 844, query="?h=banana&T_m=x")
+    try:
+        status = page.locator("p", has_text="It settles at").first
+        status.wait_for(timeout=60_000)
+        notice = page.get_by_text("Some values in the link were ignored").first
+        tabs_pane = page.locator("#main").bounding_box()
+        controls = page.locator("#sidebar").bounding_box()
+        seen = status.bounding_box()
+        assert notice.bounding_box()["y"] >= tabs_pane["y"]
+        assert seen["y"] + seen["height"] <= controls["y"], (seen, controls)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "notice-phone-390x844.png"))
+        page.get_by_role("tab", name="Wind", exact=True).click()
+        rows = set()
+        for name in ("day_litres", "record_bounds", "site_bounds", "thresholds"):
+            readout = page.locator(f"[data-name={name}]")
+            expect(readout).not_to_have_text("", timeout=60_000)
+            top = readout.evaluate("el => el.parentElement.getBoundingClientRect().top")
+            rows.add(round(top / 20))  # its box's top; a row: within ~20 px
+        assert len(rows) == 2, rows
+        page.screenshot(path=str(ARTIFACTS / "wind-readouts-phone-390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+PLACED = """(name) => {
+  const walk = (root) => {
+    const hit = root.querySelector('.view-' + name);
+    if (hit) return hit;
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) { const found = walk(el.shadowRoot); if (found) return found; }
+    }
+    return null;
+  };
+  const el = walk(document);
+  return el === null ? null : el.getBoundingClientRect().top;
+}"""
+
+
+def test_a_view_behind_a_phones_controls_is_not_seen(browser, url):
+    """At 390×844 the machine's placeholder starts on the screen, but behind the controls' pane
+    (under the crank speed): it is not built until the tabs' pane is scrolled to it."""
+    page = open_page(browser, url, 390, 844)
+    try:
+        time.sleep(3.0)
+        assert "machine" not in built(page)
+        controls = page.locator("#sidebar").bounding_box()
+        top = page.evaluate(PLACED, "machine")
+        assert top is not None and controls["y"] < top < 844  # on the screen, behind the pane
+        show_view(page, "machine")
+        page.wait_for_function(HAS_DATA, arg=FILLED["machine"], timeout=60_000, polling=POLL_MS)
+        assert page.problems == []
+    finally:
+        page.close()

@@ -111,49 +111,56 @@ def label_place(
         & (ys > y0 + 0.05 * (y1 - y0))
         & (ys < y1 - 0.05 * (y1 - y0))
     )
-    places = []  # at each vertex: (clearance, align, baseline), the best of its alignments
-    for x, y in zip(xs, ys, strict=True):
-        align, baseline = label_anchor(x, y, x_range, y_range)
-        aligns = [align] + (["left"] if align != "left" and x < x1 - 0.2 * (x1 - x0) else [])
-        scored = [(label_clearance(x, y, a, baseline, x_range, y_range, stall), a) for a in aligns]
-        chosen = next((s for s in scored if s[0] > LABEL_MARGIN), max(scored))
-        places.append((*chosen, baseline))
-    clearance = np.array([place[0] for place in places])
+    anchors = [label_anchor(x, y, x_range, y_range) for x, y in zip(xs, ys, strict=True)]
+    aligns = np.array([align for align, _ in anchors])
+    baselines = np.array([baseline for _, baseline in anchors])
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
+    # not clear as anchored: extending rightwards instead, where the label still fits the map
+    rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & (xs < x1 - 0.2 * (x1 - x0))
+    aligns = np.where(rightwards, "left", aligns)
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
     clear = finite & (clearance > LABEL_MARGIN)
     if clear.any():
         candidates = np.flatnonzero(inner & clear if (inner & clear).any() else clear)
         at = candidates[len(candidates) // 2]
     else:
         at = int(np.argmax(np.where(finite, clearance, -np.inf)))
-    return float(xs[at]), float(ys[at]), places[at][1], places[at][2]
+    return float(xs[at]), float(ys[at]), str(aligns[at]), str(baselines[at])
 
 
 # A contour label's size as a share of the map's width and height ("100 m³/day" at 15 px on a
 # map ~600 x 330 px), and the gap it keeps from the stall boundary, a share of the width.
 LABEL_SIZE = (0.16, 0.07)
 LABEL_MARGIN = 0.02
+SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # of its width, left of its anchor
+RISE = {"bottom": 1.0, "middle": 0.5, "top": 0.0}  # of its height, above its anchor
 
 
 def label_clearance(
-    x: float, y: float, align: str, baseline: str, x_range, y_range, stall: np.ndarray | None
-) -> float:
-    """How far right of the stall boundary a label at (x, y) so aligned starts, as a share of
-    the map's width, where the boundary is farthest right over the label's height (its ratio
+    xs: np.ndarray,
+    ys: np.ndarray,
+    aligns: np.ndarray,
+    baselines: np.ndarray,
+    x_range,
+    y_range,
+    stall: np.ndarray | None,
+) -> np.ndarray:
+    """How far right of the stall boundary labels at (xs, ys), so aligned, start, as a share of
+    the map's width, where the boundary is farthest right over each label's height (its ratio
     grows with the head: at the label's top). ``stall``: the boundary's ratio at heads spanning
-    ``y_range`` evenly (non-finite: none at that head); +inf where it has none; -inf for a
-    point off the map."""
+    ``y_range`` evenly (non-finite: none at that head); +inf where it has none."""
     (x0, x1), (y0, y1) = x_range, y_range
-    if not (np.isfinite(x) and np.isfinite(y)):
-        return -math.inf
     known = np.isfinite(stall) if stall is not None else np.array([False])
     if not known.any():
-        return math.inf
+        return np.full(len(xs), np.inf)
     heads = np.linspace(y0, y1, len(stall))
     width, height = LABEL_SIZE
-    left = (x - x0) / (x1 - x0) - {"left": 0.0, "center": 0.5, "right": 1.0}[align] * width
-    top = (y - y0) / (y1 - y0) + {"bottom": 1.0, "middle": 0.5, "top": 0.0}[baseline] * height
-    boundary = np.interp(y0 + min(top, 1.0) * (y1 - y0), heads[known], stall[known])
-    return float(left - (boundary - x0) / (x1 - x0))
+    shift = np.array([SHIFT[align] for align in aligns], dtype=float)
+    rise = np.array([RISE[baseline] for baseline in baselines], dtype=float)
+    left = (xs - x0) / (x1 - x0) - shift * width
+    top = np.minimum((ys - y0) / (y1 - y0) + rise * height, 1.0)
+    boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
+    return left - (boundary - x0) / (x1 - x0)
 
 
 def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:

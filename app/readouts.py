@@ -29,9 +29,7 @@ READOUT_CSS = f"""
   :host {{margin: 3px 4px !important}}
   .readout {{min-width: 0; padding: 1px 8px}}
   .readout .value {{font-size: 18px}}
-  :host(.pair) {{flex: 1 1 40% !important; max-width: calc(50% - 8px) !important;
-    align-self: stretch}}
-  :host(.pair) .readout {{height: 100%; box-sizing: border-box}}
+  :host(.pair) {{flex: 1 1 40% !important; max-width: calc(50% - 8px) !important}}
 }}
 """
 # A readout of a long label (the Wind tab's) takes half a phone's row, its label wrapping: two a

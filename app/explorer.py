@@ -19,7 +19,7 @@ import param
 import windpump
 
 from .figures import present
-from .inputs import PRESETS
+from .inputs import FROM_THE_LINK, PRESETS, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -42,7 +42,7 @@ from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
 from .site_tab import SITE_MESSAGE, SiteTab
-from .styles import TEXT
+from .styles import NOTICE
 from .tab import PageTabs, Tab
 from .views import BINS
 from .wind_tab import WIND_MESSAGE, WindTab
@@ -113,13 +113,13 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
-            "", alert_type="warning", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
+            "", alert_type="warning", visible=False, stylesheets=NOTICE, sizing_mode="stretch_width"
         )
         self.restored = pn.pane.Alert(
             RESTORED,
             alert_type="info",
             visible=restored,
-            stylesheets=TEXT,
+            stylesheets=NOTICE,
             sizing_mode="stretch_width",
         )
 
@@ -155,6 +155,8 @@ class Explorer(Session, pn.viewable.Viewer):
         values, notices = self._link
         self._link = None
         seen = self.run_link(values, notices)
+        if values:  # a reopened link says what it shows, as a chosen preset does
+            self._say_what_the_link_shows()
         self.notices.object = notices_text(notices)
         self.notices.visible = bool(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
@@ -290,6 +292,15 @@ class Explorer(Session, pn.viewable.Viewer):
             self.mechanisms_tab.reset()
         self.site_inputs.param.update(**self.site_inputs.defaults())
         self.set_values(**self.inputs.defaults())
+
+    def _say_what_the_link_shows(self) -> None:
+        """The preset the link's design is (chosen, with its sentence), or that it is the link's."""
+        name = preset_of(self.inputs)
+        if name is not None:
+            self.sidebar.preset.value = name  # _on_preset: the same values, and its sentence
+        else:
+            self.sidebar.preset_note.object = FROM_THE_LINK
+            self.sidebar.preset_note.visible = True
 
     def _on_preset(self, event) -> None:
         if event.new not in PRESETS:

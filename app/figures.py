@@ -172,6 +172,26 @@ try {
   fit(plot.title, 'text_font_size', plot.title?.text, 'bold', plot.outer_width - (plot.outer_width - width) * 0.8)
   for (const axis of plot.below) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', width)
   for (const axis of plot.left) if (axis.axis_label !== undefined) fit(axis, 'axis_label_text_font_size', axis.axis_label, 'italic', height)
+  // Fewer ticks where their labels would crowd (a phone, presentation mode): a tick's label and
+  // a gap of its size, across the frame; the server's number of ticks at most.
+  const ticks = (axis, room, size) => {
+    const ticker = axis.ticker
+    if (ticker?.desired_num_ticks === undefined || !(size > 0) || room <= 0) return
+    const entry = asked(ticker, 'desired_num_ticks')
+    const n = Math.max(2, Math.min(entry.size, Math.floor(room / (2 * size))))
+    entry.fitted = n
+    if (ticker.desired_num_ticks !== n) ticker.setv({desired_num_ticks: n}, {sync: false})
+  }
+  const label = (axis) => parseFloat(axis.major_label_text_font_size) || 14
+  // a tick label as long as the range's ends' (a time of day on a datetime axis)
+  const shown = (v) => {
+    const a = Math.abs(v ?? 0)
+    return (v < 0 ? '-' : '') + (a >= 1e6 ? '00:00' : a >= 10 ? String(Math.round(a)) : a.toFixed(1))
+  }
+  const widestTick = (axis, range) =>
+    range == null ? 0 : Math.max(...[range.start, range.end].map(v => measure(shown(v), label(axis), '')))
+  for (const axis of plot.below) if (axis.ticker !== undefined) ticks(axis, width, Math.max(widestTick(axis, plot.x_range), label(axis)))
+  for (const axis of plot.left) if (axis.ticker !== undefined) ticks(axis, height, label(axis))
   for (const legend of [...plot.below, ...plot.above]) {
     if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
     ctx.font = `${legend.label_text_font_size} helvetica`
@@ -197,6 +217,7 @@ def fit_text_in_the_browser(fig) -> None:
     for axis in (*fig.xaxis, *fig.yaxis):
         axis.js_on_change("axis_label", fit)
         axis.js_on_change("axis_label_text_font_size", fit)
+        axis.js_on_change("major_label_text_font_size", fit)  # presentation mode: fewer ticks
     fig._fit_text = fit
 
 

@@ -339,3 +339,17 @@ PRESETS = {
         "the pump slows to a stop. The close-up shows its last turns.",
     ),
 }
+
+FROM_THE_LINK = "Your design, from the link."  # a link's design that is no preset's
+
+
+def preset_of(inputs: PumpInputs) -> str | None:
+    """The preset whose design ``inputs`` hold, as the link carries it (each value as its slider
+    shows it); None if none is."""
+    defaults = inputs.defaults()
+    shown = {name: link_text(name, value) for name, value in inputs.values().items()}
+    for name, (values, _sentence) in PRESETS.items():
+        preset = {**defaults, **values}
+        if all(link_text(key, value) == shown[key] for key, value in preset.items()):
+            return name
+    return None

@@ -47,6 +47,9 @@ ASPECT = (
     1.9  # the drawing's width / height: wide, so the drawing and its controls fit beside a plot
 )
 WIDGET_CSS = f":host {{ font-size: {px(15)}; }} .bk-btn, select {{ font-size: {px(15)}; }}"
+# The share of the drawing's width right of the cylinders when it has a rising main: its label,
+# "rising main / 30 m × 25 mm", ~130 px in presentation mode, fits there on a phone's ~370 px.
+MAIN_LABEL_ROOM = 0.4
 # Three blades and the sprocket's mark, then each cylinder's crank and rod (the player draws
 # as many as the design has cylinders, in the colours it is given: ``moving_colors``).
 MOVING = ("blade", "crank", "rod")
@@ -291,7 +294,6 @@ class MachineView(View):
             {"xs": [a for a, _ in static], "ys": [b for _, b in static]},
         )
         riser = static[-3]
-        self._real_parts(d, riser, (-d.bore / 2, 0.5 * (d.L - d.R + top)))
         refill(
             self.sources["machine_circles"],
             {"x": [c0[0], 0.0], "y": [c0[1], 0.0], "radius": [d.R0, d.R1]},
@@ -310,10 +312,13 @@ class MachineView(View):
             pitch=pitch,
         )
         self._frame(d)
+        self._real_parts(d, riser, (-d.bore / 2, 0.5 * (d.L - d.R + top)))
 
     def _real_parts(self, d: windpump.Design, riser, cylinder_side) -> None:
         """The real machine's rising main (over the riser, drawn when L_main > 0, labelled with
-        its length and bore) and its leak hole's size beside the first cylinder."""
+        its length and bore) and its leak hole's size beside the first cylinder. The main's label
+        ends at the frame's right edge (``_frame`` first): it extends leftwards from there, never
+        out of the figure, however narrow the figure or large its text (presentation mode)."""
         main = d.L_main > 0.0
         refill(
             self.sources["machine_main"],
@@ -321,10 +326,11 @@ class MachineView(View):
         )
         notes = {"x": [], "y": [], "text": [], "align": []}
         if main:
-            notes["x"].append(riser[0][0] + 1.0 * d.bore)  # under the pipe, by the cylinders
-            notes["y"].append(riser[1][0] - 1.4 * d.bore)
+            x_range = self.figure.x_range  # under the pipe, right of the cylinders
+            notes["x"].append(x_range.end - 0.02 * (x_range.end - x_range.start))
+            notes["y"].append(riser[1][0] - 1.7 * d.bore)
             notes["text"].append(f"rising main\n{d.L_main:g} m × {d.D_main * MM_PER_M:g} mm")
-            notes["align"].append("left")
+            notes["align"].append("right")
         if d.d_leak > 0.0:
             notes["x"].append(cylinder_side[0] - 0.3 * d.bore)
             notes["y"].append(cylinder_side[1])
@@ -337,6 +343,9 @@ class MachineView(View):
         g = self.geometry
         blade, c0y = g["blade"], g["c0y"]
         left, right = g["c0x"] - blade * 1.05, g["tank_x"] + g["tank_w"] + 0.1 * blade
+        if d.L_main > 0.0:  # room right of the cylinders for the main's label (_real_parts)
+            wall = g["pitch"] * (d.cylinders - 1) + d.bore / 2
+            right = max(right, (wall - MAIN_LABEL_ROOM * left) / (1.0 - MAIN_LABEL_ROOM))
         bottom, high = (
             min(-d.R1, c0y - blade) - 0.05 * blade,
             max(c0y + blade, g["tank_y"] + g["tank_h"]) + 0.4 * blade,  # room for the label

@@ -94,9 +94,14 @@ def mapped_colour(mapper: LogColorMapper, value: float) -> str:
     return mapper.palette[min(max(index, 0), len(mapper.palette) - 1)]
 
 
-def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float, float]:
-    """Where a contour's label goes: its middle vertex away from the map's edges (where a
-    label would be cut), else its middle vertex."""
+def label_place(
+    xs: np.ndarray, ys: np.ndarray, x_range, y_range, stall: np.ndarray | None = None
+) -> tuple[float, float, str, str]:
+    """Where a contour's label goes, (x, y, text_align, text_baseline): its middle vertex away
+    from the map's edges (where a label would be cut) whose label, aligned as ``label_anchor``
+    says or else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at
+    heads spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from
+    it."""
     finite = np.isfinite(xs) & np.isfinite(ys)
     (x0, x1), (y0, y1) = x_range, y_range
     inner = (
@@ -106,9 +111,56 @@ def label_point(xs: np.ndarray, ys: np.ndarray, x_range, y_range) -> tuple[float
         & (ys > y0 + 0.05 * (y1 - y0))
         & (ys < y1 - 0.05 * (y1 - y0))
     )
-    candidates = np.flatnonzero(inner if inner.any() else finite)
-    middle = candidates[len(candidates) // 2]
-    return float(xs[middle]), float(ys[middle])
+    anchors = [label_anchor(x, y, x_range, y_range) for x, y in zip(xs, ys, strict=True)]
+    aligns = np.array([align for align, _ in anchors])
+    baselines = np.array([baseline for _, baseline in anchors])
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
+    # not clear as anchored: extending rightwards instead, where the label still fits the map
+    rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & (xs < x1 - 0.2 * (x1 - x0))
+    aligns = np.where(rightwards, "left", aligns)
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
+    clear = finite & (clearance > LABEL_MARGIN)
+    if clear.any():
+        candidates = np.flatnonzero(inner & clear if (inner & clear).any() else clear)
+        at = candidates[len(candidates) // 2]
+    else:
+        at = int(np.argmax(np.where(finite, clearance, -np.inf)))
+    return float(xs[at]), float(ys[at]), str(aligns[at]), str(baselines[at])
+
+
+# A contour label's size as a share of the map's width and height ("100 m³/day" at 15 px on a
+# map ~600 x 330 px), and the gap it keeps from the stall boundary, a share of the width.
+LABEL_SIZE = (0.16, 0.07)
+LABEL_MARGIN = 0.02
+SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # of its width, left of its anchor
+RISE = {"bottom": 1.0, "middle": 0.5, "top": 0.0}  # of its height, above its anchor
+
+
+def label_clearance(
+    xs: np.ndarray,
+    ys: np.ndarray,
+    aligns: np.ndarray,
+    baselines: np.ndarray,
+    x_range,
+    y_range,
+    stall: np.ndarray | None,
+) -> np.ndarray:
+    """How far right of the stall boundary labels at (xs, ys), so aligned, start, as a share of
+    the map's width, where the boundary is farthest right over each label's height (its ratio
+    grows with the head: at the label's top). ``stall``: the boundary's ratio at heads spanning
+    ``y_range`` evenly (non-finite: none at that head); +inf where it has none."""
+    (x0, x1), (y0, y1) = x_range, y_range
+    known = np.isfinite(stall) if stall is not None else np.array([False])
+    if not known.any():
+        return np.full(len(xs), np.inf)
+    heads = np.linspace(y0, y1, len(stall))
+    width, height = LABEL_SIZE
+    shift = np.array([SHIFT[align] for align in aligns], dtype=float)
+    rise = np.array([RISE[baseline] for baseline in baselines], dtype=float)
+    left = (xs - x0) / (x1 - x0) - shift * width
+    top = np.minimum((ys - y0) / (y1 - y0) + rise * height, 1.0)
+    boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
+    return left - (boundary - x0) / (x1 - x0)
 
 
 def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
@@ -278,13 +330,13 @@ class MapTab(Tab):
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
         self.ticker.ticks = colour_ticks(self.mapper.low, self.mapper.high)
-        self._draw_contours(flow)
+        self._draw_contours(flow, stall)
         refill(self.sources["stall"], {"ratio": stall, "h": self.heads})
         refill(self.sources["best"], {"ratio": best, "h": self.heads})
 
-    def _draw_contours(self, flow: np.ndarray) -> None:
+    def _draw_contours(self, flow: np.ndarray, stall: np.ndarray) -> None:
         """The round levels' lines, each in black or white for its level's colour and labelled
-        with its value at a point of it."""
+        with its value at a point of it clear of the stall boundary (``stall``, by head)."""
         levels = contour_levels(flow)
         lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
         labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
@@ -295,17 +347,18 @@ class MapTab(Tab):
                 under = mapped_colour(self.mapper, level)
                 lines["color"].append(ink_on(under))
                 if np.isfinite(xs).any():
-                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under)
+                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under, stall)
                     for name, value in label.items():
                         labels[name].append(value)
         self.contours.line_renderer.data_source.data = lines
         self.contours.levels = [float(level) for level in levels]
         refill(self.sources["contour_labels"], labels)
 
-    def _contour_label(self, level: float, xs: np.ndarray, ys: np.ndarray, under: str) -> dict:
+    def _contour_label(
+        self, level: float, xs: np.ndarray, ys: np.ndarray, under: str, stall: np.ndarray
+    ) -> dict:
         bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
-        x, y = label_point(xs, ys, *bounds)
-        align, baseline = label_anchor(x, y, *bounds)
+        x, y, align, baseline = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float))
         return {
             "x": x,
             "y": y,

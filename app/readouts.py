@@ -29,8 +29,12 @@ READOUT_CSS = f"""
   :host {{margin: 3px 4px !important}}
   .readout {{min-width: 0; padding: 1px 8px}}
   .readout .value {{font-size: 18px}}
+  :host(.pair) {{flex: 1 1 40% !important; max-width: calc(50% - 8px) !important}}
 }}
 """
+# A readout of a long label (the Wind tab's) takes half a phone's row, its label wrapping: two a
+# row rather than one.
+PAIR = ["pair"]
 # On a phone the readouts share the top half of the screen with nothing else (page.NARROW_CSS):
 # tighter boxes put two or three in a row, and the status under them stays in view.
 READOUTS = (

@@ -35,10 +35,8 @@ def sample_at(name: str, hub: float) -> windpump.WindRecord:
 
 def read_upload(data: bytes, filename: str) -> windpump.WindRecord:
     """A weather file's record from an upload's bytes, named after the file when it names no
-    station (a CSV)."""
+    station (a CSV). An empty file is the core's to refuse: it says what the file needs."""
     check_file_size(len(data), WIND_MAX_BYTES, what=WHAT)
-    if not data:
-        raise LabDataError("the file is empty")
     record = windpump.read_weather(data)
     if record.name:
         return record

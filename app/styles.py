@@ -24,10 +24,24 @@ TEXT = [
     f".bk-slider-title {{ font-size: {px(15)}; white-space: normal; }}",
     f".bk-btn, .bk-input, select, input {{ font-size: {px(15)}; }}",
 ]
+# An alert on a phone: smaller and tighter, so that a notice, the readouts and the status under
+# them fit the tabs' pane together (page.NARROW_CSS).
+PHONE_ALERT = (  # the alert is the host (Bootstrap's padding on it outranks a :host rule)
+    "@media (max-width: 700px) { :host { font-size: 14px; padding: 4px 10px !important; "
+    "margin: 2px 4px !important; } }"
+)
 COMPACT = [
     f":host {{ font-size: {px(16)}; }}",
     ".alert { padding: 6px 14px; margin: 4px 0; }",
     "p { margin: 0; }",
+    PHONE_ALERT,
+]
+# The link's notices above the readouts: on a phone their list scrolls within three lines.
+NOTICE = [
+    *TEXT,
+    PHONE_ALERT,
+    "@media (max-width: 700px) { p { margin: 0 0 2px; } "
+    "ul { margin: 0; padding-left: 1.2em; max-height: 4.4em; overflow-y: auto; } }",
 ]
 CAPTION_CSS = [f":host {{ font-size: {px(15)}; margin: 0 8px; }} p {{ margin: 2px 0; }}"]
 

@@ -1,8 +1,8 @@
 // The pump's views are built by the server when the page first shows them (viewport.py). Each
 // stands as a placeholder (CSS class `placeholder_class` and `view-<name>`) until then; when one
-// comes within `margin` of a screen of the browser's viewport, its name joins the views seen, and
-// the names seen so far are written into a hidden text input (CSS class `channel_class`), which
-// the server reads. A placeholder that is not displayed (another tab is open) is not seen.
+// comes within `margin` of a screen of what the tabs' pane shows of the browser's viewport (on a
+// phone, what is above the controls' pane), its name joins the views seen, and the names seen so
+// far are written into a hidden text input (CSS class `channel_class`), which the server reads. A placeholder that is not displayed (another tab is open) is not seen.
 // Checked on every scroll and resize, and twice a second until every view is seen (a layout that
 // moves without a scroll: a tab chosen, the sidebar collapsed, a view above grown). Runs once a
 // page, on Bokeh's document_ready.
@@ -55,14 +55,18 @@ if (!window.__windpumpViewsSeen) {
 
   const check = () => {
     if (found.length === 0 || found.some((el) => !el.isConnected)) found = walk(document, [])
-    const height = window.innerHeight, reach = margin * height
+    // What the tabs' pane shows of the screen: on a phone the controls' pane covers the rest
+    // (page.NARROW_CSS), and a view behind it is not seen.
+    const pane = document.querySelector("#main")?.getBoundingClientRect()
+    const top = Math.max(0, pane?.top ?? 0), bottom = Math.min(window.innerHeight, pane?.bottom ?? Infinity)
+    const reach = margin * window.innerHeight
     let more = false
     for (const el of found) {
       const name = nameOf(el)
       if (name == null || seen.has(name)) continue
       const box = el.getBoundingClientRect()
       if (box.width === 0 || box.height === 0) continue // not displayed
-      if (box.top < height + reach && box.bottom > -reach) {
+      if (box.top < bottom + reach && box.bottom > top - reach) {
         seen.add(name)
         more = true
         hold(el)

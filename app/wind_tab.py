@@ -27,7 +27,7 @@ from .buttons import ActionButton
 from .envelope import band
 from .figures import palette
 from .inputs import clipped
-from .readouts import Readout
+from .readouts import PAIR, Readout
 from .serving import off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
@@ -115,7 +115,7 @@ class WindTab(Tab):
         self.measured: windpump.wind.WindRecord | None = None
         self.measured_name = ""
         self.sources: dict[str, ColumnDataSource] = {}
-        self.readouts = {name: Readout(name) for name in WIND_READOUTS}
+        self.readouts = {name: Readout(name, css_classes=PAIR) for name in WIND_READOUTS}
         self.upload = pn.widgets.FileInput(
             accept=".csv,.txt,.tsv",
             css_classes=[WIND_CLASS],  # the page's size check knows it by this

@@ -17,6 +17,7 @@ from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
 from windpump_app.inputs import PRESETS, PumpInputs
+from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
@@ -260,6 +261,28 @@ def test_a_link_reproduces_the_design_and_the_run():
     assert not app.notices.visible
     again = Explorer(query={k: [v.encode()] for k, v in _query_pairs(app.inputs.query())})
     assert again.inputs.values() == app.inputs.values()
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_a_link_to_a_presets_design_says_which_preset_it_is(name):
+    from urllib.parse import parse_qs
+
+    chosen = Explorer()
+    chosen.sidebar.preset.value = name
+    query = chosen.inputs.query() or "h=3"  # the paper's example: its one value, given as is
+    app = Explorer(query={k: [v.encode() for v in vs] for k, vs in parse_qs(query).items()})
+    assert app.sidebar.preset.value == name
+    assert PRESETS[name][1] in app.sidebar.preset_note.object and app.sidebar.preset_note.visible
+    assert app.inputs.values() == chosen.inputs.values()
+
+
+def test_a_link_to_a_design_of_its_own_says_it_is_the_links():
+    app = Explorer(query={"h": [b"5"], "T_m": [b"0.8"]})
+    assert app.sidebar.preset.value == PRESET_PROMPT
+    assert app.sidebar.preset_note.object == "Your design, from the link."
+    assert app.sidebar.preset_note.visible
+    plain = Explorer(query={"tab": [b"wind"]})  # no design in the link: the prompt alone
+    assert plain.sidebar.preset.value == PRESET_PROMPT and not plain.sidebar.preset_note.visible
 
 
 def _query_pairs(query: str):

@@ -105,6 +105,26 @@ def test_every_contour_is_labelled_with_its_value_on_it(app):
         assert on_a_grid_edge(tab, flow, x, y) == pytest.approx(level, rel=1e-6)  # on its line
 
 
+@pytest.mark.parametrize("values", [{}, {"T_m": 1.2, "h": 5.0}, {"T_0": 0.3}])
+def test_contour_labels_keep_off_the_stall_boundary(app, values):
+    """Each label's box (at least 14 % of the map's width, 6 % of its height, as aligned) starts
+    right of the stall boundary over its whole height."""
+    app.set_values(**values)
+    tab = app.design_map
+    labels = tab.sources["contour_labels"].data
+    stall = np.asarray(tab.sources["stall"].data["ratio"], dtype=float)
+    (x0, x1), (y0, y1) = (tab.ratios[0], tab.ratios[-1]), (tab.heads[0], tab.heads[-1])
+    shift = {"left": 0.0, "center": 0.5, "right": 1.0}
+    rise = {"bottom": 1.0, "middle": 0.5, "top": 0.0}
+    for x, y, align, baseline in zip(
+        labels["x"], labels["y"], labels["align"], labels["baseline"], strict=True
+    ):
+        left = x - shift[align] * 0.14 * (x1 - x0)
+        top = min(y + rise[baseline] * 0.06 * (y1 - y0), y1)
+        heads = np.linspace(max(top - 0.06 * (y1 - y0), y0), top, 50)  # the box's height
+        assert left > np.interp(heads, tab.heads, stall).max(), (x, y, align, baseline)
+
+
 def on_a_grid_edge(tab, flow, x, y) -> float:
     """The map's value at a point of a grid cell's edge (where contour lines cross it), linear
     along that edge."""

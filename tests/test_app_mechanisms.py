@@ -98,6 +98,22 @@ def test_the_machine_shows_its_rising_main_and_leak_hole_only_when_it_has_them(a
     assert app.sources["machine_main"].data["xs"] == []
 
 
+@pytest.mark.parametrize("cylinders", [1.0, 2.0, 4.0])
+def test_the_rising_mains_label_ends_inside_the_drawing_right_of_the_cylinders(app, cylinders):
+    """The label is anchored at its right end inside the frame, with room for ~130 px of text
+    (presentation mode) between the last cylinder and the frame's edge on a phone's ~370 px."""
+    app.set_values(L_main=30.0, D_main_mm=25.0, cylinders=cylinders)
+    notes = app.sources["machine_notes"].data
+    x_range = app.pump.machine.figure.x_range
+    width = x_range.end - x_range.start
+    walls = app.sources["machine_static"].data["xs"][2 : 2 + 2 * int(cylinders)]
+    wall = max(max(xs) for xs in walls)  # the last cylinder's right wall
+    assert notes["align"][0] == "right"
+    assert wall < notes["x"][0] < x_range.end
+    assert notes["x"][0] - wall >= 130 / 370 * width
+    app.reset()
+
+
 # -- the pump's slider-crank --------------------------------------------------------------------
 
 

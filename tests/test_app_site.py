@@ -229,6 +229,15 @@ def test_an_uploaded_file_is_the_site_and_a_bad_one_changes_nothing(app):
     assert app.sidebar.reveal.value.split("\t")[0] in app.site.upload_message.css_classes
 
 
+def test_an_empty_weather_file_is_refused_with_what_it_needs(app):
+    """The core's sentence, shown as it is: the formats and the CSV's two columns."""
+    app.site.upload.param.update(value=b"", filename="empty.csv")
+    message = app.site.upload_message
+    assert message.visible and message.object.startswith("This weather file cannot be used: ")
+    assert "TMY3 or EPW" in message.object and "wind speed [m/s]" in message.object
+    assert "time [s] or an ISO timestamp" in message.object
+
+
 def test_a_csv_of_timestamps_is_a_site_too(app):
     app.site.upload.param.update(value=hourly_csv(60), filename="mast.csv")
     assert app.site_inputs.site == "uploaded", app.site.upload_message.object

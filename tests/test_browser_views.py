@@ -116,3 +116,101 @@ def test_a_restored_connection_is_said_at_the_top_of_the_screen(browser, url, wi
         assert page.problems == []
     finally:
         page.close()
+
+
+# Each axis of a figure: (major ticks inside its range, their spacing [px], the extent of a tick
+# label along the axis [px]: its font size across y, its widest label across x).
+TICK_ROOM = """(name) => {
+  const fig = Bokeh.documents[0].get_model_by_name(name + '_figure');
+  const ctx = document.createElement('canvas').getContext('2d');
+  const out = [];
+  const axes = [[fig.below, fig.x_range, fig.inner_width, true], [fig.left, fig.y_range, fig.inner_height, false]];
+  for (const [panels, range, room, across] of axes) {
+    const axis = panels.find(p => p.ticker !== undefined);
+    const low = Math.min(range.start, range.end), high = Math.max(range.start, range.end);
+    const major = axis.ticker.get_ticks(low, high, range, NaN).major.filter(v => v >= low && v <= high);
+    const step = major.length > 1 ? (major[1] - major[0]) / (high - low) * room : room;
+    const px = parseFloat(axis.major_label_text_font_size);
+    ctx.font = `${px}px helvetica`;
+    const size = across ? Math.max(...major.map(v => ctx.measureText(String(v)).width)) : px;
+    out.push([major.length, step, size]);
+  }
+  return out;
+}"""  # noqa: E501
+
+
+def test_a_phone_in_presentation_mode_draws_fewer_ticks_than_would_crowd(browser, url):
+    """At 390×844 in presentation mode the crank speed's tick labels (18 px) stand apart: at least
+    half a label between two labels, on both axes, and still two ticks or more."""
+    page = open_page(browser, url, 390, 844, query="?presentation=true")
+    try:
+        show_view(page, "speed")
+        page.wait_for_function(HAS_DATA, arg=FILLED["speed"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        for count, step, size in page.evaluate(TICK_ROOM, "speed"):
+            assert count >= 2 and step >= 1.5 * size, (count, step, size)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "ticks-phone-presentation-390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_a_phone_shows_a_notice_the_readouts_and_the_whole_status_above_the_controls(browser, url):
+    """At 390×844 a link's notice (two values ignored), the readouts and the status under them
+    all fit the tabs' pane, above the controls' pane; the Wind tab's four readouts take two rows."""
+    page = open_page(browser, url, 390, 844, query="?h=banana&T_m=x")
+    try:
+        status = page.locator("p", has_text="It settles at").first
+        status.wait_for(timeout=60_000)
+        notice = page.get_by_text("Some values in the link were ignored").first
+        tabs_pane = page.locator("#main").bounding_box()
+        controls = page.locator("#sidebar").bounding_box()
+        seen = status.bounding_box()
+        assert notice.bounding_box()["y"] >= tabs_pane["y"]
+        assert seen["y"] + seen["height"] <= controls["y"], (seen, controls)
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "notice-phone-390x844.png"))
+        page.get_by_role("tab", name="Wind", exact=True).click()
+        rows = set()
+        for name in ("day_litres", "record_bounds", "site_bounds", "thresholds"):
+            readout = page.locator(f"[data-name={name}]")
+            expect(readout).not_to_have_text("", timeout=60_000)
+            top = readout.evaluate("el => el.parentElement.getBoundingClientRect().top")
+            rows.add(round(top / 20))  # its box's top; a row: within ~20 px
+        assert len(rows) == 2, rows
+        page.screenshot(path=str(ARTIFACTS / "wind-readouts-phone-390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+PLACED = """(name) => {
+  const walk = (root) => {
+    const hit = root.querySelector('.view-' + name);
+    if (hit) return hit;
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) { const found = walk(el.shadowRoot); if (found) return found; }
+    }
+    return null;
+  };
+  const el = walk(document);
+  return el === null ? null : el.getBoundingClientRect().top;
+}"""
+
+
+def test_a_view_behind_a_phones_controls_is_not_seen(browser, url):
+    """At 390×844 the machine's placeholder starts on the screen, but behind the controls' pane
+    (under the crank speed): it is not built until the tabs' pane is scrolled to it."""
+    page = open_page(browser, url, 390, 844)
+    try:
+        time.sleep(3.0)
+        assert "machine" not in built(page)
+        controls = page.locator("#sidebar").bounding_box()
+        top = page.evaluate(PLACED, "machine")
+        assert top is not None and controls["y"] < top < 844  # on the screen, behind the pane
+        show_view(page, "machine")
+        page.wait_for_function(HAS_DATA, arg=FILLED["machine"], timeout=60_000, polling=POLL_MS)
+        assert page.problems == []
+    finally:
+        page.close()

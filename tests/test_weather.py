@@ -250,3 +250,19 @@ def test_a_csv_with_a_gap_is_refused_at_its_line(tmp_path):
     with pytest.raises(LabDataError, match="line 5") as error:
         read_weather(path)
     assert "gap of 2 h" in str(error.value)
+
+
+@pytest.mark.parametrize(
+    "contents, says",
+    [
+        (b"", "the file is empty; it needs a TMY3 or EPW weather file, or two columns"),
+        (b" \n\n", "the file is empty; it needs a TMY3 or EPW weather file, or two columns"),
+        (b"time,speed\n", "has 0 sample(s); a wind record needs at least 2 lines of two columns"),
+    ],
+)
+def test_an_empty_weather_file_says_which_columns_it_needs(contents, says):
+    with pytest.raises(LabDataError) as error:
+        read_weather(contents)
+    message = str(error.value)
+    assert says in message
+    assert "time [s] or an ISO timestamp" in message and "wind speed [m/s]" in message

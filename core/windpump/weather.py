@@ -18,8 +18,10 @@ import numpy as np
 from .errors import ParameterError
 from .labdata import LabDataError
 from .units import SECONDS_PER_HOUR
-from .wind import MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
+from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
 
+# What a weather file must hold, said when it holds nothing.
+NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
 SITES = {"greensboro": "723170TYA.CSV", "sand_point": "703165TY.csv"}
 """The typical years in pvlib's wheel (``pvlib/data``): Greensboro, North Carolina (mean wind
 about 3.1 m/s) and Sand Point, Alaska (about 5.1 m/s)."""
@@ -115,7 +117,8 @@ def read_weather(
     ------
     LabDataError
         (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
-        included), an hour that repeats or is skipped (a gap); or a file that cannot be read.
+        included), an hour that repeats or is skipped (a gap); or a file that cannot be read,
+        or an empty one (saying what it needs: ``NEEDED``).
     ModuleNotFoundError
         For TMY3 or EPW without pvlib (``pip install 'windpump[site]'``).
 
@@ -129,6 +132,8 @@ def read_weather(
         height = _height(height)
     data, stem, suffix = _contents(source)
     text = data.decode("utf-8", errors="replace")
+    if not text.strip():
+        raise LabDataError(f"the file is empty; it needs {NEEDED}")
     kind = _kind(text, suffix)
     if kind == "csv":
         record = read_csv(data)

@@ -373,7 +373,9 @@ def read_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_CSV_BYTES) 
         times.append(moment)
         speeds.append(speed)
     if len(times) < 2:
-        raise LabDataError(f"the file has {len(times)} sample(s); a wind record needs at least 2")
+        raise LabDataError(
+            f"the file has {len(times)} sample(s); a wind record needs at least 2 lines of {COLUMNS}"
+        )
     t = np.array([_seconds(moment, times[0]) for moment in times])
     return _frozen(t, np.array(speeds))
 

@@ -25,6 +25,7 @@ from .real import (
     conservative_torque,
     conservative_work,
     end_works,
+    energy_slope,
     fill_friction,
     fill_row,
     fill_stages,
@@ -40,12 +41,15 @@ from .real import (
     grid_works,
     inertia_ratio,
     inertia_table,
+    jump_work,
     leak_scale,
     less_frozen,
     next_leak_kink,
+    open_windows,
     set_grid_inertia,
     split_sizes_by_parity,
     step_rows,
+    window_jump,
     work_at,
     work_rows,
     write_work,
@@ -435,17 +439,19 @@ def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment
 @kernel
 def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                        inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                       dense, frozen):  # fmt: skip
+                       dense, frozen, t_new):  # fmt: skip
     """Samples at the grid angles g delta a sub-step from (theta_i, t, W) to (theta_new, y)
     passed, from its continuous extension (the real machine's frozen friction's
     :func:`~.real.frozen_record` in ``frozen``); the segment's end is a grid angle by index,
     whatever the round-off in g delta, of the :class:`Grid` (``at_grid`` holds
-    :func:`grid_tables`). Returns (out, n, the next g)."""
+    :func:`grid_tables`); the segment's end sample at (theta_new, u_new, t_new) (t_new is y's
+    time but after a leak hole's window: :func:`~.real.window_jump`). Returns (out, n, the next
+    g)."""
     delta, period, per_revolution = grid
     while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
         row = g % period
         if g == end_grid:
-            u_g, t_g, W_g = u_new, y[2], end_works(y, frozen)
+            u_g, t_g, W_g = u_new, t_new, end_works(y, frozen)
         else:
             sigma = (g * delta - theta_i) / h_step
             u_g = grid_aux(work_table[row], frozen, inertia_table, row) + dense_value(
@@ -600,7 +606,7 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, NOT_KNOWN)
     ok, y, k7, err, dense = dp5_step(
         ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
-        step_rows(scratch_rows, e_ref, machine), segment, machine,
+        step_rows(scratch_rows, e_ref, -1.0, machine), segment, machine,
     )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
@@ -657,6 +663,9 @@ def in_angle(
     m_other = m  # the real machine's sub-steps of a segment of the other parity
     # The real machine's C (the frozen friction's, :mod:`.real`) since the segment began
     c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
+    faces = (
+        -1.0
+    )  # a segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -674,7 +683,25 @@ def in_angle(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
             rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
-        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, calm)[0], machine, segment)
+        if full:
+            faces = -1.0
+        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, calm)[0],
+                   machine, segment)  # fmt: skip
+        jumped = False  # a leak hole's window after the start was jumped (:mod:`.real`)
+        u_before, t_before, W_before = u, t, W
+        if full and sample_dt is None and not has_record(machine.wind):
+            slope = energy_slope(k1[0], theta, e_ref, segment, calm)
+            faces = open_windows(theta, u, slope, segment, grid.delta, calm)
+            if faces >= 0.0:
+                jumped = True
+                jump, dt, dW = window_jump(theta, u, slope, 1.0, segment, faces, calm)
+                u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
+                e_ref = frozen_energy(u, calm)
+                u_free = frozen_start(u, work, e_ref, c_at, calm)
+                k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, calm)[0],
+                           machine, segment)  # fmt: skip
+        if faces >= 0.0:
+            leak = (math.inf, math.inf, segment)  # stepped past its kinks
         leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
         first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
         past_leak = False  # theta is a leak's kink inside sub-step i: its rest is off the tables
@@ -706,7 +733,8 @@ def in_angle(
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, e_ref, calm),
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
+                step_rows(rows, e_ref, faces, calm),
                 segment, machine,
             )  # fmt: skip
             steps += 1
@@ -733,6 +761,11 @@ def in_angle(
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
+            t_new = y[2]
+            if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
+                slope = energy_slope(k7[0], theta_new, e_ref, segment, calm)
+                jump, dt, dW = window_jump(theta_new, u_new, slope, -1.0, segment, faces, calm)
+                u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
             frozen = frozen_record(e_ref, c_at, W_new, calm)
             if sample_dt is not None:
                 out, n, j = record_in_step(
@@ -745,13 +778,13 @@ def in_angle(
                 n, g = record_grid_angles(
                     out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                    dense, frozen,
+                    dense, frozen, t_new,
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
             c_at = c_end
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
-                (y[0], y[1], y[2], W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
+                (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
                 at_wind_kink, whole, m, width, h, calm,
             )  # fmt: skip
             if at_wind_kink:
@@ -761,6 +794,8 @@ def in_angle(
             past_leak = at_kink
             if past_leak:  # on to the leak's next kink
                 leak = (leak[1], math.inf, leak[2])
+        if jumped and i == 0 and status != SPLIT_DONE:  # nothing taken: the jump is undone
+            u, t, W = u_before, t_before, W_before
         segment, full, m = after_split(
             status, i, m_seg, full, m, width, h, worst, segment, past_leak, wholes
         )

@@ -207,13 +207,35 @@ def _face_loads(theta_dot, row, machine):
     return load, Q, h_f, arms
 
 
+@kernel
+def _continued_loads(theta_dot, row, faces, machine):
+    """:func:`_face_loads` as if each of the ``faces`` delivering faces delivered, through its
+    hole, what it sweeps less the hole's capacity, ``u - q_L``, at ``rho_w g (h + h_f)``: the
+    delivering branch of :func:`~.equations.delivered_flow` and
+    :func:`~.equations.face_pressure`, continued past the kinks. Equal to :func:`_face_loads`
+    wherever every delivering face sweeps more than q_L; smooth inside a segment, where a
+    delivering segment's steps take it, the windows next to its dead centres being corrected
+    apart (:func:`window_jump`)."""
+    real = machine.real
+    arms = 0.0
+    for k in range(machine.cylinders):
+        arms += row[1 + k]
+    Q = real.AR * arms * theta_dot - faces * real.q_L
+    h_f = real.friction * Q * Q
+    return machine.load_torque * arms + real.rho_g * h_f * real.AR * arms, Q, h_f, arms
+
+
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
-    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref: :func:`step_rows`)
+    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref, row[9] the delivering faces
+    # of a segment whose hole's windows are corrected apart, or -1: :func:`step_rows`)
     theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
-    load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+    if row[9] >= 0.0:
+        load, Q, h_f, arms = _continued_loads(theta_dot, row, row[9], machine)
+    else:
+        load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
     # relief) is integrated, and so is the water lifted and the friction; of the friction, less
     # its frozen part (at e_ref: :func:`friction_density`), whose work e_ref C is tabulated.
@@ -981,30 +1003,33 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
     return factors
 
 
-def step_rows(rows, e_ref, machine):
+def step_rows(rows, e_ref, faces, machine):
     """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
-    (column 7) times the frozen energy e_ref in its place and e_ref after it (the ideal
-    machine's: ``rows`` as they are). A stage's row taken from the array is a view, whose
-    reference is counted atomically as it is made and dropped: 14 atomic operations a step, a
-    third of the time of the real machine's steps (eta_t alone)."""
+    (column 7) times the frozen energy e_ref in its place, e_ref after it, and ``faces`` last:
+    the delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
+    corrected apart), or -1.0 (the ideal machine's: ``rows`` as they are). A stage's row taken
+    from the array is a view, whose reference is counted atomically as it is made and dropped:
+    14 atomic operations a step, a third of the time of the real machine's steps (eta_t
+    alone)."""
 
 
 @kernel
-def _row(rows, stage, e_ref):
+def _row(rows, stage, e_ref, faces):
     return (
         rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
-        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref,
+        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref, faces,
     )  # fmt: skip
 
 
-def _step_rows(rows, e_ref, machine):
+def _step_rows(rows, e_ref, faces, machine):
     return (
-        _row(rows, 0, e_ref), _row(rows, 1, e_ref), _row(rows, 2, e_ref), _row(rows, 3, e_ref),
-        _row(rows, 4, e_ref), _row(rows, 5, e_ref), _row(rows, 6, e_ref),
+        _row(rows, 0, e_ref, faces), _row(rows, 1, e_ref, faces), _row(rows, 2, e_ref, faces),
+        _row(rows, 3, e_ref, faces), _row(rows, 4, e_ref, faces), _row(rows, 5, e_ref, faces),
+        _row(rows, 6, e_ref, faces),
     )  # fmt: skip
 
 
-_entry(step_rows)(lambda rows, e_ref, machine: rows, _step_rows)
+_entry(step_rows)(lambda rows, e_ref, faces, machine: rows, _step_rows)
 
 
 def split_sizes_by_parity(m, m_other, machine):
@@ -1025,3 +1050,161 @@ def work_rows(machine):
 
 
 _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
+
+
+# -- A leak hole's windows, corrected apart (docs/model.rst, "The real machine"). -----------------
+#
+# Inside a delivering segment a face's hole changes its load only in a window next to each of its
+# dead centres, where it sweeps less than the hole passes (u_k <= q_L: 0.005-0.009 rad wide at the
+# seed example's running speed). A segment whose windows are narrow is stepped on the loads
+# continued past them (:func:`_continued_loads`: smooth, so its steps neither stop at the windows'
+# kinks nor leave the tables), and each window's difference, true less continued, is added as a
+# jump: the window after the segment's start at its start, the one before its end at its end.
+
+WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
+WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
+
+
+def open_windows(theta, u, slope, segment, delta, machine):
+    """At a delivering segment's start theta, at energy u with slope du/dtheta: how many faces
+    deliver in it, as a float, when its hole's windows are narrow enough to be corrected apart
+    (:func:`window_jump`), else -1.0 (and always for the ideal machine, or a tight piston).
+
+    Narrow: the arm at a kink at most WINDOW_TARGET, the energy's change over twice the widest
+    window at most WINDOW_DRIFT of it, and no grid angle ``g delta`` inside either window but the
+    dead centres (the samples there are taken before the jump at the start, after it at the end).
+    """
+
+
+@kernel
+def _open_windows(theta, u, slope, segment, delta, machine):
+    real = machine.real
+    if real.q_L == 0.0 or not u > 0.0:
+        return -1.0
+    theta_dot = math.sqrt(2.0 * u / _inertia_ratio(theta, machine))
+    target = real.q_L / (real.AR * theta_dot)
+    if not target <= WINDOW_TARGET:
+        return -1.0
+    reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
+    if reach * abs(slope) > WINDOW_DRIFT * u:
+        return -1.0
+    start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
+    if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
+        return -1.0
+    if math.ceil((end - reach) / delta) * delta < end - 1e-9 * delta:
+        return -1.0
+    faces = 0.0
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) != NEITHER:
+            faces += 1.0
+    return faces
+
+
+_entry(open_windows)(lambda theta, u, slope, segment, delta, machine: -1.0, _open_windows)
+
+
+def energy_slope(rate, theta, e_ref, segment, machine):
+    """de/dtheta [J/(kg m^2) per rad] where x0's rate is ``rate``: e = x0 + Lambda - e_ref C
+    (0.0 for the ideal machine, which has no windows)."""
+
+
+def _energy_slope(rate, theta, e_ref, segment, machine):
+    slope = rate + conservative_torque(theta, segment, machine) * machine.inv_I_eff
+    if machine.real.friction != 0.0:
+        slope -= e_ref * friction_density(theta, segment, machine)
+    return slope
+
+
+_entry(energy_slope)(lambda rate, theta, e_ref, segment, machine: 0.0, _energy_slope)
+
+
+@kernel
+def _window_widths(theta, e, slope, side, segment, machine, after):
+    """The narrowest window wider than ``after`` of the faces whose dead centre is the segment's
+    start (side 1) or end (side -1), theta: its width [rad], or inf. The kink is where the face's
+    swept flow reaches q_L at the speed there, e growing linearly from theta (one correction of
+    the kink found at theta's speed)."""
+    real = machine.real
+    width = math.pi / machine.cylinders
+    middle = segment_start(segment, machine) + 0.5 * width
+    best = math.inf
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) == NEITHER:
+            continue
+        lag = phase(k, machine)
+        half = math.floor(
+            (middle - lag) / math.pi
+        )  # the face's half turn (:func:`_next_leak_kink`)
+        edge = lag + (half if side > 0 else half + 1) * math.pi
+        if abs(edge - theta) > 1e-9 * width:
+            continue
+        dead_centre = math.pi * (half % 2)
+        sign = 1.0 if half % 2 == 0 else -1.0
+        psi = 0.0
+        for _ in range(2):
+            at = theta + side * psi
+            theta_dot = math.sqrt(2.0 * (e + side * slope * psi) / _inertia_ratio(at, machine))
+            target = real.q_L / (real.AR * theta_dot)
+            psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R)
+            if side < 0:
+                psi = math.pi - psi
+        if after < psi < best:
+            best = psi
+    return best
+
+
+def window_jump(theta, e, slope, side, segment, faces, machine):
+    """The windows next to the dead centre theta, the segment's start (side 1) or end (side -1),
+    of a segment stepped on :func:`_continued_loads` at energy e (de/dtheta = slope there):
+    (the jump of e, of the time, and of the work quadratures), true less continued.
+
+    With f the rates' difference over the window (the load's excess, the leaked volume, the
+    friction; the windmill's is second order), the jumps are its integrals, e's being -excess /
+    I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
+    e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
+    between the kinks (the integrand is smooth between them)."""
+
+
+@kernel
+def _window_jump(theta, e, slope, side, segment, faces, machine):
+    real = machine.real
+    row = np.empty(ROW)
+    x, w = GAUSS4
+    jump = dt = leaked = friction = excess = 0.0
+    low = 0.0
+    while True:
+        high = _window_widths(theta, e, slope, side, segment, machine, low)
+        if high == math.inf:
+            break
+        for q in range(4):
+            s = low + x[q] * (high - low)
+            at = theta + side * s
+            e_at = e + slope * s * side
+            _sums(row, at, segment, machine, False)
+            theta_dot = math.sqrt(2.0 * e_at / row[0])
+            load, Q, h_f, _ = _face_loads(theta_dot, row, machine)
+            load_c, Q_c, h_f_c, _ = _continued_loads(theta_dot, row, faces, machine)
+            weight = w[q] * (high - low)
+            excess += weight * (load - load_c)
+            leaked += weight * (Q_c - Q) / theta_dot
+            friction += weight * real.rho_g * (h_f * Q - h_f_c * Q_c) / theta_dot
+            rate = -(load - load_c) * machine.inv_I_eff
+            dt += side * weight * s * rate / (2.0 * e_at * theta_dot)
+        low = high
+    jump = -excess * machine.inv_I_eff
+    return jump, dt, (0.0, leaked, friction, excess)
+
+
+_entry(window_jump)(
+    lambda theta, e, slope, side, segment, faces, machine: (0.0, 0.0, 0.0), _window_jump
+)
+
+
+def jump_work(W, jump, machine):
+    """The work quadratures W plus a window's jump (the ideal machine's W as it is)."""
+
+
+_entry(jump_work)(
+    lambda W, jump, machine: W,
+    lambda W, jump, machine: (W[0] + jump[0], W[1] + jump[1], W[2] + jump[2], W[3] + jump[3]),
+)

@@ -663,9 +663,10 @@ def in_angle(
     m_other = m  # the real machine's sub-steps of a segment of the other parity
     # The real machine's C (the frozen friction's, :mod:`.real`) since the segment began
     c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
-    faces = (
-        -1.0
-    )  # a segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
+    # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
+    faces = -1.0
+    windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
+    clear_of_window = math.inf  # past here the segment's start window is behind
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -683,17 +684,18 @@ def in_angle(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
             rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
-        if full:
+        if full or windows_off:
             faces = -1.0
         k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, calm)[0],
                    machine, segment)  # fmt: skip
         jumped = False  # a leak hole's window after the start was jumped (:mod:`.real`)
         u_before, t_before, W_before = u, t, W
-        if full and sample_dt is None and not has_record(machine.wind):
+        past_t_end = False
+        if full and not windows_off and sample_dt is None and not has_record(machine.wind):
             slope = energy_slope(k1[0], theta, e_ref, segment, calm)
-            faces = open_windows(theta, u, slope, segment, grid.delta, calm)
+            faces = open_windows(theta, u, slope, h, segment, grid.delta, calm)
             if faces >= 0.0:
-                jumped = True
+                jumped, clear_of_window = True, theta + h
                 jump, dt, dW = window_jump(theta, u, slope, 1.0, segment, faces, calm)
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
@@ -749,7 +751,7 @@ def in_angle(
                 c_end = friction_at(scratch_rows[6, 7], calm)
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             if y[2] > t_end:
-                status = IN_TIME  # the sub-step would pass t_end: go on in time
+                status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
             if not (ok and scaled <= 1.0):
                 status, m = finer_split(ok, scaled, h_step, width, m)
@@ -796,12 +798,16 @@ def in_angle(
                 leak = (leak[1], math.inf, leak[2])
         if jumped and i == 0 and status != SPLIT_DONE:  # nothing taken: the jump is undone
             u, t, W = u_before, t_before, W_before
+        if past_t_end and faces >= 0.0 and ((jumped and i == 0) or theta >= clear_of_window):
+            # Not in time across a window (its kink unseen): the rest of the segment again, on
+            # its kinks, up to t_end
+            windows_off, status, leak = True, REFINED, (math.inf, math.inf, -1)
         segment, full, m = after_split(
             status, i, m_seg, full, m, width, h, worst, segment, past_leak, wholes
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at = 0.0
+            c_at, windows_off = 0.0, False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

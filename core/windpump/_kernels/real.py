@@ -1065,19 +1065,22 @@ WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a k
 WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
 
 
-def open_windows(theta, u, slope, segment, delta, machine):
+def open_windows(theta, u, slope, h, segment, delta, machine):
     """At a delivering segment's start theta, at energy u with slope du/dtheta: how many faces
     deliver in it, as a float, when its hole's windows are narrow enough to be corrected apart
-    (:func:`window_jump`), else -1.0 (and always for the ideal machine, or a tight piston).
+    (:func:`window_jump`), else -1.0 (and always for the ideal machine, or a tight piston); h
+    is the split's sub-step.
 
     Narrow: the arm at a kink at most WINDOW_TARGET, the energy's change over twice the widest
     window at most WINDOW_DRIFT of it, and no grid angle ``g delta`` inside either window but the
-    dead centres (the samples there are taken before the jump at the start, after it at the end).
+    dead centres (the samples there are taken before the jump at the start, after it at the end),
+    nor a whole sub-step h (past the first the run may go on without windows: the start's is
+    behind it).
     """
 
 
 @kernel
-def _open_windows(theta, u, slope, segment, delta, machine):
+def _open_windows(theta, u, slope, h, segment, delta, machine):
     real = machine.real
     if real.q_L == 0.0 or not u > 0.0:
         return -1.0
@@ -1086,7 +1089,7 @@ def _open_windows(theta, u, slope, segment, delta, machine):
     if not target <= WINDOW_TARGET:
         return -1.0
     reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
-    if reach * abs(slope) > WINDOW_DRIFT * u:
+    if reach * abs(slope) > WINDOW_DRIFT * u or reach > h:
         return -1.0
     start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
     if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
@@ -1100,7 +1103,7 @@ def _open_windows(theta, u, slope, segment, delta, machine):
     return faces
 
 
-_entry(open_windows)(lambda theta, u, slope, segment, delta, machine: -1.0, _open_windows)
+_entry(open_windows)(lambda theta, u, slope, h, segment, delta, machine: -1.0, _open_windows)
 
 
 def energy_slope(rate, theta, e_ref, segment, machine):

@@ -409,7 +409,7 @@ def test_a_windows_jump_is_the_true_run_less_the_continued_one(name, side):
     # Across a window, from the same state on one side: the true loads (real_reference) by
     # DOP853, against the continued loads by DOP853 with the jump where the driver takes it
     # (after the jump at a segment's start; before it at its end), agree past the window to
-    # second order in the jump (e's is ~2e-5 of e at 16 rad/s, 1e-4 at 6 rad/s).
+    # second order in the jump.
     from real_reference import machine_rhs
 
     design, after_start, before_end, speed = WINDOWED[name]

@@ -507,3 +507,38 @@ def test_a_leaky_run_at_speed_follows_the_reference(name):
         assert run.volume[-1] == pytest.approx(ref.volume, rel=rtol)
         assert run.theta[-1] == pytest.approx(ref.theta, rel=rtol)
         assert windpump.power_budget(run).imbalance < 1e-9
+
+
+@settings(max_examples=100, deadline=None)
+@given(phi=st.floats(-20.0, 20.0), ratio=st.floats(1.05, 30.0))
+def test_the_arm_squareds_closed_form_integral_is_a_quadrature(phi, ratio):
+    """int_0^phi (lever arm)^2 (the masses' frozen ripple in the time) against scipy's quad."""
+    from scipy.integrate import quad
+
+    from windpump._kernels.equations import lever_arm, lever_arm_squared_integral
+
+    expected, _ = quad(lambda p: lever_arm(p, ratio) ** 2, 0.0, phi, epsabs=1e-14, limit=400)
+    scale = max(1.0, abs(phi)) * ratio * ratio  # its terms' size: they cancel to ~1e-16 of it
+    assert float(lever_arm_squared_integral(phi, ratio)) == pytest.approx(
+        expected, rel=1e-12, abs=1e-14 * scale
+    )
+
+
+HEAVY_RUNS = {  # the time's ripple taken out of its steps (docs/model.rst, "The real machine")
+    "seed, m_r = 1 kg": SEED.replace(m_r=1.0),
+    "two cylinders, m_r = 3 kg": SEED.replace(m_r=3.0, cylinders=2),
+    "eta_t = 0.9": SEED.replace(eta_t=0.9),
+    "a main": SEED.replace(L_main=10.0, D_main=0.025),
+}
+
+
+@pytest.mark.parametrize("name", HEAVY_RUNS)
+def test_a_real_run_with_its_times_ripple_frozen_follows_the_reference(name):
+    design = HEAVY_RUNS[name]
+    for t_end in (60.0, 120.0):
+        run = windpump.simulate(design, t_end)
+        ref = real_reference_run(design, t_end, math.pi / 2, 3.0)
+        assert run.theta_dot[-1] == pytest.approx(ref.theta_dot, rel=1e-6)
+        assert run.volume[-1] == pytest.approx(ref.volume, rel=1e-6)
+        assert run.theta[-1] == pytest.approx(ref.theta, rel=1e-6)
+        assert windpump.power_budget(run).imbalance < 1e-9

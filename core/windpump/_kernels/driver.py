@@ -38,8 +38,11 @@ from .real import (
     grid_aux,
     grid_inertia,
     grid_inertias,
+    grid_time,
     grid_works,
+    inertia_at,
     inertia_ratio,
+    inertia_since,
     inertia_table,
     jump_work,
     leak_scale,
@@ -49,6 +52,8 @@ from .real import (
     set_grid_inertia,
     split_sizes_by_parity,
     step_rows,
+    time_back,
+    time_frozen,
     window_jump,
     work_at,
     work_rows,
@@ -457,7 +462,10 @@ def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_tabl
             u_g = grid_aux(work_table[row], frozen, inertia_table, row) + dense_value(
                 sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
             )
-            t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
+            t_g = grid_time(
+                dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step), frozen, inertia_table,
+                row,
+            )  # fmt: skip
             W_g = grid_works(
                 work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step), frozen, inertia_table, row
             )
@@ -606,7 +614,7 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, NOT_KNOWN)
     ok, y, k7, err, dense = dp5_step(
         ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
-        step_rows(scratch_rows, e_ref, -1.0, machine), segment, machine,
+        step_rows(scratch_rows, e_ref, -1.0, (0.0, 0.0), machine), segment, machine,
     )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
@@ -665,6 +673,8 @@ def in_angle(
     c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
     # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
     faces = -1.0
+    # and int (j - 1) since it began (the masses' frozen ripple in the time: :mod:`.real`)
+    j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
     while True:
@@ -686,7 +696,8 @@ def in_angle(
             rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
         if full or windows_off:
             faces = -1.0
-        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, calm)[0],
+        tau = time_frozen(u, sample_dt is None and not has_record(machine.wind), calm)
+        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, tau, calm)[0],
                    machine, segment)  # fmt: skip
         jumped = False  # a leak hole's window after the start was jumped (:mod:`.real`)
         u_before, t_before, W_before = u, t, W
@@ -700,8 +711,10 @@ def in_angle(
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
                 u_free = frozen_start(u, work, e_ref, c_at, calm)
-                k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, calm)[0],
-                           machine, segment)  # fmt: skip
+                k1 = rates(
+                    ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, tau, calm)[0],
+                    machine, segment,
+                )  # fmt: skip
         if faces >= 0.0:
             leak = (math.inf, math.inf, segment)  # stepped past its kinks
         leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
@@ -734,9 +747,10 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
+            j_end = inertia_at(rows[6, 8], rows[6, 9], calm)  # and int (j - 1), int Lambda
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
-                step_rows(rows, e_ref, faces, calm),
+                step_rows(rows, e_ref, faces, tau, calm),
                 segment, machine,
             )  # fmt: skip
             steps += 1
@@ -749,8 +763,11 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
+                j_end = inertia_at(scratch_rows[6, 8], scratch_rows[6, 9], calm)
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
-            if y[2] > t_end:
+            # the time's frozen ripple back
+            t_new = time_back(y[2], tau, j_end[0] - j_at[0], j_end[1] - j_at[1], calm)
+            if t_new > t_end:
                 status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
             if not (ok and scaled <= 1.0):
@@ -763,12 +780,11 @@ def in_angle(
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
-            t_new = y[2]
             if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
                 slope = energy_slope(k7[0], theta_new, e_ref, segment, calm)
                 jump, dt, dW = window_jump(theta_new, u_new, slope, -1.0, segment, faces, calm)
                 u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
-            frozen = frozen_record(e_ref, c_at, W_new, calm)
+            frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)
             if sample_dt is not None:
                 out, n, j = record_in_step(
                     out, n, j, sample_dt, theta_i, h_step, t, W, u_free, y, k1, k7, dense,
@@ -784,7 +800,7 @@ def in_angle(
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
-            c_at = c_end
+            c_at, j_at = c_end, j_end
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
                 (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
                 at_wind_kink, whole, m, width, h, calm,
@@ -807,7 +823,7 @@ def in_angle(
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at, windows_off = 0.0, False
+            c_at, j_at, windows_off = 0.0, (0.0, 0.0), False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

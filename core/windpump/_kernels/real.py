@@ -82,8 +82,11 @@ JIT_OPTIONS: typing.Any = OPTIONS  # (numba's stubs type the options narrower th
 lever_arm_slope = kernel(equations.lever_arm_slope)  # (d^2x/dphi^2)/R [-]
 delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
+arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 8  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C
+ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
+# and (at the last node) the integrals of j - 1 and of Lambda since the segment began
+# (:func:`time_frozen`)
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -228,7 +231,8 @@ def _continued_loads(theta_dot, row, faces, machine):
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
     # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref, row[9] the delivering faces
-    # of a segment whose hole's windows are corrected apart, or -1: :func:`step_rows`)
+    # of a segment whose hole's windows are corrected apart, or -1, row[10] tau, row[11]
+    # 1 / e_ref: :func:`step_rows`)
     theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
@@ -244,7 +248,8 @@ def _real_angle_rates(x0, t, aux, row, machine):
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
     friction = real.rho_g * h_f * Q * per_radian - frozen
-    return rate, per_radian, per_radian, (drive, leaked, friction, excess)
+    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less the frozen ripple
+    return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
 def _real_time_rates(t, theta, theta_dot, row, segment, machine):
@@ -412,9 +417,103 @@ def _real_stages(aux, rows, theta, h, segment, machine):
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
         rows[6, column] = rows[5, column]
+    rows[6, 8] = _inertia_since(theta + h, segment, machine)
+    rows[6, 9] = _lambda_since(theta + h, segment, machine)
 
 
 _entry(fill_stages)(_ideal_stages, _real_stages)
+
+
+# -- The time's ripple, frozen (docs/model.rst, "The real machine"). -----------------------------
+#
+# dt/dtheta = sqrt(j / (2 e)) ripples with j(theta) = 1 + mu sum a_c^2 (mu = m_r R^2 / I_eff) and
+# with e = x0 + Lambda(theta) - e_ref C: parts in 1e5 to 1e3 at the harmonics of theta, which
+# the time's error estimate sees (the seed example with m_r = 1 kg took 6,479 steps against
+# 4,087). Where a split begins at energy e_ref, its first order there, tau ((j - 1) - Lambda /
+# e_ref) with tau = 1 / (2 sqrt(2 e_ref)), is taken out of the time's rate, and its integral
+# added back at each sub-step's end and at the grid angles: int (j - 1) in closed form
+# (:func:`~.equations.lever_arm_squared_integral`), int Lambda by Gauss-Legendre (tabulated with
+# the sub-steps). The step integrates only the rest.
+
+
+@kernel
+def _inertia_since(theta, segment, machine):
+    """int (j - 1) dtheta from the segment's start to theta [rad] (0.0 without masses)."""
+    real = machine.real
+    if real.mass_ratio == 0.0:
+        return 0.0
+    start = segment_start(segment, machine)
+    total = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        total += arm_squared_integral(theta - lag, machine.L_over_R) - arm_squared_integral(
+            start - lag, machine.L_over_R
+        )
+    return real.mass_ratio * total
+
+
+@kernel
+def _lambda_since(theta, segment, machine):
+    """int Lambda dtheta from the segment's start to theta [J/(kg m^2) rad], by Gauss-Legendre
+    (:func:`friction_between`'s pieces: Lambda is analytic inside a segment)."""
+    a = segment_start(segment, machine)
+    reach = math.acosh(machine.L_over_R)
+    pieces = max(1, int(math.ceil((theta - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (theta - a) / pieces
+    total = 0.0
+    x, w = GAUSS8
+    for p in range(pieces):
+        start = a + p * length
+        for q in range(8):
+            total += w[q] * conservative_work(start + x[q] * length, segment, machine)
+    return total * length
+
+
+def inertia_since(theta, segment, machine):
+    """(int (j - 1), int Lambda) dtheta since the segment's start; (0.0, 0.0) for the ideal
+    machine."""
+
+
+_entry(inertia_since)(
+    lambda theta, segment, machine: (0.0, 0.0),
+    lambda theta, segment, machine: (
+        _inertia_since(theta, segment, machine),
+        _lambda_since(theta, segment, machine),
+    ),
+)
+
+
+def time_frozen(u, allowed, machine):
+    """(tau = 1 / (2 sqrt(2 u)) [s/rad], 1 / u) where a split begins at energy u, when the
+    time's ripple is taken out of its rate (``allowed``: on an angle grid without a wind record),
+    else zeros (and always for the ideal machine)."""
+
+
+_entry(time_frozen)(
+    lambda u, allowed, machine: (0.0, 0.0),
+    lambda u, allowed, machine: (
+        (0.5 / math.sqrt(2.0 * u), 1.0 / u) if allowed and u > 0.0 else (0.0, 0.0)
+    ),
+)
+
+
+def inertia_at(J, X, machine):
+    """(int (j - 1), int Lambda) at a sub-step's end from its rows' ``rows[6, 8:10]`` (zeros
+    for the ideal machine, whose rows hold nothing there)."""
+
+
+_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
+
+
+def time_back(t, frozen_time, dJ, dX, machine):
+    """A time off the step's quadrature, t, with the frozen ripple's integral added back,
+    tau (dJ - dX / e_ref) (the ideal machine's t as it is)."""
+
+
+_entry(time_back)(
+    lambda t, frozen_time, dJ, dX, machine: t,
+    lambda t, frozen_time, dJ, dX, machine: t + frozen_time[0] * (dJ - dX * frozen_time[1]),
+)
 
 
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
@@ -626,15 +725,35 @@ def _frozen_work(W, e_ref, dC, machine):
 _entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
 
 
-def frozen_record(e_ref, c_at, W_new, machine):
-    """What the recorders need of a sub-step's frozen friction: None for the ideal machine, else
-    (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended)."""
+def frozen_record(e_ref, c_at, W_new, frozen_time, j_at, machine):
+    """What the recorders need of a sub-step's frozen friction and ripple: None for the ideal
+    machine, else (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended,
+    (tau, 1 / e_ref), (int (j - 1), int Lambda) where it began)."""
 
 
 _entry(frozen_record)(
-    lambda e_ref, c_at, W_new, machine: None,
-    lambda e_ref, c_at, W_new, machine: (e_ref, e_ref / machine.inv_I_eff, c_at, W_new),
-)
+    lambda e_ref, c_at, W_new, frozen_time, j_at, machine: None,
+    lambda e_ref, c_at, W_new, frozen_time, j_at, machine: (
+        e_ref, e_ref / machine.inv_I_eff, c_at, W_new, frozen_time, j_at
+    ),
+)  # fmt: skip
+
+
+def grid_time(t, frozen, table, row):
+    """A grid sample's time inside a sub-step: the step's ``t``, with the masses' frozen ripple
+    since the sub-step began added back for the real machine (:func:`time_frozen`)."""
+
+
+@overload(grid_time, jit_options=JIT_OPTIONS)
+def _grid_time(t, frozen, table, row):
+    if _is_none(frozen):
+        return lambda t, frozen, table, row: t
+
+    def at(t, frozen, table, row):
+        (tau, inv_e), (J, X) = frozen[4], frozen[5]
+        return t + tau * ((table[2, row] - J) - (table[3, row] - X) * inv_e)
+
+    return at
 
 
 def _is_none(frozen) -> bool:
@@ -681,7 +800,7 @@ def _at_time(work, W, frozen, theta_i, theta, segment, machine):
         return lambda work, W, frozen, theta_i, theta, segment, machine: (work, W)
 
     def at(work, W, frozen, theta_i, theta, segment, machine):
-        e_ref, e_ref_I, c_at, _ = frozen
+        e_ref, e_ref_I, c_at, _, _, _ = frozen
         C = friction_since(theta_i, theta, c_at, segment, machine)
         extra = e_ref_I * (C - c_at)
         return work - e_ref * C, (W[0], W[1], W[2] + extra, W[3] + extra)
@@ -701,13 +820,16 @@ def _end_works(y, frozen):
 
 
 def grid_inertias(theta, segment, machine):
-    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C since
-    the segment began."""
+    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C, int
+    (j - 1) and int Lambda since the segment began."""
 
 
 def _grid_inertias(theta, segment, machine):
-    return inertia_ratio(theta, machine), friction_since(
-        segment_start(segment, machine), theta, 0.0, segment, machine
+    return (
+        inertia_ratio(theta, machine),
+        friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
+        _inertia_since(theta, segment, machine),
+        _lambda_since(theta, segment, machine),
     )
 
 
@@ -715,11 +837,11 @@ _entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
 
 
 def inertia_table(rows, machine):
-    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (2, rows)."""
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (4, rows)."""
 
 
 _entry(inertia_table)(
-    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((2, rows))
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((4, rows))
 )
 
 
@@ -737,7 +859,7 @@ def _set_grid_inertia(table, row, values):
         return set_one
 
     def set_two(table, row, values):
-        table[0, row], table[1, row] = values
+        table[0, row], table[1, row], table[2, row], table[3, row] = values
 
     return set_two
 
@@ -1003,33 +1125,37 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
     return factors
 
 
-def step_rows(rows, e_ref, faces, machine):
+def step_rows(rows, e_ref, faces, frozen_time, machine):
     """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
-    (column 7) times the frozen energy e_ref in its place, e_ref after it, and ``faces`` last:
-    the delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
-    corrected apart), or -1.0 (the ideal machine's: ``rows`` as they are). A stage's row taken
+    (column 7) times the frozen energy e_ref in its place, e_ref after it, ``faces``: the
+    delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
+    corrected apart) or -1.0, and tau and 1 / e_ref (:func:`time_frozen`) last (the ideal
+    machine's: ``rows`` as they are). A stage's row taken
     from the array is a view, whose reference is counted atomically as it is made and dropped:
     14 atomic operations a step, a third of the time of the real machine's steps (eta_t
     alone)."""
 
 
 @kernel
-def _row(rows, stage, e_ref, faces):
+def _row(rows, stage, e_ref, faces, frozen_time):
     return (
         rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
         rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref, faces,
+        frozen_time[0], frozen_time[1],
     )  # fmt: skip
 
 
-def _step_rows(rows, e_ref, faces, machine):
+def _step_rows(rows, e_ref, faces, frozen_time, machine):
+    f = frozen_time
     return (
-        _row(rows, 0, e_ref, faces), _row(rows, 1, e_ref, faces), _row(rows, 2, e_ref, faces),
-        _row(rows, 3, e_ref, faces), _row(rows, 4, e_ref, faces), _row(rows, 5, e_ref, faces),
-        _row(rows, 6, e_ref, faces),
+        _row(rows, 0, e_ref, faces, f), _row(rows, 1, e_ref, faces, f),
+        _row(rows, 2, e_ref, faces, f), _row(rows, 3, e_ref, faces, f),
+        _row(rows, 4, e_ref, faces, f), _row(rows, 5, e_ref, faces, f),
+        _row(rows, 6, e_ref, faces, f),
     )  # fmt: skip
 
 
-_entry(step_rows)(lambda rows, e_ref, faces, machine: rows, _step_rows)
+_entry(step_rows)(lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows)
 
 
 def split_sizes_by_parity(m, m_other, machine):

@@ -674,7 +674,7 @@ def in_angle(
     # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
     faces = -1.0
     # and int (j - 1) since it began (the masses' frozen ripple in the time: :mod:`.real`)
-    j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
+    j_at = (0.0, 0.0, 0.0) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
     while True:
@@ -711,6 +711,7 @@ def in_angle(
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
                 u_free = frozen_start(u, work, e_ref, c_at, calm)
+                tau = time_frozen(u, True, calm)
                 k1 = rates(
                     ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, tau, calm)[0],
                     machine, segment,
@@ -747,7 +748,7 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
-            j_end = inertia_at(rows[6, 8], rows[6, 9], calm)  # and int (j - 1), int Lambda
+            j_end = inertia_at(rows[6, 8], rows[6, 9], rows[6, 10], calm)  # the time's (.real)
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
                 step_rows(rows, e_ref, faces, tau, calm),
@@ -763,10 +764,12 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
-                j_end = inertia_at(scratch_rows[6, 8], scratch_rows[6, 9], calm)
+                j_end = inertia_at(
+                    scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 10], calm
+                )
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             # the time's frozen ripple back
-            t_new = time_back(y[2], tau, j_end[0] - j_at[0], j_end[1] - j_at[1], calm)
+            t_new = time_back(y[2], tau, e_ref, j_end, j_at, calm)
             if t_new > t_end:
                 status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
@@ -823,7 +826,7 @@ def in_angle(
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at, j_at, windows_off = 0.0, (0.0, 0.0), False
+            c_at, j_at, windows_off = 0.0, (0.0, 0.0, 0.0), False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

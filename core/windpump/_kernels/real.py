@@ -84,8 +84,8 @@ delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
-# and (at the last node) the integrals of j - 1 and of Lambda since the segment began
+ROW = 11  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
+# and (at the last node) the integrals of j - 1, Lambda and C since the segment began
 # (:func:`time_frozen`)
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
@@ -248,7 +248,7 @@ def _real_angle_rates(x0, t, aux, row, machine):
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
     friction = real.rho_g * h_f * Q * per_radian - frozen
-    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less the frozen ripple
+    time = per_radian - row[10] * ((row[0] - 1.0) - (aux - row[7]) * row[11])  # less its ripple
     return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
@@ -419,6 +419,7 @@ def _real_stages(aux, rows, theta, h, segment, machine):
         rows[6, column] = rows[5, column]
     rows[6, 8] = _inertia_since(theta + h, segment, machine)
     rows[6, 9] = _lambda_since(theta + h, segment, machine)
+    rows[6, 10] = _friction_moment(theta + h, segment, machine)
 
 
 _entry(fill_stages)(_ideal_stages, _real_stages)
@@ -429,11 +430,12 @@ _entry(fill_stages)(_ideal_stages, _real_stages)
 # dt/dtheta = sqrt(j / (2 e)) ripples with j(theta) = 1 + mu sum a_c^2 (mu = m_r R^2 / I_eff) and
 # with e = x0 + Lambda(theta) - e_ref C: parts in 1e5 to 1e3 at the harmonics of theta, which
 # the time's error estimate sees (the seed example with m_r = 1 kg took 6,479 steps against
-# 4,087). Where a split begins at energy e_ref, its first order there, tau ((j - 1) - Lambda /
-# e_ref) with tau = 1 / (2 sqrt(2 e_ref)), is taken out of the time's rate, and its integral
-# added back at each sub-step's end and at the grid angles: int (j - 1) in closed form
-# (:func:`~.equations.lever_arm_squared_integral`), int Lambda by Gauss-Legendre (tabulated with
-# the sub-steps). The step integrates only the rest.
+# 4,087). Where a split begins at energy u (e_ref = u with a main), its first order there,
+# tau ((j - 1) - (Lambda - e_ref C) / u) with tau = 1 / (2 sqrt(2 u)), is taken out of the
+# time's rate, and its integral added back at each sub-step's end and at the grid angles:
+# int (j - 1) in closed form (:func:`~.equations.lever_arm_squared_integral`), int Lambda and
+# int C = int (theta - s) c(s) ds by Gauss-Legendre (tabulated with the sub-steps). The step
+# integrates only the rest.
 
 
 @kernel
@@ -469,18 +471,38 @@ def _lambda_since(theta, segment, machine):
     return total * length
 
 
+@kernel
+def _friction_moment(theta, segment, machine):
+    """int C dtheta = int (theta - s) c(s) ds from the segment's start to theta [rad], by
+    Gauss-Legendre (:func:`friction_between`'s pieces); 0.0 without a main."""
+    if machine.real.friction == 0.0:
+        return 0.0
+    a = segment_start(segment, machine)
+    reach = math.acosh(machine.L_over_R)
+    pieces = max(1, int(math.ceil((theta - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (theta - a) / pieces
+    total = 0.0
+    x, w = GAUSS8
+    for p in range(pieces):
+        start = a + p * length
+        for q in range(8):
+            s = start + x[q] * length
+            total += w[q] * (theta - s) * friction_density(s, segment, machine)
+    return total * length
+
+
 def inertia_since(theta, segment, machine):
-    """(int (j - 1), int Lambda) dtheta since the segment's start; (0.0, 0.0) for the ideal
+    """(int (j - 1), int Lambda, int C) dtheta since the segment's start; zeros for the ideal
     machine."""
 
 
 _entry(inertia_since)(
-    lambda theta, segment, machine: (0.0, 0.0),
+    lambda theta, segment, machine: (0.0, 0.0, 0.0),
     lambda theta, segment, machine: (
-        _inertia_since(theta, segment, machine),
-        _lambda_since(theta, segment, machine),
+        _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine),
+        _friction_moment(theta, segment, machine),
     ),
-)
+)  # fmt: skip
 
 
 def time_frozen(u, allowed, machine):
@@ -497,23 +519,27 @@ _entry(time_frozen)(
 )
 
 
-def inertia_at(J, X, machine):
-    """(int (j - 1), int Lambda) at a sub-step's end from its rows' ``rows[6, 8:10]`` (zeros
-    for the ideal machine, whose rows hold nothing there)."""
+def inertia_at(J, X, K, machine):
+    """(int (j - 1), int Lambda, int C) at a sub-step's end from its rows' ``rows[6, 8:11]``
+    (zeros for the ideal machine, whose rows hold nothing there)."""
 
 
-_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
+_entry(inertia_at)(lambda J, X, K, machine: (0.0, 0.0, 0.0), lambda J, X, K, machine: (J, X, K))
 
 
-def time_back(t, frozen_time, dJ, dX, machine):
-    """A time off the step's quadrature, t, with the frozen ripple's integral added back,
-    tau (dJ - dX / e_ref) (the ideal machine's t as it is)."""
+def time_back(t, frozen_time, e_ref, end, start, machine):
+    """A time off the step's quadrature, t, with the frozen ripple's integral from ``start`` to
+    ``end`` (:func:`inertia_since`'s) added back, tau (dJ - (dX - e_ref dK) / u) (the ideal
+    machine's t as it is)."""
 
 
-_entry(time_back)(
-    lambda t, frozen_time, dJ, dX, machine: t,
-    lambda t, frozen_time, dJ, dX, machine: t + frozen_time[0] * (dJ - dX * frozen_time[1]),
-)
+def _time_back(t, frozen_time, e_ref, end, start, machine):
+    tau, inv_e = frozen_time
+    dJ, dX, dK = end[0] - start[0], end[1] - start[1], end[2] - start[2]
+    return t + tau * (dJ - (dX - e_ref * dK) * inv_e)
+
+
+_entry(time_back)(lambda t, frozen_time, e_ref, end, start, machine: t, _time_back)
 
 
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
@@ -728,7 +754,7 @@ _entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
 def frozen_record(e_ref, c_at, W_new, frozen_time, j_at, machine):
     """What the recorders need of a sub-step's frozen friction and ripple: None for the ideal
     machine, else (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended,
-    (tau, 1 / e_ref), (int (j - 1), int Lambda) where it began)."""
+    (tau, 1 / u), (int (j - 1), int Lambda, int C) where it began)."""
 
 
 _entry(frozen_record)(
@@ -750,8 +776,9 @@ def _grid_time(t, frozen, table, row):
         return lambda t, frozen, table, row: t
 
     def at(t, frozen, table, row):
-        (tau, inv_e), (J, X) = frozen[4], frozen[5]
-        return t + tau * ((table[2, row] - J) - (table[3, row] - X) * inv_e)
+        (tau, inv_e), (J, X, K) = frozen[4], frozen[5]
+        dX = (table[3, row] - X) - frozen[0] * (table[4, row] - K)
+        return t + tau * ((table[2, row] - J) - dX * inv_e)
 
     return at
 
@@ -821,7 +848,7 @@ def _end_works(y, frozen):
 
 def grid_inertias(theta, segment, machine):
     """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C, int
-    (j - 1) and int Lambda since the segment began."""
+    (j - 1), int Lambda and int C since the segment began."""
 
 
 def _grid_inertias(theta, segment, machine):
@@ -830,6 +857,7 @@ def _grid_inertias(theta, segment, machine):
         friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
         _inertia_since(theta, segment, machine),
         _lambda_since(theta, segment, machine),
+        _friction_moment(theta, segment, machine),
     )
 
 
@@ -837,11 +865,11 @@ _entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
 
 
 def inertia_table(rows, machine):
-    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (4, rows)."""
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (5, rows)."""
 
 
 _entry(inertia_table)(
-    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((4, rows))
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((5, rows))
 )
 
 
@@ -859,7 +887,7 @@ def _set_grid_inertia(table, row, values):
         return set_one
 
     def set_two(table, row, values):
-        table[0, row], table[1, row], table[2, row], table[3, row] = values
+        table[0, row], table[1, row], table[2, row], table[3, row], table[4, row] = values
 
     return set_two
 

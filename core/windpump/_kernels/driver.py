@@ -21,6 +21,7 @@ from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
     ROW,
+    add_integrals,
     at_time,
     conservative_torque,
     conservative_work,
@@ -748,7 +749,7 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
-            j_end = inertia_at(rows[6, 8], rows[6, 9], rows[6, 10], calm)  # the time's (.real)
+            j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 10], calm)  # the time's (.real)
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
                 step_rows(rows, e_ref, faces, tau, calm),
@@ -764,12 +765,12 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
-                j_end = inertia_at(
+                j_step = inertia_at(
                     scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 10], calm
                 )
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             # the time's frozen ripple back
-            t_new = time_back(y[2], tau, e_ref, j_end, j_at, calm)
+            t_new = time_back(y[2], tau, e_ref, j_step, calm)
             if t_new > t_end:
                 status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
@@ -803,7 +804,7 @@ def in_angle(
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
-            c_at, j_at = c_end, j_end
+            c_at, j_at = c_end, add_integrals(j_at, j_step, calm)
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
                 (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
                 at_wind_kink, whole, m, width, h, calm,

@@ -417,9 +417,11 @@ def _real_stages(aux, rows, theta, h, segment, machine):
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
         rows[6, column] = rows[5, column]
-    rows[6, 8] = _inertia_since(theta + h, segment, machine)
-    rows[6, 9] = _lambda_since(theta + h, segment, machine)
-    rows[6, 10] = _friction_moment(theta + h, segment, machine)
+    # the sub-step's integrals of j - 1 and Lambda (of C: :func:`fill_friction`)
+    rows[6, 8] = _inertia_since(theta + h, segment, machine) - _inertia_since(
+        theta, segment, machine
+    )
+    rows[6, 9] = _lambda_between(theta, theta + h, segment, machine)
 
 
 _entry(fill_stages)(_ideal_stages, _real_stages)
@@ -455,13 +457,12 @@ def _inertia_since(theta, segment, machine):
 
 
 @kernel
-def _lambda_since(theta, segment, machine):
-    """int Lambda dtheta from the segment's start to theta [J/(kg m^2) rad], by Gauss-Legendre
+def _lambda_between(a, b, segment, machine):
+    """int_a^b Lambda dtheta inside a segment [J/(kg m^2) rad], by Gauss-Legendre
     (:func:`friction_between`'s pieces: Lambda is analytic inside a segment)."""
-    a = segment_start(segment, machine)
     reach = math.acosh(machine.L_over_R)
-    pieces = max(1, int(math.ceil((theta - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (theta - a) / pieces
+    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (b - a) / pieces
     total = 0.0
     x, w = GAUSS8
     for p in range(pieces):
@@ -472,23 +473,28 @@ def _lambda_since(theta, segment, machine):
 
 
 @kernel
-def _friction_moment(theta, segment, machine):
-    """int C dtheta = int (theta - s) c(s) ds from the segment's start to theta [rad], by
+def _lambda_since(theta, segment, machine):
+    """int Lambda dtheta from the segment's start to theta."""
+    return _lambda_between(segment_start(segment, machine), theta, segment, machine)
+
+
+@kernel
+def _friction_moment(a, b, c_a, segment, machine):
+    """int_a^b C dtheta = C(a) (b - a) + int_a^b (b - s) c(s) ds [rad], C(a) = c_a, by
     Gauss-Legendre (:func:`friction_between`'s pieces); 0.0 without a main."""
     if machine.real.friction == 0.0:
         return 0.0
-    a = segment_start(segment, machine)
     reach = math.acosh(machine.L_over_R)
-    pieces = max(1, int(math.ceil((theta - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (theta - a) / pieces
+    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (b - a) / pieces
     total = 0.0
     x, w = GAUSS8
     for p in range(pieces):
         start = a + p * length
         for q in range(8):
             s = start + x[q] * length
-            total += w[q] * (theta - s) * friction_density(s, segment, machine)
-    return total * length
+            total += w[q] * (b - s) * friction_density(s, segment, machine)
+    return c_a * (b - a) + total * length
 
 
 def inertia_since(theta, segment, machine):
@@ -500,7 +506,7 @@ _entry(inertia_since)(
     lambda theta, segment, machine: (0.0, 0.0, 0.0),
     lambda theta, segment, machine: (
         _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine),
-        _friction_moment(theta, segment, machine),
+        _friction_moment(segment_start(segment, machine), theta, 0.0, segment, machine),
     ),
 )  # fmt: skip
 
@@ -520,26 +526,35 @@ _entry(time_frozen)(
 
 
 def inertia_at(J, X, K, machine):
-    """(int (j - 1), int Lambda, int C) at a sub-step's end from its rows' ``rows[6, 8:11]``
+    """(int (j - 1), int Lambda, int C) over a sub-step from its rows' ``rows[6, 8:11]``
     (zeros for the ideal machine, whose rows hold nothing there)."""
 
 
 _entry(inertia_at)(lambda J, X, K, machine: (0.0, 0.0, 0.0), lambda J, X, K, machine: (J, X, K))
 
 
-def time_back(t, frozen_time, e_ref, end, start, machine):
-    """A time off the step's quadrature, t, with the frozen ripple's integral from ``start`` to
-    ``end`` (:func:`inertia_since`'s) added back, tau (dJ - (dX - e_ref dK) / u) (the ideal
+def time_back(t, frozen_time, e_ref, step, machine):
+    """A time off the step's quadrature, t, with the frozen ripple's integral over the sub-step
+    (:func:`inertia_at`'s ``step``) added back, tau (dJ - (dX - e_ref dK) / u) (the ideal
     machine's t as it is)."""
 
 
-def _time_back(t, frozen_time, e_ref, end, start, machine):
+def _time_back(t, frozen_time, e_ref, step, machine):
     tau, inv_e = frozen_time
-    dJ, dX, dK = end[0] - start[0], end[1] - start[1], end[2] - start[2]
-    return t + tau * (dJ - (dX - e_ref * dK) * inv_e)
+    return t + tau * (step[0] - (step[1] - e_ref * step[2]) * inv_e)
 
 
-_entry(time_back)(lambda t, frozen_time, e_ref, end, start, machine: t, _time_back)
+_entry(time_back)(lambda t, frozen_time, e_ref, step, machine: t, _time_back)
+
+
+def add_integrals(at, step, machine):
+    """:func:`inertia_since`'s integrals where a sub-step began plus the sub-step's."""
+
+
+_entry(add_integrals)(
+    lambda at, step, machine: at,
+    lambda at, step, machine: (at[0] + step[0], at[1] + step[1], at[2] + step[2]),
+)
 
 
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
@@ -647,6 +662,7 @@ def _fill_friction(rows, theta, h, c_at, known, segment, machine):
     # The end's C enters the state: Gauss-Legendre. The inner nodes' C only moves the stages'
     # speeds, whose rates depend on it weakly (~1e-4 of it per radian at the seed's speed):
     # the polynomial through c at the nodes (rows filled) is ample.
+    rows[6, 10] = _friction_moment(theta, theta + h, c_at, segment, machine)  # int C (time)
     if machine.real.friction == 0.0:
         for stage in range(7):
             rows[stage, 7] = 0.0
@@ -857,7 +873,7 @@ def _grid_inertias(theta, segment, machine):
         friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
         _inertia_since(theta, segment, machine),
         _lambda_since(theta, segment, machine),
-        _friction_moment(theta, segment, machine),
+        _friction_moment(segment_start(segment, machine), theta, 0.0, segment, machine),
     )
 
 
@@ -1276,15 +1292,16 @@ _entry(energy_slope)(lambda rate, theta, e_ref, segment, machine: 0.0, _energy_s
 
 
 @kernel
-def _window_widths(theta, e, slope, side, segment, machine, after):
-    """The narrowest window wider than ``after`` of the faces whose dead centre is the segment's
-    start (side 1) or end (side -1), theta: its width [rad], or inf. The kink is where the face's
-    swept flow reaches q_L at the speed there, e growing linearly from theta (one correction of
-    the kink found at theta's speed)."""
+def _window_widths(theta, e, slope, side, segment, machine):
+    """The widths [rad] of the windows of the faces whose dead centre is the segment's start
+    (side 1) or end (side -1), theta: (the narrowest, the next wider or inf), inf where there is
+    none (at most two faces share a dead centre: a cylinder's and the opposite one's). The kink
+    is where the face's swept flow reaches q_L at the speed there, e growing linearly from theta
+    (the speed taken at the kink's first guess, from the arm's slope at the dead centre)."""
     real = machine.real
     width = math.pi / machine.cylinders
     middle = segment_start(segment, machine) + 0.5 * width
-    best = math.inf
+    first = second = math.inf
     for k in range(machine.cylinders):
         if delivering_face(segment, k, machine) == NEITHER:
             continue
@@ -1297,17 +1314,20 @@ def _window_widths(theta, e, slope, side, segment, machine, after):
             continue
         dead_centre = math.pi * (half % 2)
         sign = 1.0 if half % 2 == 0 else -1.0
-        psi = 0.0
-        for _ in range(2):
-            at = theta + side * psi
-            theta_dot = math.sqrt(2.0 * (e + side * slope * psi) / _inertia_ratio(at, machine))
-            target = real.q_L / (real.AR * theta_dot)
-            psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R)
-            if side < 0:
-                psi = math.pi - psi
-        if after < psi < best:
-            best = psi
-    return best
+        at_top = (dead_centre == 0.0) == (side > 0)
+        arm_slope = 1.0 + 1.0 / machine.L_over_R if at_top else 1.0 - 1.0 / machine.L_over_R
+        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / _inertia_ratio(theta, machine)))
+        guess /= arm_slope
+        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / _inertia_ratio(theta, machine))
+        target = real.q_L / (real.AR * theta_dot)
+        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R)
+        if side < 0:
+            psi = math.pi - psi
+        if psi < first:
+            first, second = psi, first
+        elif first < psi < second:
+            second = psi
+    return first, second
 
 
 def window_jump(theta, e, slope, side, segment, faces, machine):
@@ -1329,8 +1349,8 @@ def _window_jump(theta, e, slope, side, segment, faces, machine):
     x, w = GAUSS4
     jump = dt = leaked = friction = excess = 0.0
     low = 0.0
-    while True:
-        high = _window_widths(theta, e, slope, side, segment, machine, low)
+    widths = _window_widths(theta, e, slope, side, segment, machine)
+    for high in widths:
         if high == math.inf:
             break
         for q in range(4):

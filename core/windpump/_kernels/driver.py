@@ -675,7 +675,7 @@ def in_angle(
     # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
     faces = -1.0
     # and int (j - 1) since it began (the masses' frozen ripple in the time: :mod:`.real`)
-    j_at = (0.0, 0.0, 0.0) if full else inertia_since(theta, segment, calm)
+    j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
     while True:
@@ -749,7 +749,7 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
-            j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 10], calm)  # the time's (.real)
+            j_step = inertia_at(rows[6, 8], rows[6, 9], calm)  # the time's ripple (.real)
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
                 step_rows(rows, e_ref, faces, tau, calm),
@@ -765,12 +765,10 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
-                j_step = inertia_at(
-                    scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 10], calm
-                )
+                j_step = inertia_at(scratch_rows[6, 8], scratch_rows[6, 9], calm)
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             # the time's frozen ripple back
-            t_new = time_back(y[2], tau, e_ref, j_step, calm)
+            t_new = time_back(y[2], tau, j_step, calm)
             if t_new > t_end:
                 status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
@@ -827,7 +825,7 @@ def in_angle(
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at, j_at, windows_off = 0.0, (0.0, 0.0, 0.0), False
+            c_at, j_at, windows_off = 0.0, (0.0, 0.0), False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

@@ -84,9 +84,8 @@ delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 11  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
-# and (at the last node) the integrals of j - 1, Lambda and C since the segment began
-# (:func:`time_frozen`)
+ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
+# and (at the last node) the integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`)
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -248,7 +247,7 @@ def _real_angle_rates(x0, t, aux, row, machine):
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
     friction = real.rho_g * h_f * Q * per_radian - frozen
-    time = per_radian - row[10] * ((row[0] - 1.0) - (aux - row[7]) * row[11])  # less its ripple
+    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less its frozen ripple
     return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
@@ -417,7 +416,7 @@ def _real_stages(aux, rows, theta, h, segment, machine):
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
         rows[6, column] = rows[5, column]
-    # the sub-step's integrals of j - 1 and Lambda (of C: :func:`fill_friction`)
+    # the sub-step's integrals of j - 1 and Lambda (:func:`time_frozen`)
     rows[6, 8] = _inertia_since(theta + h, segment, machine) - _inertia_since(
         theta, segment, machine
     )
@@ -432,12 +431,14 @@ _entry(fill_stages)(_ideal_stages, _real_stages)
 # dt/dtheta = sqrt(j / (2 e)) ripples with j(theta) = 1 + mu sum a_c^2 (mu = m_r R^2 / I_eff) and
 # with e = x0 + Lambda(theta) - e_ref C: parts in 1e5 to 1e3 at the harmonics of theta, which
 # the time's error estimate sees (the seed example with m_r = 1 kg took 6,479 steps against
-# 4,087). Where a split begins at energy u (e_ref = u with a main), its first order there,
-# tau ((j - 1) - (Lambda - e_ref C) / u) with tau = 1 / (2 sqrt(2 u)), is taken out of the
-# time's rate, and its integral added back at each sub-step's end and at the grid angles:
-# int (j - 1) in closed form (:func:`~.equations.lever_arm_squared_integral`), int Lambda and
-# int C = int (theta - s) c(s) ds by Gauss-Legendre (tabulated with the sub-steps). The step
-# integrates only the rest.
+# 4,087). Where a split begins at energy u, its first order there, tau ((j - 1) - Lambda / u)
+# with tau = 1 / (2 sqrt(2 u)), is taken out of the time's rate, and its integral added back at
+# each sub-step's end and at the grid angles: int (j - 1) in closed form
+# (:func:`~.equations.lever_arm_squared_integral`), int Lambda by Gauss-Legendre (tabulated
+# with the sub-steps). The step integrates only the rest. (The main's frozen friction's share,
+# -e_ref C, is left in it: C at a step's inner nodes is an interpolation, whose error the time
+# would take in full; with it the main alone took 3,392 steps, not 4,543, and was off by 3e-6
+# in speed after 600 s.)
 
 
 @kernel
@@ -478,35 +479,15 @@ def _lambda_since(theta, segment, machine):
     return _lambda_between(segment_start(segment, machine), theta, segment, machine)
 
 
-@kernel
-def _friction_moment(a, b, c_a, segment, machine):
-    """int_a^b C dtheta = C(a) (b - a) + int_a^b (b - s) c(s) ds [rad], C(a) = c_a, by
-    Gauss-Legendre (:func:`friction_between`'s pieces); 0.0 without a main."""
-    if machine.real.friction == 0.0:
-        return 0.0
-    reach = math.acosh(machine.L_over_R)
-    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (b - a) / pieces
-    total = 0.0
-    x, w = GAUSS8
-    for p in range(pieces):
-        start = a + p * length
-        for q in range(8):
-            s = start + x[q] * length
-            total += w[q] * (b - s) * friction_density(s, segment, machine)
-    return c_a * (b - a) + total * length
-
-
 def inertia_since(theta, segment, machine):
-    """(int (j - 1), int Lambda, int C) dtheta since the segment's start; zeros for the ideal
+    """(int (j - 1), int Lambda) dtheta since the segment's start; zeros for the ideal
     machine."""
 
 
 _entry(inertia_since)(
-    lambda theta, segment, machine: (0.0, 0.0, 0.0),
+    lambda theta, segment, machine: (0.0, 0.0),
     lambda theta, segment, machine: (
         _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine),
-        _friction_moment(segment_start(segment, machine), theta, 0.0, segment, machine),
     ),
 )  # fmt: skip
 
@@ -525,26 +506,26 @@ _entry(time_frozen)(
 )
 
 
-def inertia_at(J, X, K, machine):
-    """(int (j - 1), int Lambda, int C) over a sub-step from its rows' ``rows[6, 8:11]``
-    (zeros for the ideal machine, whose rows hold nothing there)."""
+def inertia_at(J, X, machine):
+    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]`` (zeros for
+    the ideal machine, whose rows hold nothing there)."""
 
 
-_entry(inertia_at)(lambda J, X, K, machine: (0.0, 0.0, 0.0), lambda J, X, K, machine: (J, X, K))
+_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
 
 
-def time_back(t, frozen_time, e_ref, step, machine):
+def time_back(t, frozen_time, step, machine):
     """A time off the step's quadrature, t, with the frozen ripple's integral over the sub-step
-    (:func:`inertia_at`'s ``step``) added back, tau (dJ - (dX - e_ref dK) / u) (the ideal
-    machine's t as it is)."""
+    (:func:`inertia_at`'s ``step``) added back, tau (dJ - dX / u) (the ideal machine's t as it
+    is)."""
 
 
-def _time_back(t, frozen_time, e_ref, step, machine):
+def _time_back(t, frozen_time, step, machine):
     tau, inv_e = frozen_time
-    return t + tau * (step[0] - (step[1] - e_ref * step[2]) * inv_e)
+    return t + tau * (step[0] - step[1] * inv_e)
 
 
-_entry(time_back)(lambda t, frozen_time, e_ref, step, machine: t, _time_back)
+_entry(time_back)(lambda t, frozen_time, step, machine: t, _time_back)
 
 
 def add_integrals(at, step, machine):
@@ -553,7 +534,7 @@ def add_integrals(at, step, machine):
 
 _entry(add_integrals)(
     lambda at, step, machine: at,
-    lambda at, step, machine: (at[0] + step[0], at[1] + step[1], at[2] + step[2]),
+    lambda at, step, machine: (at[0] + step[0], at[1] + step[1]),
 )
 
 
@@ -662,7 +643,6 @@ def _fill_friction(rows, theta, h, c_at, known, segment, machine):
     # The end's C enters the state: Gauss-Legendre. The inner nodes' C only moves the stages'
     # speeds, whose rates depend on it weakly (~1e-4 of it per radian at the seed's speed):
     # the polynomial through c at the nodes (rows filled) is ample.
-    rows[6, 10] = _friction_moment(theta, theta + h, c_at, segment, machine)  # int C (time)
     if machine.real.friction == 0.0:
         for stage in range(7):
             rows[stage, 7] = 0.0
@@ -770,7 +750,7 @@ _entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
 def frozen_record(e_ref, c_at, W_new, frozen_time, j_at, machine):
     """What the recorders need of a sub-step's frozen friction and ripple: None for the ideal
     machine, else (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended,
-    (tau, 1 / u), (int (j - 1), int Lambda, int C) where it began)."""
+    (tau, 1 / u), (int (j - 1), int Lambda) where it began)."""
 
 
 _entry(frozen_record)(
@@ -792,9 +772,8 @@ def _grid_time(t, frozen, table, row):
         return lambda t, frozen, table, row: t
 
     def at(t, frozen, table, row):
-        (tau, inv_e), (J, X, K) = frozen[4], frozen[5]
-        dX = (table[3, row] - X) - frozen[0] * (table[4, row] - K)
-        return t + tau * ((table[2, row] - J) - dX * inv_e)
+        (tau, inv_e), (J, X) = frozen[4], frozen[5]
+        return t + tau * ((table[2, row] - J) - (table[3, row] - X) * inv_e)
 
     return at
 
@@ -864,7 +843,7 @@ def _end_works(y, frozen):
 
 def grid_inertias(theta, segment, machine):
     """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C, int
-    (j - 1), int Lambda and int C since the segment began."""
+    (j - 1) and int Lambda since the segment began."""
 
 
 def _grid_inertias(theta, segment, machine):
@@ -873,7 +852,6 @@ def _grid_inertias(theta, segment, machine):
         friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
         _inertia_since(theta, segment, machine),
         _lambda_since(theta, segment, machine),
-        _friction_moment(segment_start(segment, machine), theta, 0.0, segment, machine),
     )
 
 
@@ -881,11 +859,11 @@ _entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
 
 
 def inertia_table(rows, machine):
-    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (5, rows)."""
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (4, rows)."""
 
 
 _entry(inertia_table)(
-    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((5, rows))
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((4, rows))
 )
 
 
@@ -903,7 +881,7 @@ def _set_grid_inertia(table, row, values):
         return set_one
 
     def set_two(table, row, values):
-        table[0, row], table[1, row], table[2, row], table[3, row], table[4, row] = values
+        table[0, row], table[1, row], table[2, row], table[3, row] = values
 
     return set_two
 

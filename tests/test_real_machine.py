@@ -321,7 +321,7 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
     assert compiled == pytest.approx(expected, rel=0.0, abs=1e-10 * whole + 1e-300)
 
 
-# -- A leak hole's windows, jumped (docs/model.rst, "How it is integrated"). --------------------
+# -- A leak hole's windows, jumped (docs/model.rst, "The real machine"). --------------------
 
 
 def continued_rhs(design, segment_mid):

@@ -21,10 +21,12 @@ from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
     ROW,
+    add_integrals,
     at_time,
     conservative_torque,
     conservative_work,
     end_works,
+    energy_slope,
     fill_friction,
     fill_row,
     fill_stages,
@@ -37,15 +39,23 @@ from .real import (
     grid_aux,
     grid_inertia,
     grid_inertias,
+    grid_time,
     grid_works,
+    inertia_at,
     inertia_ratio,
+    inertia_since,
     inertia_table,
+    jump_work,
     leak_scale,
     less_frozen,
     next_leak_kink,
+    open_windows,
     set_grid_inertia,
     split_sizes_by_parity,
     step_rows,
+    time_back,
+    time_frozen,
+    window_jump,
     work_at,
     work_rows,
     write_work,
@@ -435,23 +445,28 @@ def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment
 @kernel
 def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                        inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                       dense, frozen):  # fmt: skip
+                       dense, frozen, t_new):  # fmt: skip
     """Samples at the grid angles g delta a sub-step from (theta_i, t, W) to (theta_new, y)
     passed, from its continuous extension (the real machine's frozen friction's
     :func:`~.real.frozen_record` in ``frozen``); the segment's end is a grid angle by index,
     whatever the round-off in g delta, of the :class:`Grid` (``at_grid`` holds
-    :func:`grid_tables`). Returns (out, n, the next g)."""
+    :func:`grid_tables`); the segment's end sample at (theta_new, u_new, t_new) (t_new is y's
+    time but after a leak hole's window: :func:`~.real.window_jump`). Returns (out, n, the next
+    g)."""
     delta, period, per_revolution = grid
     while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
         row = g % period
         if g == end_grid:
-            u_g, t_g, W_g = u_new, y[2], end_works(y, frozen)
+            u_g, t_g, W_g = u_new, t_new, end_works(y, frozen)
         else:
             sigma = (g * delta - theta_i) / h_step
             u_g = grid_aux(work_table[row], frozen, inertia_table, row) + dense_value(
                 sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
             )
-            t_g = dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step)
+            t_g = grid_time(
+                dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step), frozen, inertia_table,
+                row,
+            )  # fmt: skip
             W_g = grid_works(
                 work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step), frozen, inertia_table, row
             )
@@ -600,7 +615,7 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, NOT_KNOWN)
     ok, y, k7, err, dense = dp5_step(
         ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
-        step_rows(scratch_rows, e_ref, machine), segment, machine,
+        step_rows(scratch_rows, e_ref, -1.0, (0.0, 0.0), machine), segment, machine,
     )  # fmt: skip
     return ok, y, k7, err, dense, h_step
 
@@ -657,6 +672,12 @@ def in_angle(
     m_other = m  # the real machine's sub-steps of a segment of the other parity
     # The real machine's C (the frozen friction's, :mod:`.real`) since the segment began
     c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
+    # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
+    faces = -1.0
+    # and int (j - 1) since it began (the masses' frozen ripple in the time: :mod:`.real`)
+    j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
+    windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
+    clear_of_window = math.inf  # past here the segment's start window is behind
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -674,7 +695,32 @@ def in_angle(
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
             rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
-        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, calm)[0], machine, segment)
+        if full or windows_off:
+            faces = -1.0
+        tau = time_frozen(u, sample_dt is None and not has_record(machine.wind), calm)
+        k1 = rates(ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, tau, calm)[0],
+                   machine, segment)  # fmt: skip
+        jumped = False  # a leak hole's window after the start was jumped (:mod:`.real`)
+        u_before, t_before, W_before = u, t, W
+        past_t_end = False
+        if full and not windows_off and sample_dt is None and not has_record(machine.wind):
+            slope = energy_slope(k1[0], theta, e_ref, segment, calm)
+            faces = open_windows(theta, u, slope, h, segment, grid.delta, calm)
+            if faces >= 0.0:
+                jumped, clear_of_window = True, theta + h
+                jump, dt, dW = window_jump(
+                    theta, u, slope, 1.0, segment, faces, scratch_rows[6], calm
+                )  # (row 6 of the scratch: a split off the tables has filled only row 0)
+                u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
+                e_ref = frozen_energy(u, calm)
+                u_free = frozen_start(u, work, e_ref, c_at, calm)
+                tau = time_frozen(u, True, calm)
+                k1 = rates(
+                    ANGLE, theta, u_free, t, work, step_rows(rows, e_ref, faces, tau, calm)[0],
+                    machine, segment,
+                )  # fmt: skip
+        if faces >= 0.0:
+            leak = (math.inf, math.inf, segment)  # stepped past its kinks
         leak = leak_kinks(theta, theta_dot, width, segment, calm, leak[0], leak[1], leak[2])
         first, worst, status, i = theta, 0.0, SPLIT_DONE, 0
         past_leak = False  # theta is a leak's kink inside sub-step i: its rest is off the tables
@@ -705,8 +751,10 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
+            j_step = inertia_at(rows[6, 8], rows[6, 9], calm)  # the time's ripple (.real)
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux, step_rows(rows, e_ref, calm),
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
+                step_rows(rows, e_ref, faces, tau, calm),
                 segment, machine,
             )  # fmt: skip
             steps += 1
@@ -719,9 +767,12 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
+                j_step = inertia_at(scratch_rows[6, 8], scratch_rows[6, 9], calm)
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
-            if y[2] > t_end:
-                status = IN_TIME  # the sub-step would pass t_end: go on in time
+            # the time's frozen ripple back
+            t_new = time_back(y[2], tau, j_step, calm)
+            if t_new > t_end:
+                status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
             if not (ok and scaled <= 1.0):
                 status, m = finer_split(ok, scaled, h_step, width, m)
@@ -733,7 +784,13 @@ def in_angle(
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
-            frozen = frozen_record(e_ref, c_at, W_new, calm)
+            if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
+                slope = energy_slope(k7[0], theta_new, e_ref, segment, calm)
+                jump, dt, dW = window_jump(
+                    theta_new, u_new, slope, -1.0, segment, faces, scratch_rows[6], calm
+                )  # (the sub-step's rows are read)
+                u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
+            frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)
             if sample_dt is not None:
                 out, n, j = record_in_step(
                     out, n, j, sample_dt, theta_i, h_step, t, W, u_free, y, k1, k7, dense,
@@ -745,13 +802,13 @@ def in_angle(
                 n, g = record_grid_angles(
                     out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
                     inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                    dense, frozen,
+                    dense, frozen, t_new,
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
-            c_at = c_end
+            c_at, j_at = c_end, add_integrals(j_at, j_step, calm)
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
-                (y[0], y[1], y[2], W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
+                (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
                 at_wind_kink, whole, m, width, h, calm,
             )  # fmt: skip
             if at_wind_kink:
@@ -761,12 +818,18 @@ def in_angle(
             past_leak = at_kink
             if past_leak:  # on to the leak's next kink
                 leak = (leak[1], math.inf, leak[2])
+        if jumped and i == 0 and status != SPLIT_DONE:  # nothing taken: the jump is undone
+            u, t, W = u_before, t_before, W_before
+        if past_t_end and faces >= 0.0 and ((jumped and i == 0) or theta >= clear_of_window):
+            # Not in time across a window (its kink unseen): the rest of the segment again, on
+            # its kinks, up to t_end
+            windows_off, status, leak = True, REFINED, (math.inf, math.inf, -1)
         segment, full, m = after_split(
             status, i, m_seg, full, m, width, h, worst, segment, past_leak, wholes
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at = 0.0
+            c_at, j_at, windows_off = 0.0, (0.0, 0.0), False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

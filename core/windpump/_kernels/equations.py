@@ -110,6 +110,42 @@ def lever_arm_slope(phi, L_over_R):
     return c + (c * c - s * s) / r + s * s * c * c / (r * r * r)
 
 
+def lever_arm_squared_integral(phi, L_over_R):
+    """``int_0^phi (lever arm)^2 dphi'`` [rad], in closed form (the lever arm of
+    :func:`lever_arm`).
+
+    With ``r = L/R``, ``q = sqrt(r^2 - 1)`` and ``s = sin phi``, the arm squared is ``sin^2 phi``
+    plus ``2 sin^2 phi cos phi / sqrt(r^2 - s^2)`` plus ``sin^2 phi cos^2 phi / (r^2 - s^2)``,
+    whose integrals are ``phi/2 - sin(2 phi)/4``, ``r^2 asin(s/r) - s sqrt(r^2 - s^2)`` and
+    ``(r^2 - 1/2) phi - sin(2 phi)/4 - r q psi``, psi the angle ``atan2(q sin phi, r cos phi)``
+    made continuous (it stays within pi/2 of phi). It grows by about pi per half turn (the
+    mean square arm is 1/2 for a long rod).
+
+    Parameters
+    ----------
+    phi : float or ndarray
+        Crank angle from TDC [rad].
+    L_over_R : float or ndarray
+        Rod-to-crank ratio, > 1.
+
+    Examples
+    --------
+    >>> import math
+    >>> round(float(lever_arm_squared_integral(2 * math.pi, 1e6)) / math.pi, 9)  # long rod
+    1.0
+    """
+    r = L_over_R
+    q = np.sqrt(r * r - 1.0)
+    s, c = np.sin(phi), np.cos(phi)
+    psi = np.arctan2(q * s, r * c)
+    psi = psi + 2.0 * np.pi * np.round((phi - psi) / (2.0 * np.pi))
+    double = 0.5 * np.sin(2.0 * phi)
+    first = 0.5 * phi - 0.5 * double
+    second = r * r * np.arcsin(s / r) - s * np.sqrt(r * r - s * s)
+    third = (r * r - 0.5) * phi - 0.5 * double - r * q * psi
+    return first + second + third
+
+
 def leak_capacity(d_leak, Cd_leak, g, h):
     """The most a leak hole passes against the static head, ``q_L = Cd a_L sqrt(2 g h)``
     [m^3/s], ``a_L = pi d_leak^2 / 4``.

@@ -82,8 +82,10 @@ JIT_OPTIONS: typing.Any = OPTIONS  # (numba's stubs type the options narrower th
 lever_arm_slope = kernel(equations.lever_arm_slope)  # (d^2x/dphi^2)/R [-]
 delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
+arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 8  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C
+ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
+# and (at the last node) the integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`)
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -207,13 +209,36 @@ def _face_loads(theta_dot, row, machine):
     return load, Q, h_f, arms
 
 
+@kernel
+def _continued_loads(theta_dot, row, faces, machine):
+    """:func:`_face_loads` as if each of the ``faces`` delivering faces delivered, through its
+    hole, what it sweeps less the hole's capacity, ``u - q_L``, at ``rho_w g (h + h_f)``: the
+    delivering branch of :func:`~.equations.delivered_flow` and
+    :func:`~.equations.face_pressure`, continued past the kinks. Equal to :func:`_face_loads`
+    wherever every delivering face sweeps more than q_L; smooth inside a segment, where a
+    delivering segment's steps take it, the windows next to its dead centres being corrected
+    apart (:func:`window_jump`)."""
+    real = machine.real
+    arms = 0.0
+    for k in range(machine.cylinders):
+        arms += row[1 + k]
+    Q = real.AR * arms * theta_dot - faces * real.q_L
+    h_f = real.friction * Q * Q
+    return machine.load_torque * arms + real.rho_g * h_f * real.AR * arms, Q, h_f, arms
+
+
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
-    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref: :func:`step_rows`)
+    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref, row[9] the delivering faces
+    # of a segment whose hole's windows are corrected apart, or -1, row[10] tau, row[11]
+    # 1 / e_ref: :func:`step_rows`)
     theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
-    load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+    if row[9] >= 0.0:
+        load, Q, h_f, arms = _continued_loads(theta_dot, row, row[9], machine)
+    else:
+        load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
     # relief) is integrated, and so is the water lifted and the friction; of the friction, less
     # its frozen part (at e_ref: :func:`friction_density`), whose work e_ref C is tabulated.
@@ -222,7 +247,8 @@ def _real_angle_rates(x0, t, aux, row, machine):
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
     friction = real.rho_g * h_f * Q * per_radian - frozen
-    return rate, per_radian, per_radian, (drive, leaked, friction, excess)
+    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less its frozen ripple
+    return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
 def _real_time_rates(t, theta, theta_dot, row, segment, machine):
@@ -390,9 +416,126 @@ def _real_stages(aux, rows, theta, h, segment, machine):
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
         rows[6, column] = rows[5, column]
+    # the sub-step's integrals of j - 1 and Lambda (:func:`time_frozen`)
+    rows[6, 8] = _inertia_since(theta + h, segment, machine) - _inertia_since(
+        theta, segment, machine
+    )
+    rows[6, 9] = _lambda_between(theta, theta + h, segment, machine)
 
 
 _entry(fill_stages)(_ideal_stages, _real_stages)
+
+
+# -- The time's ripple, frozen (docs/model.rst, "The real machine"). -----------------------------
+#
+# dt/dtheta = sqrt(j / (2 e)) ripples with j(theta) = 1 + mu sum a_c^2 (mu = m_r R^2 / I_eff) and
+# with e = x0 + Lambda(theta) - e_ref C: parts in 1e5 to 1e3 at the harmonics of theta, which
+# the time's error estimate sees (the seed example with m_r = 1 kg took 6,479 steps against
+# 4,087). Where a split begins at energy u, its first order there, tau ((j - 1) - Lambda / u)
+# with tau = 1 / (2 sqrt(2 u)), is taken out of the time's rate, and its integral added back at
+# each sub-step's end and at the grid angles: int (j - 1) in closed form
+# (:func:`~.equations.lever_arm_squared_integral`), int Lambda by Gauss-Legendre (tabulated
+# with the sub-steps). The step integrates only the rest. (The main's frozen friction's share,
+# -e_ref C, is left in it: C at a step's inner nodes is an interpolation, whose error the time
+# would take in full; with it the main alone took 3,392 steps, not 4,543, and was off by 3e-6
+# in speed after 600 s.)
+
+
+@kernel
+def _inertia_since(theta, segment, machine):
+    """int (j - 1) dtheta from the segment's start to theta [rad] (0.0 without masses)."""
+    real = machine.real
+    if real.mass_ratio == 0.0:
+        return 0.0
+    start = segment_start(segment, machine)
+    total = 0.0
+    for k in range(machine.cylinders):
+        lag = phase(k, machine)
+        total += arm_squared_integral(theta - lag, machine.L_over_R) - arm_squared_integral(
+            start - lag, machine.L_over_R
+        )
+    return real.mass_ratio * total
+
+
+@kernel
+def _lambda_between(a, b, segment, machine):
+    """int_a^b Lambda dtheta inside a segment [J/(kg m^2) rad], by Gauss-Legendre
+    (:func:`friction_between`'s pieces: Lambda is analytic inside a segment)."""
+    reach = math.acosh(machine.L_over_R)
+    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (b - a) / pieces
+    total = 0.0
+    x, w = GAUSS8
+    for p in range(pieces):
+        start = a + p * length
+        for q in range(8):
+            total += w[q] * conservative_work(start + x[q] * length, segment, machine)
+    return total * length
+
+
+@kernel
+def _lambda_since(theta, segment, machine):
+    """int Lambda dtheta from the segment's start to theta."""
+    return _lambda_between(segment_start(segment, machine), theta, segment, machine)
+
+
+def inertia_since(theta, segment, machine):
+    """(int (j - 1), int Lambda) dtheta since the segment's start; zeros for the ideal
+    machine."""
+
+
+_entry(inertia_since)(
+    lambda theta, segment, machine: (0.0, 0.0),
+    lambda theta, segment, machine: (
+        _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine),
+    ),
+)  # fmt: skip
+
+
+def time_frozen(u, allowed, machine):
+    """(tau = 1 / (2 sqrt(2 u)) [s/rad], 1 / u) where a split begins at energy u, when the
+    time's ripple is taken out of its rate (``allowed``: on an angle grid without a wind record),
+    else zeros (and always for the ideal machine)."""
+
+
+_entry(time_frozen)(
+    lambda u, allowed, machine: (0.0, 0.0),
+    lambda u, allowed, machine: (
+        (0.5 / math.sqrt(2.0 * u), 1.0 / u) if allowed and u > 0.0 else (0.0, 0.0)
+    ),
+)
+
+
+def inertia_at(J, X, machine):
+    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]`` (zeros for
+    the ideal machine, whose rows hold nothing there)."""
+
+
+_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
+
+
+def time_back(t, frozen_time, step, machine):
+    """A time off the step's quadrature, t, with the frozen ripple's integral over the sub-step
+    (:func:`inertia_at`'s ``step``) added back, tau (dJ - dX / u) (the ideal machine's t as it
+    is)."""
+
+
+def _time_back(t, frozen_time, step, machine):
+    tau, inv_e = frozen_time
+    return t + tau * (step[0] - step[1] * inv_e)
+
+
+_entry(time_back)(lambda t, frozen_time, step, machine: t, _time_back)
+
+
+def add_integrals(at, step, machine):
+    """:func:`inertia_since`'s integrals where a sub-step began plus the sub-step's."""
+
+
+_entry(add_integrals)(
+    lambda at, step, machine: at,
+    lambda at, step, machine: (at[0] + step[0], at[1] + step[1]),
+)
 
 
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
@@ -604,15 +747,35 @@ def _frozen_work(W, e_ref, dC, machine):
 _entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
 
 
-def frozen_record(e_ref, c_at, W_new, machine):
-    """What the recorders need of a sub-step's frozen friction: None for the ideal machine, else
-    (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended)."""
+def frozen_record(e_ref, c_at, W_new, frozen_time, j_at, machine):
+    """What the recorders need of a sub-step's frozen friction and ripple: None for the ideal
+    machine, else (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended,
+    (tau, 1 / u), (int (j - 1), int Lambda) where it began)."""
 
 
 _entry(frozen_record)(
-    lambda e_ref, c_at, W_new, machine: None,
-    lambda e_ref, c_at, W_new, machine: (e_ref, e_ref / machine.inv_I_eff, c_at, W_new),
-)
+    lambda e_ref, c_at, W_new, frozen_time, j_at, machine: None,
+    lambda e_ref, c_at, W_new, frozen_time, j_at, machine: (
+        e_ref, e_ref / machine.inv_I_eff, c_at, W_new, frozen_time, j_at
+    ),
+)  # fmt: skip
+
+
+def grid_time(t, frozen, table, row):
+    """A grid sample's time inside a sub-step: the step's ``t``, with the masses' frozen ripple
+    since the sub-step began added back for the real machine (:func:`time_frozen`)."""
+
+
+@overload(grid_time, jit_options=JIT_OPTIONS)
+def _grid_time(t, frozen, table, row):
+    if _is_none(frozen):
+        return lambda t, frozen, table, row: t
+
+    def at(t, frozen, table, row):
+        (tau, inv_e), (J, X) = frozen[4], frozen[5]
+        return t + tau * ((table[2, row] - J) - (table[3, row] - X) * inv_e)
+
+    return at
 
 
 def _is_none(frozen) -> bool:
@@ -659,7 +822,7 @@ def _at_time(work, W, frozen, theta_i, theta, segment, machine):
         return lambda work, W, frozen, theta_i, theta, segment, machine: (work, W)
 
     def at(work, W, frozen, theta_i, theta, segment, machine):
-        e_ref, e_ref_I, c_at, _ = frozen
+        e_ref, e_ref_I, c_at, _, _, _ = frozen
         C = friction_since(theta_i, theta, c_at, segment, machine)
         extra = e_ref_I * (C - c_at)
         return work - e_ref * C, (W[0], W[1], W[2] + extra, W[3] + extra)
@@ -679,13 +842,16 @@ def _end_works(y, frozen):
 
 
 def grid_inertias(theta, segment, machine):
-    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C since
-    the segment began."""
+    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C, int
+    (j - 1) and int Lambda since the segment began."""
 
 
 def _grid_inertias(theta, segment, machine):
-    return inertia_ratio(theta, machine), friction_since(
-        segment_start(segment, machine), theta, 0.0, segment, machine
+    return (
+        inertia_ratio(theta, machine),
+        friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
+        _inertia_since(theta, segment, machine),
+        _lambda_since(theta, segment, machine),
     )
 
 
@@ -693,11 +859,11 @@ _entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
 
 
 def inertia_table(rows, machine):
-    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (2, rows)."""
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (4, rows)."""
 
 
 _entry(inertia_table)(
-    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((2, rows))
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((4, rows))
 )
 
 
@@ -715,7 +881,7 @@ def _set_grid_inertia(table, row, values):
         return set_one
 
     def set_two(table, row, values):
-        table[0, row], table[1, row] = values
+        table[0, row], table[1, row], table[2, row], table[3, row] = values
 
     return set_two
 
@@ -981,30 +1147,37 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
     return factors
 
 
-def step_rows(rows, e_ref, machine):
+def step_rows(rows, e_ref, faces, frozen_time, machine):
     """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
-    (column 7) times the frozen energy e_ref in its place and e_ref after it (the ideal
-    machine's: ``rows`` as they are). A stage's row taken from the array is a view, whose
-    reference is counted atomically as it is made and dropped: 14 atomic operations a step, a
-    third of the time of the real machine's steps (eta_t alone)."""
+    (column 7) times the frozen energy e_ref in its place, e_ref after it, ``faces``: the
+    delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
+    corrected apart) or -1.0, and tau and 1 / e_ref (:func:`time_frozen`) last (the ideal
+    machine's: ``rows`` as they are). A stage's row taken
+    from the array is a view, whose reference is counted atomically as it is made and dropped:
+    14 atomic operations a step, a third of the time of the real machine's steps (eta_t
+    alone)."""
 
 
 @kernel
-def _row(rows, stage, e_ref):
+def _row(rows, stage, e_ref, faces, frozen_time):
     return (
         rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
-        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref,
+        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref, faces,
+        frozen_time[0], frozen_time[1],
     )  # fmt: skip
 
 
-def _step_rows(rows, e_ref, machine):
+def _step_rows(rows, e_ref, faces, frozen_time, machine):
+    f = frozen_time
     return (
-        _row(rows, 0, e_ref), _row(rows, 1, e_ref), _row(rows, 2, e_ref), _row(rows, 3, e_ref),
-        _row(rows, 4, e_ref), _row(rows, 5, e_ref), _row(rows, 6, e_ref),
+        _row(rows, 0, e_ref, faces, f), _row(rows, 1, e_ref, faces, f),
+        _row(rows, 2, e_ref, faces, f), _row(rows, 3, e_ref, faces, f),
+        _row(rows, 4, e_ref, faces, f), _row(rows, 5, e_ref, faces, f),
+        _row(rows, 6, e_ref, faces, f),
     )  # fmt: skip
 
 
-_entry(step_rows)(lambda rows, e_ref, machine: rows, _step_rows)
+_entry(step_rows)(lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows)
 
 
 def split_sizes_by_parity(m, m_other, machine):
@@ -1025,3 +1198,168 @@ def work_rows(machine):
 
 
 _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
+
+
+# -- A leak hole's windows, corrected apart (docs/model.rst, "The real machine"). -----------------
+#
+# Inside a delivering segment a face's hole changes its load only in a window next to each of its
+# dead centres, where it sweeps less than the hole passes (u_k <= q_L: 0.005-0.009 rad wide at the
+# seed example's running speed). A segment whose windows are narrow is stepped on the loads
+# continued past them (:func:`_continued_loads`: smooth, so its steps neither stop at the windows'
+# kinks nor leave the tables), and each window's difference, true less continued, is added as a
+# jump: the window after the segment's start at its start, the one before its end at its end.
+
+WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
+WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
+
+
+def open_windows(theta, u, slope, h, segment, delta, machine):
+    """At a delivering segment's start theta, at energy u with slope du/dtheta: how many faces
+    deliver in it, as a float, when its hole's windows are narrow enough to be corrected apart
+    (:func:`window_jump`), else -1.0 (and always for the ideal machine, or a tight piston); h
+    is the split's sub-step.
+
+    Narrow: the arm at a kink at most WINDOW_TARGET, the energy's change over twice the widest
+    window at most WINDOW_DRIFT of it, and no grid angle ``g delta`` inside either window but the
+    dead centres (the samples there are taken before the jump at the start, after it at the end),
+    nor a whole sub-step h (past the first the run may go on without windows: the start's is
+    behind it).
+    """
+
+
+@kernel
+def _open_windows(theta, u, slope, h, segment, delta, machine):
+    real = machine.real
+    if real.q_L == 0.0 or not u > 0.0:
+        return -1.0
+    theta_dot = math.sqrt(2.0 * u / _inertia_ratio(theta, machine))
+    target = real.q_L / (real.AR * theta_dot)
+    if not target <= WINDOW_TARGET:
+        return -1.0
+    reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
+    if reach * abs(slope) > WINDOW_DRIFT * u or reach > h:
+        return -1.0
+    start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
+    if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
+        return -1.0
+    if math.ceil((end - reach) / delta) * delta < end - 1e-9 * delta:
+        return -1.0
+    faces = 0.0
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) != NEITHER:
+            faces += 1.0
+    return faces
+
+
+_entry(open_windows)(lambda theta, u, slope, h, segment, delta, machine: -1.0, _open_windows)
+
+
+def energy_slope(rate, theta, e_ref, segment, machine):
+    """de/dtheta [J/(kg m^2) per rad] where x0's rate is ``rate``: e = x0 + Lambda - e_ref C
+    (0.0 for the ideal machine, which has no windows)."""
+
+
+def _energy_slope(rate, theta, e_ref, segment, machine):
+    slope = rate + conservative_torque(theta, segment, machine) * machine.inv_I_eff
+    if machine.real.friction != 0.0:
+        slope -= e_ref * friction_density(theta, segment, machine)
+    return slope
+
+
+_entry(energy_slope)(lambda rate, theta, e_ref, segment, machine: 0.0, _energy_slope)
+
+
+@kernel
+def _window_widths(theta, e, slope, side, segment, machine):
+    """The widths [rad] of the windows of the faces whose dead centre is the segment's start
+    (side 1) or end (side -1), theta: (the narrowest, the next wider or inf), inf where there is
+    none (at most two faces share a dead centre: a cylinder's and the opposite one's). The kink
+    is where the face's swept flow reaches q_L at the speed there, e growing linearly from theta
+    (the speed taken at the kink's first guess, from the arm's slope at the dead centre)."""
+    real = machine.real
+    width = math.pi / machine.cylinders
+    middle = segment_start(segment, machine) + 0.5 * width
+    first = second = math.inf
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) == NEITHER:
+            continue
+        lag = phase(k, machine)
+        half = math.floor(
+            (middle - lag) / math.pi
+        )  # the face's half turn (:func:`_next_leak_kink`)
+        edge = lag + (half if side > 0 else half + 1) * math.pi
+        if abs(edge - theta) > 1e-9 * width:
+            continue
+        dead_centre = math.pi * (half % 2)
+        sign = 1.0 if half % 2 == 0 else -1.0
+        at_top = (dead_centre == 0.0) == (side > 0)
+        arm_slope = 1.0 + 1.0 / machine.L_over_R if at_top else 1.0 - 1.0 / machine.L_over_R
+        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / _inertia_ratio(theta, machine)))
+        guess /= arm_slope
+        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / _inertia_ratio(theta, machine))
+        target = real.q_L / (real.AR * theta_dot)
+        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R)
+        if side < 0:
+            psi = math.pi - psi
+        if psi < first:
+            first, second = psi, first
+        elif first < psi < second:
+            second = psi
+    return first, second
+
+
+def window_jump(theta, e, slope, side, segment, faces, row, machine):
+    """The windows next to the dead centre theta, the segment's start (side 1) or end (side -1),
+    of a segment stepped on :func:`_continued_loads` at energy e (de/dtheta = slope there):
+    (the jump of e, of the time, and of the work quadratures), true less continued.
+
+    With f the rates' difference over the window (the load's excess, the leaked volume, the
+    friction; the windmill's is second order), the jumps are its integrals, e's being -excess /
+    I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
+    e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
+    between the kinks (the integrand is smooth between them). ``row`` is scratch (ROW numbers):
+    one allocated per call cost the seed with a hole 0.1 us a window."""
+
+
+@kernel
+def _window_jump(theta, e, slope, side, segment, faces, row, machine):
+    real = machine.real
+    x, w = GAUSS4
+    jump = dt = leaked = friction = excess = 0.0
+    low = 0.0
+    widths = _window_widths(theta, e, slope, side, segment, machine)
+    for high in widths:
+        if high == math.inf:
+            break
+        for q in range(4):
+            s = low + x[q] * (high - low)
+            at = theta + side * s
+            e_at = e + slope * s * side
+            _sums(row, at, segment, machine, False)
+            theta_dot = math.sqrt(2.0 * e_at / row[0])
+            load, Q, h_f, _ = _face_loads(theta_dot, row, machine)
+            load_c, Q_c, h_f_c, _ = _continued_loads(theta_dot, row, faces, machine)
+            weight = w[q] * (high - low)
+            excess += weight * (load - load_c)
+            leaked += weight * (Q_c - Q) / theta_dot
+            friction += weight * real.rho_g * (h_f * Q - h_f_c * Q_c) / theta_dot
+            rate = -(load - load_c) * machine.inv_I_eff
+            dt += side * weight * s * rate / (2.0 * e_at * theta_dot)
+        low = high
+    jump = -excess * machine.inv_I_eff
+    return jump, dt, (0.0, leaked, friction, excess)
+
+
+_entry(window_jump)(
+    lambda theta, e, slope, side, segment, faces, row, machine: (0.0, 0.0, 0.0), _window_jump
+)
+
+
+def jump_work(W, jump, machine):
+    """The work quadratures W plus a window's jump (the ideal machine's W as it is)."""
+
+
+_entry(jump_work)(
+    lambda W, jump, machine: W,
+    lambda W, jump, machine: (W[0] + jump[0], W[1] + jump[1], W[2] + jump[2], W[3] + jump[3]),
+)

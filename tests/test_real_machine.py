@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from real_reference import real_reference_run
 
@@ -300,6 +300,11 @@ def test_the_kernels_frozen_friction_is_the_numpy_sides(design, theta, e):
 @given(
     design=_mains(), segment=st.integers(-6, 6), ends=st.tuples(st.floats(0, 1), st.floats(0, 1))
 )
+@example(  # a short main: the reference's round-off is 1.7e-10 of the friction's integral
+    design=SEED.replace(R=0.04, L=0.08, double_acting=True, L_main=0.25, D_main=0.09375),
+    segment=0,
+    ends=(0.0, 0.5),
+)
 def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(design, segment, ends):
     """C between two angles of a segment (Gauss-Legendre on pieces, in the kernels) against
     scipy's quad of the numpy side's friction per unit energy over I_eff."""
@@ -316,9 +321,18 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
     def density(theta):
         return _numpy_frozen_friction(design, theta, 1.0) / design.I_eff
 
+    def static_density(theta):
+        levers = windpump.kinematics.face_levers(np.array([theta]), design)
+        return design.load_torque * float(levers.sum()) / design.I_eff
+
     expected, _ = quad(density, a, b, epsabs=0.0, epsrel=1e-13, limit=200)
     whole, _ = quad(density, start, start + width, epsabs=0.0, epsrel=1e-13, limit=200)
-    assert compiled == pytest.approx(expected, rel=0.0, abs=1e-10 * whole + 1e-300)
+    # The numpy side's friction is a load less the static head's: a short main's is lost in that
+    # difference's round-off (~1e-16 of the static load; 6e-6 of the friction near a dead centre
+    # of a 0.25 m main), which the reference then carries: ~100 ulps of the static work allowed.
+    static, _ = quad(static_density, a, b, limit=200)
+    bound = 1e-10 * whole + 1e-14 * static + 1e-300
+    assert compiled == pytest.approx(expected, rel=0.0, abs=bound)
 
 
 # -- A leak hole's windows, jumped (docs/model.rst, "The real machine"). --------------------

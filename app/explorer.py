@@ -53,6 +53,7 @@ log = logging.getLogger("windpump.app")
 T = TypeVar("T", bound=Tab)
 
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
+WORKING = "**Running the new design…**"
 COMPILING = (
     "**Compiling the solver.** The first start after an install compiles it (about 8 s); this "
     "page's numbers follow as soon as it is done."
@@ -233,9 +234,21 @@ class Explorer(Session, pn.viewable.Viewer):
     # -- the one path from inputs to screen --------------------------------------------------
 
     def _on_inputs(self, *_events) -> None:
-        # Panel gathers the changes that arrive while an update runs and applies the latest, so a
+        # The run off the event loop, one at a time, the latest move winning (Session.move): a
         # dragged slider redraws as fast as the machine can and always ends on its final value.
-        self.update()
+        self.move()
+
+    def _working(self, working: bool) -> None:
+        """A move's run is taking long: the status says so and the views and readouts are marked
+        as not current (as for a refused input), until its run (or its refusal) is drawn."""
+        status = self.readouts.status
+        if working:
+            self._status_before = (status.object, status.alert_type)
+            status.object, status.alert_type = WORKING, "info"
+            self._mark_stale(True)
+            return
+        status.object, status.alert_type = self._status_before
+        self._mark_stale(self.stale)
 
     def _mark_stale(self, stale: bool) -> None:
         styles = STALE if stale else {"opacity": "1", "filter": "none"}

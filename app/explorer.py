@@ -389,7 +389,7 @@ class Explorer(Session, pn.viewable.Viewer):
     def follow_in_link(self, location) -> None:
         """Keep ``location`` (a served page's ``pn.state.location``) on ``link_query()``."""
         self._location = PageLink(location, self.link_query)
-        self.inputs.param.watch(self._location.write, self.inputs.names())
+        self.inputs.param.watch(self._location.write_later, self.inputs.names())  # after a move's
         self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
         self.param.watch(self._location.write, "presentation")
         if hasattr(self, "tabs"):

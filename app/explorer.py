@@ -259,7 +259,6 @@ class Explorer(Session, pn.viewable.Viewer):
         """Readouts and status first, in a message of their own, then the plots and the machine:
         the numbers a class reads arrive without waiting for ~100 KB of traces to be drawn."""
         self.readouts.show(seen)
-        self.sidebar.show_design(seen.design)
         self._to_plot = seen
         document = pn.state.curdoc
         if document is not None and document.session_context is not None:
@@ -281,6 +280,8 @@ class Explorer(Session, pn.viewable.Viewer):
             )
 
     def _plot(self, seen: windpump.Exploration) -> None:
+        """The plots, the machine and the download's file name (after the readouts, as they)."""
+        self.sidebar.show_design(seen.design)
         self.pump.plot(seen, self.inputs.t_end)
 
     def _followed(self, seen: windpump.Exploration) -> None:

@@ -53,6 +53,7 @@ log = logging.getLogger("windpump.app")
 T = TypeVar("T", bound=Tab)
 
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
+WORKING = "**Running the new design…**"
 COMPILING = (
     "**Compiling the solver.** The first start after an install compiles it (about 8 s); this "
     "page's numbers follow as soon as it is done."
@@ -235,9 +236,21 @@ class Explorer(Session, pn.viewable.Viewer):
     # -- the one path from inputs to screen --------------------------------------------------
 
     def _on_inputs(self, *_events) -> None:
-        # Panel gathers the changes that arrive while an update runs and applies the latest, so a
+        # The run off the event loop, one at a time, the latest move winning (Session.move): a
         # dragged slider redraws as fast as the machine can and always ends on its final value.
-        self.update()
+        self.move()
+
+    def _working(self, working: bool) -> None:
+        """A move's run is taking long: the status says so and the views and readouts are marked
+        as not current (as for a refused input), until its run (or its refusal) is drawn."""
+        status = self.readouts.status
+        if working:
+            self._status_before = (status.object, status.alert_type)
+            status.object, status.alert_type = WORKING, "info"
+            self._mark_stale(True)
+            return
+        status.object, status.alert_type = self._status_before
+        self._mark_stale(self.stale)
 
     def _mark_stale(self, stale: bool) -> None:
         styles = STALE if stale else {"opacity": "1", "filter": "none"}
@@ -248,7 +261,6 @@ class Explorer(Session, pn.viewable.Viewer):
         """Readouts and status first, in a message of their own, then the plots and the machine:
         the numbers a class reads arrive without waiting for ~100 KB of traces to be drawn."""
         self.readouts.show(seen)
-        self.sidebar.show_design(seen.design)
         self._to_plot = seen
         document = pn.state.curdoc
         if document is not None and document.session_context is not None:
@@ -270,6 +282,8 @@ class Explorer(Session, pn.viewable.Viewer):
             )
 
     def _plot(self, seen: windpump.Exploration) -> None:
+        """The plots, the machine and the download's file name (after the readouts, as they)."""
+        self.sidebar.show_design(seen.design)
         self.pump.plot(seen, self.inputs.t_end)
 
     def _followed(self, seen: windpump.Exploration) -> None:
@@ -387,7 +401,7 @@ class Explorer(Session, pn.viewable.Viewer):
     def follow_in_link(self, location) -> None:
         """Keep ``location`` (a served page's ``pn.state.location``) on ``link_query()``."""
         self._location = PageLink(location, self.link_query)
-        self.inputs.param.watch(self._location.write, self.inputs.names())
+        self.inputs.param.watch(self._location.write_later, self.inputs.names())  # after a move's
         self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
         self.param.watch(self._location.write, "presentation")
         if hasattr(self, "tabs"):

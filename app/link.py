@@ -113,3 +113,15 @@ class PageLink:
         search = f"?{query}" if query else ""
         if self.location.search != search:
             self.location.search = search
+
+    def write_later(self, *_events) -> None:
+        """``write``, served: after the readouts of the moves pending (``DRAW_AFTER_MOVES``), as
+        the plots are; a move's answer does not wait for its link (~1 ms of the event loop a
+        move, a message of its own). Asked for twice before it runs, it runs once."""
+        from .serving import DRAW_AFTER_MOVES, served_document
+
+        document = served_document()
+        if document is None:
+            self.write()
+        else:
+            DRAW_AFTER_MOVES.later(document, self.write)

@@ -18,6 +18,7 @@ from .serving import (
     TIDY,
     first_run_when_ready,
     lighter_patches,
+    lighter_updates,
     reopen_when_reconnected,
     session_closed,
     stylesheets_from_this_server,
@@ -32,6 +33,7 @@ document = pn.state.curdoc
 without_mathjax()
 without_webgl()
 lighter_patches()
+lighter_updates()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)

@@ -232,6 +232,33 @@ def lighter_patches() -> None:
     patch_doc.create = classmethod(create)  # type: ignore[method-assign,assignment]
 
 
+def lighter_updates() -> None:
+    """Panel (1.9) works out a component's design, its theme's stylesheets read through
+    ``param.Path`` parameters that look up the file system, on every change of every component
+    (``Reactive._update_properties``), and uses it only when the change is of its stylesheets:
+    ~10 % of the event loop while 30 students moved at once (py-spy). Here it is worked out
+    only then; what the change sends is the same."""
+    import panel
+    from panel.reactive import Reactive
+
+    if getattr(Reactive._update_properties, "lighter", False) or not panel.__version__.startswith(
+        "1.9."
+    ):
+        return
+
+    def _update_properties(self, *events, doc):
+        changes = {event.name: event.new for event in events}
+        if "stylesheets" in changes and self._design:
+            params, _ = self._design.params(self, doc)
+            if "stylesheets" in params:
+                changes["stylesheets"] = params["stylesheets"] + changes["stylesheets"]
+        return self._process_param_change(changes)
+
+    _update_properties.lighter = True  # type: ignore[attr-defined]
+    _update_properties.panel = Reactive._update_properties  # type: ignore[attr-defined]
+    Reactive._update_properties = _update_properties  # type: ignore[method-assign]
+
+
 def _serializer_class():
     from bokeh.core.serialization import Serializer
     from bokeh.model import Model
@@ -395,11 +422,12 @@ class DrawAfterMoves:
 
 
 def moves_pending() -> bool:
-    """Whether Panel has read a change of some page that it has not applied yet (its callbacks
-    wait in ``state._change_callbacks``; a private part of Panel, read defensively)."""
+    """Whether some page's move is still to be answered: a change Panel has read and not applied
+    yet (its callbacks wait in ``state._change_callbacks``; a private part of Panel, read
+    defensively), or a move's run under way off the loop (``MOVE_RUNS``)."""
     from panel.io.state import state
 
-    return any(getattr(state, "_change_callbacks", {}).values())
+    return MOVE_RUNS.under_way > 0 or any(getattr(state, "_change_callbacks", {}).values())
 
 
 DRAW_AFTER_MOVES = DrawAfterMoves()
@@ -438,26 +466,84 @@ def first_run_when_ready(session_id: str, document, explorer) -> Callable:
 OFF_THE_LOOP = ThreadPoolExecutor(max_workers=2, thread_name_prefix="heavy work")
 
 
-def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:
-    """Run ``work()`` off the event loop, then ``then(result)`` on it, under the page's lock.
+class Runs:
+    """A pool of threads for the runs of the pages' moves (``session.Session.move``), counting
+    those under way (``DrawAfterMoves`` draws no plots while a move's readouts are to come).
 
-    Served (``pn.state.curdoc`` has a session): ``work`` in ``OFF_THE_LOOP`` and ``then`` as the
-    document's next-tick callback (the one Bokeh call that is safe from another thread). Not
-    served (a notebook, the tests): both at once, in order. An exception of ``work`` is handed
-    to ``then`` as its result.
+    A pool of its own, not ``OFF_THE_LOOP``: a move is answered while two wind records load.
+    Only the run goes here, not Panel's handling of the change: Panel's own thread pool
+    (``panel serve --num-threads N``, ``pn.config.nthreads``; Panel's docs, "Enable Automatic
+    Threading", https://panel.holoviz.org/how_to/concurrency/threading.html) runs every
+    callback of every page in a thread, and a page's two quick moves in two threads at once;
+    measured in the hall of 100 against this pool in docs/measured.rst.
     """
+
+    def __init__(self, threads: int = 2):
+        self.pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="a move's run")
+        self.under_way = 0  # runs submitted and not done
+        self.lock = threading.Lock()
+
+    def submit(self, document, work: Callable[[], Any], then: Callable[[Any], None]) -> None:
+        """``work()`` in a thread, then ``then(result)`` as ``document``'s next-tick callback
+        (``in_thread``). Counted until that callback is queued, ahead of any drawing asked for
+        later, not until it runs: a page closed meanwhile never runs it."""
+        with self.lock:
+            self.under_way += 1
+
+        def done(future) -> None:
+            result = future.result()
+            try:
+                document.add_next_tick_callback(lambda: then(result))
+            finally:
+                with self.lock:
+                    self.under_way -= 1
+
+        self.pool.submit(_outcome, work).add_done_callback(done)
+
+
+MOVE_RUNS = Runs()
+
+
+def served_document():
+    """The document of the page being served (``pn.state.curdoc`` with a session), else None
+    (a notebook, the tests: nothing runs off the loop)."""
     import panel as pn
 
     document = pn.state.curdoc
     if document is None or document.session_context is None:
-        then(_outcome(work))
-        return
+        return None
+    return document
+
+
+def in_thread(
+    pool: ThreadPoolExecutor, document, work: Callable[[], Any], then: Callable[[Any], None]
+) -> None:
+    """``work()`` in ``pool``, then ``then(result)`` as ``document``'s next-tick callback: on the
+    event loop, under the document's lock, its curdoc set (Bokeh: "the one call that is safe from
+    another thread"; Panel's docs, "Modify Bokeh Models",
+    https://panel.holoviz.org/how_to/callbacks/server.html, schedule a change of the models from
+    a thread on the loop likewise, ``pn.state.execute``). An exception of ``work`` is handed to
+    ``then`` as its result."""
 
     def done(future) -> None:
         result = future.result()
         document.add_next_tick_callback(lambda: then(result))
 
-    OFF_THE_LOOP.submit(_outcome, work).add_done_callback(done)
+    pool.submit(_outcome, work).add_done_callback(done)
+
+
+def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:
+    """Run ``work()`` off the event loop, then ``then(result)`` on it, under the page's lock.
+
+    Served (``pn.state.curdoc`` has a session): ``work`` in ``OFF_THE_LOOP`` and ``then`` as the
+    document's next-tick callback (``in_thread``). Not served (a notebook, the tests): both at
+    once, in order. An exception of ``work`` is handed to ``then`` as its result.
+    """
+    document = served_document()
+    if document is None:
+        then(_outcome(work))
+        return
+    in_thread(OFF_THE_LOOP, document, work, then)
 
 
 def _outcome(work: Callable[[], Any]) -> Any:

@@ -4,6 +4,7 @@ one (``stale``: the last input was refused)."""
 from __future__ import annotations
 
 import logging
+import threading
 import weakref
 
 import panel as pn
@@ -11,6 +12,7 @@ import param
 
 import windpump
 
+from . import serving
 from .inputs import FORMATS, SEED, PumpInputs, link_text
 from .styles import TEXT
 
@@ -28,6 +30,10 @@ class Session(param.Parameterized):
     def __init__(self, **params):
         super().__init__(inputs=PumpInputs(), **params)
         self.seen: windpump.Exploration | None = None  # the run on the screen
+        self._asked = 0  # moves asked for (``move``)
+        self._running = False  # a move's run is under way off the event loop
+        self._runs = 0  # moves' runs started
+        self._working_shown = False  # the page says it is working (``_working``)
         self.error = pn.pane.Alert(
             "", alert_type="danger", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
         )
@@ -46,13 +52,73 @@ class Session(param.Parameterized):
         """``seen`` is on the screen: what follows it (the tabs) may follow too."""
         raise NotImplementedError
 
+    def _working(self, working: bool) -> None:
+        """Say that a move's run is taking long (``working``), or no longer."""
+        raise NotImplementedError
+
     # -- the one path from inputs to screen --------------------------------------------------
 
-    def update(self, seen: windpump.Exploration | None = None) -> None:
-        """Run the core on the current inputs (``seen``: that run, done already) and redraw; a
-        rejected input shows its message."""
+    def move(self) -> None:
+        """An input changed: run the core on the inputs and redraw (``update``).
+
+        Served, the run goes off the event loop (``serving.MOVE_RUNS``; the kernels release the
+        GIL), so the loop answers other pages meanwhile and 30 moves at once use both cores;
+        its readouts are drawn on the loop, under the page's lock. One run of a page at a time,
+        in order: a move made while one runs waits, and only the latest waiting runs, so the
+        page ends on its latest inputs and never shows an older run after a newer. A run still
+        under way after ``WORKING_AFTER`` says so on the page (``_working``). Not served (a
+        notebook, the tests): at once.
+        """
+        document = serving.served_document()
+        if document is None:
+            self.update()
+            return
+        self._asked += 1
+        if not self._running:
+            self._run_latest(document)
+
+    def _run_latest(self, document) -> None:
+        asked, self._running = self._asked, True
+        self._runs += 1
+        i = self.inputs
+        try:
+            run = (i.design(), i.t_end, i.theta0, i.theta_dot0)
+        except Exception as error:  # refused on reading the inputs: said at once
+            self._ran(document, asked, error)
+            return
+        serving.MOVE_RUNS.submit(
+            document,
+            lambda: ready(shared_explore(*run)),
+            lambda seen: self._ran(document, asked, seen),
+        )
+        number = self._runs
+        document.add_timeout_callback(lambda: self._still_running(number), WORKING_AFTER)
+
+    def _ran(self, document, asked: int, outcome) -> None:
+        """The run of move ``asked`` is back (an Exploration or the exception it raised), on the
+        loop: drawn if no move was made since, else the latest move runs."""
+        self._running = False
+        if asked != self._asked:  # superseded: its inputs are no longer the page's
+            self._run_latest(document)
+            return
+        if self._working_shown:
+            self._working_shown = False
+            self._working(False)
+        self.update(outcome)
+
+    def _still_running(self, number: int) -> None:
+        """``WORKING_AFTER`` after run ``number`` started: say so if it is still under way."""
+        if self._running and self._runs == number and not self._working_shown:
+            self._working_shown = True
+            self._working(True)
+
+    def update(self, seen: windpump.Exploration | Exception | None = None) -> None:
+        """Run the core on the current inputs (``seen``: that run, done already, or the exception
+        it raised) and redraw; a rejected input shows its message."""
         try:
             seen = self.explore() if seen is None else seen
+            if isinstance(seen, Exception):
+                raise seen
             with pn.io.hold():
                 self._draw(seen)
         except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
@@ -112,6 +178,17 @@ class Session(param.Parameterized):
         return "This design "
 
 
+# [ms] a move's run under way this long says so on its page (``Session.move``): a run of the
+# paper's example takes 2-4 ms, its readouts are back in ~60 ms while a class moves at its own pace
+WORKING_AFTER = 400
+
+
+def ready(seen: windpump.Exploration) -> windpump.Exploration:
+    """``seen`` with what its readouts compute once (its energy balance) computed, off the loop."""
+    _ = seen.energy_totals
+    return seen
+
+
 # The runs pages hold, by what they ran: a page asking a run another page holds (a class opening the
 # default page asks the same one thirty times) gets that one, computed once and kept once (~2.8 MB
 # for the paper's example) instead of once a page; the run goes with the last page holding it.
@@ -123,11 +200,16 @@ def shared_explore(design: windpump.Design, t_end: float, *start: float) -> wind
     every page holding the same run (the core's results are frozen: no page changes what another
     draws)."""
     key = (design, float(t_end), *map(float, start))
-    seen = SHARED_RUNS.get(key)
+    with SHARING:
+        seen = SHARED_RUNS.get(key)
     if seen is None:
         seen = windpump.explore(design, t_end, *start)
-        SHARED_RUNS[key] = seen
+        with SHARING:
+            seen = SHARED_RUNS.setdefault(key, seen)
     return seen
+
+
+SHARING = threading.Lock()  # the moves' runs share SHARED_RUNS from their threads
 
 
 def input_name(error: Exception) -> str | None:

@@ -349,3 +349,34 @@ def test_plots_wait_for_moves_no_longer_than_their_patience():
     finally:
         state._change_callbacks.pop(gone, None)
     assert order == ["plots"]
+
+
+def test_a_change_sends_what_panels_own_update_sends_with_the_design_worked_out_only_for_styles():
+    """serving.lighter_updates: Panel's ``Reactive._update_properties`` gives the same properties
+    for a change of a value and of the stylesheets (the design's sheets before the component's)."""
+    import panel as pn
+    from panel.reactive import Reactive
+
+    from windpump_app.serving import lighter_updates
+
+    lighter_updates()
+    ours = Reactive._update_properties
+    if not getattr(ours, "lighter", False):
+        pytest.skip(f"lighter_updates applies to Panel 1.9 only, not {pn.__version__}")
+    panels = ours.panel
+    slider = pn.widgets.FloatSlider(start=0.0, end=10.0, value=1.0, design=pn.theme.Bootstrap)
+    events = []
+    slider.param.watch(events.append, ["value", "stylesheets"])
+    slider.value = 2.5
+    slider.stylesheets = [":host { margin: 3px; }"]
+    assert [e.name for e in events] == ["value", "stylesheets"]
+
+    def plain(properties: dict) -> dict:  # a stylesheet model by its address (a new id each time)
+        sheets = [getattr(s, "url", s) for s in properties.get("stylesheets", [])]
+        return {**properties, **({"stylesheets": sheets} if sheets else {})}
+
+    for event in events:
+        theirs, mine = panels(slider, event, doc=None), ours(slider, event, doc=None)
+        assert plain(mine) == plain(theirs)
+    styles = plain(ours(slider, events[1], doc=None))["stylesheets"]
+    assert len(styles) > 1 and styles[-1] == ":host { margin: 3px; }"

@@ -11,7 +11,9 @@ tuple of them) is the same each time for a class and property: here it is worked
 class and property (and per theme value) and kept. Mutable defaults (lists, dicts, models) are
 worked out as before, a fresh one each time, so no model shares one with another.
 
-Two more of its costs are cut the same way, with the same results: a model's theme values were
+Whether a default is "unstable" (made anew for each model: a list, a model) is known per class
+and property, and was worked out again at each read too (importing two names each time: 12 %).
+Three more of its costs are cut the same way, with the same results: a model's theme values were
 looked up by raising and catching an ``AttributeError`` twice when it has none (most models, at
 each read of a default: 9 % of a page's build), and the name of a container property (``Dict(String,
 Any)``) was written out at each validation of a value, for an error message not raised (6 %).
@@ -41,6 +43,7 @@ def lighter_properties() -> None:
     if not bokeh.__version__.startswith("3.9."):
         return
     kept_defaults()
+    stable_defaults_known()
     themed_values_read_directly()
     names_written_once()
 
@@ -72,6 +75,30 @@ def kept_defaults() -> None:
     default.kept = True  # type: ignore[attr-defined]
     default.bokeh = themed_default  # type: ignore[attr-defined]
     Property.themed_default = default  # type: ignore[method-assign]
+
+
+def stable_defaults_known() -> None:
+    """Whether a property's default is made anew for each model (``has_unstable_default``: its
+    type, and its class's overridden default) kept per class and property once known."""
+    from bokeh.core.property.descriptors import PropertyDescriptor
+
+    if getattr(PropertyDescriptor.has_unstable_default, "kept", False):
+        return
+    has_unstable_default = PropertyDescriptor.has_unstable_default
+    known: dict = {}
+
+    def unstable(self, obj) -> bool:
+        key = (id(self), type(obj))  # a descriptor lives as long as its class
+        entry = known.get(key)
+        if entry is not None and entry[0] is self:
+            return entry[1]
+        answer = has_unstable_default(self, obj)
+        known[key] = (self, answer)
+        return answer
+
+    unstable.kept = True  # type: ignore[attr-defined]
+    unstable.__wrapped__ = has_unstable_default  # type: ignore[attr-defined]
+    PropertyDescriptor.has_unstable_default = unstable  # type: ignore[method-assign]
 
 
 def themed_values_read_directly() -> None:

@@ -109,3 +109,20 @@ def test_a_container_propertys_name_is_written_once_and_the_same():
     assert ParameterizedProperty.__str__.once  # type: ignore[attr-defined]
     with pytest.raises(ValueError, match=r"expected a dict of type Dict\(String, Any\)"):
         Dict(String, Any).validate([1])
+
+
+@pytest.mark.parametrize("cls", MODELS, ids=lambda c: c.__name__)
+def test_whether_a_default_is_made_anew_is_bokehs_own_answer(cls, monkeypatch):
+    from bokeh.core.property.descriptors import PropertyDescriptor
+
+    kept = PropertyDescriptor.has_unstable_default
+    assert kept.kept  # type: ignore[attr-defined]
+    model = cls()
+    answers = {name: kept(model.lookup(name), model) for name in model.properties()}
+    for _ in range(2):  # kept, and asked again
+        assert answers == {name: kept(model.lookup(name), model) for name in model.properties()}
+    monkeypatch.setattr(PropertyDescriptor, "has_unstable_default", kept.__wrapped__)
+    assert answers == {
+        name: model.lookup(name).has_unstable_default(model) for name in model.properties()
+    }
+    assert answers["tags"] and not answers["name"]  # a list made anew, a string not

@@ -126,3 +126,19 @@ def test_whether_a_default_is_made_anew_is_bokehs_own_answer(cls, monkeypatch):
         name: model.lookup(name).has_unstable_default(model) for name in model.properties()
     }
     assert answers["tags"] and not answers["name"]  # a list made anew, a string not
+
+
+def test_a_property_lists_owners_are_kept_in_a_tuple_and_told_of_changes():
+    source, other = ColumnDataSource(data={"x": [1]}), Div()
+    owners = source.data._owners
+    assert type(owners) is tuple and len(owners) == 1 and owners[0][0] is source
+    changes = []
+    other.on_change("tags", lambda attr, old, new: changes.append((old, new)))
+    other.tags.append("a")  # a change in place reaches the model that owns the list
+    assert other.tags == ["a"] and changes == [([], ["a"])]
+    shared = other.tags
+    twice = Div(tags=shared)  # a list set on a second model: both own it, once each
+    twice.tags = shared
+    assert [owner for owner, _ in shared._owners] == [other, twice]
+    twice.tags = ["b"]  # and the one that let it go no more
+    assert [owner for owner, _ in shared._owners] == [other]

@@ -9,6 +9,7 @@ from functools import partial
 
 import panel as pn
 
+from .defaults import lighter_properties
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
 from .pump import ORDER
@@ -34,6 +35,7 @@ without_mathjax()
 without_webgl()
 lighter_patches()
 lighter_updates()
+lighter_properties()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)

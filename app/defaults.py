@@ -1,0 +1,171 @@
+"""Bokeh's property machinery, lighter for a page of ~350 models built and sent per student.
+
+A page here is ~350 Bokeh models (its controls, template and first views), and every property of
+every model that is not set is read through its default several times while the page is built
+and sent: when it is set (the old value), when the document walks its models, when it is
+serialised. Bokeh (3.9) works the default out again at each read (``Property.themed_default``:
+the class's overrides, a copy of the default, ``prepare_value``'s validation), ~17,000 times a
+page. Profiled while pages opened one after another on a served app, that was 37 % of the
+server's CPU for a page. A default that is a plain immutable value (None, a number, a string, a
+tuple of them) is the same each time for a class and property: here it is worked out once per
+class and property (and per theme value) and kept. Mutable defaults (lists, dicts, models) are
+worked out as before, a fresh one each time, so no model shares one with another.
+
+Whether a default is "unstable" (made anew for each model: a list, a model) is known per class
+and property, and was worked out again at each read too (importing two names each time: 12 %).
+Each list or dict a model holds as a property value (most of them its defaults: its tags, its
+stylesheets, its callbacks, ~6,000 a page) keeps the models that own it, to tell them of a change
+made in place: in a set of its own, 216 bytes for one owner, 1.1 MB a page of a session's memory
+(tracemalloc, a served page). Here in a tuple (48 bytes), the same owners.
+
+Three more of its costs are cut the same way, with the same results: a model's theme values were
+looked up by raising and catching an ``AttributeError`` twice when it has none (most models, at
+each read of a default: 9 % of a page's build), and the name of a container property (``Dict(String,
+Any)``) was written out at each validation of a value, for an error message not raised (6 %).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+# Values whose default is kept: what a property cannot change in place.
+IMMUTABLE = (type(None), bool, int, float, str)
+
+
+def immutable(value: Any) -> bool:
+    """Whether ``value`` is a plain immutable value, or a tuple of them."""
+    if type(value) is tuple:
+        return all(immutable(item) for item in value)
+    return type(value) in IMMUTABLE
+
+
+def lighter_properties() -> None:
+    """Bokeh's property machinery with its defaults kept, its theme values read directly and its
+    container properties' names written once (see the module); a second call does nothing."""
+    import bokeh
+
+    # It replaces methods of Bokeh's property machinery: only on the Bokeh it was checked against.
+    if not bokeh.__version__.startswith("3.9."):
+        return
+    kept_defaults()
+    stable_defaults_known()
+    themed_values_read_directly()
+    names_written_once()
+    owners_in_tuples()
+
+
+def kept_defaults() -> None:
+    """Keep the immutable defaults of Bokeh's properties once worked out (see the module)."""
+    from bokeh.core.property.bases import Property
+
+    if getattr(Property.themed_default, "kept", False):
+        return
+    themed_default = Property.themed_default
+    kept: dict = {}
+
+    def default(self, cls, name, theme_overrides, *, no_eval=False):
+        themed = theme_overrides is not None and name in theme_overrides
+        override = theme_overrides[name] if themed else None
+        if themed and not immutable(override):
+            return themed_default(self, cls, name, theme_overrides, no_eval=no_eval)
+        # A property is not hashable: its id, kept with it (an id is unique while it lives)
+        key = (id(self), cls, name, no_eval, themed, type(override), override)
+        entry = kept.get(key)
+        if entry is not None and entry[0] is self:
+            return entry[1]
+        value = themed_default(self, cls, name, theme_overrides, no_eval=no_eval)
+        if immutable(value):
+            kept[key] = (self, value)
+        return value
+
+    default.kept = True  # type: ignore[attr-defined]
+    default.bokeh = themed_default  # type: ignore[attr-defined]
+    Property.themed_default = default  # type: ignore[method-assign]
+
+
+def stable_defaults_known() -> None:
+    """Whether a property's default is made anew for each model (``has_unstable_default``: its
+    type, and its class's overridden default) kept per class and property once known."""
+    from bokeh.core.property.descriptors import PropertyDescriptor
+
+    if getattr(PropertyDescriptor.has_unstable_default, "kept", False):
+        return
+    has_unstable_default = PropertyDescriptor.has_unstable_default
+    known: dict = {}
+
+    def unstable(self, obj) -> bool:
+        key = (id(self), type(obj))  # a descriptor lives as long as its class
+        entry = known.get(key)
+        if entry is not None and entry[0] is self:
+            return entry[1]
+        answer = has_unstable_default(self, obj)
+        known[key] = (self, answer)
+        return answer
+
+    unstable.kept = True  # type: ignore[attr-defined]
+    unstable.__wrapped__ = has_unstable_default  # type: ignore[attr-defined]
+    PropertyDescriptor.has_unstable_default = unstable  # type: ignore[method-assign]
+
+
+def themed_values_read_directly() -> None:
+    """A model's theme values (``HasProps.themed_values``) read from its ``__dict__``, where
+    ``apply_theme`` sets them, not through ``getattr``: Bokeh's ``__getattr__`` raises for a model
+    without any, and ``getattr`` catches it."""
+    from bokeh.core.has_props import HasProps
+
+    if getattr(HasProps.themed_values, "direct", False):
+        return
+
+    def themed_values(self):
+        return self.__dict__.get("__themed_values__")
+
+    themed_values.direct = True  # type: ignore[attr-defined]
+    themed_values.__doc__ = HasProps.themed_values.__doc__
+    HasProps.themed_values = themed_values  # type: ignore[method-assign]
+
+
+def names_written_once() -> None:
+    """A container property's name (``Dict(String, Any)``: its class and its type parameters,
+    fixed once it is made) written once and kept, not at each validation of a value."""
+    from bokeh.core.property.bases import ParameterizedProperty
+
+    if getattr(ParameterizedProperty.__str__, "once", False):
+        return
+    written = ParameterizedProperty.__str__
+
+    def name(self) -> str:
+        try:
+            return self.__dict__["_windpump_name"]
+        except KeyError:
+            self.__dict__["_windpump_name"] = text = written(self)
+            return text
+
+    name.once = True  # type: ignore[attr-defined]
+    ParameterizedProperty.__str__ = name  # type: ignore[method-assign]
+
+
+def owners_in_tuples() -> None:
+    """The owners of a property's list or dict (``PropertyValueContainer._owners``: almost always
+    one model) kept in a tuple, not a set of their own; told of a change in place as before."""
+    from bokeh.core.property.wrappers import PropertyValueContainer
+
+    if getattr(PropertyValueContainer._register_owner, "tuples", False):
+        return
+
+    def __init__(self, *args, **kwargs) -> None:
+        self._owners = ()
+        super(PropertyValueContainer, self).__init__(*args, **kwargs)
+
+    def register(self, owner, descriptor) -> None:
+        pair = (owner, descriptor)
+        if pair not in self._owners:
+            self._owners = (*self._owners, pair)
+
+    def unregister(self, owner, descriptor) -> None:
+        pair = (owner, descriptor)
+        self._owners = tuple(owned for owned in self._owners if owned != pair)
+
+    register.tuples = True  # type: ignore[attr-defined]
+    PropertyValueContainer.__init__ = __init__  # type: ignore[method-assign]
+    PropertyValueContainer._register_owner = register  # type: ignore[method-assign]
+    PropertyValueContainer._unregister_owner = unregister  # type: ignore[method-assign]

@@ -144,6 +144,7 @@ class WindTab(Tab):
         self.last_run: windpump.SimulationResult | None = None
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
         self._ready_day: tuple | None = None  # ((design, record, theta0, kick), its day), run ahead
+        self._wanted_day: tuple = ()  # (design, record, theta0, kick) of the day last asked for
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
         )
@@ -195,26 +196,60 @@ class WindTab(Tab):
         return gusty_day(inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
 
     def _update_day(self, design, inputs) -> None:
+        """Run the day (about a second; a week of measured wind, seconds) and draw it.
+
+        Served, the run goes off the event loop (``serving.off_the_loop``, as an upload's), so
+        the other pages' moves are answered meanwhile; the tab says it is working, and a run
+        asked for since (a newer design or wind) wins: an older day is never drawn over it."""
         record = self.record(inputs)
         # keyed by the kick the day gets: a windmill that starts on its own ignores the slider's
-        run_of = (
-            design,
-            record,
-            inputs.theta0,
-            kick_in_wind(design, inputs.theta_dot0),
-        )
+        run_of = (design, record, inputs.theta0, kick_in_wind(design, inputs.theta_dot0))
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
+        source = (
+            f"the measured record *{self.measured_name}*"
+            if self.measured is not None
+            else f"a gusty day (seed {int(round(inputs.seed))})"
+        )
         ready, self._ready_day = self._ready_day, None
-        try:
-            if ready is not None and _same_day(run_of, ready[0]):
-                day = ready[1]  # run off the loop as the record was read (load_data)
-            else:
-                day = windpump.run_in_wind(design, record, inputs.theta0, inputs.theta_dot0)
-        except ValueError as error:
-            self.error.object = f"The day cannot be run: {error}"
+        self._wanted_day = run_of
+        if ready is not None and _same_day(run_of, ready[0]):  # run off the loop with its record
+            self._draw_day(run_of, source, (ready[1], *windpump.record_water(design, record)))
+            return
+        self.day_note.object = self.waiting
+        if self.last_run is None:  # a first day: the figures get ranges until it comes
+            self._placeholder_day(float(record.t[-1]))
+
+        theta0, kick = inputs.theta0, inputs.theta_dot0  # as asked: the inputs move on
+
+        def work() -> tuple:
+            day = windpump.run_in_wind(design, record, theta0, kick)
+            return (day, *windpump.record_water(design, record))
+
+        off_the_loop(work, lambda outcome: self._draw_day(run_of, source, outcome))
+
+    def _placeholder_day(self, duration: float) -> None:
+        """Flat, empty bands over the day, so that its figures have ranges before it is run
+        (Bokeh cannot set the ranges of figures with no data)."""
+        x = [0.0, duration / SECONDS_PER_HOUR]
+        for name in ("wind", "speed"):
+            refill(self.sources[name], {"t": x, "lower": [0.0, 0.0], "upper": [0.0, 0.0]})
+        refill(self.sources["litres"], {"t": x, "litres": [0.0, 0.0]})
+
+    def _draw_day(self, run_of: tuple, source: str, outcome) -> None:
+        """Draw the day ``outcome`` = (day, low, high) of ``run_of``, unless a newer one is
+        wanted; a refused day says why."""
+        if not _same_day(run_of, self._wanted_day):
+            return  # a newer design or wind was asked for meanwhile: its run draws
+        if isinstance(outcome, ValueError):
+            self.error.object = f"The day cannot be run: {outcome}"
             self.error.visible = True
             return
+        if isinstance(outcome, Exception):  # a bug: say so, log it, keep the session alive
+            log.error("running a day of wind failed", exc_info=outcome)
+            self.failed(f"The day cannot be run: {type(outcome).__name__}: {outcome}")
+            return
+        day, low, high = outcome
         self.error.visible = False
         run, duration = day.run, day.duration
         self.last_run, self._drawn_day = run, run_of
@@ -236,17 +271,14 @@ class WindTab(Tab):
         self.readouts["day_litres"].show(
             *record_water_text(LITRES_PER_M3 * day.volume, LITRES_PER_M3 * day.per_day, duration)
         )
-        low, high = windpump.record_water(design, record)
-        a_day = is_a_day(duration)
         self.readouts["record_bounds"].show(
-            WIND_READOUTS["record_bounds"] if a_day else "Averaged over this record's wind [L/day]",
+            WIND_READOUTS["record_bounds"]
+            if is_a_day(duration)
+            else "Averaged over this record's wind [L/day]",
             f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
         )
-        source = (
-            f"the measured record *{self.measured_name}* ({duration / SECONDS_PER_HOUR:.1f} h)"
-            if self.measured is not None
-            else f"a gusty day (seed {int(round(inputs.seed))})"
-        )
+        if self.measured is not None:
+            source += f" ({duration / SECONDS_PER_HOUR:.1f} h)"
         start = "starts on its own" if day.kick == 0.0 else f"is kicked at {day.kick:g} rad/s"
         self.day_note.object = (
             f"Integrated in full over {source}: the pump {start}, stops {len(day.stops)} "

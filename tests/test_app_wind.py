@@ -218,3 +218,27 @@ def test_presentation_mode_gives_the_steady_wind_plot_room_for_its_larger_legend
     assert curve.height == usual
     app.presentation = True
     assert curve.height == grown  # as often as it is turned on
+
+
+def test_served_a_day_runs_off_the_loop_says_so_and_the_newest_wins(monkeypatch):
+    """Served, the day runs off the event loop (``off_the_loop``): the tab says it is working,
+    and when two moves' days come back in the wrong order only the newer one is drawn."""
+    from windpump_app import wind_tab
+
+    held: list = []  # (work, then) as the thread pool would run them
+    monkeypatch.setattr(wind_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    explorer = Explorer()
+    explorer.main().active = 2  # the Wind tab: its day is asked for
+    assert explorer.wind.day_note.object == wind_tab.WindTab.waiting
+    explorer.set_values(T_0=0.3)  # a newer design's day, asked for before the first came back
+    assert len(held) == 2
+    newer_work, newer_then = held[1]
+    newer_then(newer_work())
+    newer = value(explorer, "day_litres")
+    older_work, older_then = held[0]
+    older_then(older_work())  # the older day, late: not drawn over the newer
+    assert value(explorer, "day_litres") == newer
+    design, record = SEED.replace(T_0=0.3), gusty(5.0, DAY, k=2.0, time_scale=60.0, seed=1)
+    run = windpump.simulate(design, DAY, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
+    assert newer == litres(1e3 * run.volume[-1])
+    assert "Integrated in full" in explorer.wind.day_note.object

@@ -54,8 +54,11 @@ def delivering(design: Design, phi_mid: float) -> int:
     return -1 if design.double_acting else 0
 
 
-def machine_rhs(design: Design, segment_mid: float):
-    """d(theta, theta_dot, V, W, F, P)/dt inside the segment around ``segment_mid``."""
+def machine_rhs(design: Design, segment_mid: float, continued: bool = False):
+    """d(theta, theta_dot, V, W, F, P)/dt inside the segment around ``segment_mid``.
+
+    ``continued``: every delivering face delivers u - q_L (negative inside a hole's windows) at
+    rho_w g (h + h_f), the loads continued through the windows (a windowed segment's steps)."""
     Rd = design.R1 / design.R0
     I_eff = design.I1 + design.I0 * Rd**2
     n = design.cylinders
@@ -79,13 +82,15 @@ def machine_rhs(design: Design, segment_mid: float):
             weight += design.m_r * g * dx
             if face:
                 swept.append(abs(dx))
-        flows = [max(design.A * arm * theta_dot - q_leak, 0.0) for arm in swept]
+        flows = [design.A * arm * theta_dot - q_leak for arm in swept]
+        if not continued:
+            flows = [max(flow, 0.0) for flow in flows]
         Q = sum(flows)
         h_f = design.f_main * design.L_main / design.D_main * (Q / a_main) ** 2 / (2 * g)
         load = faces_power = 0.0
         for arm in swept:
             u = design.A * arm * theta_dot
-            if q_leak == 0.0 or u > q_leak:
+            if continued or q_leak == 0.0 or u > q_leak:
                 p = rho * g * (design.h + h_f)
             else:
                 p = 0.5 * rho * (u / (design.Cd_leak * a_leak)) ** 2

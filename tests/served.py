@@ -47,9 +47,9 @@ VIEWS_DRAWN = (
 # The pump's views are built when the page first shows them (app/viewport.js): a test that needs
 # one below the first screen scrolls to it, as a person would, and waits for it (``show_view``).
 # Scrolls the placeholder of view ``name`` into the middle of the screen, unless it is drawn.
-SCROLL_TO_VIEW = """(name) => {
-  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
-  if (model !== null && window.Bokeh.index.find_one(model)) return 'drawn';
+# The element of view ``name`` (``.view-<name>``: its placeholder or the view), through the
+# template's shadow roots: ``const el = walk(document)`` in a script taking ``name``.
+FIND_VIEW = """
   const walk = (root) => {
     const hit = root.querySelector('.view-' + name);
     if (hit) return hit;
@@ -58,10 +58,17 @@ SCROLL_TO_VIEW = """(name) => {
     }
     return null;
   };
-  const el = walk(document);
+  const el = walk(document);"""
+SCROLL_TO_VIEW = (
+    """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
+  if (model !== null && window.Bokeh.index.find_one(model)) return 'drawn';"""
+    + FIND_VIEW
+    + """
   if (el !== null) el.scrollIntoView({block: 'center'});
   return el !== null ? 'scrolled' : 'missing';
 }"""
+)
 VIEW_DRAWN = """(name) => {
   const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
   const view = model && window.Bokeh.index.find_one(model);

@@ -11,7 +11,7 @@ import pytest
 from playwright.sync_api import expect
 from test_browser import ARTIFACTS, open_page
 
-from served import POLL_MS, show_view
+from served import FIND_VIEW, POLL_MS, show_view
 
 pytestmark = pytest.mark.browser
 
@@ -185,18 +185,9 @@ def test_a_phone_shows_a_notice_the_readouts_and_the_whole_status_above_the_cont
         page.close()
 
 
-PLACED = """(name) => {
-  const walk = (root) => {
-    const hit = root.querySelector('.view-' + name);
-    if (hit) return hit;
-    for (const el of root.querySelectorAll('*')) {
-      if (el.shadowRoot) { const found = walk(el.shadowRoot); if (found) return found; }
-    }
-    return null;
-  };
-  const el = walk(document);
-  return el === null ? null : el.getBoundingClientRect().top;
-}"""
+PLACED = (
+    "(name) => {" + FIND_VIEW + "\n  return el === null ? null : el.getBoundingClientRect().top;\n}"
+)
 
 
 def test_a_view_behind_a_phones_controls_is_not_seen(browser, url):

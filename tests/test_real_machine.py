@@ -339,39 +339,12 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
 
 
 def continued_rhs(design, segment_mid):
-    """real_reference's machine_rhs with every delivering face delivering u - q_L (negative
-    inside the windows) at rho_w g (h + h_f): the loads a windowed segment is stepped on."""
-    from real_reference import delivering, piston
+    """real_reference's machine_rhs on the loads continued through a hole's windows (u - q_L at
+    rho_w g (h + h_f)), the loads a windowed segment is stepped on; and I_eff."""
+    from real_reference import machine_rhs
 
-    Rd = design.R1 / design.R0
-    I_eff = design.I1 + design.I0 * Rd**2
-    lags = [2 * math.pi * k / design.cylinders for k in range(design.cylinders)]
-    faces = [delivering(design, segment_mid - lag) for lag in lags]
-    q_leak = design.Cd_leak * math.pi * design.d_leak**2 / 4 * math.sqrt(2 * design.g * design.h)
-    a_main = math.pi * design.D_main**2 / 4
-    rho, g = design.rho_w, design.g
-
-    def rhs(_t, y):
-        theta, theta_dot = y[0], y[1]
-        x = Rd * theta_dot / design.omega_m
-        torque = design.T_0 + (design.T_m - design.T_0) * x * (2 - x)
-        J, J_slope, weight, arms, Q = I_eff, 0.0, 0.0, 0.0, 0.0
-        for lag, face in zip(lags, faces, strict=True):
-            _, dx, ddx = piston(design, theta - lag)
-            J += design.m_r * dx * dx
-            J_slope += 2 * design.m_r * dx * ddx
-            weight += design.m_r * g * dx
-            if face:
-                arms += abs(dx)
-                Q += design.A * abs(dx) * theta_dot - q_leak
-        h_f = design.f_main * design.L_main / design.D_main * (Q / a_main) ** 2 / (2 * g)
-        load = rho * g * (design.h + h_f) * design.A * arms
-        drive = design.eta_t * Rd * torque
-        theta_ddot = (drive - load + weight - 0.5 * J_slope * theta_dot**2) / J
-        faces_power = rho * g * (design.h + h_f) * design.A * arms * theta_dot
-        return [theta_dot, theta_ddot, Q, torque * Rd * theta_dot, rho * g * h_f * Q, faces_power]
-
-    return rhs, I_eff
+    I_eff = design.I1 + design.I0 * (design.R1 / design.R0) ** 2
+    return machine_rhs(design, segment_mid, continued=True), I_eff
 
 
 def across(rhs, theta_from, theta_dot, theta_to):

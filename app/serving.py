@@ -7,6 +7,7 @@ import ctypes
 import ctypes.util
 import gc
 import json
+import logging
 import math
 import os
 import threading
@@ -14,6 +15,8 @@ import time
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
+
+log = logging.getLogger("windpump.app")
 
 _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
@@ -417,8 +420,12 @@ class DrawAfterMoves:
         draw = next(iter(self.queue))
         # Under the document's lock, as its curdoc, at the head of the loop's next turn; the
         # next drawing is looked at after that turn's messages (a timer runs after the I/O)
-        self.queue.pop(draw).add_next_tick_callback(draw)
-        self._schedule(0.0)
+        try:
+            self.queue.pop(draw).add_next_tick_callback(draw)
+        except Exception:  # its page closed meanwhile: the drawings queued behind it still run
+            log.debug("a drawing's page is gone", exc_info=True)
+        finally:
+            self._schedule(0.0)
 
 
 def moves_pending() -> bool:

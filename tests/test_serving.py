@@ -351,6 +351,30 @@ def test_plots_wait_for_moves_no_longer_than_their_patience():
     assert order == ["plots"]
 
 
+class ClosedDocument:
+    """A document whose page has closed: Bokeh refuses its callbacks."""
+
+    def add_next_tick_callback(self, callback):
+        raise RuntimeError("this document's session is gone")
+
+
+def test_a_closed_pages_drawing_holds_up_no_other_pages():
+    """A page closed while its plots were queued: the plots queued behind it are still drawn."""
+    import asyncio
+
+    from windpump_app.serving import DrawAfterMoves
+
+    drawing, order = DrawAfterMoves(retry=0.001, patience=0.05), []
+
+    async def queued() -> None:
+        drawing.later(ClosedDocument(), lambda: order.append("closed"))
+        drawing.later(LoopDocument(), lambda: order.append("plots"))
+        await asyncio.sleep(0.2)
+
+    asyncio.run(queued())
+    assert order == ["plots"]
+
+
 def test_a_change_sends_what_panels_own_update_sends_with_the_design_worked_out_only_for_styles():
     """serving.lighter_updates: Panel's ``Reactive._update_properties`` gives the same properties
     for a change of a value and of the stylesheets (the design's sheets before the component's)."""

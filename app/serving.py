@@ -496,16 +496,11 @@ class Runs:
         later, not until it runs: a page closed meanwhile never runs it."""
         with self.lock:
             self.under_way += 1
+        in_thread(self.pool, document, work, then, queued=self._done)
 
-        def done(future) -> None:
-            result = future.result()
-            try:
-                document.add_next_tick_callback(lambda: then(result))
-            finally:
-                with self.lock:
-                    self.under_way -= 1
-
-        self.pool.submit(_outcome, work).add_done_callback(done)
+    def _done(self) -> None:
+        with self.lock:
+            self.under_way -= 1
 
 
 MOVE_RUNS = Runs()
@@ -523,20 +518,44 @@ def served_document():
 
 
 def in_thread(
-    pool: ThreadPoolExecutor, document, work: Callable[[], Any], then: Callable[[Any], None]
+    pool: ThreadPoolExecutor,
+    document,
+    work: Callable[[], Any],
+    then: Callable[[Any], None],
+    queued: Callable[[], None] = lambda: None,
 ) -> None:
     """``work()`` in ``pool``, then ``then(result)`` as ``document``'s next-tick callback: on the
-    event loop, under the document's lock, its curdoc set (Bokeh: "the one call that is safe from
-    another thread"; Panel's docs, "Modify Bokeh Models",
+    event loop, under the document's lock, its curdoc set (Panel's docs, "Modify Bokeh Models",
     https://panel.holoviz.org/how_to/callbacks/server.html, schedule a change of the models from
     a thread on the loop likewise, ``pn.state.execute``). An exception of ``work`` is handed to
-    ``then`` as its result."""
+    ``then`` as its result; ``queued()`` runs on the loop once ``then`` is queued (or its page
+    is gone). Called on the event loop's thread.
 
-    def done(future) -> None:
+    The next-tick callback is added on the loop's thread, not the work's: Bokeh calls
+    ``add_next_tick_callback`` thread-safe, but while the loop holds the document
+    (``pn.io.hold``, a page drawing) the callback's event is appended to the held events, and
+    an ``unhold`` on the loop at that moment can copy and clear that list first: the callback
+    was lost, and a page's move never answered (its plots stayed on the earlier design, and the
+    page ran no later move).
+    """
+    from tornado.ioloop import IOLoop
+
+    loop = IOLoop.current()
+
+    def done(future) -> None:  # in the work's thread
         result = future.result()
-        document.add_next_tick_callback(lambda: then(result))
+        loop.add_callback(_next_tick, document, lambda: then(result), queued)
 
     pool.submit(_outcome, work).add_done_callback(done)
+
+
+def _next_tick(document, callback: Callable[[], None], queued: Callable[[], None]) -> None:
+    try:
+        document.add_next_tick_callback(callback)
+    except Exception:  # its page closed meanwhile (Bokeh: "already-destroyed Document")
+        log.debug("a page closed before its work was done", exc_info=True)
+    finally:
+        queued()
 
 
 def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:

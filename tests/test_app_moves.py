@@ -24,14 +24,20 @@ SEED = windpump.Design.seed_example()
 
 
 class LoopDocument:
-    """A served page's document as a move sees it: callbacks run on the test's event loop."""
+    """A served page's document as a move sees it: callbacks run on the test's event loop. Each
+    next-tick callback records the thread that added it: Bokeh's document loses one added from
+    another thread while the loop holds the document (``serving.in_thread``)."""
+
+    added_from: list[int] = []  # threading.get_ident() of each add_next_tick_callback's caller
 
     def __init__(self):
         from tornado.ioloop import IOLoop
 
         self.loop = IOLoop.current()
+        self.loop_thread = threading.get_ident()  # made on the loop, as a page's document is
 
-    def add_next_tick_callback(self, callback):  # called from the run's thread
+    def add_next_tick_callback(self, callback):
+        LoopDocument.added_from.append(threading.get_ident() == self.loop_thread)
         self.loop.add_callback(callback)
 
     def add_timeout_callback(self, callback, milliseconds):
@@ -194,9 +200,34 @@ def test_runs_under_way_hold_the_plots_back_and_are_counted_once_handed_back(mon
         gate.set()
         await until(lambda: len(answers) == 2, "both answers")
 
+    LoopDocument.added_from.clear()
     asyncio.run(submitted())
     assert answers[0] == "ran" and isinstance(answers[1], ValueError)
     assert runs.under_way == 0 and not serving.moves_pending()
+    assert LoopDocument.added_from == [True, True]  # each answer queued from the loop's thread
+
+
+def test_a_thread_hands_its_answer_to_the_loop_and_a_closed_page_is_passed_over(monkeypatch):
+    """serving.in_thread: the answer is queued on the document from the event loop's thread,
+    never the work's (there, an ``unhold`` of the page on the loop could drop it); a page closed
+    meanwhile (Bokeh refuses its callbacks) is passed over, and ``queued`` runs either way."""
+    pool, answers, queued = serving.ThreadPoolExecutor(max_workers=1), [], []
+
+    class Closed(LoopDocument):
+        def add_next_tick_callback(self, callback):
+            raise RuntimeError("Attempting to add session callback to already-destroyed Document")
+
+    async def handed() -> None:
+        serving.in_thread(pool, Closed(), lambda: "lost", answers.append, lambda: queued.append(1))
+        serving.in_thread(
+            pool, LoopDocument(), lambda: "ran", answers.append, lambda: queued.append(2)
+        )
+        await until(lambda: answers == ["ran"] and queued == [1, 2], "the open page's answer")
+
+    LoopDocument.added_from.clear()
+    asyncio.run(handed())
+    pool.shutdown()
+    assert LoopDocument.added_from == [True]
 
 
 def test_not_served_a_move_runs_at_once():

@@ -95,8 +95,12 @@ class SiteTab(Tab):
         self.note = pn.pane.Markdown(
             "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]
         )
-        self.status = pn.pane.Alert(
-            "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
+        self.status = pn.pane.Alert(  # shown with the first year
+            "",
+            alert_type="success",
+            visible=False,
+            stylesheets=COMPACT,
+            sizing_mode="stretch_width",
         )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.computing = pn.pane.Alert(
@@ -209,6 +213,7 @@ class SiteTab(Tab):
             label = SITE_READOUTS[name].format(span=over)
             self.readouts[name].show(label.replace("m³ over the year", "m³/year"), value)
         self.status.object, self.status.alert_type = supply_status(supplied)
+        self.status.visible = True
 
     def failed(self, message: str) -> None:
         self.computing.visible = False

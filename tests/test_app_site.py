@@ -340,10 +340,12 @@ def test_served_a_year_runs_off_the_loop_says_so_and_the_newest_wins(held):
     )
     for name, x in (("level", "t"), ("lolp", "tank")):  # flat placeholders: ranges, no water
         assert len(data(app, name)[x]) == 2 and data(app, name)[x][0] < data(app, name)[x][1]
+    assert not np.any(data(app, "monthly")["pumped"]) and len(data(app, "monthly")["month"]) == 12
+    assert not app.site.status.visible  # no empty box
     app.site_inputs.param.update(site="sand_point", demand=8.0)  # before the first came back
     assert len(held) == 2 and app.site.computing.visible
     finish(held[1])
-    assert not app.site.computing.visible
+    assert not app.site.computing.visible and app.site.status.visible
     finish(held[0])  # Greensboro's year, late: not drawn over Sand Point's
     record, supplied = year(site="sand_point", demand=8.0)
     check_drawn(app, supplied, 5.0)

@@ -161,15 +161,17 @@ class SiteTab(Tab):
             placeholder_year(self.sources, tank_range(asked.tank, math.inf, asked.largest_tank))
         records, curve, tank_5 = self.records, self._curve, self.tank_5  # as drawn now
 
-        def work() -> Year:
+        def work() -> Year | None:
+            if asked != self._wanted:  # a newer year was asked for before this one started
+                return None
             return run_year(records, asked, curve, tank_5)
 
         off_the_loop(work, lambda outcome: self._show(asked, outcome))
 
     def _show(self, asked: Asked, outcome) -> None:
-        """Draw the year ``outcome`` (a ``Year``) of ``asked``, unless a newer one is wanted; a
-        year that cannot be run says why, the one drawn stays."""
-        if asked != self._wanted:
+        """Draw the year ``outcome`` (a ``Year``; None: superseded before it ran) of ``asked``,
+        unless a newer one is wanted; a year that cannot be run says why, the one drawn stays."""
+        if asked != self._wanted or outcome is None:
             return  # a newer design or input was asked for meanwhile: its year draws
         self.computing.visible = False
         if isinstance(outcome, ValueError):

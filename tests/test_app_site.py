@@ -360,6 +360,16 @@ def test_served_a_year_runs_off_the_loop_says_so_and_the_newest_wins(held):
     check_drawn(app, supplied, 5.0)  # the year drawn stays
     app.site_inputs.site = "sand_point"  # the year drawn: nothing to run, the error gone
     assert len(held) == 3 and not app.site.error.visible and not app.site.computing.visible
+    app.site_inputs.demand = 9.0
+    app.site_inputs.demand = 7.0
+    skipped = held[3][0]()  # 9's year, started after 7's was asked for: not run
+    assert skipped is None
+    app.site_inputs.demand = 9.0  # asked for again before that came back: its own run draws
+    held[3][1](skipped)
+    assert app.site.computing.visible and not app.site.error.visible
+    finish(held[5])
+    finish(held[4])  # 7's year, late
+    check_drawn(app, year(site="sand_point", demand=9.0)[1], 5.0)
 
 
 def test_served_an_upload_is_read_off_the_loop_and_the_newest_file_wins(held):

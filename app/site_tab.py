@@ -141,8 +141,8 @@ class SiteTab(Tab):
     # -- updates -----------------------------------------------------------------------------
 
     def draw(self, seen: windpump.Exploration) -> None:
-        """The year for the design and the site's inputs (~0.4 s with a new curve, a new site's
-        first read longer). Served, it is computed off the event loop (``serving.off_the_loop``),
+        """The year for the design and the site's inputs (~0.4-0.5 s the first, its record read;
+        ~1-15 ms a move). Served, it is computed off the event loop (``serving.off_the_loop``),
         so the other pages' moves are answered meanwhile: the tab says it is computing, and a
         year asked for since (a newer design or input) wins: an older one is never drawn over it.
         """
@@ -227,7 +227,7 @@ class SiteTab(Tab):
     def load_data(self, data: bytes | None) -> None:
         """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
         nothing changes. Either outcome is scrolled into view. Served, the file is read off the
-        event loop (``serving.off_the_loop``; a year of weather, ~0.1-0.5 s), the tab saying so
+        event loop (``serving.off_the_loop``; a TMY3 year, ~40-130 ms), the tab saying so
         meanwhile; a file chosen since wins."""
         if data is None:
             return

@@ -154,6 +154,17 @@ def show_level(sources: dict, fig, supplied, tank: float) -> None:
     fig.xaxis.axis_label = "day of the year" if over == "the year" else "day"
 
 
+def placeholder_year(sources: dict, largest_tank: float) -> None:
+    """Flat, empty bars and lines over a year and the tanks up to ``largest_tank`` [m³], so that
+    the figures have ranges before the first year comes (Bokeh cannot set the ranges of figures
+    with no data) and their legends their swatches."""
+    months = {name: np.zeros(len(MONTHS)) for name in sources["monthly"].data}
+    refill(sources["monthly"], {**months, "month": list(MONTHS), "cut": [""] * len(MONTHS)})
+    zeros = [0.0, 0.0]
+    refill(sources["level"], {"t": [0.5, 364.5], "lower": zeros, "upper": zeros, "mean": zeros})
+    refill(sources["lolp"], {"tank": [0.0, largest_tank], "lolp": zeros})
+
+
 def daily_band(days: np.ndarray, values: np.ndarray):
     """Each day's lowest, highest and mean value (a year of hours: 365 points, under the
     figure's pixels): (day's middle, lower, upper, mean)."""

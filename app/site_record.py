@@ -1,17 +1,20 @@
 """The Site tab's wind records: the two typical years pvlib ships, or a file uploaded (TMY3, EPW or
 the Wind tab's CSV, at most 10 MB: a bad file is explained and the record stays as it was), each
-at the hub height the tab asks for."""
+at the hub height the tab asks for. Reading a file and a record at a height are the core's work
+and may run in a thread (``read_upload``, ``at``); the rest changes the message, on the loop."""
 
 from __future__ import annotations
 
 import functools
+import logging
 from pathlib import Path
 
 import panel as pn
 
 import windpump
-from windpump.labdata import LabDataError, check_file_size
+from windpump.labdata import check_file_size
 
+from .inputs import clipped
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
 from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
@@ -19,6 +22,7 @@ from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
 WHAT = "a year of hourly weather"  # the core's refusal: "(... needs far fewer)"
 SIZE = f"{WHAT}, a TMY3 or EPW file, is about 1.5 MB"  # the page's refusal: "(...)"
 SUFFIXES = (".csv", ".epw", ".txt", ".tsv")
+log = logging.getLogger("windpump.app")
 
 
 @functools.lru_cache(maxsize=2)
@@ -77,13 +81,21 @@ class SiteRecords:
             self._at = (hub, self.uploaded, self.uploaded.at_height(hub))
         return self._at[2]
 
-    def load(self, data: bytes, filename: str) -> bool:
-        """Read an uploaded file; True when it is the uploaded site now. A bad file is explained
-        in the message and nothing changes."""
-        try:
-            record = read_upload(data, filename)
-        except (LabDataError, ValueError) as error:
-            self.message.object = f"This weather file cannot be used: {error}"
+    def reading(self, filename: str) -> None:
+        """Say that the file ``filename`` is being read (off the event loop: ``read_upload``)."""
+        self.message.object = f"Reading {clipped(filename) or 'the file'}…"
+        self.message.alert_type, self.message.visible = "info", True
+
+    def accept(self, record: windpump.WindRecord | Exception, filename: str) -> bool:
+        """``read_upload``'s record becomes the uploaded site (True), or the error it raised is
+        explained in the message and nothing changes (False)."""
+        self.message.alert_type = "danger"
+        if isinstance(record, Exception):
+            said = str(record)
+            if not isinstance(record, ValueError):  # a bug: say so, log it, keep the page alive
+                log.error("reading a weather file failed", exc_info=record)
+                said = f"{type(record).__name__}: {record}"
+            self.message.object = f"This weather file cannot be used: {said}"
             self.message.visible = True
             return False
         self.uploaded, self.uploaded_name = record, record.name or Path(filename).stem
@@ -95,6 +107,7 @@ class SiteRecords:
         message = refused_size("weather", size, SIZE)
         if message is not None:
             self.message.object, self.message.visible = message, True
+            self.message.alert_type = "danger"
 
     def describe(self, site: str, hub: float) -> str:
         """A line on the record: where, the station, the hub's height."""

@@ -11,9 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
-import time
 
-import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource
 
@@ -22,17 +20,19 @@ import windpump
 from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
+from .serving import off_the_loop
 from .sidebar import PromptSlider
 from .site_figures import (
-    LOLP_TARGET,
     level_figure,
     lolp_figure,
     monthly_figure,
+    placeholder_year,
     show_level,
     show_monthly,
 )
 from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
-from .site_record import SiteRecords, span, supply_status
+from .site_record import SiteRecords, read_upload, span, supply_status
+from .site_year import Asked, Year, run_year, tank_range
 from .styles import CAPTION_CSS, COMPACT, TEXT
 from .tab import Tab
 from .views import refill
@@ -46,8 +46,6 @@ SITE_READOUTS = {
     "dry_spell": "Longest dry spell",
     "tank_for_5": "Smallest tank for 5 %",
 }
-TANKS = 41  # tank sizes on the loss-of-load curve, over the tank slider's range
-SLOW = 0.3  # [s] a year that took longer is announced before it is computed again
 SITE_MESSAGE, SITE_NOTE = "site-message", "site-note"  # an upload's outcome (uploads.Reveal)
 CAPTION = (
     "The design on the sliders in the site's hourly wind at the hub, hour by hour "
@@ -97,8 +95,12 @@ class SiteTab(Tab):
         self.note = pn.pane.Markdown(
             "", stylesheets=TEXT, sizing_mode="stretch_width", css_classes=[SITE_NOTE]
         )
-        self.status = pn.pane.Alert(
-            "", alert_type="success", stylesheets=COMPACT, sizing_mode="stretch_width"
+        self.status = pn.pane.Alert(  # shown with the first year
+            "",
+            alert_type="success",
+            visible=False,
+            stylesheets=COMPACT,
+            sizing_mode="stretch_width",
         )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.computing = pn.pane.Alert(
@@ -110,9 +112,9 @@ class SiteTab(Tab):
         self.supplied: windpump.Supply | None = None  # the year drawn
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
-        self._took = 0.0  # [s] the last year's computation
-        self._drawn_site = ""
-        self._to_draw: tuple | None = None
+        self._drawn: Asked | None = None  # what the year drawn was asked for
+        self._wanted: Asked | None = None  # what the year last asked for is
+        self._files = 0  # the files chosen so far: the newest one's outcome is shown
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
 
     def _build_controls(self) -> None:
@@ -139,81 +141,65 @@ class SiteTab(Tab):
     # -- updates -----------------------------------------------------------------------------
 
     def draw(self, seen: windpump.Exploration) -> None:
-        """The year for the design and the site's inputs: at once if it is quick, else after the
-        page has said that it is being computed."""
+        """The year for the design and the site's inputs (~0.4-0.5 s the first, its record read;
+        ~1-15 ms a move). Served, it is computed off the event loop (``serving.off_the_loop``),
+        so the other pages' moves are answered meanwhile: the tab says it is computing, and a
+        year asked for since (a newer design or input) wins: an older one is never drawn over it.
+        """
         if self.design is None:
             return
-        asked = (self.design, *self.site.values().values())
-        document = pn.state.curdoc
-        served = document is not None and document.session_context is not None
-        # the first year is drawn at once (the tab says it is computing until it appears; empty
-        # figures would be sent otherwise); later a slow one, or a new site's, is announced
-        slow = self._took > SLOW or self.site.site != self._drawn_site
-        if served and self.supplied is not None and slow:
-            self.computing.visible = True
-            self._to_draw = asked
-            document.add_next_tick_callback(self._draw_latest)
+        values = self.site.values()
+        uploaded = self.records.uploaded if values["site"] == UPLOADED else None
+        largest = self.site.param["tank"].bounds[1]
+        asked = Asked(self.design, **values, uploaded=uploaded, largest_tank=largest)
+        self._wanted = asked
+        if self.supplied is not None and asked == self._drawn:  # the steady wind V moved
+            self.computing.visible = self.error.visible = False
             return
-        self._year(self.design)
+        self.computing.visible = True
+        if self.supplied is None:  # a first year: the figures get ranges until it comes
+            placeholder_year(self.sources, tank_range(asked.tank, math.inf, asked.largest_tank))
+        records, curve, tank_5 = self.records, self._curve, self.tank_5  # as drawn now
 
-    def _draw_latest(self) -> None:
-        asked, self._to_draw = self._to_draw, None
-        if asked is None or self.design is None:
-            return  # a later move's callback has drawn it already
+        def work() -> Year | None:
+            if asked != self._wanted:  # a newer year was asked for before this one started
+                return None
+            return run_year(records, asked, curve, tank_5)
+
+        off_the_loop(work, lambda outcome: self._show(asked, outcome))
+
+    def _show(self, asked: Asked, outcome) -> None:
+        """Draw the year ``outcome`` (a ``Year``; None: superseded before it ran) of ``asked``,
+        unless a newer one is wanted; a year that cannot be run says why, the one drawn stays."""
+        if asked != self._wanted or outcome is None:
+            return  # a newer design or input was asked for meanwhile: its year draws
+        self.computing.visible = False
+        if isinstance(outcome, ValueError):
+            self.failed(f"The year cannot be run: {outcome}")
+            return
         try:
+            if isinstance(outcome, Exception):
+                raise outcome
             with pn.io.hold():
-                self._year(self.design)
+                self._draw_year(asked, outcome)
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("Site update failed")
             self.failed(f"Something went wrong ({type(error).__name__}: {error}).")
 
-    def _year(self, design: windpump.Design) -> None:
-        start = time.perf_counter()
-        self.computing.visible = False
-        try:
-            record = self.records.at(self.site.site, self.site.hub)
-            rule = dict(restart=self.site.restart)
-            self._draw_curve(design, record, rule)
-            supplied = windpump.supply(design, record, self.site.demand, self.site.tank, **rule)
-        except ValueError as error:
-            self.failed(f"The year cannot be run: {error}")
-            return
+    def _draw_year(self, asked: Asked, year: Year) -> None:
+        if year.lolp is not None:
+            refill(self.sources["lolp"], year.lolp)
+            self.lolp.x_range.end = year.curve[-1]
+        self._curve, self.tank_5 = year.curve, year.tank_5
         self.error.visible = False
-        self.supplied, self._drawn_site = supplied, self.site.site
-        self._draw_year(supplied)
-        self._took = time.perf_counter() - start
-
-    def _draw_curve(self, design, record, rule: dict) -> None:
-        """The smallest tank for 5 %, and the loss-of-load probability over tanks up to a range
-        that shows the curve's knee; each recomputed only when what it depends on changed."""
-        asked = (design, record, self.site.demand, self.site.restart)
-        if asked != self._curve[:4]:
-            self.tank_5 = windpump.tank_for(design, record, self.site.demand, LOLP_TARGET, **rule)
-        top = self._tank_range()
-        if (*asked, top) == self._curve:
-            return
-        tanks = np.linspace(0.0, top, TANKS)
-        mapped = windpump.supply_map(
-            design, record, self.site.demand, [design.R_dagger], tanks, **rule
-        )
-        refill(self.sources["lolp"], {"tank": tanks, "lolp": 100 * mapped.lolp[:, 0]})
-        self.lolp.x_range.end = top
-        self._curve = (*asked, top)
-
-    def _tank_range(self) -> float:
-        """The curve's largest tank [m³]: twice this tank's, or 1.5 times the smallest for 5 %,
-        at least 20, rounded up to 10 and at most the slider's end (the curve's knee in view)."""
-        wanted = max(20.0, 2.0 * self.site.tank)
-        if math.isfinite(self.tank_5):
-            wanted = max(wanted, 1.5 * self.tank_5)
-        return min(self.site.param["tank"].bounds[1], 10.0 * math.ceil(wanted / 10.0))
-
-    def _draw_year(self, supplied) -> None:
+        self.supplied, self._drawn = year.supplied, asked
+        supplied, tank = year.supplied, asked.tank
         show_monthly(self.sources["monthly"], self.monthly, supplied.monthly)
-        show_level(self.sources, self.level, supplied, self.site.tank)
-        self.tank_line.location = self.site.tank
-        refill(self.sources["lolp_here"], {"tank": [self.site.tank], "lolp": [100 * supplied.lolp]})
+        show_level(self.sources, self.level, supplied, tank)
+        self.tank_line.location = tank
+        refill(self.sources["lolp_here"], {"tank": [tank], "lolp": [100 * supplied.lolp]})
         self._readouts(supplied)
+        self.note.object = year.note
 
     def _readouts(self, supplied) -> None:
         totals = supplied.totals
@@ -228,8 +214,8 @@ class SiteTab(Tab):
         for name, value in shown.items():
             label = SITE_READOUTS[name].format(span=over)
             self.readouts[name].show(label.replace("m³ over the year", "m³/year"), value)
-        self.note.object = self.records.describe(self.site.site, self.site.hub)
         self.status.object, self.status.alert_type = supply_status(supplied)
+        self.status.visible = True
 
     def failed(self, message: str) -> None:
         self.computing.visible = False
@@ -240,10 +226,23 @@ class SiteTab(Tab):
 
     def load_data(self, data: bytes | None) -> None:
         """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
-        nothing changes. Either outcome is scrolled into view."""
+        nothing changes. Either outcome is scrolled into view. Served, the file is read off the
+        event loop (``serving.off_the_loop``; a TMY3 year, ~40-130 ms), the tab saying so
+        meanwhile; a file chosen since wins."""
         if data is None:
             return
-        if not self.records.load(data, self.upload.filename or ""):
+        name = self.upload.filename or ""
+        self._files += 1
+        chosen = self._files
+        self.records.reading(name)
+        off_the_loop(
+            lambda: read_upload(data, name), lambda outcome: self._loaded(chosen, name, outcome)
+        )
+
+    def _loaded(self, chosen: int, name: str, outcome) -> None:
+        if chosen != self._files:
+            return  # a file chosen since: its outcome is shown
+        if not self.records.accept(outcome, name):
             self.reveal.show(SITE_MESSAGE)
             return
         options = {label: key for key, label in SITES.items()}

@@ -261,9 +261,13 @@ def test_a_file_the_page_refused_is_reported_in_the_site_tab(app):
     assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
 
 
-def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monkeypatch):
-    """Served, a year that took long last time (or a new site) is said first ("Computing the
-    year…") and computed in the next tick; the first year is drawn at once."""
+def test_served_a_new_sites_year_is_said_and_computed_off_the_event_loop(app, monkeypatch):
+    """Served, a year asked for is said first ("Computing the water…") and computed in a thread
+    of ``serving``'s pool while the event loop goes on; it is drawn back on the loop, in the
+    document's next tick (the real ``off_the_loop``, not a stand-in)."""
+    import asyncio
+    import threading
+
     from bokeh.document import Document
 
     document = Document()
@@ -271,19 +275,134 @@ def test_a_slow_year_or_a_new_site_is_announced_before_it_is_computed(app, monke
     ticks = []
     monkeypatch.setattr(document, "add_next_tick_callback", ticks.append)
     monkeypatch.setattr(pn.state, "_curdoc", pn.state._curdoc)
-    pn.state.curdoc = document
-    try:
-        lolp = value(app, "site_lolp")
+    threads = []  # where the core's year runs
+    supply = windpump.supply
+
+    def recorded(*args, **kwargs):
+        threads.append(threading.current_thread().name)
+        return supply(*args, **kwargs)
+
+    monkeypatch.setattr(windpump, "supply", recorded)
+    lolp = value(app, "site_lolp")
+
+    async def served() -> None:
         app.site_inputs.site = "sand_point"
         assert app.site.computing.visible and value(app, "site_lolp") == lolp  # said, not done
-        ticks.pop()()
-        assert not app.site.computing.visible
-        _, supplied = year(site="sand_point")
-        check_drawn(app, supplied, 5.0)
-        app.site_inputs.demand = 9.0  # quick, and the same site: at once
-        assert ticks == [] and not app.site.computing.visible
+        for _ in range(6000):  # the loop turns while the year is computed (a minute at most)
+            if ticks:
+                return
+            await asyncio.sleep(0.01)
+
+    pn.state.curdoc = document
+    try:
+        asyncio.run(served())
+        assert threads and all(name.startswith("heavy work") for name in threads), threads
+        assert len(ticks) == 1 and app.site.computing.visible
+        ticks.pop()()  # on the loop, under the document's lock
     finally:
         pn.state.curdoc = None
+    assert not app.site.computing.visible and not app.site.error.visible
+    _, supplied = year(site="sand_point")
+    check_drawn(app, supplied, 5.0)
+    assert value(app, "site_lolp") != lolp
+
+
+@pytest.fixture
+def held(monkeypatch):
+    """The Site tab's work held as (work, then) pairs, as the thread pool would run them."""
+    from windpump_app import site_tab
+
+    pairs: list = []
+    monkeypatch.setattr(site_tab, "off_the_loop", lambda work, then: pairs.append((work, then)))
+    return pairs
+
+
+def finish(pair) -> None:
+    """A held (work, then) run as ``serving.off_the_loop`` does: an exception is the outcome."""
+    work, then = pair
+    try:
+        outcome = work()
+    except Exception as error:
+        outcome = error
+    then(outcome)
+
+
+def test_served_a_year_runs_off_the_loop_says_so_and_the_newest_wins(held):
+    """Served, the year runs off the event loop: the tab says it is computing, its figures have
+    ranges meanwhile, and when two years come back in the wrong order only the newer is drawn.
+    A year that cannot run says why and keeps the one drawn; back to it, nothing is run again."""
+    app = Explorer()
+    app.main().active = SITE_TAB
+    assert (
+        len(held) == 1
+        and app.site.computing.visible
+        and app.site.readouts["site_lolp"].object == ""
+    )
+    for name, x in (("level", "t"), ("lolp", "tank")):  # flat placeholders: ranges, no water
+        assert len(data(app, name)[x]) == 2 and data(app, name)[x][0] < data(app, name)[x][1]
+    assert not np.any(data(app, "monthly")["pumped"]) and len(data(app, "monthly")["month"]) == 12
+    assert not app.site.status.visible  # no empty box
+    app.site_inputs.param.update(site="sand_point", demand=8.0)  # before the first came back
+    assert len(held) == 2 and app.site.computing.visible
+    finish(held[1])
+    assert not app.site.computing.visible and app.site.status.visible
+    finish(held[0])  # Greensboro's year, late: not drawn over Sand Point's
+    record, supplied = year(site="sand_point", demand=8.0)
+    check_drawn(app, supplied, 5.0)
+    smallest = windpump.tank_for(SEED, record, 8.0, 0.05, restart="attended")
+    assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
+    assert "Sand Point" in app.site.note.object
+    app.site_inputs.site = "uploaded"  # no file yet: the year cannot run
+    assert len(held) == 3 and app.site.computing.visible
+    finish(held[2])
+    assert app.site.error.visible and not app.site.computing.visible
+    assert app.site.error.object.startswith("The year cannot be run: no file has been uploaded")
+    check_drawn(app, supplied, 5.0)  # the year drawn stays
+    app.site_inputs.site = "sand_point"  # the year drawn: nothing to run, the error gone
+    assert len(held) == 3 and not app.site.error.visible and not app.site.computing.visible
+    app.site_inputs.demand = 9.0
+    app.site_inputs.demand = 7.0
+    skipped = held[3][0]()  # 9's year, started after 7's was asked for: not run
+    assert skipped is None
+    app.site_inputs.demand = 9.0  # asked for again before that came back: its own run draws
+    held[3][1](skipped)
+    assert app.site.computing.visible and not app.site.error.visible
+    finish(held[5])
+    finish(held[4])  # 7's year, late
+    check_drawn(app, year(site="sand_point", demand=9.0)[1], 5.0)
+
+
+def test_served_an_upload_is_read_off_the_loop_and_the_newest_file_wins(held):
+    """Served, a weather file is read off the event loop, the tab saying so; of two files chosen
+    one after the other, the later one's is the site even when the earlier is read last, and a
+    refused file is said and changes nothing."""
+    app = Explorer()
+    app.main().active = SITE_TAB
+    finish(held.pop())  # Greensboro's year
+    app.site.upload.param.update(value=hourly_csv(3), filename="three.csv")
+    message = app.site.upload_message
+    assert message.visible and message.alert_type == "info" and "three.csv" in message.object
+    app.site.upload.param.update(value=hourly_csv(5), filename="five.csv")
+    assert len(held) == 2 and app.site_inputs.site == "greensboro"  # nothing read yet
+    finish(held[1])  # five days
+    assert app.site_inputs.site == "uploaded" and not message.visible
+    assert len(held) == 3  # the five days' year, asked for
+    finish(held[0])  # three days, the earlier file, late: not the site
+    assert "Uploaded: five" in app.site.site_select.options
+    assert "Uploaded: three" not in app.site.site_select.options
+    finish(held[2])
+    record = windpump.read_weather(hourly_csv(5)).at_height(10.0)
+    supplied = windpump.supply(SEED, record, 10.0, 5.0, restart="attended")
+    np.testing.assert_array_equal(data(app, "monthly")["pumped"], supplied.monthly.pumped)
+    assert len(data(app, "level")["t"]) == 5 and supplied.hours == 5 * 24
+    assert value(app, "site_lolp") == f"{100 * supplied.lolp:.1f} %"
+    assert "five" in app.site.note.object
+    app.site.upload.param.update(value=b"t,V\n0,5\n3600,-3\n", filename="bad.csv")
+    assert message.alert_type == "info"
+    finish(held[3])
+    assert message.visible and message.alert_type == "danger" and "line 3" in message.object
+    assert app.site_inputs.site == "uploaded" and len(held) == 4  # no year asked: none changed
+    assert value(app, "site_lolp") == f"{100 * supplied.lolp:.1f} %"
 
 
 def test_the_link_remembers_the_tab_both_ways():

@@ -17,7 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
-from .serving import SOLVER_READY, TIDY, watch_the_loop
+from .serving import FILE_READERS, SOLVER_READY, TIDY, watch_the_loop
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -47,7 +47,8 @@ def on_server_loaded(_server_context) -> None:
     scripts shrink about four times); keep a served page's session until its browser connects,
     however busy the server; accept long links; and load the solver from numba's cache before
     the server answers, or, on a first start after an install, compile it in the background
-    while pages open (they run their first design once it is ready)."""
+    while pages open (they run their first design once it is ready); read uploads in a process
+    of their own (``serving.FILE_READERS``)."""
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
     servers = bokeh_servers()
     if not servers:
@@ -56,6 +57,7 @@ def on_server_loaded(_server_context) -> None:
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
+    FILE_READERS.start()  # an upload is read in a process of its own
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
         TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
@@ -64,6 +66,11 @@ def on_server_loaded(_server_context) -> None:
     # (serving.first_run_when_ready runs its design once the solver is ready).
     SOLVER_READY.clear()
     threading.Thread(target=compile_in_background, name="compile the solver", daemon=True).start()
+
+
+def on_server_unloaded(_server_context) -> None:
+    """When the server stops: no file reader left behind."""
+    FILE_READERS.stop()
 
 
 def compile_in_background() -> None:

@@ -5,16 +5,21 @@ from __future__ import annotations
 import asyncio
 import ctypes
 import ctypes.util
+import dataclasses
 import gc
 import json
 import logging
 import math
+import multiprocessing
 import os
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any
+
+import numpy as np
 
 log = logging.getLogger("windpump.app")
 
@@ -556,6 +561,77 @@ def _next_tick(document, callback: Callable[[], None], queued: Callable[[], None
         log.debug("a page closed before its work was done", exc_info=True)
     finally:
         queued()
+
+
+class FileReaders:
+    """A process of its own for reading an uploaded file (``in_a_process``), once the server
+    has started it (``start``, app_hooks.py); before that (a notebook, the tests) a file is read
+    where it is asked for.
+
+    Reading a file is pure Python: a 10 MB wind CSV is ~1.8 s of it. In a thread it held the GIL
+    half of that time, and every other page's move took twice as long meanwhile; in a process
+    it costs the server's loop nothing. The process is spawned for each file and ends with it
+    (~0.2 s to start: it imports ``windpump``, not numba, Panel or Bokeh), so the ~100 MB a big
+    file's Python objects take go back to the system at once, and a reader that dies takes only
+    its file with it.
+    """
+
+    def __init__(self):
+        self.pool: ProcessPoolExecutor | None = None
+        self.lock = threading.Lock()
+
+    def start(self) -> None:
+        with self.lock:
+            if self.pool is None:
+                self.pool = _reader_pool()
+
+    def stop(self) -> None:
+        with self.lock:
+            pool, self.pool = self.pool, None
+        if pool is not None:
+            pool.shutdown(wait=True, cancel_futures=True)
+
+    def read(self, function: Callable[..., Any], *args: Any) -> Any:
+        """``function(*args)`` in the reading process, waited for (call it off the event loop);
+        what it raises is raised here. ``function`` is the core's (``windpump``), imported by
+        name in the spawned process: served, this module is a package of Bokeh's making, which
+        another process cannot import."""
+        with self.lock:
+            pool = self.pool
+        if pool is None:
+            return function(*args)
+        try:
+            return _read_only(pool.submit(function, *args).result())
+        except BrokenProcessPool:  # the reader died (killed, out of memory): a new one next time
+            with self.lock:
+                if self.pool is pool:
+                    self.pool = _reader_pool()
+            raise RuntimeError("the process reading the file stopped") from None
+
+
+def _reader_pool() -> ProcessPoolExecutor:
+    return ProcessPoolExecutor(
+        max_workers=1, mp_context=multiprocessing.get_context("spawn"), max_tasks_per_child=1
+    )
+
+
+def _read_only(value: Any) -> Any:
+    """The arrays of a frozen dataclass read-only again, as the core made them (pickling does
+    not keep the flag)."""
+    if dataclasses.is_dataclass(value):
+        for field in dataclasses.fields(value):
+            item = getattr(value, field.name)
+            if isinstance(item, np.ndarray):
+                item.flags.writeable = False
+    return value
+
+
+FILE_READERS = FileReaders()
+
+
+def in_a_process(function: Callable[..., Any], *args: Any) -> Any:
+    """``function(*args)`` in the server's file-reading process (``FileReaders.read``)."""
+    return FILE_READERS.read(function, *args)
 
 
 def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:

@@ -15,6 +15,7 @@ import windpump
 from windpump.labdata import check_file_size
 
 from .inputs import clipped
+from .serving import in_a_process
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
 from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
@@ -38,10 +39,11 @@ def sample_at(name: str, hub: float) -> windpump.WindRecord:
 
 
 def read_upload(data: bytes, filename: str) -> windpump.WindRecord:
-    """A weather file's record from an upload's bytes, named after the file when it names no
-    station (a CSV). An empty file is the core's to refuse: it says what the file needs."""
+    """A weather file's record from an upload's bytes (served, read in the file-reading process:
+    ``serving.in_a_process``), named after the file when it names no station (a CSV). An empty
+    file is the core's to refuse: it says what the file needs."""
     check_file_size(len(data), WIND_MAX_BYTES, what=WHAT)
-    record = windpump.read_weather(data)
+    record = in_a_process(windpump.read_weather, data)
     if record.name:
         return record
     name = Path(filename).stem or "uploaded"

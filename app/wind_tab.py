@@ -28,7 +28,7 @@ from .envelope import band
 from .figures import palette
 from .inputs import clipped
 from .readouts import PAIR, Readout
-from .serving import off_the_loop
+from .serving import in_a_process, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen, refused_size
@@ -80,10 +80,11 @@ def record_water_text(litres: float, per_day: float, duration: float) -> tuple[s
 
 
 def read_record(data: bytes) -> windpump.wind.WindRecord | str:
-    """A wind CSV read, or the sentence that refuses it (its size, its content, its length)."""
+    """A wind CSV read (served, in the file-reading process: ``serving.in_a_process``), or the
+    sentence that refuses it (its size, its content, its length)."""
     try:
         check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
-        record = read_csv(data)
+        record = in_a_process(read_csv, data)
     except LabDataError as error:
         return f"This wind file cannot be used: {error}"
     if record.t[-1] > 400 * SECONDS_PER_DAY:
@@ -286,13 +287,6 @@ class WindTab(Tab):
         )
 
     # -- a measured record -------------------------------------------------------------------
-
-    def load(self, data: bytes | None, name: str = "") -> bool:
-        """Read a measured wind CSV; True when it replaced the day's wind. A bad file is refused
-        with its message and the day's wind stays as it was."""
-        if data is None:
-            return False
-        return self.accept(read_record(data), name)
 
     def accept(self, record: windpump.wind.WindRecord | str, name: str) -> bool:
         """``record`` (read by ``read_record``) becomes the day's wind; a refusal is said."""

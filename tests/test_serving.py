@@ -404,3 +404,39 @@ def test_a_change_sends_what_panels_own_update_sends_with_the_design_worked_out_
         assert plain(mine) == plain(theirs)
     styles = plain(ours(slider, events[1], doc=None))["stylesheets"]
     assert len(styles) > 1 and styles[-1] == ":host { margin: 3px; }"
+
+
+def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
+    """serving.FILE_READERS, started as the server starts it: the core's reader runs in another
+    process (a 10 MB CSV is ~2 s of pure Python, which in a thread held the GIL from every
+    page's moves), its record comes back read-only and equal to the core's own read here, a
+    refusal comes back with the core's message, and a reader that dies is replaced."""
+    import os
+
+    import numpy as np
+
+    import windpump
+    from windpump.wind import read_csv
+    from windpump_app import serving
+
+    data = b"time,speed\n0,4.5\n10,6\n20,5.25\n"
+    readers = serving.FileReaders()
+    assert readers.read(os.getpid) == os.getpid()  # not started: read where asked
+    readers.start()
+    try:
+        assert readers.read(os.getpid) != os.getpid()
+        record, here = readers.read(read_csv, data), read_csv(data)
+        assert np.array_equal(record.t, here.t) and np.array_equal(record.V, here.V)
+        assert not record.t.flags.writeable and not record.V.flags.writeable
+        weather = readers.read(windpump.read_weather, data)
+        assert np.array_equal(weather.V, windpump.read_weather(data).V)
+        with pytest.raises(ValueError) as refused:
+            readers.read(read_csv, b"time,speed\n0,4.5\n10,-6\n")
+        with pytest.raises(ValueError) as here_refused:
+            read_csv(b"time,speed\n0,4.5\n10,-6\n")
+        assert str(refused.value) == str(here_refused.value)
+        with pytest.raises(RuntimeError, match="stopped"):
+            readers.read(os._exit, 1)  # the reader dies
+        assert readers.read(os.getpid) != os.getpid()  # and a new one reads the next file
+    finally:
+        readers.stop()

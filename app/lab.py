@@ -3,6 +3,7 @@ core, its T_m and omega_m applied to the sliders when the fit is good."""
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Callable
 
 import panel as pn
@@ -11,12 +12,22 @@ import windpump
 
 from .buttons import ActionButton
 from .keyboard import FOCUS_CSS
+from .serving import in_a_process, off_the_loop
 from .session import sentence
 from .styles import TEXT
 from .uploads import Reveal, chosen
 
+log = logging.getLogger("windpump.app")
+
 # An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
 LAB_MESSAGE, LAB_NOTE = "lab-message", "lab-note"
+
+
+def fitted(data: bytes) -> tuple[windpump.TorqueTable, windpump.TorqueFit]:
+    """A lab file read (served, in the file-reading process: ``serving.in_a_process``) and
+    Eq. (11) fitted to it; the core's ValueError says why a file cannot be used."""
+    table = in_a_process(windpump.read_torque_csv, data)
+    return table, windpump.fit_torque_curve(table.omega, table.torque)
 
 
 class LabData:
@@ -38,22 +49,33 @@ class LabData:
             label="Apply this fit anyway", color="warning", visible=False, **button
         )
         self.pending_fit: windpump.TorqueFit | None = None
+        self._files = 0  # files chosen: the newest one's fit is shown
         self.upload.param.watch(lambda *_e: self.load(chosen(self.upload)), ["value", "filename"])
         self.apply_fit.on_click(lambda _e: self.apply(self.pending_fit))
 
     def load(self, data: bytes | None) -> None:
         """A CSV of windmill speed [rad/s] and torque [N m]: fit Eq. (11); apply T_m and omega_m
-        if the fit is good, else show it with a warning and apply it only on request."""
+        if the fit is good, else show it with a warning and apply it only on request. Read and
+        fitted off the event loop (``serving.off_the_loop``, the file read in the file-reading
+        process: a 1 MB file is ~0.1 s of pure Python); the newest file wins."""
         self.apply_fit.visible = False
         self.pending_fit = None
+        self._files += 1
         if data is None:
             return
-        try:
-            table = windpump.read_torque_csv(data)
-            fit = windpump.fit_torque_curve(table.omega, table.torque)
-        except ValueError as error:
-            self.refuse(error)
+        asked = self._files
+        off_the_loop(lambda: fitted(data), lambda outcome: self._fitted(asked, outcome))
+
+    def _fitted(self, asked: int, outcome) -> None:
+        if asked != self._files:  # a newer file was chosen meanwhile
             return
+        if isinstance(outcome, Exception):
+            if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
+                log.error("reading a lab file failed", exc_info=outcome)
+                outcome = ValueError(f"{type(outcome).__name__}: {outcome}")
+            self.refuse(outcome)
+            return
+        table, fit = outcome
         self.show_points(table.omega, table.power)
         summary = (
             f"Fitted Eq. (11) to {len(table.omega)} points: Tₘ = {fit.T_m:.3f} N·m, "

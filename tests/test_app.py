@@ -324,6 +324,29 @@ def test_lab_data_sets_the_windmill_curve(app):
     assert app.pump.operating.items["lab data"].visible
 
 
+def test_served_a_lab_file_is_read_and_fitted_off_the_loop_and_the_newest_wins(app, monkeypatch):
+    """Served, the file is read and fitted in a thread (``off_the_loop``): nothing changes until
+    its fit comes back, and a fit that comes back after a newer file's is not applied."""
+    from windpump_app import lab
+
+    held: list = []  # (work, then) as the thread pool would run them
+    monkeypatch.setattr(lab, "off_the_loop", lambda work, then: held.append((work, then)))
+
+    def curve(T_m: float, omega_m: float) -> bytes:
+        omega = np.linspace(5, 95, 10)
+        torque = T_m * (omega / omega_m) * (2 - omega / omega_m)
+        return "".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode()
+
+    before = (app.inputs.T_m, app.inputs.omega_m)
+    app.sidebar.lab.upload.value = curve(0.8, 45.0)
+    app.sidebar.lab.upload.value = curve(0.7, 50.0)
+    assert len(held) == 2 and (app.inputs.T_m, app.inputs.omega_m) == before
+    for work, then in reversed(held):  # the newer file's fit first, the older one's late
+        then(work())
+    assert app.inputs.T_m == pytest.approx(0.7) and app.inputs.omega_m == pytest.approx(50.0)
+    assert "Tₘ = 0.700 N·m" in app.sidebar.lab.note.object
+
+
 def test_lab_data_in_a_european_spreadsheet_is_read(app):
     text = "Drehzahl;Moment\n" + "".join(
         f"{w:.1f};{0.5 * (w / 40) * (2 - w / 40):.6f}\n".replace(".", ",") for w in range(5, 80, 5)

@@ -93,9 +93,29 @@ def read_record(data: bytes) -> windpump.wind.WindRecord | str:
 
 
 def _same_day(a: tuple, b: tuple) -> bool:
-    """Whether two (design, record, theta0, kick) describe the same run (the record by identity:
-    a gusty day is cached, a measured one kept)."""
-    return len(a) == len(b) == 4 and a[0] == b[0] and a[1] is b[1] and a[2:] == b[2:]
+    """Whether two (design, wind, theta0, kick) describe the same run: the wind a measured
+    record (by identity: it is kept) or a gusty day's key (by value: ``wind_of``)."""
+    return (
+        len(a) == len(b) == 4
+        and a[0] == b[0]
+        and (a[1] is b[1] or (isinstance(a[1], tuple) and a[1] == b[1]))
+        and a[2:] == b[2:]
+    )
+
+
+def wind_of(wind: windpump.wind.WindRecord | tuple) -> windpump.wind.WindRecord:
+    """The record a day runs in: the measured one, or the gusty day of a key (mean wind, k,
+    time scale, seed), made off the event loop (~0.4 s) and kept."""
+    return wind if isinstance(wind, windpump.wind.WindRecord) else gusty_day(*wind)
+
+
+def run_day(design, record, theta0: float, kick: float) -> tuple:
+    """The day in ``record`` and the water its wind gives by the averaged theory: (day, low,
+    high), all of it the core's, off the event loop."""
+    return (
+        windpump.run_in_wind(design, record, theta0, kick),
+        *windpump.record_water(design, record),
+    )
 
 
 class WindTab(Tab):
@@ -144,7 +164,7 @@ class WindTab(Tab):
             source.name = f"windtab_{name}"  # for a browser: get_model_by_name
         self.last_run: windpump.SimulationResult | None = None
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
-        self._ready_day: tuple | None = None  # ((design, record, theta0, kick), its day), run ahead
+        self._ready_day: tuple | None = None  # (run_of, (day, low, high)), run ahead with a file
         self._wanted_day: tuple = ()  # (design, record, theta0, kick) of the day last asked for
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
@@ -190,11 +210,12 @@ class WindTab(Tab):
             f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
         )
 
-    def record(self, inputs) -> windpump.wind.WindRecord:
-        """The day's wind: the measured record if one was loaded, else the gusty day."""
+    def wind(self, inputs) -> windpump.wind.WindRecord | tuple:
+        """The day's wind: the measured record if one was loaded, else the gusty day's key
+        (``wind_of`` makes it)."""
         if self.measured is not None:
             return self.measured
-        return gusty_day(inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
+        return (inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
 
     def _update_day(self, design, inputs) -> None:
         """Run the day (about a second; a week of measured wind, seconds) and draw it.
@@ -202,9 +223,9 @@ class WindTab(Tab):
         Served, the run goes off the event loop (``serving.off_the_loop``, as an upload's), so
         the other pages' moves are answered meanwhile; the tab says it is working, and a run
         asked for since (a newer design or wind) wins: an older day is never drawn over it."""
-        record = self.record(inputs)
+        wind = self.wind(inputs)
         # keyed by the kick the day gets: a windmill that starts on its own ignores the slider's
-        run_of = (design, record, inputs.theta0, kick_in_wind(design, inputs.theta_dot0))
+        run_of = (design, wind, inputs.theta0, kick_in_wind(design, inputs.theta_dot0))
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         source = (
@@ -215,17 +236,17 @@ class WindTab(Tab):
         ready, self._ready_day = self._ready_day, None
         self._wanted_day = run_of
         if ready is not None and _same_day(run_of, ready[0]):  # run off the loop with its record
-            self._draw_day(run_of, source, (ready[1], *windpump.record_water(design, record)))
+            self._draw_day(run_of, source, ready[1])
             return
         self.day_note.object = self.waiting
         if self.last_run is None:  # a first day: the figures get ranges until it comes
-            self._placeholder_day(float(record.t[-1]))
+            duration = SECONDS_PER_DAY if self.measured is None else self.measured.t[-1]
+            self._placeholder_day(float(duration))
 
         theta0, kick = inputs.theta0, inputs.theta_dot0  # as asked: the inputs move on
 
         def work() -> tuple:
-            day = windpump.run_in_wind(design, record, theta0, kick)
-            return (day, *windpump.record_water(design, record))
+            return run_day(design, wind_of(wind), theta0, kick)
 
         off_the_loop(work, lambda outcome: self._draw_day(run_of, source, outcome))
 
@@ -334,10 +355,8 @@ class WindTab(Tab):
             if isinstance(record, str):
                 return record, None
             try:
-                return record, (
-                    (design, record, theta0, kick_in_wind(design, kick)),
-                    windpump.run_in_wind(design, record, theta0, kick),
-                )
+                run_of = (design, record, theta0, kick_in_wind(design, kick))
+                return record, (run_of, run_day(design, record, theta0, kick))
             except ValueError:  # the day's redraw says why
                 return record, None
 

@@ -242,3 +242,45 @@ def test_served_a_day_runs_off_the_loop_says_so_and_the_newest_wins(monkeypatch)
     run = windpump.simulate(design, DAY, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
     assert newer == litres(1e3 * run.volume[-1])
     assert "Integrated in full" in explorer.wind.day_note.object
+
+
+def test_served_nothing_of_a_day_is_computed_on_the_loop_neither_the_gusty_wind_nor_a_files_water(
+    monkeypatch,
+):
+    """Served, the gusty day itself (~0.4 s to make) and the water an uploaded record gives by
+    the averaged theory (~0.15 s for a week) are computed in ``off_the_loop``'s work, not on the
+    event loop before or after it."""
+    from windpump_app import wind_tab
+
+    held: list = []  # (work, then) as the thread pool would run them
+    monkeypatch.setattr(wind_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    in_work, calls = [False], []  # whether each core call below ran inside a work
+
+    def counted(function):
+        def call(*args, **kwargs):
+            calls.append((function.__name__, in_work[0]))
+            return function(*args, **kwargs)
+
+        return call
+
+    monkeypatch.setattr(wind_tab, "gusty_day", counted(wind_tab.gusty_day))
+    monkeypatch.setattr(windpump, "record_water", counted(windpump.record_water))
+
+    def run_held() -> None:
+        while held:  # in order, each outcome's drawing after its work
+            work, then = held.pop(0)
+            in_work[0] = True
+            outcome = work()
+            in_work[0] = False
+            then(outcome)
+
+    explorer = Explorer()
+    explorer.main().active = 2  # the Wind tab: its day is asked for
+    run_held()
+    assert ("gusty_day", True) in calls and ("record_water", True) in calls
+    rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
+    explorer.wind.upload.filename = "mast.csv"
+    explorer.load_wind_data(("t [s],V [m/s]\n" + rows + "\n").encode())
+    run_held()
+    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in explorer.wind.day_note.object
+    assert calls and all(inside for _name, inside in calls)

@@ -15,7 +15,7 @@ from .keyboard import FOCUS_CSS
 from .serving import in_a_process, off_the_loop
 from .session import sentence
 from .styles import TEXT
-from .uploads import Reveal, chosen
+from .uploads import Encoded, FileUpload, Reveal, chosen, decoded
 
 log = logging.getLogger("windpump.app")
 
@@ -23,10 +23,10 @@ log = logging.getLogger("windpump.app")
 LAB_MESSAGE, LAB_NOTE = "lab-message", "lab-note"
 
 
-def fitted(data: bytes) -> tuple[windpump.TorqueTable, windpump.TorqueFit]:
+def fitted(data: bytes | Encoded) -> tuple[windpump.TorqueTable, windpump.TorqueFit]:
     """A lab file read (served, in the file-reading process: ``serving.in_a_process``) and
     Eq. (11) fitted to it; the core's ValueError says why a file cannot be used."""
-    table = in_a_process(windpump.read_torque_csv, data)
+    table = in_a_process(windpump.read_torque_csv, decoded(data))
     return table, windpump.fit_torque_curve(table.omega, table.torque)
 
 
@@ -38,7 +38,7 @@ class LabData:
         self.inputs = inputs
         self.reveal = reveal
         self.show_points = show_points
-        self.upload = pn.widgets.FileInput(
+        self.upload = FileUpload(
             accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
         )
         self.message = pn.pane.Alert(
@@ -53,7 +53,7 @@ class LabData:
         self.upload.param.watch(lambda *_e: self.load(chosen(self.upload)), ["value", "filename"])
         self.apply_fit.on_click(lambda _e: self.apply(self.pending_fit))
 
-    def load(self, data: bytes | None) -> None:
+    def load(self, data: bytes | Encoded | None) -> None:
         """A CSV of windmill speed [rad/s] and torque [N m]: fit Eq. (11); apply T_m and omega_m
         if the fit is good, else show it with a warning and apply it only on request. Read and
         fitted off the event loop (``serving.off_the_loop``, the file read in the file-reading

@@ -18,7 +18,7 @@ from .inputs import clipped
 from .serving import in_a_process
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
-from .uploads import SITE_CLASS, WIND_MAX_BYTES, chosen, refused_size
+from .uploads import SITE_CLASS, WIND_MAX_BYTES, Encoded, FileUpload, chosen, decoded, refused_size
 
 WHAT = "a year of hourly weather"  # the core's refusal: "(... needs far fewer)"
 SIZE = f"{WHAT}, a TMY3 or EPW file, is about 1.5 MB"  # the page's refusal: "(...)"
@@ -38,10 +38,11 @@ def sample_at(name: str, hub: float) -> windpump.WindRecord:
     return sample(name).at_height(hub)
 
 
-def read_upload(data: bytes, filename: str) -> windpump.WindRecord:
+def read_upload(data: bytes | Encoded, filename: str) -> windpump.WindRecord:
     """A weather file's record from an upload's bytes (served, read in the file-reading process:
     ``serving.in_a_process``), named after the file when it names no station (a CSV). An empty
     file is the core's to refuse: it says what the file needs."""
+    data = decoded(data)
     check_file_size(len(data), WIND_MAX_BYTES, what=WHAT)
     record = in_a_process(windpump.read_weather, data)
     if record.name:
@@ -59,7 +60,7 @@ class SiteRecords:
         self._at: tuple = ()  # (hub, the uploaded record at it)
 
     def controls(self, message_class: str) -> tuple[pn.widgets.FileInput, pn.pane.Alert]:
-        self.upload = pn.widgets.FileInput(
+        self.upload = FileUpload(
             accept=",".join(SUFFIXES),
             css_classes=[SITE_CLASS],  # the page's size check knows it by this
             stylesheets=TEXT,
@@ -70,7 +71,7 @@ class SiteRecords:
         )
         return self.upload, self.message
 
-    def chosen(self) -> bytes | None:
+    def chosen(self) -> bytes | Encoded | None:
         return chosen(self.upload)
 
     def at(self, site: str, hub: float) -> windpump.WindRecord:

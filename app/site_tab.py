@@ -35,6 +35,7 @@ from .site_record import SiteRecords, read_upload, span, supply_status
 from .site_year import Asked, Year, run_year, tank_range
 from .styles import CAPTION_CSS, COMPACT, TEXT
 from .tab import Tab
+from .uploads import Encoded
 from .views import refill
 
 log = logging.getLogger("windpump.app")
@@ -224,7 +225,7 @@ class SiteTab(Tab):
 
     # -- an uploaded record ------------------------------------------------------------------
 
-    def load_data(self, data: bytes | None) -> None:
+    def load_data(self, data: bytes | Encoded | None) -> None:
         """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
         nothing changes. Either outcome is scrolled into view. Served, the file is read off the
         event loop (``serving.off_the_loop``; a TMY3 year, ~40-130 ms), the tab saying so

@@ -31,7 +31,16 @@ from .readouts import PAIR, Readout
 from .serving import in_a_process, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
-from .uploads import WIND_CLASS, WIND_MAX_BYTES, Reveal, chosen, refused_size
+from .uploads import (
+    WIND_CLASS,
+    WIND_MAX_BYTES,
+    Encoded,
+    FileUpload,
+    Reveal,
+    chosen,
+    decoded,
+    refused_size,
+)
 from .views import refill
 from .wind_figures import curve_figure, day_figures
 
@@ -79,10 +88,11 @@ def record_water_text(litres: float, per_day: float, duration: float) -> tuple[s
     )
 
 
-def read_record(data: bytes) -> windpump.wind.WindRecord | str:
+def read_record(data: bytes | Encoded) -> windpump.wind.WindRecord | str:
     """A wind CSV read (served, in the file-reading process: ``serving.in_a_process``), or the
     sentence that refuses it (its size, its content, its length)."""
     try:
+        data = decoded(data)
         check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
         record = in_a_process(read_csv, data)
     except LabDataError as error:
@@ -137,7 +147,7 @@ class WindTab(Tab):
         self.measured_name = ""
         self.sources: dict[str, ColumnDataSource] = {}
         self.readouts = {name: Readout(name, css_classes=PAIR) for name in WIND_READOUTS}
-        self.upload = pn.widgets.FileInput(
+        self.upload = FileUpload(
             accept=".csv,.txt,.tsv",
             css_classes=[WIND_CLASS],  # the page's size check knows it by this
             stylesheets=TEXT,
@@ -331,7 +341,7 @@ class WindTab(Tab):
         self.measured, self.measured_name = None, ""
         self.use_gusty.visible = False
 
-    def load_data(self, data: bytes | None) -> None:
+    def load_data(self, data: bytes | Encoded | None) -> None:
         """A measured wind CSV for the day; a bad file is refused and the day stays as it was.
         Either outcome is scrolled into view.
 

@@ -284,3 +284,26 @@ def test_served_nothing_of_a_day_is_computed_on_the_loop_neither_the_gusty_wind_
     run_held()
     assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in explorer.wind.day_note.object
     assert calls and all(inside for _name, inside in calls)
+
+
+def test_a_files_content_stays_as_the_browser_sent_it_until_the_work_reads_it(monkeypatch):
+    """The browser sends a file in base64; the upload keeps it so (``uploads.Encoded``) and the
+    work off the loop decodes it (Panel's FileInput decoded 10 MB on the event loop)."""
+    import base64
+
+    from windpump_app import wind_tab
+    from windpump_app.uploads import Encoded
+
+    held: list = []
+    monkeypatch.setattr(wind_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    explorer = Explorer()
+    explorer.main().active = 2
+    rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
+    content = ("t [s],V [m/s]\n" + rows + "\n").encode()
+    sent = base64.b64encode(content).decode()
+    explorer.wind.upload._process_events({"filename": "mast.csv", "value": sent})
+    assert isinstance(explorer.wind.upload.value, Encoded) and explorer.wind.upload.value == sent
+    for work, then in held:
+        then(work())
+    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in explorer.wind.day_note.object
+    assert explorer.wind.measured.V.tolist() == read_csv(content).V.tolist()

@@ -21,7 +21,7 @@ import windpump
 from windpump.labdata import LabDataError, check_file_size
 from windpump.site import kick_in_wind
 from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY, SECONDS_PER_HOUR
-from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
+from windpump.wind import gusty, read_csv
 
 from .buttons import ActionButton
 from .envelope import band
@@ -43,6 +43,7 @@ from .uploads import (
 )
 from .views import refill
 from .wind_figures import curve_figure, day_figures
+from .wind_steady import steady_wind
 
 log = logging.getLogger("windpump.app")
 
@@ -175,6 +176,8 @@ class WindTab(Tab):
         self.last_run: windpump.SimulationResult | None = None
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
         self._ready_day: tuple | None = None  # (run_of, (day, low, high)), run ahead with a file
+        self._drawn_curve: tuple = ()  # (design, mean wind, k, V) of the curve drawn
+        self._wanted_curve: tuple = ()  # and of the one last asked for
         self._wanted_day: tuple = ()  # (design, record, theta0, kick) of the day last asked for
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
@@ -197,27 +200,41 @@ class WindTab(Tab):
         self.error.visible = True
 
     def _update_curve(self, design, inputs) -> None:
-        c = weibull_scale(inputs.mean_wind, inputs.k)
-        top = max(20.0, 2.5 * c)
-        V = np.linspace(0.0, top, 400)
-        refill(
-            self.sources["curve"], {"V": V, "flow": LITRES_PER_M3 * windpump.steady_flow(design, V)}
+        """The steady wind's numbers (``wind_steady``), off the event loop when served; a newer
+        request wins, and one the drawn curve already answers is not asked again."""
+        asked = (design, inputs.mean_wind, inputs.k, inputs.V)
+        if asked == self._drawn_curve:
+            return
+        self._wanted_curve = asked
+        if not self._drawn_curve:  # a first curve: the figure gets ranges until it comes
+            refill(self.sources["curve"], {"V": [0.0, 20.0], "flow": [0.0, 0.0]})
+        off_the_loop(lambda: steady_wind(*asked), lambda outcome: self._draw_curve(asked, outcome))
+
+    def _draw_curve(self, asked: tuple, outcome) -> None:
+        if asked != self._wanted_curve:
+            return  # a newer design or wind was asked for meanwhile: its curve draws
+        if isinstance(outcome, Exception):
+            said = str(outcome)
+            if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
+                log.error("the steady wind failed", exc_info=outcome)
+                said = f"{type(outcome).__name__}: {outcome}"
+            self.failed(f"The wind cannot be run: {said}")
+            return
+        self._drawn_curve = asked
+        steady, V = outcome, asked[3]
+        refill(self.sources["curve"], {"V": steady.V, "flow": steady.flow})
+        refill(self.sources["density"], {"V": steady.V, "density": steady.density})
+        self.curve.extra_y_ranges["density"].end = 1.1 * float(np.max(steady.density))
+        refill(self.sources["here"], {"V": [V], "flow": [steady.here]})
+        self.stop_span.location = steady.V_stop
+        self.start_span.location = steady.V_start if steady.V_start is not None else -1.0
+        self.start_span.visible = steady.V_start is not None
+        start = f"{steady.V_start:.1f}" if steady.V_start is not None else "never (T₀ = 0)"
+        self.readouts["thresholds"].show(
+            WIND_READOUTS["thresholds"], f"{steady.V_stop:.1f} · {start}"
         )
-        density = weibull_density(V, inputs.mean_wind, inputs.k)
-        refill(self.sources["density"], {"V": V, "density": density})
-        self.curve.extra_y_ranges["density"].end = 1.1 * float(np.max(density))
-        here = LITRES_PER_M3 * windpump.steady_flow(design, inputs.V)
-        refill(self.sources["here"], {"V": [inputs.V], "flow": [here]})
-        V_stop, V_start = windpump.wind_thresholds(design)
-        self.stop_span.location = V_stop
-        self.start_span.location = V_start if V_start is not None else -1.0
-        self.start_span.visible = V_start is not None
-        start = f"{V_start:.1f}" if V_start is not None else "never (T₀ = 0)"
-        self.readouts["thresholds"].show(WIND_READOUTS["thresholds"], f"{V_stop:.1f} · {start}")
-        low, high = windpump.water_per_day(design, inputs.mean_wind, inputs.k)
         self.readouts["site_bounds"].show(
-            WIND_READOUTS["site_bounds"],
-            f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
+            WIND_READOUTS["site_bounds"], f"{steady.low:,.0f} … {steady.high:,.0f}"
         )
 
     def wind(self, inputs) -> windpump.wind.WindRecord | tuple:

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import re
 import sys
 import tracemalloc
 from collections import Counter
@@ -90,6 +91,18 @@ GROUPS = {
     "innermost app frame": "inner",
     "innermost Panel, param or Bokeh frame (the allocation's site)": "library",
 }
+
+
+def normalised(document) -> str:
+    """A document's JSON as a page's websocket sends it, with the ids, Panel's names and object
+    addresses it carries numbered in order of appearance (they differ from page to page): two
+    pages built alike give the same text."""
+    from bokeh.core.json_encoder import serialize_json
+
+    text = serialize_json(document.to_json(), pretty=False)
+    ids: dict[str, str] = {}
+    pattern = r"\b(p\d+|[A-Z][A-Za-z0-9]*?\d{5}|\d{12,})\b"
+    return re.sub(pattern, lambda m: ids.setdefault(m.group(1), f"id{len(ids)}"), text)
 
 
 def where(trace, group: str) -> str:

@@ -4,13 +4,11 @@ restored for the comparison (``panels_own``)."""
 
 from __future__ import annotations
 
-import re
 import sys
 from pathlib import Path
 
 import panel as pn
 import pytest
-from bokeh.core.json_encoder import serialize_json
 from panel.pane.base import PaneBase
 from panel.pane.markup import HTMLBasePane
 from panel.viewable import Layoutable
@@ -80,21 +78,12 @@ def test_a_pane_shown_on_its_own_renders_as_panels_own(panels_own):
     assert pn.pane.HTML("x").get_root().text == pn.pane.HTML("x", name="y").get_root().text
 
 
-def normalised(document) -> str:
-    """A document's JSON with the ids, Panel's names and object addresses it carries numbered in
-    order of appearance (they differ from one page to the next)."""
-    text = serialize_json(document.to_json(), pretty=False)
-    ids: dict[str, str] = {}
-    pattern = r"\b(p\d+|[A-Z][A-Za-z0-9]*?\d{5}|\d{12,})\b"
-    return re.sub(pattern, lambda m: ids.setdefault(m.group(1), f"id{len(ids)}"), text)
-
-
 @pytest.mark.parametrize("views", [False, True], ids=["page", "with its first screen"])
 def test_a_page_sends_the_same_document_and_builds_no_panes_layout(views, panels_own):
     bench_page_memory.setup(lighter=False)
     own, _, _ = bench_page_memory.page(views)
     panels_own.undo()
     document, _, template = bench_page_memory.page(views)
-    assert normalised(document) == normalised(own)
+    assert bench_page_memory.normalised(document) == bench_page_memory.normalised(own)
     panes = template.select(HTMLBasePane)
     assert len(panes) > 20 and not any(built(pane) for pane in panes)

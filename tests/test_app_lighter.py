@@ -8,12 +8,14 @@ import sys
 from pathlib import Path
 
 import panel as pn
+import param
 import pytest
 from panel.pane.base import PaneBase
 from panel.pane.markup import HTMLBasePane
 from panel.viewable import Layoutable
+from param.parameterized import _InstancePrivate
 
-from windpump_app.lighter import lighter_components
+from windpump_app.lighter import ValueWatchers, lighter_components
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_page_memory  # noqa: E402
@@ -30,9 +32,10 @@ def lighter():
 
 @pytest.fixture
 def panels_own(monkeypatch):
-    """Panel's own components while the test asks (``panels_own.undo()`` ends it)."""
+    """Panel's and param's own components while the test asks (``panels_own.undo()`` ends it)."""
     monkeypatch.setattr(PaneBase, "__init__", PaneBase.__init__.panel)  # type: ignore[attr-defined]
     monkeypatch.delattr(HTMLBasePane, "layout")
+    monkeypatch.setattr(_InstancePrivate, "__init__", _InstancePrivate.__init__.param)  # type: ignore[attr-defined]
     return monkeypatch
 
 
@@ -87,3 +90,64 @@ def test_a_page_sends_the_same_document_and_builds_no_panes_layout(views, panels
     assert bench_page_memory.normalised(document) == bench_page_memory.normalised(own)
     panes = template.select(HTMLBasePane)
     assert len(panes) > 20 and not any(built(pane) for pane in panes)
+
+
+class Knobs(param.Parameterized):
+    a = param.Number(1.0)
+    b = param.Number(2.0)
+
+
+def watched(calls: list) -> Knobs:
+    """Knobs watched as a page watches its inputs: several watchers, precedences, both values,
+    one watcher removed."""
+    knobs = Knobs()
+    knobs.param.watch(
+        lambda *e: calls.append(("ab", [x.name for x in e])), ["a", "b"], precedence=3
+    )
+    knobs.param.watch(lambda e: calls.append(("second", e.new)), "a", precedence=1)
+    gone = knobs.param.watch(lambda e: calls.append(("gone", e.new)), "a")
+    knobs.param.watch(lambda e: calls.append(("b", e.old, e.new)), "b", onlychanged=False)
+    knobs.a = 5.0
+    knobs.param.unwatch(gone)
+    knobs.param.unwatch(gone)  # a second time does nothing, as param's
+    knobs.param.update(a=6.0, b=2.0)
+    knobs.param.trigger("b")
+    return knobs
+
+
+def kind(watcher) -> tuple:
+    return watcher.precedence, watcher.parameter_names, watcher.onlychanged
+
+
+def test_watchers_are_called_as_params_own_and_read_as_its_dicts(panels_own):
+    own_calls: list = []
+    own = watched(own_calls)
+    panels_own.undo()
+    calls: list = []
+    knobs = watched(calls)
+    assert calls == own_calls
+    mine, theirs = knobs.param.watchers, own.param.watchers
+    assert type(mine["a"]) is ValueWatchers and type(theirs["a"]) is dict
+    assert mine.keys() == theirs.keys()
+    for name in theirs:
+        entry = mine[name]
+        assert entry["value"] is entry and entry.get("value") is entry and "value" in entry
+        assert entry.get("other") is None and "other" not in entry
+        assert [kind(w) for w in entry["value"]] == [kind(w) for w in theirs[name]["value"]]
+        assert [(k, len(v)) for k, v in entry.items()] == [
+            (k, len(v)) for k, v in theirs[name].items()
+        ]
+        assert [len(v) for v in entry.values()] == [len(v) for v in theirs[name].values()]
+        with pytest.raises(KeyError):
+            entry["other"]
+
+
+def test_a_layout_updates_its_names_first_as_panel_has_it(panels_own):
+    own = pn.Tabs(("a", pn.pane.Markdown("a")))
+    own_order = [w.fn.__name__ for w in own.param.watchers["objects"]["value"]]
+    panels_own.undo()
+    tabs = pn.Tabs(("a", pn.pane.Markdown("a")))  # Panel reverses that list in place
+    assert [w.fn.__name__ for w in tabs.param.watchers["objects"]["value"]] == own_order
+    assert "_update_names" in own_order and len(own_order) > 1
+    tabs.append(("b", pn.pane.Markdown("b")))
+    assert tabs.objects[1].object == "b" and tabs._names == ["a", "b"]

@@ -2,9 +2,11 @@
 app/`` builds them (``app/main.py``: a Bokeh document per page, the app's ``Explorer`` and its
 template rendered into it), kept alive, and measured.
 
-Run: python benchmarks/bench_page_memory.py [N] [--views] [--top K] [--watchers] [--baseline]
+Run: python benchmarks/bench_page_memory.py [N] [--views | --every-view] [--top K] [--watchers]
+     [--baseline]
      (N = 10 by default; --views: each page also builds its first screen's views, the crank speed
-     and the machine, as a page at 1280x720 names them once loaded)
+     and the machine, as a page at 1280x720 names them once loaded; --every-view: all seven, as a
+     page scrolled to its end; --baseline: without app/lighter.py's cuts, to compare)
 
 Printed, per page (the mean of N, after one page built first to warm every cache):
 - bytes by tracemalloc (what the N pages allocated and still hold), and its top allocation sites
@@ -31,7 +33,8 @@ FRAMES = 40  # tracemalloc's traceback depth: deep enough to reach the app's fra
 
 def setup(lighter: bool = True) -> None:
     """What ``app/main.py`` does once per process before a page; without ``lighter``, without
-    ``lighter.lighter_components`` (the baseline of its cuts)."""
+    the cuts to a page's memory (``lighter.lighter_components``, and Bokeh's empty defaults made
+    with each model: ``defaults.empty_defaults_made_when_read`` left out), to compare."""
     import panel as pn
 
     from windpump_app.defaults import lighter_properties
@@ -48,14 +51,27 @@ def setup(lighter: bool = True) -> None:
     without_webgl()
     lighter_patches()
     lighter_updates()
-    lighter_properties()
     if lighter:
+        lighter_properties()
         lighter_components()
+        return
+    from windpump_app import defaults
+
+    cut = defaults.empty_defaults_made_when_read
+    defaults.empty_defaults_made_when_read = lambda: None  # type: ignore[assignment]
+    try:
+        lighter_properties()
+    finally:
+        defaults.empty_defaults_made_when_read = cut  # type: ignore[assignment]
 
 
-def page(views: bool = False):
+FIRST_SCREEN = ("speed", "machine")  # what a page at 1280x720 shows once loaded
+
+
+def page(views: bool | tuple[str, ...] = False):
     """One page as ``app/main.py`` builds it (in-process: no session, so its run is drawn at once),
-    and with ``views`` the two views of its first screen: its document, explorer and template."""
+    and with ``views`` the two views of its first screen (or the views it names): its document,
+    explorer and template."""
     from bokeh.document import Document
     from panel.io.state import set_curdoc, state
 
@@ -79,7 +95,7 @@ def page(views: bool = False):
         with document.models.freeze():
             template.server_doc(document)
         if views:
-            explorer.see_views(["speed", "machine"])
+            explorer.see_views(list(FIRST_SCREEN if views is True else views))
             explorer.show_views()
         document.to_json()  # what the page's websocket sends (PULL-DOC-REPLY)
     return document, explorer, template
@@ -141,7 +157,9 @@ def watchers_of(objects) -> Counter:
     return found
 
 
-def measure(n: int, views: bool, top: int, show_watchers: bool, lighter: bool = True) -> dict:
+def measure(
+    n: int, views: bool | tuple[str, ...], top: int, show_watchers: bool, lighter: bool = True
+) -> dict:
     setup(lighter)
     page(views)  # warm: imports, class-level caches, the shared run
     gc.collect()
@@ -155,7 +173,8 @@ def measure(n: int, views: bool, top: int, show_watchers: bool, lighter: bool = 
     new = [obj for obj in gc.get_objects() if id(obj) not in before_ids]
     stats = last.compare_to(first, "traceback")
     total = sum(stat.size_diff for stat in stats)
-    print(f"{n} pages{' with their first screen views' if views else ''}: ", end="")
+    shown = {False: "", True: " with their first screen's views"}.get(views, " with every view")
+    print(f"{n} pages{shown}: ", end="")
     print(f"{total / n / 1e6:.3f} MB a page by tracemalloc, {len(new) / n:,.0f} gc objects a page")
     for label, group in GROUPS.items():
         grouped: Counter = Counter()
@@ -181,13 +200,17 @@ def main(argv: list[str] | None = None) -> dict:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("n", nargs="?", type=int, default=10)
     parser.add_argument("--views", action="store_true", help="build the first screen's views")
+    parser.add_argument("--every-view", action="store_true", help="build all seven views")
     parser.add_argument("--top", type=int, default=20)
     parser.add_argument("--watchers", action="store_true")
     parser.add_argument(
-        "--baseline", action="store_true", help="without lighter.lighter_components (app/main.py)"
+        "--baseline", action="store_true", help="without the cuts to a page's memory, to compare"
     )
     args = parser.parse_args(argv)
-    return measure(args.n, args.views, args.top, args.watchers, not args.baseline)
+    from windpump_app.pump import ORDER
+
+    views = tuple(ORDER) if args.every_view else args.views
+    return measure(args.n, views, args.top, args.watchers, not args.baseline)
 
 
 if __name__ == "__main__":

@@ -22,6 +22,14 @@ Three more of its costs are cut the same way, with the same results: a model's t
 looked up by raising and catching an ``AttributeError`` twice when it has none (most models, at
 each read of a default: 9 % of a page's build), and the name of a container property (``Dict(String,
 Any)``) was written out at each validation of a value, for an error message not raised (6 %).
+
+And Bokeh made every such container a model's class gives it by default as the model was made
+(``HasProps.__init__``) and kept it, ~7 a model, almost all never used: an empty list, dict or
+set is made here when first read, as Bokeh makes any default it has not made yet, and the walks
+that read every property (the document's walk of what its models refer to, the serialiser)
+pass over those not made: empty, they refer to nothing, and the serialiser leaves an unchanged
+container default out anyway. A page with its first screen's views is the same document with
+~2,000 fewer containers (``benchmarks/bench_page_memory.py``: 0.9 MB fewer a page).
 """
 
 from __future__ import annotations
@@ -52,6 +60,7 @@ def lighter_properties() -> None:
     themed_values_read_directly()
     names_written_once()
     owners_in_tuples()
+    empty_defaults_made_when_read()
 
 
 def kept_defaults() -> None:
@@ -169,3 +178,143 @@ def owners_in_tuples() -> None:
     PropertyValueContainer.__init__ = __init__  # type: ignore[method-assign]
     PropertyValueContainer._register_owner = register  # type: ignore[method-assign]
     PropertyValueContainer._unregister_owner = unregister  # type: ignore[method-assign]
+
+
+def empty_defaults_made_when_read() -> None:
+    """A model's empty list, dict and set defaults made when first read (see the module), not each
+    made and kept as the model is made; the document's walk of its models' references and the
+    serialiser pass over those not made yet (empty, they refer to nothing and send nothing)."""
+    from bokeh.core.has_props import HasProps
+    from bokeh.model import util
+
+    if getattr(HasProps.__init__, "lazy", False):
+        return
+    init = _init_without_empty_defaults(HasProps)
+    init.bokeh = HasProps.__init__  # type: ignore[attr-defined]
+    HasProps.__init__ = init  # type: ignore[method-assign]
+    HasProps.query_properties_with_values = _query_without_unmade(  # type: ignore[method-assign]
+        HasProps.query_properties_with_values
+    )
+    visit = _visit_without_unmade(util.visit_immediate_value_references)
+    util.visit_immediate_value_references = visit
+    try:  # Panel's copy of the name, where it checks what a change refers to
+        from panel.io import document as panel_document
+
+        panel_document.visit_immediate_value_references = visit  # type: ignore[attr-defined]
+    except ImportError:
+        pass
+
+
+_EMPTY = (list, dict, set)
+_MADE_AT_INIT: dict = {}  # class -> the names of its properties made as a model is made
+
+
+def _made_at_init(model) -> tuple[str, ...]:
+    """The properties of ``model``'s class whose default is made anew for each model (Bokeh's
+    ``has_unstable_default``), but for those whose default is an empty list, dict or set."""
+    cls = type(model)
+    names = _MADE_AT_INIT.get(cls)
+    if names is None:
+        names = _MADE_AT_INIT[cls] = tuple(
+            name
+            for name in cls.properties(_with_props=True)
+            if model.lookup(name).has_unstable_default(model) and not _empty_default(cls, name)
+        )
+    return names
+
+
+_EMPTY_DEFAULT: dict = {}  # (class, name) -> whether its default is a plain empty container
+
+
+def _empty_default(cls, name: str) -> bool:
+    key = (cls, name)
+    answer = _EMPTY_DEFAULT.get(key)
+    if answer is None:
+        from bokeh.core.property.descriptors import PropertyDescriptor
+        from bokeh.core.property.wrappers import PropertyValueContainer
+
+        descriptor = cls.lookup(name)
+        prop = descriptor.property
+        default = getattr(prop, "_default", None)
+        answer = _EMPTY_DEFAULT[key] = (
+            type(descriptor) is PropertyDescriptor
+            and name not in cls.__overridden_defaults__
+            and type(default) in _EMPTY
+            and len(default) == 0
+            # one the serialiser leaves out as a default (a Seq's plain list it sends)
+            and isinstance(prop.wrap(type(default)()), PropertyValueContainer)
+        )
+    return answer
+
+
+def unmade(model, name: str) -> bool:
+    """Whether ``model``'s property ``name`` is an empty default not made yet (not set, not read,
+    not given by a theme)."""
+    themed = model.themed_values()
+    return (
+        _empty_default(type(model), name)
+        and name not in model._property_values
+        and name not in model._unstable_default_values
+        and (themed is None or name not in themed)
+    )
+
+
+def _init_without_empty_defaults(HasProps):
+    """``HasProps.__init__`` of Bokeh 3.9, but for the empty defaults."""
+    from bokeh.core.property.singletons import Intrinsic, Undefined
+
+    def __init__(self, **properties) -> None:
+        super(HasProps, self).__init__()
+        self._property_values = {}
+        self._unstable_default_values = {}
+        self._unstable_themed_values = {}
+        for name, value in properties.items():
+            if value is Undefined or value is Intrinsic:
+                continue
+            setattr(self, name, value)
+        for name in _made_at_init(self):
+            if name not in properties:
+                self.lookup(name)._get(self)  # fills in _unstable_*_values
+        self._initialized = True
+
+    __init__.lazy = True  # type: ignore[attr-defined]
+    return __init__
+
+
+def _query_without_unmade(query_properties_with_values):
+    """Bokeh's, passing over the empty defaults not made yet when defaults are left out."""
+
+    def query(self, query, *, include_defaults: bool = True, include_undefined: bool = False):
+        if include_defaults:
+            return query_properties_with_values(
+                self, query, include_defaults=True, include_undefined=include_undefined
+            )
+
+        def asked(descriptor) -> bool:
+            return not unmade(self, descriptor.name) and query(descriptor)
+
+        return query_properties_with_values(
+            self, asked, include_defaults=False, include_undefined=include_undefined
+        )
+
+    query.lazy = True  # type: ignore[attr-defined]
+    query.bokeh = query_properties_with_values  # type: ignore[attr-defined]
+    return query
+
+
+def _visit_without_unmade(visit_immediate_value_references):
+    """Bokeh's walk of what a model refers to, passing over its empty defaults not made yet."""
+    from bokeh.core.has_props import HasProps
+    from bokeh.model.util import visit_value_and_its_immediate_references
+
+    def visit(value, visitor) -> None:
+        if not isinstance(value, HasProps):
+            visit_value_and_its_immediate_references(value, visitor)
+            return
+        for name in value.properties_with_refs():
+            if not unmade(value, name):
+                visit_value_and_its_immediate_references(getattr(value, name), visitor)
+
+    visit.lazy = True  # type: ignore[attr-defined]
+    visit.bokeh = visit_immediate_value_references  # type: ignore[attr-defined]
+    return visit

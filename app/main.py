@@ -12,6 +12,7 @@ import panel as pn
 from .defaults import lighter_properties
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
+from .lighter import lighter_components
 from .pump import ORDER
 from .serving import (
     READOUTS_FIRST,
@@ -36,6 +37,7 @@ without_webgl()
 lighter_patches()
 lighter_updates()
 lighter_properties()
+lighter_components()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document)

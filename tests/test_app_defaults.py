@@ -3,6 +3,9 @@ workings-out. Each test compares with what Bokeh's own methods give, kept aside 
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import bokeh
 import pytest
 from bokeh.core.has_props import HasProps
@@ -14,6 +17,9 @@ from bokeh.plotting import figure
 from bokeh.themes import Theme
 
 from windpump_app.defaults import immutable, lighter_properties
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import bench_page_memory  # noqa: E402
 
 pytestmark = pytest.mark.skipif(
     not bokeh.__version__.startswith("3.9."), reason="patched only on the Bokeh it was checked on"
@@ -142,3 +148,92 @@ def test_a_property_lists_owners_are_kept_in_a_tuple_and_told_of_changes():
     assert [owner for owner, _ in shared._owners] == [other, twice]
     twice.tags = ["b"]  # and the one that let it go no more
     assert [owner for owner, _ in shared._owners] == [other]
+
+
+@pytest.fixture
+def bokehs_own(monkeypatch):
+    """Bokeh's own making of a model's empty defaults, its walk and its serialiser while the
+    test asks (``bokehs_own.undo()`` ends it)."""
+    from bokeh.model import util
+    from panel.io import document as panel_document
+
+    visit = util.visit_immediate_value_references
+    monkeypatch.setattr(HasProps, "__init__", HasProps.__init__.bokeh)  # type: ignore[attr-defined]
+    query = HasProps.query_properties_with_values
+    monkeypatch.setattr(HasProps, "query_properties_with_values", query.bokeh)  # type: ignore[attr-defined]
+    monkeypatch.setattr(util, "visit_immediate_value_references", visit.bokeh)  # type: ignore[attr-defined]
+    monkeypatch.setattr(panel_document, "visit_immediate_value_references", visit.bokeh)  # type: ignore[attr-defined]
+    return monkeypatch
+
+
+def page_of_models() -> Document:
+    """A document of a figure with a line and models of the page's kinds."""
+    fig = figure(title="t")
+    fig.line([1, 2], [3, 4])
+    document = Document()
+    for root in (fig, Slider(start=0, end=1, value=0.5), Div(text="x"), ColumnDataSource()):
+        document.add_root(root)
+    return document
+
+
+def read(document: Document) -> tuple:
+    """What a document's models send (names of their values other than defaults, and the whole
+    document as its JSON), what each refers to, and every value of a few empty defaults."""
+    models = sorted(document.models, key=lambda m: (type(m).__name__, m.id))
+    sent = [sorted(model.properties_with_values(include_defaults=False)) for model in models]
+    refers = [sorted(type(ref).__name__ for ref in model.references()) for model in models]
+    defaults = [
+        [getattr(model, name) for name in ("tags", "js_event_callbacks", "subscribed_events")]
+        for model in models
+    ]
+    return sent, bench_page_memory.normalised(document), refers, defaults
+
+
+def test_a_models_empty_defaults_are_made_when_first_read():
+    model = Div()
+    assert "tags" not in model._unstable_default_values  # not made with the model
+    tags = model.tags
+    assert type(tags).__name__ == "PropertyValueList" and tags == [] and model.tags is tags
+    assert tags._owners == ((model, model.lookup("tags")),)  # owned: told of a change in place
+    changes = []
+    model.on_change("tags", lambda attr, old, new: changes.append((old, new)))
+    model.tags.append("a")
+    assert changes == [([], ["a"])]
+    assert Div().js_event_callbacks == {} and Div().stylesheets == []
+
+
+def test_models_send_refer_to_and_read_as_with_bokehs_own_defaults(bokehs_own):
+    own = read(page_of_models())
+    bokehs_own.undo()
+    assert read(page_of_models()) == own
+
+
+def test_a_themes_container_default_still_applies():
+    themed, plain = Div(), Div()
+    document = Document()
+    document.theme = Theme(json={"attrs": {"Div": {"css_classes": ["from-theme"]}}})
+    document.add_root(themed)
+    assert themed.css_classes == ["from-theme"] and plain.css_classes == []
+    assert themed.properties_with_values(include_defaults=False)["css_classes"] == ["from-theme"]
+    assert "css_classes" not in plain.properties_with_values(include_defaults=False)
+
+
+@pytest.mark.parametrize("views", [False, True], ids=["page", "with its first screen"])
+def test_a_page_sends_the_same_document_with_fewer_models_containers(views, bokehs_own):
+    import gc
+
+    from bokeh.core.property.wrappers import PropertyValueContainer
+
+    def containers() -> int:
+        gc.collect()
+        return sum(isinstance(obj, PropertyValueContainer) for obj in gc.get_objects())
+
+    before = containers()
+    own, _, _ = bench_page_memory.page(views)
+    made_own = containers() - before
+    bokehs_own.undo()
+    before = containers()
+    document, _, _ = bench_page_memory.page(views)
+    made = containers() - before
+    assert bench_page_memory.normalised(document) == bench_page_memory.normalised(own)
+    assert made < made_own / 2, (made, made_own)

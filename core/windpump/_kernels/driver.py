@@ -55,6 +55,7 @@ from .real import (
     step_rows,
     time_back,
     time_frozen,
+    window_edges,
     window_jump,
     work_at,
     work_rows,
@@ -678,6 +679,7 @@ def in_angle(
     j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
+    edges = window_edges(calm)  # what the windows take at a segment's edges, by parity
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -704,12 +706,13 @@ def in_angle(
         u_before, t_before, W_before = u, t, W
         past_t_end = False
         if full and not windows_off and sample_dt is None and not has_record(machine.wind):
-            slope = energy_slope(k1[0], theta, e_ref, segment, calm)
-            faces = open_windows(theta, u, slope, h, segment, grid.delta, calm)
+            edge = edges[parity][0]
+            slope = energy_slope(k1[0], e_ref, edge, calm)
+            faces = open_windows(theta, u, slope, h, segment, grid.delta, edge[2], calm)
             if faces >= 0.0:
                 jumped, clear_of_window = True, theta + h
                 jump, dt, dW = window_jump(
-                    theta, u, slope, 1.0, segment, faces, scratch_rows[6], calm
+                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows[6], calm
                 )  # (row 6 of the scratch: a split off the tables has filled only row 0)
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
@@ -785,9 +788,10 @@ def in_angle(
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
             if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
-                slope = energy_slope(k7[0], theta_new, e_ref, segment, calm)
+                edge = edges[parity][1]
+                slope = energy_slope(k7[0], e_ref, edge, calm)
                 jump, dt, dW = window_jump(
-                    theta_new, u_new, slope, -1.0, segment, faces, scratch_rows[6], calm
+                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows[6], calm
                 )  # (the sub-step's rows are read)
                 u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
             frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)

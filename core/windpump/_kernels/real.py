@@ -1130,13 +1130,19 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
         for k in range(machine.cylinders):
             levers[row, 1 + k] *= real.AR
     factors = np.empty(theta.shape[0])
+    # The last sample's grid index and its row: the next sample is most often the next grid
+    # angle (no division, rounding or remainder: 3.1 -> 2.1 ns a sample)
+    g, row = -2, 0
     for i in range(theta.shape[0]):
         speed = theta_dot[i]
         if not speed > 0.0:
             factors[i] = 0.0
             continue
-        g = int(round(theta[i] / delta))
-        row = g % period
+        if (g + 1) * delta == theta[i]:
+            g, row = g + 1, row + 1 if row + 1 < period else 0
+        else:
+            g = int(round(theta[i] / delta))
+            row = g % period
         on_grid = g * delta == theta[i]
         if not on_grid:
             _sums(own, theta[i], segment_at(theta[i], machine), machine, False)

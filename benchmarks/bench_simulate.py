@@ -7,12 +7,19 @@ ODE45's default tolerances and the paper's maximum step, a quarter of the crank 
 (dt+ < pi R+ / 4). Both sides are warmed up, then timed in this process; the ratio of the medians and
 each side's error against the tight reference of tests/reference.py (DOP853, rtol 1e-11, stroke by
 stroke) are printed.
+
+Profile: ``perf record -F 4999 -- python benchmarks/bench_simulate.py --profile every 8`` runs the
+seed example with every real effect on (or ``ideal``) for 8 s, after writing ``/tmp/perf-PID.map``
+with every compiled function's address (numba writes no map: the map is made from the object code
+it loads), so that ``perf report --sort sym`` names the kernels.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -177,5 +184,78 @@ def real_machine(seed: windpump.Design):
         )
 
 
+class PerfMap:
+    """Keeps the object code of every library numba loads from its cache or compiles (hooks on
+    numba's private CPUCodeLibrary, set before numba's first compile), and writes perf's map of
+    their functions."""
+
+    def __init__(self):
+        from numba.core import codegen
+
+        self.libraries = []
+        original = codegen.CPUCodeLibrary._set_compiled_object
+        kept = self.libraries
+
+        def keep(library, value):
+            kept.append((library, value))
+            return original(library, value)
+
+        codegen.CPUCodeLibrary._set_compiled_object = keep  # loaded from numba's cache
+        compiled = codegen.CPUCodeLibrary._object_compiled_hook.__func__
+
+        def keep_compiled(cls, module, code):
+            library = getattr(module, "_CPUCodeLibrary__library", None)
+            if library is not None:
+                kept.append((library, code))
+            return compiled(cls, module, code)
+
+        codegen.CPUCodeLibrary._object_compiled_hook = classmethod(keep_compiled)  # compiled
+
+    def write(self):
+        """/tmp/perf-PID.map: each function's address (from one symbol's address in the process,
+        the library's others by their offsets in its object code), size and name."""
+        lines = []
+        for library, code in self.libraries:
+            path = f"/tmp/perf-{os.getpid()}-{len(lines)}.o"
+            Path(path).write_bytes(code)
+            symbols = subprocess.run(
+                ["nm", "-S", "--defined-only", path], capture_output=True, text=True
+            ).stdout.split("\n")
+            Path(path).unlink()
+            functions = [line.split() for line in symbols if len(line.split()) == 4]
+            functions = [(int(o, 16), int(n, 16), k, name) for o, n, k, name in functions]
+            engine = library._codegen._engine._ee
+            bases = {
+                engine.get_function_address(name) - o for o, _, k, name in functions if k == "T"
+            }
+            if len(bases) == 1:  # every global symbol agrees on where the code was put
+                base = bases.pop()
+                lines += [
+                    f"{base + o:x} {n:x} {name}" for o, n, k, name in functions if k in "tTwW"
+                ]
+        Path(f"/tmp/perf-{os.getpid()}.map").write_text("\n".join(lines) + "\n")
+
+
+def profile(which: str, seconds: float):
+    """Run the seed example (every real effect on, or ideal) in a loop for ``seconds``."""
+    perf_map = PerfMap()
+    design = windpump.Design.seed_example()
+    if which == "every":
+        design = design.replace(m_r=1.0, eta_t=0.9, L_main=10.0, D_main=0.025, d_leak=0.0015)
+    windpump.simulate(design, T_END)
+    perf_map.write()
+    runs, start = 0, time.perf_counter()
+    while time.perf_counter() - start < seconds:
+        windpump.simulate(design, T_END)
+        runs += 1
+    print(f"{which}: {runs} runs, {(time.perf_counter() - start) / runs * 1e3:.2f} ms each")
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:2] == ["--profile"]:
+        profile(
+            sys.argv[2] if len(sys.argv) > 2 else "every",
+            float(sys.argv[3]) if len(sys.argv) > 3 else 8.0,
+        )
+    else:
+        main()

@@ -506,12 +506,14 @@ _entry(time_frozen)(
 )
 
 
-def inertia_at(J, X, machine):
-    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]`` (zeros for
-    the ideal machine, whose rows hold nothing there)."""
+def inertia_at(J, X, j, machine):
+    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]``, and J / I_eff
+    where it ends, ``rows[6, 0]`` (zeros and 1.0 for the ideal machine, whose rows hold nothing
+    there). Taken from the rows, not computed again at the sub-step's end (a ``sincos`` a step
+    with reciprocating masses)."""
 
 
-_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
+_entry(inertia_at)(lambda J, X, j, machine: (0.0, 0.0, 1.0), lambda J, X, j, machine: (J, X, j))
 
 
 def time_back(t, frozen_time, step, machine):

@@ -7,12 +7,19 @@ ODE45's default tolerances and the paper's maximum step, a quarter of the crank 
 (dt+ < pi R+ / 4). Both sides are warmed up, then timed in this process; the ratio of the medians and
 each side's error against the tight reference of tests/reference.py (DOP853, rtol 1e-11, stroke by
 stroke) are printed.
+
+Profile: ``perf record -F 4999 -- python benchmarks/bench_simulate.py --profile every 8`` runs the
+seed example with every real effect on (or ``ideal``) for 8 s, after writing ``/tmp/perf-PID.map``
+with every compiled function's address (numba writes no map: the map is made from the object code
+it loads), so that ``perf report --sort sym`` names the kernels.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -64,6 +71,35 @@ def median_time(function, repeats):
         result = function()
         times.append(time.perf_counter() - start)
     return statistics.median(times), result
+
+
+def median_times(function, repeats):
+    """(median wall time, median CPU time of this thread, the last result). On a shared machine
+    a run is preempted for a scheduler slice (~4 ms) more often the longer it is: the real
+    machine's runs (2-6 ms) were, the ideal's (1 ms) seldom, so the wall ratio grew with the load
+    (every effect 4.4x by CPU time, up to 6-8x by wall time at a load of 5 on 2 cores)."""
+    wall, cpu = [], []
+    for _ in range(repeats):
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        result = function()
+        cpu.append(time.thread_time() - start_cpu)
+        wall.append(time.perf_counter() - start)
+    return statistics.median(wall), statistics.median(cpu), result
+
+
+def alternated(first, second, repeats):
+    """:func:`median_times` of two functions run in turn, ``repeats`` times each: a ratio of the
+    two holds whatever else the machine does meanwhile (the ideal machine timed once and the real
+    runs over the next minute, between their references, made every effect 4.0-4.4x by CPU time
+    where alternated runs gave 2.8x)."""
+    times = ([], [], [], [])
+    for _ in range(repeats):
+        for k, function in enumerate((first, second)):
+            start, start_cpu = time.perf_counter(), time.thread_time()
+            result = function()
+            times[2 * k + 1].append(time.thread_time() - start_cpu)
+            times[2 * k].append(time.perf_counter() - start)
+    return tuple(statistics.median(t) for t in times), result
 
 
 def main():
@@ -126,7 +162,9 @@ def configurations(seed: windpump.Design, seed_time: float):
 def real_machine(seed: windpump.Design):
     """The seed example with every effect of the real machine on, against the ideal machine timed
     in this process (the issue asks at most 2x), each effect alone, and each against
-    tests/real_reference.py (DOP853 of the issue's equations, rtol 1e-11)."""
+    tests/real_reference.py (DOP853 of the issue's equations, rtol 1e-11). Wall time and this
+    thread's CPU time (:func:`median_times`: the CPU ratio is the one a busy machine leaves
+    alone), each real run alternated with an ideal one (:func:`alternated`)."""
     effects = {
         "m_r = 1 kg": {"m_r": 1.0},
         "eta_t = 0.9": {"eta_t": 0.9},
@@ -135,24 +173,108 @@ def real_machine(seed: windpump.Design):
     }
     every = seed.replace(**{k: v for change in effects.values() for k, v in change.items()})
     windpump.simulate(seed, T_END), windpump.simulate(every, T_END)
-    ideal, _ = median_time(lambda: windpump.simulate(seed, T_END), 51)
-    print(f"real machine, 600 s from the kick      (the ideal machine: {ideal * 1e3:.2f} ms)")
-    print(f"{'':32s}{'median time':>14s}{'x ideal':>9s}{'steps':>8s}{'speed':>10s}{'volume':>10s}")
+    ideal, ideal_cpu, _ = median_times(lambda: windpump.simulate(seed, T_END), 51)
+    print(
+        f"real machine, 600 s from the kick      (the ideal machine: {ideal * 1e3:.2f} ms, "
+        f"CPU {ideal_cpu * 1e3:.2f} ms)"
+    )
+    print(
+        f"{'':32s}{'median time':>14s}{'x ideal':>9s}{'CPU':>10s}{'x ideal':>9s}{'steps':>8s}"
+        f"{'speed':>10s}{'volume':>10s}"
+    )
     for name, design in [("every effect on", every)] + [
         (name, seed.replace(**change)) for name, change in effects.items()
     ]:
         windpump.simulate(design, T_END)
-        seconds, run = median_time(lambda design=design: windpump.simulate(design, T_END), 21)
+        (ideal, ideal_cpu, seconds, cpu), run = alternated(
+            lambda: windpump.simulate(seed, T_END),
+            lambda design=design: windpump.simulate(design, T_END),
+            31,
+        )
         ref = real_reference_run(design, T_END, THETA0, THETA_DOT0)
         errors = [
             abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
             abs(run.volume[-1] - ref.volume) / ref.volume,
         ]
         print(
-            f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / ideal:9.2f}{run.steps:8d}"
+            f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / ideal:9.2f}"
+            f"{cpu * 1e3:7.2f} ms{cpu / ideal_cpu:9.2f}{run.steps:8d}"
             + "".join(f"{e:10.1e}" for e in errors)
         )
 
 
+class PerfMap:
+    """Keeps the object code of every library numba loads from its cache or compiles (hooks on
+    numba's private CPUCodeLibrary, set before numba's first compile), and writes perf's map of
+    their functions."""
+
+    def __init__(self):
+        from numba.core import codegen
+
+        self.libraries = []
+        original = codegen.CPUCodeLibrary._set_compiled_object
+        kept = self.libraries
+
+        def keep(library, value):
+            kept.append((library, value))
+            return original(library, value)
+
+        codegen.CPUCodeLibrary._set_compiled_object = keep  # loaded from numba's cache
+        compiled = codegen.CPUCodeLibrary._object_compiled_hook.__func__
+
+        def keep_compiled(cls, module, code):
+            library = getattr(module, "_CPUCodeLibrary__library", None)
+            if library is not None:
+                kept.append((library, code))
+            return compiled(cls, module, code)
+
+        codegen.CPUCodeLibrary._object_compiled_hook = classmethod(keep_compiled)  # compiled
+
+    def write(self):
+        """/tmp/perf-PID.map: each function's address (from one symbol's address in the process,
+        the library's others by their offsets in its object code), size and name."""
+        lines = []
+        for library, code in self.libraries:
+            path = f"/tmp/perf-{os.getpid()}-{len(lines)}.o"
+            Path(path).write_bytes(code)
+            symbols = subprocess.run(
+                ["nm", "-S", "--defined-only", path], capture_output=True, text=True
+            ).stdout.split("\n")
+            Path(path).unlink()
+            functions = [line.split() for line in symbols if len(line.split()) == 4]
+            functions = [(int(o, 16), int(n, 16), k, name) for o, n, k, name in functions]
+            engine = library._codegen._engine._ee
+            bases = {
+                engine.get_function_address(name) - o for o, _, k, name in functions if k == "T"
+            }
+            if len(bases) == 1:  # every global symbol agrees on where the code was put
+                base = bases.pop()
+                lines += [
+                    f"{base + o:x} {n:x} {name}" for o, n, k, name in functions if k in "tTwW"
+                ]
+        Path(f"/tmp/perf-{os.getpid()}.map").write_text("\n".join(lines) + "\n")
+
+
+def profile(which: str, seconds: float):
+    """Run the seed example (every real effect on, or ideal) in a loop for ``seconds``."""
+    perf_map = PerfMap()
+    design = windpump.Design.seed_example()
+    if which == "every":
+        design = design.replace(m_r=1.0, eta_t=0.9, L_main=10.0, D_main=0.025, d_leak=0.0015)
+    windpump.simulate(design, T_END)
+    perf_map.write()
+    runs, start = 0, time.perf_counter()
+    while time.perf_counter() - start < seconds:
+        windpump.simulate(design, T_END)
+        runs += 1
+    print(f"{which}: {runs} runs, {(time.perf_counter() - start) / runs * 1e3:.2f} ms each")
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:2] == ["--profile"]:
+        profile(
+            sys.argv[2] if len(sys.argv) > 2 else "every",
+            float(sys.argv[3]) if len(sys.argv) > 3 else 8.0,
+        )
+    else:
+        main()

@@ -55,6 +55,7 @@ from .real import (
     step_rows,
     time_back,
     time_frozen,
+    window_edges,
     window_jump,
     work_at,
     work_rows,
@@ -622,14 +623,15 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
 
 @inline_kernel
 def past_sub_step(y, theta_new, u_new, k7, scaled, worst, i, at_kink, at_wind_kink, whole, m,
-                  width, h, machine):  # fmt: skip
+                  width, h, j_new):  # fmt: skip
     """The state after sub-step i, accepted, to theta_new: (u_free, t, W, theta, u, theta_dot,
     k1, the worst scaled error so far, the next sub-step's index, m, ON_KINK or SPLIT_DONE).
     Past a wind record's kink (up to round-off in its time) the run goes on from there in a new
     split of m sub-steps from the errors so far. Past a leak's kink the split goes on: the rest of
     sub-step i (its index kept), off the tables, then its next sub-steps on them. Only ``whole``
-    sub-steps (not cut by a leak's kink) count in the worst error, from which m follows."""
-    theta_dot = math.sqrt(2.0 * u_new / inertia_ratio(theta_new, machine))
+    sub-steps (not cut by a leak's kink) count in the worst error, from which m follows. j_new
+    is J / I_eff at theta_new (:func:`~.real.inertia_at`)."""
+    theta_dot = math.sqrt(2.0 * u_new / j_new)
     if whole:
         worst = max(worst, scaled)
     status = SPLIT_DONE
@@ -678,6 +680,7 @@ def in_angle(
     j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
+    edges = window_edges(calm)  # what the windows take at a segment's edges, by parity
     while True:
         end, parity, end_grid, m_seg, use_table, h = split_of(
             m, full, theta, width, n_per_stroke, sample_dt, segment, calm
@@ -704,12 +707,13 @@ def in_angle(
         u_before, t_before, W_before = u, t, W
         past_t_end = False
         if full and not windows_off and sample_dt is None and not has_record(machine.wind):
-            slope = energy_slope(k1[0], theta, e_ref, segment, calm)
-            faces = open_windows(theta, u, slope, h, segment, grid.delta, calm)
+            edge = edges[parity][0]
+            slope = energy_slope(k1[0], e_ref, edge, calm)
+            faces = open_windows(theta, u, slope, h, segment, grid.delta, edge[2], calm)
             if faces >= 0.0:
                 jumped, clear_of_window = True, theta + h
                 jump, dt, dW = window_jump(
-                    theta, u, slope, 1.0, segment, faces, scratch_rows[6], calm
+                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows[6], calm
                 )  # (row 6 of the scratch: a split off the tables has filled only row 0)
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
@@ -751,7 +755,7 @@ def in_angle(
                     known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
-            j_step = inertia_at(rows[6, 8], rows[6, 9], calm)  # the time's ripple (.real)
+            j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 0], calm)  # the time's ripple, j
             ok, y, k7, err, dense = dp5_step(
                 ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
                 step_rows(rows, e_ref, faces, tau, calm),
@@ -767,7 +771,9 @@ def in_angle(
                 steps += 1
                 at_kink = True
                 c_end = friction_at(scratch_rows[6, 7], calm)
-                j_step = inertia_at(scratch_rows[6, 8], scratch_rows[6, 9], calm)
+                j_step = inertia_at(
+                    scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 0], calm
+                )
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             # the time's frozen ripple back
             t_new = time_back(y[2], tau, j_step, calm)
@@ -785,9 +791,10 @@ def in_angle(
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
             if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
-                slope = energy_slope(k7[0], theta_new, e_ref, segment, calm)
+                edge = edges[parity][1]
+                slope = energy_slope(k7[0], e_ref, edge, calm)
                 jump, dt, dW = window_jump(
-                    theta_new, u_new, slope, -1.0, segment, faces, scratch_rows[6], calm
+                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows[6], calm
                 )  # (the sub-step's rows are read)
                 u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
             frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)
@@ -809,7 +816,7 @@ def in_angle(
             c_at, j_at = c_end, add_integrals(j_at, j_step, calm)
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
                 (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
-                at_wind_kink, whole, m, width, h, calm,
+                at_wind_kink, whole, m, width, h, j_step[2],
             )  # fmt: skip
             if at_wind_kink:
                 kink = next_kink(max(t, kink), machine.wind)

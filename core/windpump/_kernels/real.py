@@ -506,12 +506,14 @@ _entry(time_frozen)(
 )
 
 
-def inertia_at(J, X, machine):
-    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]`` (zeros for
-    the ideal machine, whose rows hold nothing there)."""
+def inertia_at(J, X, j, machine):
+    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]``, and J / I_eff
+    where it ends, ``rows[6, 0]`` (zeros and 1.0 for the ideal machine, whose rows hold nothing
+    there). Taken from the rows, not computed again at the sub-step's end (a ``sincos`` a step
+    with reciprocating masses)."""
 
 
-_entry(inertia_at)(lambda J, X, machine: (0.0, 0.0), lambda J, X, machine: (J, X))
+_entry(inertia_at)(lambda J, X, j, machine: (0.0, 0.0, 1.0), lambda J, X, j, machine: (J, X, j))
 
 
 def time_back(t, frozen_time, step, machine):
@@ -977,11 +979,11 @@ def next_leak_kink(theta, theta_dot, segment, machine):
 
 
 @kernel
-def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
+def _leak_kink_near(dead_centre, rising, target, sign, L_over_R, iterations):
     """The angle psi past a dead centre (0 or pi) where the face's |lever arm|
     ``sign * a(dead_centre + psi)`` reaches ``target``: on its rising side (psi < pi/2) or its
     falling side. Newton's method inside a shrinking bracket (|a| is 1 at pi/2 and 0 at the dead
-    centres); NaN when the arm never reaches the target."""
+    centres), at most ``iterations`` of them; NaN when the arm never reaches the target."""
     if target >= 1.0:
         return math.nan
     lo, hi = (0.0, 0.5 * math.pi) if rising else (0.5 * math.pi, math.pi)
@@ -995,7 +997,7 @@ def _leak_kink_near(dead_centre, rising, target, sign, L_over_R):
     # Converged to the round-off of the arm's angle dead_centre + psi (below it, past pi, the
     # iterates wandered in the round-off until the bracket closed: 9 iterations, not 3)
     close = 4e-16 * dead_centre
-    for _ in range(100):
+    for _ in range(iterations):
         residual = sign * lever_arm(dead_centre + psi, L_over_R) - target
         if residual == 0.0:
             return psi
@@ -1033,7 +1035,7 @@ def _next_leak_kink(theta, theta_dot, segment, machine):
         dead_centre = math.pi * (half % 2)  # reduced: Newton's iterates keep their digits
         sign = 1.0 if half % 2 == 0 else -1.0  # the arm's, as sin's: positive in an even half
         for rising in (True, False):  # near the dead centre it left, and near the next
-            psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R)
+            psi = _leak_kink_near(dead_centre, rising, target, sign, machine.L_over_R, 100)
             kink = lag + half * math.pi + psi
             if not theta + 1e-9 * width < kink < end - 1e-9 * width:
                 continue
@@ -1113,37 +1115,44 @@ _entry(leak_scale)(
 
 
 @kernel
-def _leaky_flow_factor(rows, row, theta_dot, machine):
-    """``Q / (2 A R theta_dot)`` of the delivering faces whose |lever arms| ``rows[row, 1:]``
-    holds (0 at rest): Q = sum max(A R |a_k| theta_dot - q_L, 0)."""
-    real = machine.real
-    if not theta_dot > 0.0:
-        return 0.0
-    Q = 0.0
-    for k in range(machine.cylinders):
-        Q += delivered_flow(real.AR * rows[row, 1 + k] * theta_dot, real.q_L)
-    return 0.5 * Q / (real.AR * theta_dot)
-
-
-@kernel
 def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
     """With a leak hole, each sample's delivered flow over ``2 A R theta_dot`` [-] (0 at rest):
-    what the driver's flow factor is for a tight piston, ``2 R A (this) theta_dot`` the flow.
-    The lever arms at the grid angles g pi / n_per_stroke are tabulated; a sample off them
-    computes its own."""
+    what the driver's flow factor is for a tight piston, ``2 R A (this) theta_dot`` the flow:
+    ``Q = sum max(A R |a_k| theta_dot - q_L, 0)`` over the delivering faces. The faces' ``A R
+    |a_k|`` at the grid angles g pi / n_per_stroke are tabulated; a sample off them computes its
+    own. One loop, no helper taking the table: an array handed to a compiled helper per sample
+    costs an atomic reference pair (0.3 ms of the seed example's 600 s with a hole, 45,000
+    samples: a tenth of its run)."""
+    real = machine.real
     period = 2 * n_per_stroke
     delta = math.pi / n_per_stroke
-    levers, own = np.empty((period, ROW)), np.empty((1, ROW))
+    levers, own = np.empty((period, ROW)), np.empty(ROW)
     for row in range(period):
         _sums(levers[row], row * delta, (row * machine.cylinders) // n_per_stroke, machine, False)
+        for k in range(machine.cylinders):
+            levers[row, 1 + k] *= real.AR
     factors = np.empty(theta.shape[0])
+    # The last sample's grid index and its row: the next sample is most often the next grid
+    # angle (no division, rounding or remainder: 3.1 -> 2.1 ns a sample)
+    g, row = -2, 0
     for i in range(theta.shape[0]):
-        g = int(round(theta[i] / delta))
-        if g * delta == theta[i]:
-            factors[i] = _leaky_flow_factor(levers, g % period, theta_dot[i], machine)
+        speed = theta_dot[i]
+        if not speed > 0.0:
+            factors[i] = 0.0
+            continue
+        if (g + 1) * delta == theta[i]:
+            g, row = g + 1, row + 1 if row + 1 < period else 0
         else:
-            _sums(own[0], theta[i], segment_at(theta[i], machine), machine, False)
-            factors[i] = _leaky_flow_factor(own, 0, theta_dot[i], machine)
+            g = int(round(theta[i] / delta))
+            row = g % period
+        on_grid = g * delta == theta[i]
+        if not on_grid:
+            _sums(own, theta[i], segment_at(theta[i], machine), machine, False)
+        Q = 0.0
+        for k in range(machine.cylinders):
+            swept = levers[row, 1 + k] if on_grid else real.AR * own[1 + k]
+            Q += delivered_flow(swept * speed, real.q_L)
+        factors[i] = 0.5 * Q / (real.AR * speed)
     return factors
 
 
@@ -1211,9 +1220,10 @@ _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
 
 WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
 WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
+WINDOW_NEWTON = 2  # Newton's iterations for a window's kink (from a first guess off by ~target^2)
 
 
-def open_windows(theta, u, slope, h, segment, delta, machine):
+def open_windows(theta, u, slope, h, segment, delta, j, machine):
     """At a delivering segment's start theta, at energy u with slope du/dtheta: how many faces
     deliver in it, as a float, when its hole's windows are narrow enough to be corrected apart
     (:func:`window_jump`), else -1.0 (and always for the ideal machine, or a tight piston); h
@@ -1223,16 +1233,16 @@ def open_windows(theta, u, slope, h, segment, delta, machine):
     window at most WINDOW_DRIFT of it, and no grid angle ``g delta`` inside either window but the
     dead centres (the samples there are taken before the jump at the start, after it at the end),
     nor a whole sub-step h (past the first the run may go on without windows: the start's is
-    behind it).
+    behind it). ``j`` is J / I_eff at theta (:func:`window_edges`).
     """
 
 
 @kernel
-def _open_windows(theta, u, slope, h, segment, delta, machine):
+def _open_windows(theta, u, slope, h, segment, delta, j, machine):
     real = machine.real
     if real.q_L == 0.0 or not u > 0.0:
         return -1.0
-    theta_dot = math.sqrt(2.0 * u / _inertia_ratio(theta, machine))
+    theta_dot = math.sqrt(2.0 * u / j)
     target = real.q_L / (real.AR * theta_dot)
     if not target <= WINDOW_TARGET:
         return -1.0
@@ -1251,31 +1261,68 @@ def _open_windows(theta, u, slope, h, segment, delta, machine):
     return faces
 
 
-_entry(open_windows)(lambda theta, u, slope, h, segment, delta, machine: -1.0, _open_windows)
+_entry(open_windows)(lambda theta, u, slope, h, segment, delta, j, machine: -1.0, _open_windows)
 
 
-def energy_slope(rate, theta, e_ref, segment, machine):
-    """de/dtheta [J/(kg m^2) per rad] where x0's rate is ``rate``: e = x0 + Lambda - e_ref C
-    (0.0 for the ideal machine, which has no windows)."""
-
-
-def _energy_slope(rate, theta, e_ref, segment, machine):
-    slope = rate + conservative_torque(theta, segment, machine) * machine.inv_I_eff
-    if machine.real.friction != 0.0:
-        slope -= e_ref * friction_density(theta, segment, machine)
-    return slope
-
-
-_entry(energy_slope)(lambda rate, theta, e_ref, segment, machine: 0.0, _energy_slope)
+def window_edges(machine):
+    """What a leak hole's windows take at a segment's edges, which depends on the angle alone:
+    ``edges[parity][0]`` at the start of a segment of that parity, ``[1]`` at its end, each (the
+    conservative torque over I_eff [1/s^2], the frozen friction's density c [1/rad], J / I_eff
+    [-]). Every segment of a parity loads the crank the same way (:mod:`.driver`): computed
+    once, not at every delivering segment's two edges (0.1 us a segment). Constants for the
+    ideal machine, which has no windows."""
 
 
 @kernel
-def _window_widths(theta, e, slope, side, segment, machine):
+def _edge(theta, segment, machine):
+    """(conservative torque / I_eff, c, J / I_eff) at theta (:func:`window_edges`)."""
+    c = friction_density(theta, segment, machine) if machine.real.friction != 0.0 else 0.0
+    torque = conservative_torque(theta, segment, machine) * machine.inv_I_eff
+    return torque, c, _inertia_ratio(theta, machine)
+
+
+def _window_edges(machine):
+    starts = (segment_start(0, machine), segment_start(1, machine), segment_start(2, machine))
+    return (
+        (_edge(starts[0], 0, machine), _edge(starts[1], 0, machine)),
+        (_edge(starts[1], 1, machine), _edge(starts[2], 1, machine)),
+    )
+
+
+_IDEAL_EDGE = (0.0, 0.0, 1.0)
+_entry(window_edges)(
+    lambda machine: ((_IDEAL_EDGE, _IDEAL_EDGE), (_IDEAL_EDGE, _IDEAL_EDGE)), _window_edges
+)
+
+
+def energy_slope(rate, e_ref, edge, machine):
+    """de/dtheta [J/(kg m^2) per rad] at a segment's edge (:func:`window_edges`' ``edge``)
+    where x0's rate is ``rate``: e = x0 + Lambda - e_ref C, for a leak hole's windows
+    (:func:`open_windows`, :func:`window_jump`); 0.0 without a hole (the ideal machine, a tight
+    piston), which has no windows."""
+
+
+def _energy_slope(rate, e_ref, edge, machine):
+    if machine.real.q_L == 0.0:
+        return 0.0
+    slope = rate + edge[0]
+    if machine.real.friction != 0.0:
+        slope -= e_ref * edge[1]
+    return slope
+
+
+_entry(energy_slope)(lambda rate, e_ref, edge, machine: 0.0, _energy_slope)
+
+
+@kernel
+def _window_widths(theta, e, slope, side, segment, j, machine):
     """The widths [rad] of the windows of the faces whose dead centre is the segment's start
     (side 1) or end (side -1), theta: (the narrowest, the next wider or inf), inf where there is
     none (at most two faces share a dead centre: a cylinder's and the opposite one's). The kink
     is where the face's swept flow reaches q_L at the speed there, e growing linearly from theta
-    (the speed taken at the kink's first guess, from the arm's slope at the dead centre)."""
+    (the speed taken at the kink's first guess, from the arm's slope at the dead centre; J / I_eff
+    = j there). Newton stops after WINDOW_NEWTON iterations: the kink is where the face's flow
+    reaches q_L at the speed of e taken linear across the window, itself an approximation."""
     real = machine.real
     width = math.pi / machine.cylinders
     middle = segment_start(segment, machine) + 0.5 * width
@@ -1294,11 +1341,11 @@ def _window_widths(theta, e, slope, side, segment, machine):
         sign = 1.0 if half % 2 == 0 else -1.0
         at_top = (dead_centre == 0.0) == (side > 0)
         arm_slope = 1.0 + 1.0 / machine.L_over_R if at_top else 1.0 - 1.0 / machine.L_over_R
-        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / _inertia_ratio(theta, machine)))
+        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / j))
         guess /= arm_slope
-        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / _inertia_ratio(theta, machine))
+        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / j)
         target = real.q_L / (real.AR * theta_dot)
-        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R)
+        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R, WINDOW_NEWTON)
         if side < 0:
             psi = math.pi - psi
         if psi < first:
@@ -1308,7 +1355,7 @@ def _window_widths(theta, e, slope, side, segment, machine):
     return first, second
 
 
-def window_jump(theta, e, slope, side, segment, faces, row, machine):
+def window_jump(theta, e, slope, side, segment, faces, j, row, machine):
     """The windows next to the dead centre theta, the segment's start (side 1) or end (side -1),
     of a segment stepped on :func:`_continued_loads` at energy e (de/dtheta = slope there):
     (the jump of e, of the time, and of the work quadratures), true less continued.
@@ -1317,17 +1364,18 @@ def window_jump(theta, e, slope, side, segment, faces, row, machine):
     friction; the windmill's is second order), the jumps are its integrals, e's being -excess /
     I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
     e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
-    between the kinks (the integrand is smooth between them). ``row`` is scratch (ROW numbers):
+    between the kinks (the integrand is smooth between them). ``j`` is J / I_eff at theta
+    (:func:`window_edges`). ``row`` is scratch (ROW numbers):
     one allocated per call cost the seed with a hole 0.1 us a window."""
 
 
 @kernel
-def _window_jump(theta, e, slope, side, segment, faces, row, machine):
+def _window_jump(theta, e, slope, side, segment, faces, j, row, machine):
     real = machine.real
     x, w = GAUSS4
     jump = dt = leaked = friction = excess = 0.0
     low = 0.0
-    widths = _window_widths(theta, e, slope, side, segment, machine)
+    widths = _window_widths(theta, e, slope, side, segment, j, machine)
     for high in widths:
         if high == math.inf:
             break
@@ -1351,7 +1399,7 @@ def _window_jump(theta, e, slope, side, segment, faces, row, machine):
 
 
 _entry(window_jump)(
-    lambda theta, e, slope, side, segment, faces, row, machine: (0.0, 0.0, 0.0), _window_jump
+    lambda theta, e, slope, side, segment, faces, j, row, machine: (0.0, 0.0, 0.0), _window_jump
 )
 
 

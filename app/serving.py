@@ -564,55 +564,43 @@ def _next_tick(document, callback: Callable[[], None], queued: Callable[[], None
 
 
 class FileReaders:
-    """A process of its own for reading an uploaded file (``in_a_process``), once the server
-    has started it (``start``, app_hooks.py); before that (a notebook, the tests) a file is read
-    where it is asked for.
+    """A process of its own for reading each uploaded file (``in_a_process``), once the server
+    has started them (``start``, app_hooks.py); before that (a notebook, the tests) a file is
+    read where it is asked for.
 
     Reading a file is pure Python: a 10 MB wind CSV is ~1.8 s of it. In a thread it held the GIL
     half of that time, and every other page's move took twice as long meanwhile; in a process
-    it costs the server's loop nothing. The process is spawned for each file and ends with it
+    it costs the server's loop nothing. The process is spawned for the file and ends with it
     (~0.2 s to start: it imports ``windpump``, not numba, Panel or Bokeh), so the ~100 MB a big
     file's Python objects take go back to the system at once, and a reader that dies takes only
-    its file with it.
+    its file with it. One pool per file, not one long-lived pool whose process ends after each
+    task (``max_tasks_per_child``): on Python 3.11 to 3.13 such a pool can stop replacing its
+    process while tasks are queued, and every later read would wait for ever (CPython
+    gh-115634), and with it the threads of ``OFF_THE_LOOP`` waiting for the reads.
     """
 
     def __init__(self):
-        self.pool: ProcessPoolExecutor | None = None
-        self.lock = threading.Lock()
+        self.started = False
 
     def start(self) -> None:
-        with self.lock:
-            if self.pool is None:
-                self.pool = _reader_pool()
+        self.started = True
 
     def stop(self) -> None:
-        with self.lock:
-            pool, self.pool = self.pool, None
-        if pool is not None:
-            pool.shutdown(wait=True, cancel_futures=True)
+        self.started = False
 
     def read(self, function: Callable[..., Any], *args: Any) -> Any:
-        """``function(*args)`` in the reading process, waited for (call it off the event loop);
+        """``function(*args)`` in a process of its own, waited for (call it off the event loop);
         what it raises is raised here. ``function`` is the core's (``windpump``), imported by
         name in the spawned process: served, this module is a package of Bokeh's making, which
         another process cannot import."""
-        with self.lock:
-            pool = self.pool
-        if pool is None:
+        if not self.started:
             return function(*args)
-        try:
-            return _read_only(pool.submit(function, *args).result())
-        except BrokenProcessPool:  # the reader died (killed, out of memory): a new one next time
-            with self.lock:
-                if self.pool is pool:
-                    self.pool = _reader_pool()
-            raise RuntimeError("the process reading the file stopped") from None
-
-
-def _reader_pool() -> ProcessPoolExecutor:
-    return ProcessPoolExecutor(
-        max_workers=1, mp_context=multiprocessing.get_context("spawn"), max_tasks_per_child=1
-    )
+        spawn = multiprocessing.get_context("spawn")
+        with ProcessPoolExecutor(max_workers=1, mp_context=spawn) as pool:
+            try:
+                return _read_only(pool.submit(function, *args).result())
+            except BrokenProcessPool:  # the reader died (killed, out of memory)
+                raise RuntimeError("the process reading the file stopped") from None
 
 
 def _read_only(value: Any) -> Any:

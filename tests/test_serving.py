@@ -440,3 +440,28 @@ def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
         assert readers.read(os.getpid) != os.getpid()  # and a new one reads the next file
     finally:
         readers.stop()
+
+
+def test_files_read_at_once_by_several_pages_are_all_read():
+    """Four pages' uploads read at the same moment each get their record, each in a process
+    of its own, none waiting for ever."""
+    import concurrent.futures
+
+    import numpy as np
+
+    from windpump.wind import read_csv
+    from windpump_app import serving
+
+    files = [f"time,speed\n0,{v}\n10,6\n".encode() for v in (1.5, 2.5, 3.5, 4.5)]
+    readers = serving.FileReaders()
+    readers.start()
+    pages = concurrent.futures.ThreadPoolExecutor(max_workers=len(files))
+    try:
+        reads = [pages.submit(readers.read, read_csv, data) for data in files]
+        done, waiting = concurrent.futures.wait(reads, timeout=120)
+        assert not waiting, f"{len(waiting)} of {len(files)} reads never came back"
+        assert [read.result().V[0] for read in reads] == [1.5, 2.5, 3.5, 4.5]
+        assert all(np.array_equal(r.result().t, [0.0, 10.0]) for r in reads)
+    finally:
+        readers.stop()
+        pages.shutdown(wait=False, cancel_futures=True)

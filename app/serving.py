@@ -25,6 +25,7 @@ log = logging.getLogger("windpump.app")
 
 _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
+_NICE = hasattr(os, "nice")  # Unix: a file-reading process runs below the server's priority
 
 
 def session_closed(session_context) -> None:  # Bokeh requires exactly this signature
@@ -577,7 +578,13 @@ class FileReaders:
     task (``max_tasks_per_child``): on Python 3.11 to 3.13 such a pool can stop replacing its
     process while tasks are queued, and every later read would wait for ever (CPython
     gh-115634), and with it the threads of ``OFF_THE_LOOP`` waiting for the reads.
+
+    The reader runs ``NICENESS`` steps below the server's CPU priority: on a laptop's two cores
+    the server, a reader and the browsers share the CPU, and a reader at the same priority took
+    a core from the pages' moves for the ~2 s of a big file.
     """
+
+    NICENESS = 10  # added to the reader's nice value (Unix): the server's moves come first
 
     def __init__(self):
         self.started = False
@@ -596,7 +603,8 @@ class FileReaders:
         if not self.started:
             return function(*args)
         spawn = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=1, mp_context=spawn) as pool:
+        lower = {"initializer": os.nice, "initargs": (self.NICENESS,)} if _NICE else {}
+        with ProcessPoolExecutor(max_workers=1, mp_context=spawn, **lower) as pool:
             try:
                 return _read_only(pool.submit(function, *args).result())
             except BrokenProcessPool:  # the reader died (killed, out of memory)

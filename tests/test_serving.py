@@ -410,7 +410,8 @@ def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
     """serving.FILE_READERS, started as the server starts it: the core's reader runs in another
     process (a 10 MB CSV is ~2 s of pure Python, which in a thread held the GIL from every
     page's moves), its record comes back read-only and equal to the core's own read here, a
-    refusal comes back with the core's message, and a reader that dies is replaced."""
+    refusal comes back with the core's message, a reader that dies is replaced, and the reader
+    runs below the server's CPU priority."""
     import os
 
     import numpy as np
@@ -425,6 +426,8 @@ def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
     readers.start()
     try:
         assert readers.read(os.getpid) != os.getpid()
+        if hasattr(os, "nice"):  # the reader yields the CPU to the server's moves
+            assert readers.read(os.nice, 0) == min(19, os.nice(0) + readers.NICENESS)
         record, here = readers.read(read_csv, data), read_csv(data)
         assert np.array_equal(record.t, here.t) and np.array_equal(record.V, here.V)
         assert not record.t.flags.writeable and not record.V.flags.writeable

@@ -208,10 +208,14 @@ class WindTab(Tab):
         self._wanted_curve = asked
         if not self._drawn_curve:  # a first curve: the figure gets ranges until it comes
             refill(self.sources["curve"], {"V": [0.0, 20.0], "flow": [0.0, 0.0]})
-        off_the_loop(lambda: steady_wind(*asked), lambda outcome: self._draw_curve(asked, outcome))
+
+        def work():  # a curve superseded before its turn in the pool is not worked out
+            return steady_wind(*asked) if asked == self._wanted_curve else None
+
+        off_the_loop(work, lambda outcome: self._draw_curve(asked, outcome))
 
     def _draw_curve(self, asked: tuple, outcome) -> None:
-        if asked != self._wanted_curve:
+        if asked != self._wanted_curve or outcome is None:
             return  # a newer design or wind was asked for meanwhile: its curve draws
         if isinstance(outcome, Exception):
             said = str(outcome)
@@ -272,7 +276,9 @@ class WindTab(Tab):
 
         theta0, kick = inputs.theta0, inputs.theta_dot0  # as asked: the inputs move on
 
-        def work() -> tuple:
+        def work() -> tuple | None:
+            if not _same_day(run_of, self._wanted_day):  # superseded before its turn: a day
+                return None  # (~1 s) run for nobody would hold the pool from every page
             return run_day(design, wind_of(wind), theta0, kick)
 
         off_the_loop(work, lambda outcome: self._draw_day(run_of, source, outcome))
@@ -288,7 +294,7 @@ class WindTab(Tab):
     def _draw_day(self, run_of: tuple, source: str, outcome) -> None:
         """Draw the day ``outcome`` = (day, low, high) of ``run_of``, unless a newer one is
         wanted; a refused day says why."""
-        if not _same_day(run_of, self._wanted_day):
+        if not _same_day(run_of, self._wanted_day) or outcome is None:
             return  # a newer design or wind was asked for meanwhile: its run draws
         if isinstance(outcome, ValueError):
             self.error.object = f"The day cannot be run: {outcome}"

@@ -222,10 +222,14 @@ def test_presentation_mode_gives_the_steady_wind_plot_room_for_its_larger_legend
 
 def test_served_a_day_runs_off_the_loop_says_so_and_the_newest_wins(monkeypatch):
     """Served, the day runs off the event loop (``off_the_loop``): the tab says it is working,
-    and when two moves' days come back in the wrong order only the newer one is drawn."""
+    and when two moves' days come back in the wrong order only the newer one is drawn; a day
+    superseded before its turn in the pool is not run at all (~1 s of a shared thread)."""
     from windpump_app import wind_tab
 
     held: list = []  # the days' (work, then) as the thread pool would run them
+    ran: list = []  # the designs whose day was run
+    run_day = wind_tab.run_day
+    monkeypatch.setattr(wind_tab, "run_day", lambda d, *a: ran.append(d) or run_day(d, *a))
 
     def days_held(work, then) -> None:  # the steady wind's curve at once
         if "_update_curve" in then.__qualname__:
@@ -245,6 +249,7 @@ def test_served_a_day_runs_off_the_loop_says_so_and_the_newest_wins(monkeypatch)
     older_work, older_then = held[0]
     older_then(older_work())  # the older day, late: not drawn over the newer
     assert value(explorer, "day_litres") == newer
+    assert [d.T_0 for d in ran] == [0.3]  # the older, superseded, was never run
     design, record = SEED.replace(T_0=0.3), gusty(5.0, DAY, k=2.0, time_scale=60.0, seed=1)
     run = windpump.simulate(design, DAY, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
     assert newer == litres(1e3 * run.volume[-1])
@@ -332,8 +337,14 @@ def test_served_the_steady_winds_numbers_are_worked_out_off_the_loop_the_newest_
     explorer.set_values(h=4.0)  # a newer curve, asked for before the first came back
     curves = [(w, t) for w, t in held if "_update_curve" in t.__qualname__]
     assert len(curves) == 2 and list(explorer.wind.sources["curve"].data["flow"]) == [0.0, 0.0]
+    worked: list = []
+    steady_wind = wind_tab.steady_wind
+    monkeypatch.setattr(
+        wind_tab, "steady_wind", lambda d, *a: worked.append(d) or steady_wind(d, *a)
+    )
     for work, then in reversed(curves):  # the newer first, the older late
         then(work())
+    assert [d.h for d in worked] == [4.0]  # the older, superseded before its turn: not worked out
     design = explorer.inputs.design_at_v_ref()
     assert design.h == 4.0 and design.d_leak == 0.0015
     V = explorer.wind.sources["curve"].data["V"]

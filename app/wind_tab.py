@@ -148,6 +148,8 @@ class WindTab(Tab):
         self.measured_name = ""
         self.sources: dict[str, ColumnDataSource] = {}
         self.readouts = {name: Readout(name, css_classes=PAIR) for name in WIND_READOUTS}
+        for name, label in WIND_READOUTS.items():  # laid out as they will be: their numbers come
+            self.readouts[name].show(label, "…")  # from threads, and would shift the tab on a phone
         self.upload = FileUpload(
             accept=".csv,.txt,.tsv",
             css_classes=[WIND_CLASS],  # the page's size check knows it by this

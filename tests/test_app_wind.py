@@ -337,6 +337,8 @@ def test_served_the_steady_winds_numbers_are_worked_out_off_the_loop_the_newest_
     explorer.set_values(h=4.0)  # a newer curve, asked for before the first came back
     curves = [(w, t) for w, t in held if "_update_curve" in t.__qualname__]
     assert len(curves) == 2 and list(explorer.wind.sources["curve"].data["flow"]) == [0.0, 0.0]
+    for name, label in wind_tab.WIND_READOUTS.items():  # laid out before their numbers come
+        assert f">{label}<" in explorer.wind.readouts[name].object and value(explorer, name) == "…"
     worked: list = []
     steady_wind = wind_tab.steady_wind
     monkeypatch.setattr(

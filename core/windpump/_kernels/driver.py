@@ -52,6 +52,7 @@ from .real import (
     open_windows,
     set_grid_inertia,
     split_sizes_by_parity,
+    step_aux,
     step_rows,
     time_back,
     time_frozen,
@@ -713,8 +714,8 @@ def in_angle(
             if faces >= 0.0:
                 jumped, clear_of_window = True, theta + h
                 jump, dt, dW = window_jump(
-                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows[6], calm
-                )  # (row 6 of the scratch: a split off the tables has filled only row 0)
+                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows, calm
+                )  # (the scratch's row 6: a split off the tables has filled only row 0)
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
                 u_free = frozen_start(u, work, e_ref, c_at, calm)
@@ -757,7 +758,7 @@ def in_angle(
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
             j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 0], calm)  # the time's ripple, j
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, step_aux(aux, calm),
                 step_rows(rows, e_ref, faces, tau, calm),
                 segment, machine,
             )  # fmt: skip
@@ -794,7 +795,7 @@ def in_angle(
                 edge = edges[parity][1]
                 slope = energy_slope(k7[0], e_ref, edge, calm)
                 jump, dt, dW = window_jump(
-                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows[6], calm
+                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows, calm
                 )  # (the sub-step's rows are read)
                 u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
             frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)

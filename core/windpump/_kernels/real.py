@@ -1189,6 +1189,19 @@ def _step_rows(rows, e_ref, faces, frozen_time, machine):
 _entry(step_rows)(lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows)
 
 
+def step_aux(aux, machine):
+    """A sub-step's stage values (``aux``: the conservative work at its 7 nodes, then the torque)
+    as :func:`~.stepping.dp5_step` takes them: the array for the ideal machine, whose step the
+    driver inlines; the 7 numbers for the real machine, whose step it calls (an array handed to
+    a call costs an atomic reference pair, every step)."""
+
+
+_entry(step_aux)(
+    lambda aux, machine: aux,
+    lambda aux, machine: (aux[0], aux[1], aux[2], aux[3], aux[4], aux[5], aux[6]),
+)
+
+
 def split_sizes_by_parity(m, m_other, machine):
     """After a segment, (the next segment's sub-steps, the other parity's): the ideal machine
     keeps one m for every segment, (m, m_other) as they are; the real machine one per parity,
@@ -1359,7 +1372,7 @@ def _window_widths(theta, e, slope, side, segment, j, machine):
     return first, second
 
 
-def window_jump(theta, e, slope, side, segment, faces, j, row, machine):
+def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     """The windows next to the dead centre theta, the segment's start (side 1) or end (side -1),
     of a segment stepped on :func:`_continued_loads` at energy e (de/dtheta = slope there):
     (the jump of e, of the time, and of the work quadratures), true less continued.
@@ -1369,13 +1382,15 @@ def window_jump(theta, e, slope, side, segment, faces, j, row, machine):
     I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
     e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
     (WINDOW_NODES) between the kinks (the integrand is smooth between them). ``j`` is J / I_eff
-    at theta (:func:`window_edges`). ``row`` is scratch (ROW numbers): one allocated per call
-    cost the seed with a hole 0.1 us a window."""
+    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, the last
+    written): one allocated per call cost the seed with a hole 0.1 us a window, and its last
+    row handed as a view an atomic reference pair."""
 
 
 @kernel
-def _window_jump(theta, e, slope, side, segment, faces, j, row, machine):
+def _window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     real = machine.real
+    row = rows[6]
     x, w = GAUSS_WINDOW
     jump = dt = leaked = friction = excess = 0.0
     low = 0.0
@@ -1403,7 +1418,7 @@ def _window_jump(theta, e, slope, side, segment, faces, j, row, machine):
 
 
 _entry(window_jump)(
-    lambda theta, e, slope, side, segment, faces, j, row, machine: (0.0, 0.0, 0.0), _window_jump
+    lambda theta, e, slope, side, segment, faces, j, rows, machine: (0.0, 0.0, 0.0), _window_jump
 )
 
 

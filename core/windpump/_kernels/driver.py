@@ -713,6 +713,7 @@ def in_angle(
             faces = open_windows(theta, u, slope, h, segment, grid.delta, edge[2], calm)
             if faces >= 0.0:
                 jumped, clear_of_window = True, theta + h
+            if faces > 0.0:  # (an intake segment's windows are empty: no jump, no call)
                 jump, dt, dW = window_jump(
                     theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows, calm
                 )  # (the scratch's row 6: a split off the tables has filled only row 0)
@@ -791,7 +792,7 @@ def in_angle(
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
-            if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
+            if last and faces > 0.0:  # a leak hole's window before the end (:mod:`.real`)
                 edge = edges[parity][1]
                 slope = energy_slope(k7[0], e_ref, edge, calm)
                 jump, dt, dW = window_jump(

@@ -52,7 +52,6 @@ from .real import (
     open_windows,
     set_grid_inertia,
     split_sizes_by_parity,
-    step_aux,
     step_rows,
     time_back,
     time_frozen,
@@ -759,7 +758,7 @@ def in_angle(
             c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
             j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 0], calm)  # the time's ripple, j
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, step_aux(aux, calm),
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
                 step_rows(rows, e_ref, faces, tau, calm),
                 segment, machine,
             )  # fmt: skip

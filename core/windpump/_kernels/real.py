@@ -1189,19 +1189,6 @@ def _step_rows(rows, e_ref, faces, frozen_time, machine):
 _entry(step_rows)(lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows)
 
 
-def step_aux(aux, machine):
-    """A sub-step's stage values (``aux``: the conservative work at its 7 nodes, then the torque)
-    as :func:`~.stepping.dp5_step` takes them: the array for the ideal machine, whose step the
-    driver inlines; the 7 numbers for the real machine, whose step it calls (an array handed to
-    a call costs an atomic reference pair, every step)."""
-
-
-_entry(step_aux)(
-    lambda aux, machine: aux,
-    lambda aux, machine: (aux[0], aux[1], aux[2], aux[3], aux[4], aux[5], aux[6]),
-)
-
-
 def split_sizes_by_parity(m, m_other, machine):
     """After a segment, (the next segment's sub-steps, the other parity's): the ideal machine
     keeps one m for every segment, (m, m_other) as they are; the real machine one per parity,

@@ -415,9 +415,9 @@ def test_a_windows_jump_is_the_true_run_less_the_continued_one(name, side):
     machine = kernel_machine(design)
     delivers = _kernels.model.delivering_face
     faces = sum(1.0 for k in range(design.cylinders) if delivers(segment, k, machine))
-    row = np.empty(_kernels.real.ROW)
+    rows = np.empty((7, _kernels.real.ROW))
     jump, dt, works = _kernels.real._window_jump(
-        dead_centre, e, slope, side, segment, faces, J / I_eff, row, machine
+        dead_centre, e, slope, side, segment, faces, J / I_eff, rows, machine
     )
     assert jump > 0.0 and works[1] < 0.0  # a relief, and less leaks back than q_L would
     if side > 0:  # continued from e + jump

@@ -712,9 +712,10 @@ def in_angle(
             faces = open_windows(theta, u, slope, h, segment, grid.delta, edge[2], calm)
             if faces >= 0.0:
                 jumped, clear_of_window = True, theta + h
+            if faces > 0.0:  # (an intake segment's windows are empty: no jump, no call)
                 jump, dt, dW = window_jump(
-                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows[6], calm
-                )  # (row 6 of the scratch: a split off the tables has filled only row 0)
+                    theta, u, slope, 1.0, segment, faces, edge[2], scratch_rows, calm
+                )  # (the scratch's row 6: a split off the tables has filled only row 0)
                 u, t, W = u + jump, t + dt, jump_work(W, dW, calm)
                 e_ref = frozen_energy(u, calm)
                 u_free = frozen_start(u, work, e_ref, c_at, calm)
@@ -790,11 +791,11 @@ def in_angle(
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
             W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
-            if last and faces >= 0.0:  # a leak hole's window before the end (:mod:`.real`)
+            if last and faces > 0.0:  # a leak hole's window before the end (:mod:`.real`)
                 edge = edges[parity][1]
                 slope = energy_slope(k7[0], e_ref, edge, calm)
                 jump, dt, dW = window_jump(
-                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows[6], calm
+                    theta_new, u_new, slope, -1.0, segment, faces, edge[2], scratch_rows, calm
                 )  # (the sub-step's rows are read)
                 u_new, t_new, W_new = u_new + jump, t_new + dt, jump_work(W_new, dW, calm)
             frozen = frozen_record(e_ref, c_at, W_new, tau, j_at, calm)

@@ -1220,7 +1220,11 @@ _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
 
 WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
 WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
-WINDOW_NEWTON = 2  # Newton's iterations for a window's kink (from a first guess off by ~target^2)
+WINDOW_NEWTON = 1  # Newton's iterations for a window's kink (from a first guess off by ~target^2:
+# a second moved no run of tests/real_reference.py's designs by a bit)
+WINDOW_NODES = 3  # Gauss-Legendre nodes between a window's kinks (4 moved the runs by < 1e-12;
+# 2 missed a 3 mm hole's jump at a slow crank, 0.09 rad windows, by 4e-4 of itself)
+GAUSS_WINDOW = _gauss(WINDOW_NODES)
 
 
 def open_windows(theta, u, slope, h, segment, delta, j, machine):
@@ -1355,7 +1359,7 @@ def _window_widths(theta, e, slope, side, segment, j, machine):
     return first, second
 
 
-def window_jump(theta, e, slope, side, segment, faces, j, row, machine):
+def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     """The windows next to the dead centre theta, the segment's start (side 1) or end (side -1),
     of a segment stepped on :func:`_continued_loads` at energy e (de/dtheta = slope there):
     (the jump of e, of the time, and of the work quadratures), true less continued.
@@ -1364,22 +1368,24 @@ def window_jump(theta, e, slope, side, segment, faces, j, row, machine):
     friction; the windmill's is second order), the jumps are its integrals, e's being -excess /
     I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
     e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
-    between the kinks (the integrand is smooth between them). ``j`` is J / I_eff at theta
-    (:func:`window_edges`). ``row`` is scratch (ROW numbers):
-    one allocated per call cost the seed with a hole 0.1 us a window."""
+    (WINDOW_NODES) between the kinks (the integrand is smooth between them). ``j`` is J / I_eff
+    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, the last
+    written): one allocated per call cost the seed with a hole 0.1 us a window, and its last
+    row handed as a view an atomic reference pair."""
 
 
 @kernel
-def _window_jump(theta, e, slope, side, segment, faces, j, row, machine):
+def _window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     real = machine.real
-    x, w = GAUSS4
+    row = rows[6]
+    x, w = GAUSS_WINDOW
     jump = dt = leaked = friction = excess = 0.0
     low = 0.0
     widths = _window_widths(theta, e, slope, side, segment, j, machine)
     for high in widths:
         if high == math.inf:
             break
-        for q in range(4):
+        for q in range(WINDOW_NODES):
             s = low + x[q] * (high - low)
             at = theta + side * s
             e_at = e + slope * s * side
@@ -1399,7 +1405,7 @@ def _window_jump(theta, e, slope, side, segment, faces, j, row, machine):
 
 
 _entry(window_jump)(
-    lambda theta, e, slope, side, segment, faces, j, row, machine: (0.0, 0.0, 0.0), _window_jump
+    lambda theta, e, slope, side, segment, faces, j, rows, machine: (0.0, 0.0, 0.0), _window_jump
 )
 
 

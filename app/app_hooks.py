@@ -17,7 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
-from .serving import FILE_READERS, SOLVER_READY, TIDY, watch_the_loop
+from .serving import FILE_READERS, SOLVER_READY, TIDY, large_blocks_mapped, watch_the_loop
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -47,9 +47,11 @@ def on_server_loaded(_server_context) -> None:
     scripts shrink about four times); keep a served page's session until its browser connects,
     however busy the server; accept long links; and load the solver from numba's cache before
     the server answers, or, on a first start after an install, compile it in the background
-    while pages open (they run their first design once it is ready); read uploads in a process
-    of their own (``serving.FILE_READERS``)."""
+    while pages open (they run their first design once it is ready), and then run a first Wind
+    tab's day in the background (``warm_the_wind_tab``); read uploads in a process of their own
+    (``serving.FILE_READERS``); map each large block on its own (``large_blocks_mapped``)."""
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
+    large_blocks_mapped()  # a freed upload leaves no heap of freed blocks behind (serving.py)
     servers = bokeh_servers()
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")
@@ -61,6 +63,7 @@ def on_server_loaded(_server_context) -> None:
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
         TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
+        threading.Thread(target=warm_the_wind_tab, name="warm the Wind tab", daemon=True).start()
         return
     # A first start: compile while the server answers, so a page's browser loads meanwhile
     # (serving.first_run_when_ready runs its design once the solver is ready).
@@ -80,6 +83,23 @@ def compile_in_background() -> None:
         log.exception("compiling the solver failed")
     finally:
         SOLVER_READY.set()
+    warm_the_wind_tab()
+
+
+def warm_the_wind_tab() -> None:
+    """Run what a first Wind tab runs (``wind_tab.warm_up``), off the event loop once the solver
+    is ready: the server's memory when it is ready for a class holds what every Wind tab shares
+    (the modules it imports, the kernels of a run in a wind record, the default gusty day)."""
+    from .inputs import PumpInputs
+    from .wind_tab import warm_up
+
+    started = time.perf_counter()
+    try:
+        warm_up(PumpInputs())
+    except Exception:  # a page's Wind tab will run it, and say what went wrong
+        log.exception("warming the Wind tab failed")
+        return
+    log.info("the Wind tab's first day run in %.1f s", time.perf_counter() - started)
 
 
 def prepare_solver() -> None:

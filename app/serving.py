@@ -107,6 +107,33 @@ class Tidy:
 TIDY = Tidy()
 
 
+# glibc's mallopt parameters (malloc.h)
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3
+LARGE_BLOCK = 4 * 1024 * 1024  # [bytes] a block this large or larger is mapped on its own
+TRIM_ABOVE = 2 * LARGE_BLOCK  # [bytes] free memory at a heap's top handed back (glibc's ratio)
+
+
+def large_blocks_mapped() -> bool:
+    """Have glibc map every block of LARGE_BLOCK or more on its own, handed back to the system
+    when freed, whatever blocks were freed before; True if it was done (glibc's ``mallopt``).
+
+    By default glibc maps a block of 128 KiB or more, but each mapped block freed raises that
+    threshold to its size (up to 32 MiB): a 10 MB upload's blocks (its 13 MB of base64, its
+    bytes, its record's arrays) raised it past 10 MB, and from then on every block below that
+    came from malloc's heaps, one for each thread of the moves' runs and the heavy work, whose
+    freed memory stays resident. A hall of 30 with an upload (``benchmarks/bench_hall.py``):
+    the heaps held 383 MB, 62 MB of it in use, and the server 425 MB after the hall against
+    266 MB before; with the threshold fixed, 70 MB of heaps and 330 MB after. At 128 KiB a run
+    of the paper's example took three times its CPU (its integrator's buffers mapped and
+    zeroed anew each run); at 4 MiB, with the heaps' tops handed back above 8 MiB, ~5 % more.
+    """
+    if _LIBC is None or not hasattr(_LIBC, "mallopt"):
+        return False
+    return bool(_LIBC.mallopt(M_MMAP_THRESHOLD, LARGE_BLOCK)) and bool(
+        _LIBC.mallopt(M_TRIM_THRESHOLD, TRIM_ABOVE)
+    )
+
+
 class LoopWatch:
     """What holds up the server's event loop, written to a file as JSON lines: every garbage
     collection of generation 2 (or longer than ``slow`` seconds), and every time the loop ran a

@@ -150,8 +150,10 @@ class Sidebar(pn.viewable.Viewer):
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
         self.present_toggle.jscallback(value=ZOOM_JS)
         self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
-        # the button itself in args: a click's cb_obj is the event, whose label is nothing
-        self.copy_link.js_on_click(args={"button": self.copy_link}, code=COPY_LINK_JS)
+        # The code reads the button as ``source`` (a click's cb_obj is the event, whose label is
+        # nothing), not from args: Panel's Callback.registry holds the button weakly and its
+        # callbacks strongly, so a button in its own args outlived its page (every closed page's)
+        self.copy_link.js_on_click(code=COPY_LINK_JS)
         self.dark_toggle = pn.widgets.Button(
             label="Light theme" if dark else "Dark theme", **button
         )
@@ -205,8 +207,8 @@ class Sidebar(pn.viewable.Viewer):
 COPY_LINK_JS = """
 const url = window.location.href
 const done = () => {
-  button.label = 'Link copied'
-  setTimeout(() => { button.label = 'Copy link to this state' }, 2500)
+  source.label = 'Link copied'
+  setTimeout(() => { source.label = 'Copy link to this state' }, 2500)
 }
 if (navigator.clipboard && window.isSecureContext) {
   navigator.clipboard.writeText(url).then(done, () => window.prompt('Copy this link:', url))

@@ -129,6 +129,21 @@ def run_day(design, record, theta0: float, kick: float) -> tuple:
     )
 
 
+def warm_up(inputs) -> None:
+    """What the first Wind tab a server shows runs, for ``inputs`` (a page's, ``PumpInputs``):
+    its steady-wind curve and its gusty day, run once when the server starts
+    (``app_hooks.on_server_loaded``). The modules they import (scipy's special functions,
+    integration and signal processing) and the kernels of a run in a wind record, loaded from
+    numba's cache, are then the server's from its start: the first student who opens the tab
+    waits for none of them, and none is made in the middle of a class, among its pages' objects,
+    whose memory a module kept for ever would pin once they are freed. The day is kept
+    (``gusty_day``): the first page asks for the same one."""
+    design = inputs.design_at_v_ref()
+    steady_wind(design, inputs.mean_wind, inputs.k, inputs.V)
+    day = (inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
+    run_day(design, wind_of(day), inputs.theta0, kick_in_wind(design, inputs.theta_dot0))
+
+
 class WindTab(Tab):
     """The Wind tab: the design at V_ref (its sliders' curve) under the wind inputs; the design
     in the steady wind is ``design.in_wind(inputs.V)``."""

@@ -1,0 +1,136 @@
+"""What a closed page leaves behind in the server: nothing of its own.
+
+A served page's components are dropped with its session; anything a class-level or module-level
+registry keeps of them is kept for every page a server ever served (a hall of 100, then the next
+class...). Here pages are built in-process and dropped, as a closed session drops them, and what
+still lives is counted.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import gc
+import subprocess
+import sys
+
+import panel as pn
+import pytest
+from panel.links import Callback
+from panel.reactive import Reactive
+
+from windpump_app.explorer import Explorer
+
+
+def components_alive() -> int:
+    """Panel's components anywhere in the process, once the garbage is collected."""
+    gc.collect()
+    return sum(isinstance(o, Reactive) for o in gc.get_objects())
+
+
+def a_page_dropped() -> None:
+    explorer = Explorer(defer_views=True, lazy_views=True)
+    explorer.show_views()
+    explorer.template()
+
+
+def test_a_dropped_page_leaves_none_of_its_components_alive():
+    a_page_dropped()  # what the first page imports and caches is not the page's
+    before = components_alive()
+    for _ in range(2):
+        a_page_dropped()
+    assert components_alive() == before
+
+
+def test_panels_link_registry_forgets_a_dropped_pages_buttons():
+    """Panel's ``Callback.registry`` holds a component weakly and its JavaScript callbacks
+    strongly: a callback whose ``args`` hold the component keeps it (and its page's design)."""
+    a_page_dropped()
+    gc.collect()
+    kept = [source for source in Callback.registry.keys() if isinstance(source, pn.widgets.Button)]
+    assert kept == []
+
+
+# In a process of its own (glibc's thresholds are the process's): an upload's block (16 MB)
+# freed, then twenty 6 MB blocks each beside a small block that lives on, and the twenty freed.
+BLOCKS = """
+import sys
+import numpy as np
+from windpump_app.serving import large_blocks_mapped
+
+def resident():
+    with open("/proc/self/status") as status:
+        return next(int(line.split()[1]) * 1024 for line in status if line.startswith("VmRSS"))
+
+if sys.argv[1] == "mapped" and not large_blocks_mapped():
+    raise SystemExit(3)
+upload = np.ones(16 * 2**20 // 8)
+del upload
+before = resident()
+blocks, small = [], []
+for i in range(20):
+    blocks.append(np.ones(6 * 2**20 // 8))
+    small.append(bytes(2000 + i))
+del blocks
+print((resident() - before) / 1e6)
+"""
+
+
+def kept_after_blocks(how: str) -> float:
+    """The memory [MB] a process keeps of 120 MB of blocks it freed, after an upload's block."""
+    done = subprocess.run(
+        [sys.executable, "-c", BLOCKS, how], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr or "large_blocks_mapped() did not map them"
+    return float(done.stdout)
+
+
+def glibc() -> bool:
+    name = ctypes.util.find_library("c")
+    return (
+        sys.platform.startswith("linux")
+        and name is not None
+        and hasattr(ctypes.CDLL(name), "mallopt")
+    )
+
+
+@pytest.mark.skipif(not glibc(), reason="glibc's malloc")
+def test_blocks_freed_after_an_uploads_go_back_to_the_system():
+    assert kept_after_blocks("mapped") < 10.0
+    # glibc's own rule, for comparison: the freed upload's block raised its threshold, and the
+    # blocks came from its heap, where the small blocks beside them keep them resident
+    assert kept_after_blocks("default") > 60.0
+
+
+# In a fresh process: what opening a first page's Wind tab imports and makes, with the server's
+# warm-up (app_hooks.warm_the_wind_tab) or without it.
+WIND_TAB = """
+import sys
+from windpump_app.explorer import Explorer
+from windpump_app.inputs import PumpInputs
+from windpump_app.wind_tab import gusty_day, warm_up
+
+explorer = Explorer()
+if sys.argv[1] == "warm":
+    warm_up(PumpInputs())
+modules = set(sys.modules)
+days = gusty_day.cache_info().misses
+explorer.main().active = 2  # the Wind tab
+new = sorted(name for name in set(sys.modules) - modules if name.startswith(("scipy", "windpump")))
+print(len(new), gusty_day.cache_info().misses - days, " ".join(new[:5]))
+"""
+
+
+def opening_the_wind_tab(how: str) -> tuple[int, int]:
+    """The modules of scipy and windpump a first Wind tab imports, and the gusty days it makes."""
+    done = subprocess.run(
+        [sys.executable, "-c", WIND_TAB, how], capture_output=True, text=True, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    modules, days, _ = done.stdout.split(" ", 2)
+    return int(modules), int(days)
+
+
+def test_the_servers_warm_up_leaves_a_first_wind_tab_nothing_to_import_or_make():
+    assert opening_the_wind_tab("warm") == (0, 0)
+    assert opening_the_wind_tab("cold") != (0, 0)  # what the warm-up spares it

@@ -822,6 +822,9 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         page.get_by_text("Design map", exact=True).first.click()
         page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
         assert page.evaluate(MAP_MARKER) == [4.0, 5.0]
+        # the map is worked out off the server's loop: its readout replaces "Mapping the
+        # design…" with it, and the figure settles below the longer text before a tap
+        page.get_by_text("the best sprocket ratio is").wait_for(timeout=60_000)
         image = page.evaluate(
             "() => window.Bokeh.documents[0].get_model_by_name('maptab_flow').data.image[0].length"
         )
@@ -830,7 +833,9 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         page.screenshot(path=str(ARTIFACTS / "design_map_1280x720.png"))
         canvases = [c for c in page.locator("canvas").all() if c.is_visible()]
         map_canvas = max(canvases, key=lambda c: c.bounding_box()["height"])
-        box = map_canvas.bounding_box()
+        box, deadline = None, time.monotonic() + 30
+        while box != (box := map_canvas.bounding_box()) and time.monotonic() < deadline:
+            page.wait_for_timeout(250)  # until the figure stops moving (the readout laid out)
         page.mouse.click(box["x"] + 0.45 * box["width"], box["y"] + 0.3 * box["height"])
         moved = (  # both in the link once moved (R_dagger may be absent while it is the default)
             f"() => ![null, '4.0'].includes(({QUERY})('R_dagger'))"

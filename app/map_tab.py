@@ -343,7 +343,7 @@ class MapTab(Tab):
         design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
         self._wanted = design
-        if key != self._mapped_key:
+        if self._mapped_key is None:  # the first map: later ones replace it when they come
             self.readout.object = self.waiting
         grid = self.grid
 

@@ -339,7 +339,9 @@ class MapTab(Tab):
 
     def draw(self, seen: windpump.Exploration) -> None:
         """Map the design (when anything but R₁ and h changed) and mark it: worked out off the
-        event loop (``serving.off_the_loop``), the newest design winning."""
+        event loop (``serving.off_the_loop``), the newest design winning. A design superseded
+        before its turn in the pool is not worked out: a leaky pump's map is ~1.7 s of one of
+        the two threads every page shares, and a dragged slider asks one a move."""
         design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
         self._wanted = design
@@ -347,13 +349,17 @@ class MapTab(Tab):
             self.readout.object = self.waiting
         grid = self.grid
 
-        def work() -> tuple:
+        def work() -> tuple | None:
+            if design != self._wanted:  # superseded before its turn: worked out for nobody
+                return None
             return map_of(key, *grid), marks_of(design, grid[0])
 
         off_the_loop(work, lambda outcome: self._show(design, key, outcome))
 
     def _show(self, design: windpump.Design, key: windpump.Design, outcome) -> None:
-        if design != self._wanted:
+        """Draw the map and mark ``outcome`` of ``design`` (None: superseded before it was
+        worked out), unless a newer design is wanted; one that cannot be mapped says why."""
+        if design != self._wanted or outcome is None:
             return  # a newer design was asked for meanwhile: its map and mark draw
         if isinstance(outcome, Exception):
             said = str(outcome)

@@ -26,6 +26,7 @@ from .serving import (
     stylesheets_from_this_server,
     without_mathjax,
     without_webgl,
+    writes_not_stranded,
 )
 from .uploads import guard_uploads
 from .viewport import report_views_seen
@@ -36,6 +37,7 @@ without_mathjax()
 without_webgl()
 lighter_patches()
 lighter_updates()
+writes_not_stranded()
 lighter_properties()
 lighter_components()
 stylesheets_from_this_server(document)

@@ -8,6 +8,8 @@ there. Every number comes from ``windpump``.
 
 from __future__ import annotations
 
+import functools
+import logging
 import math
 
 import numpy as np
@@ -29,9 +31,12 @@ from windpump.units import SECONDS_PER_DAY
 
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
+from .serving import off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .views import refill
+
+log = logging.getLogger("windpump.app")
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
 LEAKY_GRID = 41  # a leaky pump's map, interpolated onto GRID: ~1.7 s
@@ -173,6 +178,38 @@ def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
     return align, baseline
 
 
+@functools.lru_cache(maxsize=4)
+def map_of(key: windpump.Design, ratios: tuple, heads: tuple) -> tuple:
+    """(flow [m^3/s], stall and best gear ratios by head) of the design ``key`` (every input
+    but R₁ and h) over the ``ratios`` and ``heads`` (the page's grid, as (low, high, points)).
+    A leaky pump's averaged theory is a quadrature a point (~1 ms): it is mapped on a coarser
+    grid and interpolated onto the page's (a 160 x 160 map took 25 s; this one ~1.7 s, off the
+    event loop). Kept: the pages of a class mapping one design share it."""
+    ratios_, heads_ = np.linspace(*ratios), np.linspace(*heads)
+    if key.d_leak == 0.0:
+        mapped = windpump.design_map(key, ratios_, heads_)
+        return mapped.mean_flow, mapped.stall_gear_ratio, mapped.best_gear_ratio
+    coarse_ratios = np.linspace(ratios[0], ratios[1], LEAKY_GRID)
+    coarse_heads = np.linspace(heads[0], heads[1], LEAKY_GRID)
+    mapped = windpump.design_map(key, coarse_ratios, coarse_heads)
+    coarse = np.nan_to_num(mapped.mean_flow)  # bilinear: along the ratios, then the heads
+    rows = np.array([np.interp(ratios_, coarse_ratios, row) for row in coarse])
+    flow = np.array([np.interp(heads_, coarse_heads, column) for column in rows.T]).T
+    return (
+        flow,
+        np.interp(heads_, coarse_heads, mapped.stall_gear_ratio),
+        np.interp(heads_, coarse_heads, mapped.best_gear_ratio),
+    )
+
+
+def marks_of(design: windpump.Design, ratios: tuple) -> tuple[float, float, float]:
+    """This design's flow [m^3/day], and the best sprocket ratio on the map's ``ratios`` at its
+    head with the flow there [m^3/day] (NaN: none carries the load)."""
+    here = float(windpump.steady_flow(design, design.V_ref)) * SECONDS_PER_DAY
+    row = windpump.design_map(design, np.linspace(*ratios), [design.h])
+    return here, float(row.best_gear_ratio[0]), float(row.best_flow[0]) * SECONDS_PER_DAY
+
+
 class MapTab(Tab):
     """The Design map over the sliders' ranges of sprocket ratio and head, with this design
     marked; a tap moves the design there (``inputs``: the page's)."""
@@ -186,8 +223,11 @@ class MapTab(Tab):
     def build(self) -> None:
         self.mapped: tuple | None = None  # the last map drawn: (flow, stall and best ratios)
         self.colors = palette(self.dark)
-        self.ratios = np.linspace(*self.inputs.param["R_dagger"].bounds, GRID)
-        self.heads = np.linspace(*self.inputs.param["h"].bounds, GRID)
+        self.grid = (  # (low, high, points) of the ratios and of the heads
+            (*self.inputs.param["R_dagger"].bounds, GRID),
+            (*self.inputs.param["h"].bounds, GRID),
+        )
+        self.ratios, self.heads = (np.linspace(*axis) for axis in self.grid)
         self.sources: dict[str, ColumnDataSource] = {
             "flow": ColumnDataSource({"image": [np.full((2, 2), np.nan)]}),
             "stall": empty("ratio", "h"),
@@ -203,7 +243,8 @@ class MapTab(Tab):
         self.figure.name = "map_figure"  # a browser test finds it by name
         self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
-        self._mapped_key: windpump.Design | None = None
+        self._mapped_key: windpump.Design | None = None  # what the map drawn is of
+        self._wanted: windpump.Design | None = None  # the design last asked for
 
     def _figure(self):
         s = self.sources
@@ -297,35 +338,45 @@ class MapTab(Tab):
         self.inputs.param.update(**values)
 
     def draw(self, seen: windpump.Exploration) -> None:
-        """Map the design (when anything but R₁ and h changed) and mark it."""
+        """Map the design (when anything but R₁ and h changed) and mark it: worked out off the
+        event loop (``serving.off_the_loop``), the newest design winning. A design superseded
+        before its turn in the pool is not worked out: a leaky pump's map is ~1.7 s of one of
+        the two threads every page shares, and a dragged slider asks one a move."""
         design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
-        if key != self._mapped_key:
-            self._draw_map(design)
-            self._mapped_key = key
-        self._mark(design)
+        self._wanted = design
+        if self._mapped_key is None:  # the first map: later ones replace it when they come
+            self.readout.object = self.waiting
+        grid = self.grid
 
-    def _mapped(self, design: windpump.Design):
-        """(flow [m^3/s], stall and best gear ratios by head) on the page's grid. A leaky pump's
-        averaged theory is a quadrature a point (~1 ms): it is mapped on a coarser grid and
-        interpolated onto the page's (a 160 x 160 map took 25 s)."""
-        if design.d_leak == 0.0:
-            mapped = windpump.design_map(design, self.ratios, self.heads)
-            return mapped.mean_flow, mapped.stall_gear_ratio, mapped.best_gear_ratio
-        ratios = np.linspace(self.ratios[0], self.ratios[-1], LEAKY_GRID)
-        heads = np.linspace(self.heads[0], self.heads[-1], LEAKY_GRID)
-        mapped = windpump.design_map(design, ratios, heads)
-        coarse = np.nan_to_num(mapped.mean_flow)  # bilinear: along the ratios, then the heads
-        rows = np.array([np.interp(self.ratios, ratios, row) for row in coarse])
-        flow = np.array([np.interp(self.heads, heads, column) for column in rows.T]).T
-        return (
-            flow,
-            np.interp(self.heads, heads, mapped.stall_gear_ratio),
-            np.interp(self.heads, heads, mapped.best_gear_ratio),
-        )
+        def work() -> tuple | None:
+            if design != self._wanted:  # superseded before its turn: worked out for nobody
+                return None
+            return map_of(key, *grid), marks_of(design, grid[0])
 
-    def _draw_map(self, design: windpump.Design) -> None:
-        self.mapped = flow, stall, best = self._mapped(design)
+        off_the_loop(work, lambda outcome: self._show(design, key, outcome))
+
+    def _show(self, design: windpump.Design, key: windpump.Design, outcome) -> None:
+        """Draw the map and mark ``outcome`` of ``design`` (None: superseded before it was
+        worked out), unless a newer design is wanted; one that cannot be mapped says why."""
+        if design != self._wanted or outcome is None:
+            return  # a newer design was asked for meanwhile: its map and mark draw
+        if isinstance(outcome, Exception):
+            said = str(outcome)
+            if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
+                log.error("mapping the design failed", exc_info=outcome)
+                said = f"Something went wrong ({type(outcome).__name__}: {outcome})."
+            self.failed(said)
+            return
+        mapped, marks = outcome
+        with pn.io.hold():
+            if key != self._mapped_key:
+                self._draw_map(mapped)
+                self._mapped_key = key
+            self._mark(design, *marks)
+
+    def _draw_map(self, mapped: tuple) -> None:
+        self.mapped = flow, stall, best = mapped
         flow = flow * SECONDS_PER_DAY
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
@@ -370,11 +421,8 @@ class MapTab(Tab):
             "baseline": baseline,
         }
 
-    def _mark(self, design: windpump.Design) -> None:
-        here = float(windpump.steady_flow(design, design.V_ref)) * SECONDS_PER_DAY
+    def _mark(self, design: windpump.Design, here: float, best_ratio: float, best_flow: float):
         refill(self.sources["here"], {"ratio": [design.R_dagger], "h": [design.h], "flow": [here]})
-        row = windpump.design_map(design, self.ratios, [design.h])
-        best_ratio, best_flow = row.best_gear_ratio[0], row.best_flow[0] * SECONDS_PER_DAY
         if np.isnan(best_ratio):
             self.readout.object = (
                 f"At h = {design.h:.1f} m no sprocket ratio on this map carries the load: "

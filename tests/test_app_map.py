@@ -153,3 +153,93 @@ def test_a_leaky_pumps_map_is_its_coarse_map_interpolated(app):
     assert flow[-1, -1] == pytest.approx(coarse_flow[-1, -1])
     assert flow[7, 0] == pytest.approx(np.interp(tab.heads[7], heads, coarse_flow[:, 0]))
     assert stall == pytest.approx(np.interp(tab.heads, heads, coarse.stall_gear_ratio))
+
+
+def test_served_the_map_and_mark_are_worked_out_off_the_loop_the_newest_winning(monkeypatch):
+    """A leaky pump's map is ~1.7 s of quadrature: served, the map and the mark are worked out
+    in ``off_the_loop``'s work, the tab says it is mapping meanwhile, and a map that comes back
+    after a newer design's is not drawn over it."""
+    from windpump_app import map_tab
+
+    held: list = []
+    monkeypatch.setattr(map_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    explorer = Explorer()
+    explorer.main().active = 3
+    tab = explorer.design_map
+    assert len(held) == 1 and tab.readout.object == tab.waiting and tab.mapped is None
+    explorer.set_values(T_m=0.9)  # a newer design, asked for before the first map came back
+    outcomes = [(work(), then) for work, then in held]
+    for outcome, then in reversed(outcomes):  # the newer first, the older late
+        then(outcome)
+    design = explorer.inputs.design()
+    assert design.T_m == 0.9
+    expected = windpump.design_map(
+        design, np.linspace(0.5, 10.0, GRID), np.linspace(0.0, 30.0, GRID)
+    )
+    image = tab.sources["flow"].data["image"][0]
+    np.testing.assert_allclose(image, expected.mean_flow * SECONDS_PER_DAY, rtol=1e-12)
+    here = float(windpump.steady_flow(design, design.V_ref)) * SECONDS_PER_DAY
+    assert tab.sources["here"].data["flow"] == [pytest.approx(here, rel=1e-12)]
+
+
+def test_a_map_superseded_before_its_turn_in_the_pool_is_not_worked_out(monkeypatch):
+    """A leaky pump's map is ~1.7 s of one of the two threads every page shares: a slider
+    dragged asks a map a move, and every one worked out for nobody would hold the pool (and the
+    newest map, queued behind them) from every page. Only the newest design's is worked out."""
+    from windpump_app import map_tab
+
+    held: list = []
+    mapped: list[float] = []  # T_m of every map worked out
+    real = map_tab.map_of
+    monkeypatch.setattr(map_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    monkeypatch.setattr(
+        map_tab, "map_of", lambda key, *grid: (mapped.append(key.T_m), real(key, *grid))[1]
+    )
+    explorer = Explorer()
+    explorer.main().active = 3
+    tab = explorer.design_map
+    for T_m in (0.7, 0.8, 0.9):  # three moves before the pool takes the first map
+        explorer.set_values(T_m=T_m)
+    assert len(held) == 4
+    for work, then in held:  # the pool's turns, in order
+        then(work())
+    assert mapped == [0.9]
+    design = explorer.inputs.design()
+    expected = windpump.design_map(
+        design, np.linspace(0.5, 10.0, GRID), np.linspace(0.0, 30.0, GRID)
+    )
+    image = tab.sources["flow"].data["image"][0]
+    np.testing.assert_allclose(image, expected.mean_flow * SECONDS_PER_DAY, rtol=1e-12)
+    assert tab.sources["here"].data["h"] == [design.h]
+    assert "the best sprocket ratio is" in tab.readout.object
+
+
+def test_served_a_tap_on_a_leaky_pumps_map_marks_the_design_tapped(monkeypatch):
+    """Served, with the real threads (``serving.OFF_THE_LOOP``) and the page's next-tick
+    callbacks on an event loop (``LoopDocument``): the map of a leaky pump comes, a tap moves
+    the design, and its mark and readout follow, the core's numbers for the design tapped."""
+    import asyncio
+
+    from test_app_moves import WAIT, LoopDocument, served, until
+
+    explorer = Explorer()
+
+    async def tapped() -> None:
+        served(monkeypatch, LoopDocument)
+        explorer.main().active = 3
+        tab = explorer.design_map
+        explorer.set_values(d_leak_mm=0.5)  # a leak hole: its map is quadrature (~1.7 s)
+        await until(
+            lambda: tab._mapped_key == explorer.seen.design.replace(R1=SEED.R0, h=0.0),
+            "the leaky pump's map",
+        )
+        tab.figure._trigger_event(Tap(tab.figure, x=6.04, y=12.34))
+        await until(lambda: tab.sources["here"].data["h"] == [12.3], "the tapped design's mark")
+
+    asyncio.run(asyncio.wait_for(tapped(), 2 * WAIT))
+    design = explorer.inputs.design()
+    assert (design.R_dagger, design.h) == (pytest.approx(6.0, rel=1e-12), 12.3)
+    here = float(windpump.steady_flow(design, design.V_ref)) * SECONDS_PER_DAY
+    assert explorer.design_map.sources["here"].data["flow"] == [pytest.approx(here, rel=1e-12)]
+    row = windpump.design_map(design, np.linspace(0.5, 10.0, GRID), [12.3])
+    assert f"R₁/R₀ = {row.best_gear_ratio[0]:.2f}" in explorer.design_map.readout.object

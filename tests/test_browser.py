@@ -813,6 +813,15 @@ MAP_MARKER = """() => {
   const source = window.Bokeh.documents[0].get_model_by_name('maptab_here');
   return source && source.data.ratio.length ? [source.data.ratio[0], source.data.h[0]] : null;
 }"""
+# Where a sprocket ratio and head lie on the map's canvas [px], from its frame and ranges as
+# drawn now (the frame narrows when the map's colour bar gets its labels)
+MAP_POINT = """([ratio, h]) => {
+  const figure = window.Bokeh.documents[0].get_model_by_name('map_figure');
+  const frame = window.Bokeh.index.find_one(figure).frame.bbox;
+  const x = figure.x_range, y = figure.y_range;
+  return [frame.left + (ratio - x.start) / (x.end - x.start) * frame.width,
+          frame.top + (y.end - h) / (y.end - y.start) * frame.height];
+}"""
 QUERY = "(name) => new URLSearchParams(location.search).get(name)"
 
 
@@ -822,6 +831,9 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         page.get_by_text("Design map", exact=True).first.click()
         page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
         assert page.evaluate(MAP_MARKER) == [4.0, 5.0]
+        # the map is worked out off the server's loop: its readout replaces "Mapping the
+        # design…" with it, and the figure settles below the longer text before a tap
+        page.get_by_text("the best sprocket ratio is").wait_for(timeout=60_000)
         image = page.evaluate(
             "() => window.Bokeh.documents[0].get_model_by_name('maptab_flow').data.image[0].length"
         )
@@ -830,17 +842,25 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         page.screenshot(path=str(ARTIFACTS / "design_map_1280x720.png"))
         canvases = [c for c in page.locator("canvas").all() if c.is_visible()]
         map_canvas = max(canvases, key=lambda c: c.bounding_box()["height"])
-        box = map_canvas.bounding_box()
-        page.mouse.click(box["x"] + 0.45 * box["width"], box["y"] + 0.3 * box["height"])
+        box, deadline = None, time.monotonic() + 30
+        while box != (box := map_canvas.bounding_box()) and time.monotonic() < deadline:
+            page.wait_for_timeout(250)  # until the figure stops moving (the readout laid out)
+        # R₁/R₀ = 6.0, the middle of its step (~8 px wide), and h = 19 m: a tap at a share of
+        # the canvas fell ~1 px from the step of 5.1, whose design's R₁/R₀ is 5.1000000000000005
+        x, y = page.evaluate(MAP_POINT, [6.0, 19.0])
+        page.mouse.click(box["x"] + x, box["y"] + y)
         moved = (  # both in the link once moved (R_dagger may be absent while it is the default)
             f"() => ![null, '4.0'].includes(({QUERY})('R_dagger'))"
             f" && parseFloat(({QUERY})('h')) !== 5"
         )
         page.wait_for_function(moved, timeout=60_000)
         ratio, head = float(page.evaluate(QUERY, "R_dagger")), float(page.evaluate(QUERY, "h"))
-        assert 0.5 <= ratio <= 10.0 and head > 5.0  # above and about the middle of the map
-        page.wait_for_function(f"() => ({MAP_MARKER})()[0] === {ratio}", timeout=60_000)
-        assert page.evaluate(MAP_MARKER) == [ratio, head]
+        assert ratio == 6.0 and abs(head - 19.0) < 0.5  # a head step is ~1 px of the map
+        # the mark is the core's design: its R₁/R₀ is R₁ / R₀, the slider's value to a few ulps
+        page.wait_for_function(
+            f"() => Math.abs(({MAP_MARKER})()[0] - {ratio}) < 1e-9", timeout=60_000
+        )
+        assert page.evaluate(MAP_MARKER) == [pytest.approx(ratio, rel=1e-12), head]
         # the sliders and the run followed: the main readout is this design's margin
         design = SEED.with_ratios(R_dagger=ratio, h=head)
         wait_for_readout(page, "margin", f"{windpump.stall_margin(design):.3f}")

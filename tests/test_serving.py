@@ -468,3 +468,71 @@ def test_files_read_at_once_by_several_pages_are_all_read():
     finally:
         readers.stop()
         pages.shutdown(wait=False, cancel_futures=True)
+
+
+def test_changes_queued_while_a_page_sends_are_sent_when_its_sending_ends(monkeypatch):
+    """serving.writes_not_stranded: a page's changes that meet its socket busy are queued
+    (Panel's ``schedule_write_events``); those queued while an earlier batch is being sent go
+    out too, not only at the page's next change (the Design map's mark after a tap did not)."""
+    import asyncio
+
+    import panel as pn
+    from bokeh.document import Document
+    from bokeh.document.events import ModelChangedEvent
+    from bokeh.models import Div
+    from bokeh.protocol import Protocol
+    from panel.io import document as documents
+    from tornado.locks import Lock
+
+    from windpump_app.serving import writes_not_stranded
+
+    monkeypatch.setattr(documents, "_dispatch_msgs", documents._dispatch_msgs)  # put back after
+    writes_not_stranded()
+    if not getattr(documents._dispatch_msgs, "not_stranded", False):
+        pytest.skip(f"writes_not_stranded applies to Panel 1.9 only, not {pn.__version__}")
+
+    class Socket:  # a page's websocket: the first message's frames written when the test says
+        def __init__(self):
+            self.write_lock = Lock()
+            self.sent: list[str] = []  # the text of each message sent
+            self.first: asyncio.Future | None = None
+
+        def send(self, _connection, msg) -> list:
+            self.sent.append(msg.content["events"][0]["new"])
+            done = asyncio.get_running_loop().create_future()
+            if self.first is None:
+                self.first = done
+            else:
+                done.set_result(None)
+            return [done]
+
+    class Connection:
+        def __init__(self):
+            self._socket, self.protocol = Socket(), Protocol()
+
+    monkeypatch.setitem(
+        documents.extra_socket_handlers, Socket, lambda c, msg: c._socket.send(c, msg)
+    )
+    document, text, page = Document(), Div(text="before"), Connection()
+    document.add_root(text)
+
+    def change(new: str) -> None:
+        documents.schedule_write_events(
+            document, [page], [ModelChangedEvent(document, text, "text", new)]
+        )
+
+    async def sending() -> None:
+        change("the move's readouts")
+        for _ in range(1000):
+            if page._socket.first is not None:
+                break
+            await asyncio.sleep(0.001)
+        page._socket.first.set_result(None)  # its frames written: its task ends next
+        change("the map's mark")  # queued meanwhile, its own task after that one
+        for _ in range(1000):
+            if len(page._socket.sent) == 2:
+                return
+            await asyncio.sleep(0.001)
+
+    asyncio.run(sending())
+    assert page._socket.sent == ["the move's readouts", "the map's mark"]

@@ -40,6 +40,9 @@ log = logging.getLogger("windpump.app")
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
 LEAKY_GRID = 41  # a leaky pump's map, interpolated onto GRID: ~1.7 s
+STALE_ALPHA = (
+    0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
+)
 DECADES = 2
 
 
@@ -259,7 +262,7 @@ class MapTab(Tab):
             y_range=(y0, y1),
         )
         self.mapper = LogColorMapper(palette=Viridis256, low=0.1, high=1, nan_color=(0, 0, 0, 0))
-        image = fig.image(
+        self.image = image = fig.image(
             image="image", x=x0, y=y0, dw=x1 - x0, dh=y1 - y0, source=s["flow"],
             color_mapper=self.mapper,
         )  # fmt: skip
@@ -347,6 +350,8 @@ class MapTab(Tab):
         self._wanted = design
         if self._mapped_key is None:  # the first map: later ones replace it when they come
             self.readout.object = self.waiting
+        elif key != self._mapped_key:  # the map drawn is another design's until the new one comes
+            self.image.glyph.global_alpha = STALE_ALPHA
         grid = self.grid
 
         def work() -> tuple | None:
@@ -377,6 +382,7 @@ class MapTab(Tab):
 
     def _draw_map(self, mapped: tuple) -> None:
         self.mapped = flow, stall, best = mapped
+        self.image.glyph.global_alpha = 1.0
         flow = flow * SECONDS_PER_DAY
         refill(self.sources["flow"], {"image": [flow]})
         self.mapper.low, self.mapper.high = colour_range(flow)
@@ -438,6 +444,7 @@ class MapTab(Tab):
 
     def failed(self, message: str) -> None:
         self.readout.object = message
+        self.image.glyph.global_alpha = 1.0  # the map drawn stays, and is said not to be this one
 
     def figures(self) -> list:
         return [self.figure]

@@ -157,8 +157,8 @@ def test_a_leaky_pumps_map_is_its_coarse_map_interpolated(app):
 
 def test_served_the_map_and_mark_are_worked_out_off_the_loop_the_newest_winning(monkeypatch):
     """A leaky pump's map is ~1.7 s of quadrature: served, the map and the mark are worked out
-    in ``off_the_loop``'s work, the tab says it is mapping meanwhile, and a map that comes back
-    after a newer design's is not drawn over it."""
+    in ``off_the_loop``'s work, the tab says it is mapping meanwhile (a later map: the one
+    drawn dimmed), and a map that comes back after a newer design's is not drawn over it."""
     from windpump_app import map_tab
 
     held: list = []
@@ -171,6 +171,17 @@ def test_served_the_map_and_mark_are_worked_out_off_the_loop_the_newest_winning(
     outcomes = [(work(), then) for work, then in held]
     for outcome, then in reversed(outcomes):  # the newer first, the older late
         then(outcome)
+    assert tab.image.glyph.global_alpha == 1.0
+    explorer.set_values(h=12.0)  # the same map, another mark: the map drawn stands as it is
+    assert tab.image.glyph.global_alpha == 1.0
+    explorer.set_values(T_m=0.8)  # another map: the one drawn is dimmed until it comes
+    assert tab.image.glyph.global_alpha == map_tab.STALE_ALPHA
+    work, then = held[-1]
+    then(work())
+    assert tab.image.glyph.global_alpha == 1.0
+    explorer.set_values(T_m=0.9, h=3.0)  # back to the design checked below
+    work, then = held[-1]
+    then(work())
     design = explorer.inputs.design()
     assert design.T_m == 0.9
     expected = windpump.design_map(

@@ -213,6 +213,16 @@ def marks_of(design: windpump.Design, ratios: tuple) -> tuple[float, float, floa
     return here, float(row.best_gear_ratio[0]), float(row.best_flow[0]) * SECONDS_PER_DAY
 
 
+def best_ratio_sentence(design: windpump.Design, best_ratio: str, best_flow: str, now: str) -> str:
+    """The map's readout: at ``design``'s head the best sprocket ratio on the map lifting
+    ``best_flow`` [m^3/day], and what this design lifts (``now``), all as text."""
+    return (
+        f"At h = {design.h:.1f} m the best sprocket ratio is **R₁/R₀ = {best_ratio}**, "
+        f"lifting **{best_flow} m³/day** (averaged theory); this design, "
+        f"R₁/R₀ = {design.R_dagger:.2f}: {now}."
+    )
+
+
 class MapTab(Tab):
     """The Design map over the sliders' ranges of sprocket ratio and head, with this design
     marked; a tap moves the design there (``inputs``: the page's)."""
@@ -349,7 +359,7 @@ class MapTab(Tab):
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
         self._wanted = design
         if self._mapped_key is None:  # the first map: later ones replace it when they come
-            self.readout.object = self.waiting
+            self.readout.object = self.placeholder(design)
         elif key != self._mapped_key:  # the map drawn is another design's until the new one comes
             self.image.glyph.global_alpha = STALE_ALPHA
         grid = self.grid
@@ -436,11 +446,15 @@ class MapTab(Tab):
             )
             return
         now = f"{here:.1f} m³/day" if here > 0 else "it stalls"
-        self.readout.object = (
-            f"At h = {design.h:.1f} m the best sprocket ratio is **R₁/R₀ = {best_ratio:.2f}**, "
-            f"lifting **{best_flow:.1f} m³/day** (averaged theory); this design, "
-            f"R₁/R₀ = {design.R_dagger:.2f}: {now}."
+        self.readout.object = best_ratio_sentence(
+            design, f"{best_ratio:.2f}", f"{best_flow:.1f}", now
         )
+
+    @staticmethod
+    def placeholder(design: windpump.Design) -> str:
+        """The readout while the first map is worked out: its sentence with dashes for the
+        numbers, about as wide as they will be (no line added when they come, on a phone too)."""
+        return best_ratio_sentence(design, "–.––", "––.–", "––.– m³/day")
 
     def failed(self, message: str) -> None:
         self.readout.object = message

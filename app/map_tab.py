@@ -103,13 +103,20 @@ def mapped_colour(mapper: LogColorMapper, value: float) -> str:
 
 
 def label_place(
-    xs: np.ndarray, ys: np.ndarray, x_range, y_range, stall: np.ndarray | None = None
-) -> tuple[float, float, str, str]:
-    """Where a contour's label goes, (x, y, text_align, text_baseline): its middle vertex away
-    from the map's edges (where a label would be cut) whose label, aligned as ``label_anchor``
-    says or else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at
-    heads spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from
-    it."""
+    xs: np.ndarray,
+    ys: np.ndarray,
+    x_range,
+    y_range,
+    stall: np.ndarray | None = None,
+    taken: list[tuple[float, float, float, float]] | None = None,
+) -> tuple[float, float, str, str] | None:
+    """Where a contour's label goes, (x, y, text_align, text_baseline), clear of the labels
+    already placed (``taken``: their boxes, ``label_box``): its middle vertex away from the
+    map's edges (where a label would be cut) whose label, aligned as ``label_anchor`` says or
+    else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at heads
+    spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from it.
+    None where every place covers a label (the colour bar tells the line's level, as
+    Matplotlib's ``clabel`` leaves a label out where it does not fit)."""
     finite = np.isfinite(xs) & np.isfinite(ys)
     (x0, x1), (y0, y1) = x_range, y_range
     inner = (
@@ -128,11 +135,17 @@ def label_place(
     aligns = np.where(rightwards, "left", aligns)
     clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
     clear = finite & (clearance > LABEL_MARGIN)
-    if clear.any():
-        candidates = np.flatnonzero(inner & clear if (inner & clear).any() else clear)
+    boxes = label_box(xs, ys, aligns, baselines, x_range, y_range)
+    free = finite & ~np.any([overlap(boxes, box) for box in taken or []], axis=0)
+    if not free.any():
+        return None  # every place on the line covers a label placed before
+    wishes = (inner & clear & free, clear & free)
+    chosen = next((wish for wish in wishes if wish.any()), None)
+    if chosen is not None:
+        candidates = np.flatnonzero(chosen)
         at = candidates[len(candidates) // 2]
     else:
-        at = int(np.argmax(np.where(finite, clearance, -np.inf)))
+        at = int(np.argmax(np.where(free, clearance, -np.inf)))
     return float(xs[at]), float(ys[at]), str(aligns[at]), str(baselines[at])
 
 
@@ -162,13 +175,32 @@ def label_clearance(
     if not known.any():
         return np.full(len(xs), np.inf)
     heads = np.linspace(y0, y1, len(stall))
+    box = label_box(xs, ys, aligns, baselines, x_range, y_range)
+    left, top = box[:, 0], np.minimum(box[:, 3], 1.0)
+    boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
+    return left - (boundary - x0) / (x1 - x0)
+
+
+def label_box(
+    xs: np.ndarray, ys: np.ndarray, aligns: np.ndarray, baselines: np.ndarray, x_range, y_range
+) -> np.ndarray:
+    """The boxes (left, bottom, right, top) of labels at (xs, ys), so aligned, as shares of
+    the map's width and height (``LABEL_SIZE``), one row a label."""
+    (x0, x1), (y0, y1) = x_range, y_range
     width, height = LABEL_SIZE
     shift = np.array([SHIFT[align] for align in aligns], dtype=float)
     rise = np.array([RISE[baseline] for baseline in baselines], dtype=float)
-    left = (xs - x0) / (x1 - x0) - shift * width
-    top = np.minimum((ys - y0) / (y1 - y0) + rise * height, 1.0)
-    boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
-    return left - (boundary - x0) / (x1 - x0)
+    left = (np.asarray(xs, dtype=float) - x0) / (x1 - x0) - shift * width
+    top = (np.asarray(ys, dtype=float) - y0) / (y1 - y0) + rise * height
+    return np.column_stack([left, top - height, left + width, top])
+
+
+def overlap(boxes: np.ndarray, box) -> np.ndarray:
+    """Whether each of ``boxes`` (rows of left, bottom, right, top) overlaps ``box``."""
+    left, bottom, right, top = box
+    return (
+        (boxes[:, 0] < right) & (boxes[:, 2] > left) & (boxes[:, 1] < top) & (boxes[:, 3] > bottom)
+    )
 
 
 def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
@@ -403,29 +435,48 @@ class MapTab(Tab):
 
     def _draw_contours(self, flow: np.ndarray, stall: np.ndarray) -> None:
         """The round levels' lines, each in black or white for its level's colour and labelled
-        with its value at a point of it clear of the stall boundary (``stall``, by head)."""
+        with its value at a point of it clear of the other labels and, where it can be, of the
+        stall boundary (``stall``, by head): the shortest lines, with the fewest places, first;
+        a line with no place clear of the others' labels goes without one."""
         levels = contour_levels(flow)
         lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
-        labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
+        placed: dict[int, dict] = {}  # each labelled line's label, by its index in the lines
         if len(levels):
             drawn = contour_data(self.ratios, self.heads, flow, levels, want_fill=False).line_data
             lines = {**drawn.asdict(), "color": []}
-            for level, xs, ys in zip(drawn.levels, drawn.xs, drawn.ys, strict=True):
-                under = mapped_colour(self.mapper, level)
-                lines["color"].append(ink_on(under))
-                if np.isfinite(xs).any():
-                    label = self._contour_label(level, np.asarray(xs), np.asarray(ys), under, stall)
-                    for name, value in label.items():
-                        labels[name].append(value)
+            lines["color"] = [ink_on(mapped_colour(self.mapper, level)) for level in drawn.levels]
+            places = [int(np.isfinite(xs).sum()) for xs in drawn.xs]
+            taken: list = []  # the boxes of the labels placed so far (``label_box``)
+            for i in sorted(np.flatnonzero(places), key=places.__getitem__):
+                under = mapped_colour(self.mapper, drawn.levels[i])
+                xs, ys = np.asarray(drawn.xs[i]), np.asarray(drawn.ys[i])
+                label = self._contour_label(drawn.levels[i], xs, ys, under, stall, taken)
+                if label is not None:
+                    placed[i] = label
+        labels: dict[str, list] = {name: [] for name in self.sources["contour_labels"].data}
+        for i in sorted(placed):  # in the lines' order
+            for name, value in placed[i].items():
+                labels[name].append(value)
         self.contours.line_renderer.data_source.data = lines
         self.contours.levels = [float(level) for level in levels]
         refill(self.sources["contour_labels"], labels)
 
     def _contour_label(
-        self, level: float, xs: np.ndarray, ys: np.ndarray, under: str, stall: np.ndarray
-    ) -> dict:
+        self,
+        level: float,
+        xs: np.ndarray,
+        ys: np.ndarray,
+        under: str,
+        stall: np.ndarray,
+        taken: list,
+    ) -> dict | None:
+        """A level's label clear of the boxes ``taken``, its box added (None: none fits)."""
         bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
-        x, y, align, baseline = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float))
+        at = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float), taken)
+        if at is None:
+            return None
+        x, y, align, baseline = at
+        taken.append(label_box([x], [y], [align], [baseline], *bounds)[0])
         return {
             "x": x,
             "y": y,

@@ -263,11 +263,22 @@ def _dump(prefix):
         out.write(f"{time.time() - t0:.1f} s\n")
 
 
+_LIBC = []  # libc, loaded once (each load makes objects of its own)
+
+
+def _libc():
+    import ctypes
+
+    if not _LIBC:
+        _LIBC.append(ctypes.CDLL(None))
+    return _LIBC[0]
+
+
 def resident(address, length):
     """Bytes of [address, address+length) resident (mincore)."""
     import ctypes
 
-    libc = ctypes.CDLL(None, use_errno=True)
+    libc = _libc()
     page = 4096
     start = address & ~(page - 1)
     n = (address + length - start + page - 1) // page
@@ -296,9 +307,8 @@ class _Mallinfo2(__import__("ctypes").Structure):
 
 
 def accounting(found):
-    import ctypes
 
-    libc = ctypes.CDLL(None)
+    libc = _libc()
     libc.mallinfo2.restype = _Mallinfo2
     m = libc.mallinfo2()
     info = {f: getattr(m, f) for f, _ in _Mallinfo2._fields_}

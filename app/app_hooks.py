@@ -17,7 +17,16 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
-from .serving import FILE_READERS, SOLVER_READY, TIDY, large_blocks_mapped, watch_the_loop
+from .serving import (
+    FILE_READERS,
+    MOVE_RUNS,
+    OFF_THE_LOOP,
+    SOLVER_READY,
+    TIDY,
+    every_thread_started,
+    large_blocks_mapped,
+    watch_the_loop,
+)
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -49,7 +58,8 @@ def on_server_loaded(_server_context) -> None:
     the server answers, or, on a first start after an install, compile it in the background
     while pages open (they run their first design once it is ready), and then run a first Wind
     tab's day in the background (``warm_the_wind_tab``); read uploads in a process of their own
-    (``serving.FILE_READERS``); map each large block on its own (``large_blocks_mapped``)."""
+    (``serving.FILE_READERS``); map each large block on its own (``large_blocks_mapped``); and
+    start now what a class would start for good among its pages (``ready_for_a_class``)."""
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
     large_blocks_mapped()  # a freed upload leaves no heap of freed blocks behind (serving.py)
     servers = bokeh_servers()
@@ -60,6 +70,7 @@ def on_server_loaded(_server_context) -> None:
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
     FILE_READERS.start()  # an upload is read in a process of its own
+    ready_for_a_class()
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
         TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
@@ -74,6 +85,31 @@ def on_server_loaded(_server_context) -> None:
 def on_server_unloaded(_server_context) -> None:
     """When the server stops: no file reader left behind."""
     FILE_READERS.stop()
+
+
+# What the server's first upload imports to start its reading process (serving.FileReaders)
+READERS_IMPORT = (
+    "concurrent.futures.process",
+    "multiprocessing.popen_spawn_posix",
+    "multiprocessing.queues",
+    "multiprocessing.resource_tracker",
+    "multiprocessing.spawn",
+    "multiprocessing.synchronize",
+)
+
+
+def ready_for_a_class() -> None:
+    """Start the threads of the moves' runs and of the heavy work, and import what reading an
+    upload imports, before the first page: what a server starts or imports once is kept for
+    good, and made in the middle of a class, among its pages' objects, it kept their memory
+    after they closed (Python's allocator hands a 1 MiB arena back to the system only once
+    every object in it is freed; docs/known-issues.rst)."""
+    import importlib
+
+    every_thread_started(MOVE_RUNS.pool)
+    every_thread_started(OFF_THE_LOOP)
+    for name in READERS_IMPORT:
+        importlib.import_module(name)
 
 
 def compile_in_background() -> None:

@@ -18,6 +18,7 @@ from .serving import (
     READOUTS_FIRST,
     SOLVER_READY,
     TIDY,
+    fake_roots_forgotten,
     first_run_when_ready,
     lighter_patches,
     lighter_updates,
@@ -38,6 +39,7 @@ without_webgl()
 lighter_patches()
 lighter_updates()
 writes_not_stranded()
+fake_roots_forgotten()
 lighter_properties()
 lighter_components()
 stylesheets_from_this_server(document)

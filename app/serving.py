@@ -97,6 +97,8 @@ class Tidy:
         self.pending = None
         self.last = time.monotonic()
         self.dead = 0
+        if self.open == 0:
+            forget_the_class()
         gc.unfreeze()
         gc.collect()
         gc.freeze()
@@ -105,6 +107,18 @@ class Tidy:
 
 
 TIDY = Tidy()
+
+
+def forget_the_class() -> None:
+    """Every page has closed: forget the designs the class moved to (``dynamics.ideal_of``
+    remembers the last 64, ~10 small objects each). Made during the class, among its pages'
+    objects, they kept those pages' memory after the class: Python's allocator hands a 1 MiB
+    arena back to the system only once every object in it is freed, and after a hall of 30
+    they were in nearly every arena it had added (docs/known-issues.rst). The next class
+    fills it again (35 us a design)."""
+    from windpump.dynamics import ideal_of
+
+    ideal_of.cache_clear()
 
 
 # glibc's mallopt parameters (malloc.h)
@@ -320,6 +334,35 @@ def writes_not_stranded() -> None:
     _dispatch_msgs.not_stranded = True  # type: ignore[attr-defined]
     _dispatch_msgs.panel = dispatch  # type: ignore[attr-defined]
     documents._dispatch_msgs = _dispatch_msgs
+
+
+def fake_roots_forgotten() -> None:
+    """Panel (1.9) lists the reference of every page's template root in ``state._fake_roots``
+    (``BaseTemplate._init_doc``) and means to drop it when the page's session is destroyed
+    (``BaseTemplate._server_destroy`` pops it from the template's ``_refs``), but never records
+    it in ``_refs``: each page served left its string there for good (30 after a hall of 30),
+    each one made among that page's objects and keeping its memory once the page was gone
+    (docs/known-issues.rst), and every change of every component scans the list. Here the
+    references a template's page adds are recorded in its ``_refs``, which Panel then drops."""
+    import panel
+    from panel.io.state import state
+    from panel.template.base import BaseTemplate
+
+    init_doc = BaseTemplate._init_doc
+    if getattr(init_doc, "forgets", False) or not panel.__version__.startswith("1.9."):
+        return
+
+    def _init_doc(self, doc=None, *args, **kwargs):
+        before = set(state._fake_roots)
+        document = init_doc(self, doc, *args, **kwargs)
+        added = [ref for ref in state._fake_roots if ref not in before]
+        if len(added) == 1 and document not in self._refs:
+            self._refs[document] = added[0]
+        return document
+
+    _init_doc.forgets = True  # type: ignore[attr-defined]
+    _init_doc.panel = init_doc  # type: ignore[attr-defined]
+    BaseTemplate._init_doc = _init_doc  # type: ignore[method-assign]
 
 
 def _serializer_class():
@@ -564,6 +607,35 @@ class Runs:
 
 
 MOVE_RUNS = Runs()
+
+
+def every_thread_started(pool: ThreadPoolExecutor, within: float = 10.0) -> int:
+    """Start every thread of ``pool`` now, not when a class's work first needs it; the threads
+    started (``within`` seconds at most).
+
+    A pool starts a thread when work arrives and none is idle: served, in the middle of a
+    class. A thread's objects (its ``Thread``, locks, conditions, the pool's weak references:
+    ~40 small objects) live as long as the server, and made among the pages' objects they keep
+    the pages' memory once the pages are gone: Python's allocator hands a 1 MiB arena back to
+    the system only when every object in it is freed (docs/known-issues.rst). Here each thread
+    is given a task that waits for all the others, so none is idle until all have started.
+    """
+    threads = pool._max_workers  # type: ignore[attr-defined]  # the pool's size, as given
+    everyone = threading.Barrier(threads + 1, timeout=within)
+
+    def wait() -> None:
+        try:
+            everyone.wait()
+        except threading.BrokenBarrierError:
+            pass
+
+    for _ in range(threads):
+        pool.submit(wait)
+    try:
+        everyone.wait()
+    except threading.BrokenBarrierError:
+        log.warning("a pool's threads did not start within %.0f s", within)
+    return len(pool._threads)  # type: ignore[attr-defined]
 
 
 def served_document():

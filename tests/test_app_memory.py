@@ -152,3 +152,57 @@ def opening_the_wind_tab(how: str) -> tuple[int, int]:
 def test_the_servers_warm_up_leaves_a_first_wind_tab_nothing_to_import_or_make():
     assert opening_the_wind_tab("warm") == (0, 0)
     assert opening_the_wind_tab("cold") != (0, 0)  # what the warm-up spares it
+
+
+def test_a_closed_pages_template_root_leaves_panels_fake_roots():
+    """Panel 1.9 lists each page's template root in ``state._fake_roots`` and never dropped it
+    when the page's session ended: one string a page, kept for good (a served hall of 30 left
+    30), each made among its page's objects and keeping their memory after the page had gone.
+    ``serving.fake_roots_forgotten`` has Panel drop it, as Bokeh ends a session."""
+    from types import SimpleNamespace
+
+    from bokeh.document import Document
+    from panel.io.state import state
+
+    from windpump_app.serving import fake_roots_forgotten
+
+    fake_roots_forgotten()
+    before = list(state._fake_roots)
+    template = Explorer(defer_views=True, lazy_views=True).template()
+    document = Document()
+    template.server_doc(document)
+    assert len(state._fake_roots) == len(before) + 1
+    template._server_destroy(SimpleNamespace(_document=document))  # what Bokeh calls
+    assert state._fake_roots == before
+
+
+def test_a_class_gone_its_designs_are_forgotten(monkeypatch):
+    """Once every page has closed the designs the class moved to are forgotten: made among the
+    pages' objects, kept, they kept those pages' memory (``serving.forget_the_class``)."""
+    import windpump
+    from windpump.dynamics import ideal_of
+    from windpump_app import serving
+
+    monkeypatch.setattr(serving, "_LIBC", None)
+    ideal_of(windpump.Design.seed_example().replace(m_r=3.0))
+    tidy = serving.Tidy()
+    tidy.opened()
+    tidy.run()  # a page still open: kept
+    assert ideal_of.cache_info().currsize >= 1
+    tidy.open = 0
+    tidy.run()
+    assert ideal_of.cache_info().currsize == 0
+
+
+def test_the_servers_threads_are_started_before_a_class():
+    """Every thread of a pool started at once (``serving.every_thread_started``), not when a
+    class's work first needs it, in the middle of the class."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from windpump_app.serving import every_thread_started
+
+    pool = ThreadPoolExecutor(max_workers=3)
+    try:
+        assert every_thread_started(pool) == 3
+    finally:
+        pool.shutdown()

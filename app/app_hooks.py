@@ -18,6 +18,7 @@ import windpump
 from windpump.dynamics import solver_is_cached
 
 from .serving import FILE_READERS, SOLVER_READY, TIDY, large_blocks_mapped, watch_the_loop
+from .upload_route import serve_uploads
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -59,6 +60,7 @@ def on_server_loaded(_server_context) -> None:
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
+    serve_uploads(_server_context, servers)  # a wind or site file posted by HTTP (upload_route)
     FILE_READERS.start()  # an upload is read in a process of its own
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering

@@ -20,7 +20,9 @@ then scroll to the bottom (1-3 s after their readouts), naming every view. A ser
 input (before it) builds every view anyway and is sent nothing.
 
 ``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
-and the others' round trips are split into before/while/after.
+as the page sends it (by HTTP POST, its reference over the websocket; a server without the upload
+route, as a FileInput's base64 value), and the others' round trips are split into
+before/while/after (while: from the first byte sent until the server says it reads the file).
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
 ``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
@@ -104,6 +106,7 @@ class Student:
     watchers: list = field(default_factory=list)  # called with every ModelChanged received
     cookies: dict = field(default_factory=dict)  # as a browser keeps them (a proxy's stickiness)
     scrolls: bool = False  # scrolls to the bottom once its readouts are shown
+    token: str = ""  # the page's session token (its session's id within)
 
     async def open(self) -> None:
         self.opened = time.perf_counter()
@@ -112,7 +115,7 @@ class Student:
         )
         page = await AsyncHTTPClient().fetch(request)
         self.keep_cookies(page.headers)
-        token = TOKEN.search(page.body.decode()).group(1)
+        token = self.token = TOKEN.search(page.body.decode()).group(1)
         parsed = urlparse(self.url)
         ws_url = f"ws://{parsed.netloc}{parsed.path}/ws"
         headers = {"Origin": f"http://{parsed.netloc}", **self.cookie_header()}
@@ -456,6 +459,7 @@ async def settled(watch: Watch, target: int) -> int:
 # -- one student loads a 10 MB wind record -------------------------------------------------------
 
 UPLOAD_NAME = "hall-wind-10MB.csv"
+CHANNEL = "upload-refused"  # the CSS class of the page's upload channel (app/uploads.py)
 UPLOAD_BYTES = 9_900_000  # the page takes up to 10 MB
 
 
@@ -472,13 +476,38 @@ def wind_record(size: int) -> bytes:
 
 
 async def one_upload(url: str, end: float, window: list[float]) -> None:
-    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it (the
-    FileInput's value in base64); ``window`` gets (sent, shown) [perf_counter]."""
+    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it
+    (``app/uploads.js``): its bytes by HTTP POST to the app's upload route, and their reference
+    over the websocket (``post_upload``); from a server without the route (404), as the
+    FileInput's value in base64. ``window`` gets (sent, the server reading it) [perf_counter]."""
     import base64
 
     student = Student(url, random.Random(0))
     await student.open()
     await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
+    upload = await wind_tab(student)
+    record = wind_record(UPLOAD_BYTES)
+    shown = asyncio.Event()
+    reading = lambda new: UPLOAD_NAME in new and "Sending" not in new  # noqa: E731
+    student.watchers.append(lambda e: reading(str(e.get("new"))) and shown.set())
+    window.append(time.perf_counter())
+    if not await post_upload(student, record):
+        data = base64.b64encode(record).decode()
+        await student.patch(
+            [
+                changed(upload, "mime_type", "text/csv"),
+                changed(upload, "filename", UPLOAD_NAME),
+                changed(upload, "value", data),
+            ],
+            wait=False,
+        )
+    await asyncio.wait_for(shown.wait(), WAIT)
+    window.append(time.perf_counter())
+    student.close()
+
+
+async def wind_tab(student: Student) -> str:
+    """Open the student's Wind tab; its upload's model id, once the tab has arrived."""
     panels = [i for i, m in student.models.items() if m["type"] == "TabPanel"]
     wind = next(i for i in panels if student.models[i].get("title") == "Wind")
     tabs = next(
@@ -494,22 +523,41 @@ async def one_upload(url: str, end: float, window: list[float]) -> None:
         if time.perf_counter() > deadline:
             raise TimeoutError("the Wind tab's upload never arrived")
         await asyncio.sleep(0.2)
-    upload = next(i for i, m in student.models.items() if wind_input(m))
-    data = base64.b64encode(wind_record(UPLOAD_BYTES)).decode()
-    shown = asyncio.Event()
-    student.watchers.append(lambda e: UPLOAD_NAME in str(e.get("new")) and shown.set())
-    window.append(time.perf_counter())
-    await student.patch(
-        [
-            changed(upload, "mime_type", "text/csv"),
-            changed(upload, "filename", UPLOAD_NAME),
-            changed(upload, "value", data),
-        ],
-        wait=False,
+    return next(i for i, m in student.models.items() if wind_input(m))
+
+
+async def post_upload(student: Student, data: bytes) -> bool:
+    """Send ``data`` as the page sends a wind file: "sending" on its upload channel, the bytes
+    by HTTP POST (the session's id from its token), then "posted <id>" (or why not). False if
+    the server has no upload route."""
+    from urllib.parse import urlencode
+
+    from bokeh.util.token import get_session_id
+
+    channel = next(i for i, m in student.models.items() if CHANNEL in m.get("css_classes", []))
+
+    async def tell(state: str) -> None:
+        value = f"{len(data)}\t{int(1e3 * time.time())}\twind\t{UPLOAD_NAME}\t{state}"
+        await student.patch([changed(channel, "value", value)], wait=False)
+
+    parsed = urlparse(student.url)
+    query = urlencode(
+        {"session": get_session_id(student.token), "kind": "wind", "name": UPLOAD_NAME}
     )
-    await asyncio.wait_for(shown.wait(), WAIT)
-    window.append(time.perf_counter())
-    student.close()
+    await tell("sending")
+    request = HTTPRequest(
+        f"http://{parsed.netloc}{parsed.path}/upload?{query}",
+        method="POST",
+        body=data,
+        headers={"Content-Type": "application/octet-stream", **student.cookie_header()},
+        request_timeout=WAIT,
+    )
+    response = await AsyncHTTPClient().fetch(request, raise_error=False)
+    if response.code in (404, 405):
+        return False
+    answer = json.loads(response.body or b"{}")
+    await tell(f"posted {answer['id']}" if response.code == 200 else f"failed {answer['refused']}")
+    return True
 
 
 # -- the report ----------------------------------------------------------------------------------

@@ -491,7 +491,7 @@ async def one_upload(url: str, end: float, window: list[float]) -> None:
     reading = lambda new: UPLOAD_NAME in new and "Sending" not in new  # noqa: E731
     student.watchers.append(lambda e: reading(str(e.get("new"))) and shown.set())
     window.append(time.perf_counter())
-    if not await post_upload(student, record):
+    if await post_upload(student, record) in (404, 405):
         data = base64.b64encode(record).decode()
         await student.patch(
             [
@@ -526,10 +526,11 @@ async def wind_tab(student: Student) -> str:
     return next(i for i, m in student.models.items() if wind_input(m))
 
 
-async def post_upload(student: Student, data: bytes) -> bool:
+async def post_upload(student: Student, data: bytes) -> int:
     """Send ``data`` as the page sends a wind file: "sending" on its upload channel, the bytes
-    by HTTP POST (the session's id from its token), then "posted <id>" (or why not). False if
-    the server has no upload route."""
+    by HTTP POST (the session's id from its token, the student's cookies: a proxy's stickiness),
+    then "posted <id>" (or why not). The POST's HTTP status: 404 or 405, the server has no
+    upload route (nothing more is sent)."""
     from urllib.parse import urlencode
 
     from bokeh.util.token import get_session_id
@@ -554,10 +555,10 @@ async def post_upload(student: Student, data: bytes) -> bool:
     )
     response = await AsyncHTTPClient().fetch(request, raise_error=False)
     if response.code in (404, 405):
-        return False
+        return response.code
     answer = json.loads(response.body or b"{}")
     await tell(f"posted {answer['id']}" if response.code == 200 else f"failed {answer['refused']}")
-    return True
+    return response.code
 
 
 # -- the report ----------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from windpump_app.explorer import Explorer
-from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads
+from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
 from windpump_app.uploads import WIND_MAX_BYTES
 
 from served import served_app
@@ -170,6 +170,31 @@ def test_the_store_never_holds_more_than_its_bounds_nor_a_closed_sessions_file(s
         assert len(items) <= 3 and sum(len(i.data) for i in items) <= 100
         assert all(i.session_id in store._sessions for i in items)
         assert len({(i.session_id, i.kind) for i in items}) == len(items)  # the newest of each
+
+
+def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
+    """Without the route (``panel serve app/main.py``, a notebook) the page sends the file
+    Bokeh's way; with it, a served page's session may post and its page is told where."""
+
+    class Context:
+        id = "a-session"
+
+    class Document:
+        session_context = Context()
+        destroyed: list = []
+
+        def on_session_destroyed(self, callback):
+            self.destroyed.append(callback)
+
+    store = Uploads()
+    monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
+    assert page_opened(Document()) == {"url": "", "session": ""} and not store.is_open("a-session")
+    store.url = "/app/upload"
+    page = Document()
+    assert page_opened(page) == {"url": "/app/upload", "session": "a-session"}
+    assert store.is_open("a-session")
+    page.destroyed[0](Context())  # Bokeh destroys the session
+    assert not store.is_open("a-session")
 
 
 # -- the page's channel, in-process ----------------------------------------------------------

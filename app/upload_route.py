@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import logging
+import re
 import secrets
 import threading
 import time
@@ -247,7 +248,7 @@ def serve_uploads(server_context, servers: list) -> str:
     app_url = getattr(application, "url", None) or "/app"
     for server in servers:
         url = f"{getattr(server, '_prefix', '')}{app_url}{ROUTE}"
-        server.add_handlers(r".*", [(url, UploadHandler, {"uploads": UPLOADS})])
+        server.add_handlers(r".*", [(re.escape(url), UploadHandler, {"uploads": UPLOADS})])
         UPLOADS.url = url
         log.info("files are uploaded by HTTP at %s", url)
     return UPLOADS.url

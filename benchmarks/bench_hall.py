@@ -440,6 +440,7 @@ async def moving(students: list[Student], minutes: float, upload_to: str | None)
         for t, rt in sent:
             phase = "before" if t < window[0] else "while" if t <= window[1] else "after"
             around[phase].append(rt)
+        around["window"] = [window[1] - window[0]]  # [s] from its first byte to its reading
     return [rt for _, rt in sent], around
 
 
@@ -591,8 +592,13 @@ def report(hall: Hall) -> None:
         f"  {BURST} moving at once ({BURSTS} times), round trip [ms]: "
         f"{percentiles(hall.burst, 1e3, '{:.0f}')}"
     )
-    for phase, trips in hall.upload.items():
+    for phase in ("before", "while", "after"):
+        trips = hall.upload.get(phase, [])
         print(f"  others' moves {phase} a 10 MB upload [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
+    if hall.upload.get("window"):
+        print(
+            f"  the upload, from its first byte to the server reading it: {hall.upload['window'][0]:.2f} s"
+        )
     per_session = (memory["idle"] - memory["before"]) / hall.n / mb
     print(
         f"  server memory [MB]: before {memory['before'] / mb:.0f}, {hall.n} idle "

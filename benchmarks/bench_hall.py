@@ -23,6 +23,8 @@ input (before it) builds every view anyway and is sent nothing.
 as the page sends it (by HTTP POST, its reference over the websocket; a server without the upload
 route, as a FileInput's base64 value), and the others' round trips are split into
 before/while/after (while: from the first byte sent until the server says it reads the file).
+Ten more students, who move at no other time, move at once 2 s before the upload and again 10 ms
+after its first byte: the same moves, with and without a file arriving.
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
 ``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
@@ -432,7 +434,8 @@ async def moving(students: list[Student], minutes: float, upload_to: str | None)
     tasks = [pace(s) for s in students]
     window: list[float] = []
     if upload_to is not None:
-        tasks.append(one_upload(upload_to, end, window))
+        witnessed: dict[str, list[float]] = {}
+        tasks.append(one_upload(upload_to, end, window, witnessed))
     await asyncio.gather(*tasks)
     sent = [(t, rt) for s, k in zip(students, first, strict=True) for t, rt in s.moves[k:]]
     around: dict[str, list[float]] = {"before": [], "while": [], "after": []}
@@ -441,6 +444,7 @@ async def moving(students: list[Student], minutes: float, upload_to: str | None)
             phase = "before" if t < window[0] else "while" if t <= window[1] else "after"
             around[phase].append(rt)
         around["window"] = [window[1] - window[0]]  # [s] from its first byte to its reading
+        around.update(witnessed)
     return [rt for _, rt in sent], around
 
 
@@ -476,35 +480,73 @@ def wind_record(size: int) -> bytes:
     return "\n".join(lines).encode()
 
 
-async def one_upload(url: str, end: float, window: list[float]) -> None:
+WITNESSES = 10  # students who move at once as the upload is sent, and 2 s before it
+
+
+async def one_upload(
+    url: str, end: float, window: list[float], witnessed: dict[str, list[float]]
+) -> None:
     """A student who opens the Wind tab and loads a 10 MB record, as the page sends it
     (``app/uploads.js``): its bytes by HTTP POST to the app's upload route, and their reference
-    over the websocket (``post_upload``); from a server without the route (404), as the
-    FileInput's value in base64. ``window`` gets (sent, the server reading it) [perf_counter]."""
-    import base64
-
+    over the websocket (``post_upload``); to a server without the route, as the FileInput's
+    value in base64, as the page then sends it. ``window`` gets (sent, the server reading it)
+    [perf_counter]. WITNESSES more students (who move at no other time) move at once 2 s before
+    the upload and again 10 ms after its first byte: ``witnessed`` gets their round trips [s],
+    "calm" and "sending"."""
     student = Student(url, random.Random(0))
-    await student.open()
+    witnesses = [Student(url, random.Random(100 + k)) for k in range(WITNESSES)]
+    await asyncio.gather(student.open(), *(w.open() for w in witnesses))
     await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
     upload = await wind_tab(student)
+    route = await has_upload_route(student)
     record = wind_record(UPLOAD_BYTES)
     shown = asyncio.Event()
     reading = lambda new: UPLOAD_NAME in new and "Sending" not in new  # noqa: E731
     student.watchers.append(lambda e: reading(str(e.get("new"))) and shown.set())
+    witnessed["calm"] = await moving_at_once(witnesses)
+    await asyncio.sleep(2.0)
     window.append(time.perf_counter())
-    if await post_upload(student, record) in (404, 405):
-        data = base64.b64encode(record).decode()
-        await student.patch(
-            [
-                changed(upload, "mime_type", "text/csv"),
-                changed(upload, "filename", UPLOAD_NAME),
-                changed(upload, "value", data),
-            ],
-            wait=False,
-        )
+    sending = asyncio.ensure_future(
+        post_upload(student, record) if route else in_base64(student, upload, record)
+    )
+    await asyncio.sleep(0.01)
+    witnessed["sending"] = await moving_at_once(witnesses)
+    await sending
     await asyncio.wait_for(shown.wait(), WAIT)
     window.append(time.perf_counter())
-    student.close()
+    for one in (student, *witnesses):
+        one.close()
+
+
+async def has_upload_route(student: Student) -> bool:
+    """Whether the server has the upload route (``app/upload_route.py``): an empty POST is
+    refused there in words, and answered 404 by a server without it."""
+    parsed = urlparse(student.url)
+    request = HTTPRequest(
+        f"http://{parsed.netloc}{parsed.path}/upload?kind=wind",
+        method="POST",
+        body=b"",
+        headers=student.cookie_header(),
+        request_timeout=WAIT,
+    )
+    response = await AsyncHTTPClient().fetch(request, raise_error=False)
+    return response.code not in (404, 405)
+
+
+async def in_base64(student: Student, upload: str, record: bytes) -> None:
+    """The file as a page without the upload route sends it: the FileInput's value, in base64,
+    in one message over the websocket."""
+    import base64
+
+    data = base64.b64encode(record).decode()
+    await student.patch(
+        [
+            changed(upload, "mime_type", "text/csv"),
+            changed(upload, "filename", UPLOAD_NAME),
+            changed(upload, "value", data),
+        ],
+        wait=False,
+    )
 
 
 async def wind_tab(student: Student) -> str:
@@ -595,6 +637,9 @@ def report(hall: Hall) -> None:
     for phase in ("before", "while", "after"):
         trips = hall.upload.get(phase, [])
         print(f"  others' moves {phase} a 10 MB upload [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
+    for phase, when in (("calm", "2 s before it"), ("sending", "10 ms after its first byte")):
+        trips = hall.upload.get(phase, [])
+        print(f"  {WITNESSES} more moving at once {when} [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
     if hall.upload.get("window"):
         print(
             f"  the upload, from its first byte to the server reading it: {hall.upload['window'][0]:.2f} s"

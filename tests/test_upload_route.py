@@ -365,3 +365,13 @@ def test_served_a_10_mb_record_posted_while_another_page_moves_its_move_is_answe
     loader, said = asyncio.run(hall())
     assert loader.errors == []
     assert any(f"Reading {bench_hall.UPLOAD_NAME}" in s for s in said)  # the tab said it worked
+
+
+@pytest.mark.timeout(600)
+def test_the_upload_benchmark_runs(capsys):
+    """benchmarks/bench_upload.py keeps working (how fast is printed there, not asserted)."""
+    import bench_upload
+
+    bench_upload.main(["1"])
+    printed = capsys.readouterr().out
+    assert "HTTP POST + reference" in printed and "ratio during / no upload" in printed

@@ -27,6 +27,7 @@ from .serving import (
     large_blocks_mapped,
     watch_the_loop,
 )
+from .upload_route import serve_uploads
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -69,6 +70,7 @@ def on_server_loaded(_server_context) -> None:
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())
+    serve_uploads(_server_context, servers)  # a wind or site file posted by HTTP (upload_route)
     FILE_READERS.start()  # an upload is read in a process of its own
     ready_for_a_class()
     if solver_is_cached(windpump.Design.seed_example()):

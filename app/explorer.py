@@ -37,13 +37,14 @@ from .mechanisms import Mechanisms
 from .page import page
 from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
-from .serving import DRAW_AFTER_MOVES, TIDY
+from .serving import DRAW_AFTER_MOVES, TIDY, served_document
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
 from .site_tab import SITE_MESSAGE, SiteTab
 from .styles import NOTICE
 from .tab import PageTabs, Tab
+from .upload_route import deliver
 from .views import BINS
 from .wind_tab import WIND_MESSAGE, WindTab
 
@@ -352,18 +353,20 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def _on_refused_upload(self, _event) -> None:
         """The page stopped a file over the size limit before sending it: say so where it was
-        chosen; a value that is not a size over the limit (tampered) is ignored."""
-        refused = self.sidebar.refused_upload
-        if refused.size is None:
+        chosen; a value that is not a size over the limit (tampered) is ignored. A wind or site
+        file the page sent by HTTP: read it there (``upload_route.deliver``)."""
+        note = self.sidebar.refused_upload
+        if note.size is None:
             return
-        if refused.kind == "site":
-            self.site.refuse_size(refused.size)
-            self.sidebar.reveal.show(SITE_MESSAGE)
-        elif refused.wind:
-            self.wind.refuse_size(refused.size)
-            self.sidebar.reveal.show(WIND_MESSAGE)
-        else:
-            self.sidebar.lab.refuse_size(refused.size)
+        if note.kind == "lab":
+            self.sidebar.lab.refuse_size(note.size)
+            return
+        tab, message = (
+            (self.site, SITE_MESSAGE) if note.kind == "site" else (self.wind, WIND_MESSAGE)
+        )
+        document = served_document()
+        if deliver(note, tab, document.session_context.id if document is not None else ""):
+            self.sidebar.reveal.show(message)
 
     def _csv(self) -> io.StringIO:
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")

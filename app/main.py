@@ -29,6 +29,7 @@ from .serving import (
     without_webgl,
     writes_not_stranded,
 )
+from .upload_route import page_opened
 from .uploads import guard_uploads
 from .viewport import report_views_seen
 
@@ -44,7 +45,7 @@ lighter_properties()
 lighter_components()
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
-guard_uploads(document)
+guard_uploads(document, route=page_opened(document))  # a wind or site file by HTTP
 report_views_seen(document, ORDER)
 reopen_when_reconnected(document)
 logging.basicConfig(level=logging.INFO)

@@ -18,10 +18,19 @@ from .inputs import clipped
 from .serving import in_a_process
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
-from .uploads import SITE_CLASS, WIND_MAX_BYTES, Encoded, FileUpload, chosen, decoded, refused_size
+from .uploads import (
+    SITE_CLASS,
+    SITE_SIZE,
+    WIND_MAX_BYTES,
+    Encoded,
+    FileUpload,
+    chosen,
+    decoded,
+    refused_size,
+)
 
 WHAT = "a year of hourly weather"  # the core's refusal: "(... needs far fewer)"
-SIZE = f"{WHAT}, a TMY3 or EPW file, is about 1.5 MB"  # the page's refusal: "(...)"
+SIZE = SITE_SIZE  # the page's refusal: "(...)"
 SUFFIXES = (".csv", ".epw", ".txt", ".tsv")
 log = logging.getLogger("windpump.app")
 
@@ -109,8 +118,14 @@ class SiteRecords:
         """The page stopped a file over the limit before sending it: say so."""
         message = refused_size("weather", size, SIZE)
         if message is not None:
-            self.message.object, self.message.visible = message, True
-            self.message.alert_type = "danger"
+            self.say(message)
+
+    def say(self, message: str, alert_type: str = "danger") -> None:
+        self.message.object, self.message.alert_type, self.message.visible = (
+            message,
+            alert_type,
+            True,
+        )
 
     def describe(self, site: str, hub: float) -> str:
         """A line on the record: where, the station, the hub's height."""

@@ -18,6 +18,7 @@ from bokeh.models import ColumnDataSource
 import windpump
 
 from .figures import palette
+from .inputs import clipped
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
 from .serving import off_the_loop
@@ -225,14 +226,15 @@ class SiteTab(Tab):
 
     # -- an uploaded record ------------------------------------------------------------------
 
-    def load_data(self, data: bytes | Encoded | None) -> None:
-        """A TMY3, EPW or CSV file chosen: the site becomes it; a bad file is explained and
+    def load_data(self, data: bytes | Encoded | None, name: str | None = None) -> None:
+        """A TMY3, EPW or CSV file chosen (``name``: the file's, else the upload's): the site
+        becomes it; a bad file is explained and
         nothing changes. Either outcome is scrolled into view. Served, the file is read off the
         event loop (``serving.off_the_loop``; a TMY3 year, ~40-130 ms), the tab saying so
         meanwhile; a file chosen since wins."""
         if data is None:
             return
-        name = self.upload.filename or ""
+        name = (self.upload.filename or "") if name is None else name
         self._files += 1
         chosen = self._files
         self.records.reading(name)
@@ -257,6 +259,16 @@ class SiteTab(Tab):
     def refuse_size(self, size: int) -> None:
         """The page stopped a file over the limit before sending it: say so here."""
         self.records.refuse_size(size)
+
+    def say(self, message: str, alert_type: str = "danger") -> None:
+        """Say ``message`` under the upload (a file that could not be sent, one on its way)."""
+        self.records.say(message, alert_type)
+
+    def sending(self, name: str, size: int) -> None:
+        """The page is sending the file ``name`` by HTTP (``upload_route``): say so; an earlier
+        file's outcome, still to come, is not shown."""
+        self._files += 1
+        self.say(f"Sending {clipped(name) or 'the file'} ({size / 1e6:.1f} MB)…", "info")
 
     # -- layout ------------------------------------------------------------------------------
 

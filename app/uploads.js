@@ -1,7 +1,12 @@
 // A lab file larger than max_bytes is stopped in the browser, before Bokeh reads it and sends
 // it: over ~15 MB the page's connection would close and the design on it would be lost. The
 // server hears of the refusal through a hidden text input (CSS class `channel_class`) and says
-// so next to the upload control. Runs once a page, on Bokeh's document_ready.
+// so next to the upload control. A wind record or a site's weather file (up to wind_max_bytes)
+// is posted by HTTP to `upload_url` instead of going over the websocket as one ~13 MB message
+// (app/upload_route.py), and the same input carries its reference: "sending", then "posted <id>"
+// once the server holds it, or "failed <reason>"; an empty file is "empty" (nothing to send).
+// Without `upload_url` (a server without the route), or when the route answers 404, the file
+// goes Bokeh's way. Runs once a page, on Bokeh's document_ready.
 if (!window.__windpumpUploads) {
   window.__windpumpUploads = true
 
@@ -13,6 +18,53 @@ if (!window.__windpumpUploads) {
     }
     return null
   }
+  const tell = (file, kind, state) => {
+    const model = channel()
+    const name = file.name.replace(/[\t\n\r]/g, " ")
+    const value = `${file.size}\t${Date.now()}\t${kind}\t${name}`
+    if (model != null) model.value = state ? `${value}\t${state}` : value
+  }
+
+  // The posts under way, by kind: a later file of the same upload cancels an earlier one.
+  const posting = {}
+  const post = (input, file, kind) => {
+    if (posting[kind] != null) posting[kind].abort()
+    const controller = new AbortController()
+    posting[kind] = controller
+    tell(file, kind, "sending")
+    const query = new URLSearchParams({session: session_id, kind: kind, name: file.name})
+    fetch(`${upload_url}?${query}`, {
+      method: "POST",
+      body: file,
+      headers: {"Content-Type": "application/octet-stream"},
+      signal: controller.signal,
+    })
+      .then(async (response) => {
+        if (response.status === 404 || response.status === 405) {
+          bokehs_way(input)  // an older server: no route
+          return
+        }
+        const answer = await response.json().catch(() => ({}))
+        if (controller.signal.aborted) return
+        if (response.ok && answer.id) tell(file, kind, `posted ${answer.id}`)
+        else tell(file, kind, `failed ${answer.refused || "network"}`)
+      })
+      .catch((error) => {
+        if (error.name !== "AbortError") tell(file, kind, "failed network")
+      })
+      .finally(() => {
+        if (posting[kind] === controller) posting[kind] = null
+      })
+  }
+  // The change again, for Bokeh's own listener (which sends the file over the websocket).
+  const bokehs_way = (input) => {
+    input.__windpumpBokeh = true
+    try {
+      input.dispatchEvent(new Event("change"))
+    } finally {
+      input.__windpumpBokeh = false
+    }
+  }
 
   const guard = (input) => {
     if (input.__windpumpGuarded) return
@@ -21,19 +73,26 @@ if (!window.__windpumpUploads) {
     input.addEventListener(
       "change",
       (event) => {
+        if (input.__windpumpBokeh) return
         // A wind record or a site's weather (its upload's host carries `wind_class` or
         // `site_class`) may be larger than a lab file.
         const host = input.getRootNode().host
         const wind = host != null && host.classList.contains(wind_class)
         const site = host != null && host.classList.contains(site_class)
         const limit = wind || site ? wind_max_bytes : max_bytes
-        const big = [...(input.files || [])].find((file) => file.size > limit)
-        if (big == null) return
-        event.stopImmediatePropagation()
-        input.value = ""
-        const model = channel()
         const kind = site ? "site" : wind ? "wind" : "lab"
-        if (model != null) model.value = `${big.size}\t${Date.now()}\t${kind}\t${big.name}`
+        const big = [...(input.files || [])].find((file) => file.size > limit)
+        if (big != null) {
+          event.stopImmediatePropagation()
+          input.value = ""
+          tell(big, kind, "")
+          return
+        }
+        const file = (input.files || [])[0]
+        if (kind === "lab" || !upload_url || file == null) return
+        event.stopImmediatePropagation()
+        if (file.size === 0) tell(file, kind, "empty")
+        else post(input, file, kind)
       },
       true,
     )

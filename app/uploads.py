@@ -1,10 +1,14 @@
-"""Lab files too large to send: refused in the browser, reported by the server.
+"""Files chosen in the page: refused in the browser when too large, a wind or site file sent by
+HTTP, each reported by the server.
 
 Bokeh sends a chosen file whole over the page's websocket; over ~15 MB the connection closes and
 the session (the design on the screen) is lost. ``uploads.js`` checks the file's size before
-Bokeh reads it and tells the server through a hidden text input, which ``RefusedUploads`` turns
-into the size in bytes for the explorer to report in the core's words. ``Reveal`` goes the other
-way: the server names an upload's outcome and the page scrolls it into view.
+Bokeh reads it and tells the server through a hidden text input, which ``UploadChannel`` turns
+into the size in bytes for the explorer to report in the core's words. A wind record or a site's
+weather file (up to 10 MB, ~80 ms of the server's one event loop as a websocket message) the page
+posts by HTTP instead (``upload_route``), and the same input carries its reference: its id, name
+and size, or why it could not be sent. ``Reveal`` goes the other way: the server names an
+upload's outcome and the page scrolls it into view.
 """
 
 from __future__ import annotations
@@ -24,6 +28,10 @@ from windpump.wind import MAX_CSV_BYTES
 WIND_MAX_BYTES = min(MAX_CSV_BYTES, 10_000_000)
 WIND_CLASS = "wind-upload"
 SITE_CLASS = "site-upload"  # the Site tab's weather file: the wind record's limit
+WIND_SIZE = "a day at one sample a second is about 1.5 MB"  # the page's refusal: "(...)"
+SITE_SIZE = "a year of hourly weather, a TMY3 or EPW file, is about 1.5 MB"
+# The uploads sent by HTTP (upload_route), by the kind the page names: (the file, its refusal's words)
+KINDS = {"wind": ("wind", WIND_SIZE), "site": ("weather", SITE_SIZE)}
 
 UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
 CHANNEL_CLASS = "upload-refused"
@@ -48,33 +56,60 @@ for (const delay of [50, 300, 1000]) setTimeout(reveal, delay)
 """
 
 
-class RefusedUploads(pn.widgets.TextInput):
-    """Hidden; the page writes ``"<bytes>\\t<time>\\t<lab|wind|site>\\t<name>"`` into it when it
-    refuses a file."""
+class UploadChannel(pn.widgets.TextInput):
+    """Hidden; the page writes ``"<bytes>\\t<time>\\t<lab|wind|site>\\t<name>[\\t<state>]"``
+    into it when it refuses a file (no state, or "refused"), or, for a wind or site file sent by
+    HTTP (``upload_route``): "sending" as it starts, "posted <id>" once the server has it,
+    "empty" for a file of no bytes (not sent), "failed <reason>" (``upload_route.REFUSALS``, or
+    "network")."""
 
     def __init__(self, **params):
         super().__init__(visible=False, css_classes=[CHANNEL_CLASS], **params)
 
     @property
     def size(self) -> int | None:
-        """The refused file's size [bytes], or None if the value is not one the page wrote."""
+        """The file's size [bytes], or None if the value is not one the page wrote."""
         head = self.value.split("\t", 1)[0]
         return int(head) if head.isdigit() else None
 
     @property
     def wind(self) -> bool:
-        """Whether the refused file was a wind record (else a lab torque file)."""
+        """Whether the file was a wind record (else a lab torque file or a site's weather)."""
         return self.kind == "wind"
 
     @property
     def kind(self) -> str:
-        """Which upload the refused file was chosen in: "lab", "wind" or "site"."""
+        """Which upload the file was chosen in: "lab", "wind" or "site"."""
         fields = self.value.split("\t")
         return fields[2] if len(fields) > 2 and fields[2] in ("wind", "site") else "lab"
 
+    @property
+    def filename(self) -> str:
+        """The file's name, as the page wrote it."""
+        fields = self.value.split("\t")
+        return fields[3] if len(fields) > 3 else ""
 
-def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
-    """Run ``uploads.js`` in the page once Bokeh has drawn it."""
+    @property
+    def state(self) -> tuple[str, str]:
+        """(what the page did, its detail): ("refused", ""), ("sending", ""), ("posted", id),
+        ("empty", ""), ("failed", reason); a lab file's is always refused."""
+        fields = self.value.split("\t")
+        if self.kind == "lab" or len(fields) < 5 or not fields[4]:
+            return "refused", ""
+        state, _, detail = fields[4].partition(" ")
+        return state, detail
+
+
+RefusedUploads = UploadChannel  # its name before it carried more than refusals
+
+
+def guard_uploads(
+    document: Document, max_bytes: int = MAX_BYTES, route: dict[str, str] | None = None
+) -> None:
+    """Run ``uploads.js`` in the page once Bokeh has drawn it; ``route``: where the page posts
+    a wind or site file, and its session's id (``upload_route.page_opened``; without it the file
+    goes over the websocket, Bokeh's way)."""
+    route = route or {"url": "", "session": ""}
     document.js_on_event(
         "document_ready",
         CustomJS(
@@ -84,6 +119,8 @@ def guard_uploads(document: Document, max_bytes: int = MAX_BYTES) -> None:
                 wind_class=WIND_CLASS,
                 site_class=SITE_CLASS,
                 channel_class=CHANNEL_CLASS,
+                upload_url=route["url"],
+                session_id=route["session"],
             ),
             code=UPLOADS_JS,
         ),

@@ -34,6 +34,7 @@ from .tab import Tab
 from .uploads import (
     WIND_CLASS,
     WIND_MAX_BYTES,
+    WIND_SIZE,
     Encoded,
     FileUpload,
     Reveal,
@@ -196,6 +197,7 @@ class WindTab(Tab):
         self._drawn_curve: tuple = ()  # (design, mean wind, k, V) of the curve drawn
         self._wanted_curve: tuple = ()  # and of the one last asked for
         self._wanted_day: tuple = ()  # (design, record, theta0, kick) of the day last asked for
+        self._files = 0  # the files chosen so far: the newest one's outcome is shown
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
         )
@@ -373,27 +375,39 @@ class WindTab(Tab):
 
     def refuse_size(self, size: int) -> None:
         """The page stopped a wind file over the limit before sending it: say so here."""
-        message = refused_size("wind", size, "a day at one sample a second is about 1.5 MB")
+        message = refused_size("wind", size, WIND_SIZE)
         if message is not None:
-            self.upload_message.object, self.upload_message.visible = message, True
+            self.say(message)
+
+    def say(self, message: str, alert_type: str = "danger") -> None:
+        """Say ``message`` under the upload (a refusal, a file on its way)."""
+        self.upload_message.object, self.upload_message.alert_type = message, alert_type
+        self.upload_message.visible = True
+
+    def sending(self, name: str, size: int) -> None:
+        """The page is sending the file ``name`` by HTTP (``upload_route``): say so; an earlier
+        file's outcome, still to come, is not shown."""
+        self._files += 1
+        self.say(f"Sending {clipped(name) or 'the file'} ({size / 1e6:.1f} MB)…", "info")
 
     def forget(self) -> None:
         self.measured, self.measured_name = None, ""
         self.use_gusty.visible = False
 
-    def load_data(self, data: bytes | Encoded | None) -> None:
-        """A measured wind CSV for the day; a bad file is refused and the day stays as it was.
-        Either outcome is scrolled into view.
+    def load_data(self, data: bytes | Encoded | None, name: str | None = None) -> None:
+        """A measured wind CSV for the day (``name``: the file's, else the upload's); a bad file
+        is refused and the day stays as it was. Either outcome is scrolled into view; a file
+        chosen since wins.
 
         Reading it and running the pump through it (seconds for a week of wind) happen off the
         server's event loop (``serving.off_the_loop``), so the other pages' moves are answered
         meanwhile; the tab says it is working until the day is drawn."""
         if data is None:
             return
-        name = self.upload.filename or ""
-        self.upload_message.object = f"Reading {clipped(name) or 'the file'} and running the day…"
-        self.upload_message.alert_type = "info"
-        self.upload_message.visible = True
+        name = (self.upload.filename or "") if name is None else name
+        self._files += 1
+        chosen = self._files
+        self.say(f"Reading {clipped(name) or 'the file'} and running the day…", "info")
         design, theta0, kick = (
             self.inputs.design_at_v_ref(),
             self.inputs.theta0,
@@ -410,9 +424,11 @@ class WindTab(Tab):
             except ValueError:  # the day's redraw says why
                 return record, None
 
-        off_the_loop(work, lambda outcome: self._loaded(outcome, name))
+        off_the_loop(work, lambda outcome: self._loaded(outcome, name, chosen))
 
-    def _loaded(self, outcome, name: str) -> None:
+    def _loaded(self, outcome, name: str, chosen: int) -> None:
+        if chosen != self._files:
+            return  # a file chosen since: its outcome is shown
         if isinstance(outcome, Exception):  # a bug: say so, log it, keep the session alive
             log.error("reading a wind file failed", exc_info=outcome)
             outcome = (f"This wind file cannot be used: {type(outcome).__name__}: {outcome}", None)

@@ -20,7 +20,11 @@ then scroll to the bottom (1-3 s after their readouts), naming every view. A ser
 input (before it) builds every view anyway and is sent nothing.
 
 ``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
-and the others' round trips are split into before/while/after.
+as the page sends it (by HTTP POST, its reference over the websocket; a server without the upload
+route, as a FileInput's base64 value), and the others' round trips are split into
+before/while/after (while: from the first byte sent until the server says it reads the file).
+Ten more students, who move at no other time, move at once 2 s before the upload and again 10 ms
+after its first byte: the same moves, with and without a file arriving.
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
 ``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
@@ -104,6 +108,7 @@ class Student:
     watchers: list = field(default_factory=list)  # called with every ModelChanged received
     cookies: dict = field(default_factory=dict)  # as a browser keeps them (a proxy's stickiness)
     scrolls: bool = False  # scrolls to the bottom once its readouts are shown
+    token: str = ""  # the page's session token (its session's id within)
 
     async def open(self) -> None:
         self.opened = time.perf_counter()
@@ -112,7 +117,7 @@ class Student:
         )
         page = await AsyncHTTPClient().fetch(request)
         self.keep_cookies(page.headers)
-        token = TOKEN.search(page.body.decode()).group(1)
+        token = self.token = TOKEN.search(page.body.decode()).group(1)
         parsed = urlparse(self.url)
         ws_url = f"ws://{parsed.netloc}{parsed.path}/ws"
         headers = {"Origin": f"http://{parsed.netloc}", **self.cookie_header()}
@@ -429,7 +434,8 @@ async def moving(students: list[Student], minutes: float, upload_to: str | None)
     tasks = [pace(s) for s in students]
     window: list[float] = []
     if upload_to is not None:
-        tasks.append(one_upload(upload_to, end, window))
+        witnessed: dict[str, list[float]] = {}
+        tasks.append(one_upload(upload_to, end, window, witnessed))
     await asyncio.gather(*tasks)
     sent = [(t, rt) for s, k in zip(students, first, strict=True) for t, rt in s.moves[k:]]
     around: dict[str, list[float]] = {"before": [], "while": [], "after": []}
@@ -437,6 +443,8 @@ async def moving(students: list[Student], minutes: float, upload_to: str | None)
         for t, rt in sent:
             phase = "before" if t < window[0] else "while" if t <= window[1] else "after"
             around[phase].append(rt)
+        around["window"] = [window[1] - window[0]]  # [s] from its first byte to its reading
+        around.update(witnessed)
     return [rt for _, rt in sent], around
 
 
@@ -456,6 +464,7 @@ async def settled(watch: Watch, target: int) -> int:
 # -- one student loads a 10 MB wind record -------------------------------------------------------
 
 UPLOAD_NAME = "hall-wind-10MB.csv"
+CHANNEL = "upload-refused"  # the CSS class of the page's upload channel (app/uploads.py)
 UPLOAD_BYTES = 9_900_000  # the page takes up to 10 MB
 
 
@@ -471,14 +480,77 @@ def wind_record(size: int) -> bytes:
     return "\n".join(lines).encode()
 
 
-async def one_upload(url: str, end: float, window: list[float]) -> None:
-    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it (the
-    FileInput's value in base64); ``window`` gets (sent, shown) [perf_counter]."""
+WITNESSES = 10  # students who move at once as the upload is sent, and 2 s before it
+
+
+async def one_upload(
+    url: str, end: float, window: list[float], witnessed: dict[str, list[float]]
+) -> None:
+    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it
+    (``app/uploads.js``): its bytes by HTTP POST to the app's upload route, and their reference
+    over the websocket (``post_upload``); to a server without the route, as the FileInput's
+    value in base64, as the page then sends it. ``window`` gets (sent, the server reading it)
+    [perf_counter]. WITNESSES more students (who move at no other time) move at once 2 s before
+    the upload and again 10 ms after its first byte: ``witnessed`` gets their round trips [s],
+    "calm" and "sending"."""
+    student = Student(url, random.Random(0))
+    witnesses = [Student(url, random.Random(100 + k)) for k in range(WITNESSES)]
+    await asyncio.gather(student.open(), *(w.open() for w in witnesses))
+    await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
+    upload = await wind_tab(student)
+    route = await has_upload_route(student)
+    record = wind_record(UPLOAD_BYTES)
+    shown = asyncio.Event()
+    reading = lambda new: UPLOAD_NAME in new and "Sending" not in new  # noqa: E731
+    student.watchers.append(lambda e: reading(str(e.get("new"))) and shown.set())
+    witnessed["calm"] = await moving_at_once(witnesses)
+    await asyncio.sleep(2.0)
+    window.append(time.perf_counter())
+    sending = asyncio.ensure_future(
+        post_upload(student, record) if route else in_base64(student, upload, record)
+    )
+    await asyncio.sleep(0.01)
+    witnessed["sending"] = await moving_at_once(witnesses)
+    await sending
+    await asyncio.wait_for(shown.wait(), WAIT)
+    window.append(time.perf_counter())
+    for one in (student, *witnesses):
+        one.close()
+
+
+async def has_upload_route(student: Student) -> bool:
+    """Whether the server has the upload route (``app/upload_route.py``): an empty POST is
+    refused there in words, and answered 404 by a server without it."""
+    parsed = urlparse(student.url)
+    request = HTTPRequest(
+        f"http://{parsed.netloc}{parsed.path}/upload?kind=wind",
+        method="POST",
+        body=b"",
+        headers=student.cookie_header(),
+        request_timeout=WAIT,
+    )
+    response = await AsyncHTTPClient().fetch(request, raise_error=False)
+    return response.code not in (404, 405)
+
+
+async def in_base64(student: Student, upload: str, record: bytes) -> None:
+    """The file as a page without the upload route sends it: the FileInput's value, in base64,
+    in one message over the websocket."""
     import base64
 
-    student = Student(url, random.Random(0))
-    await student.open()
-    await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
+    data = base64.b64encode(record).decode()
+    await student.patch(
+        [
+            changed(upload, "mime_type", "text/csv"),
+            changed(upload, "filename", UPLOAD_NAME),
+            changed(upload, "value", data),
+        ],
+        wait=False,
+    )
+
+
+async def wind_tab(student: Student) -> str:
+    """Open the student's Wind tab; its upload's model id, once the tab has arrived."""
     panels = [i for i, m in student.models.items() if m["type"] == "TabPanel"]
     wind = next(i for i in panels if student.models[i].get("title") == "Wind")
     tabs = next(
@@ -494,22 +566,42 @@ async def one_upload(url: str, end: float, window: list[float]) -> None:
         if time.perf_counter() > deadline:
             raise TimeoutError("the Wind tab's upload never arrived")
         await asyncio.sleep(0.2)
-    upload = next(i for i, m in student.models.items() if wind_input(m))
-    data = base64.b64encode(wind_record(UPLOAD_BYTES)).decode()
-    shown = asyncio.Event()
-    student.watchers.append(lambda e: UPLOAD_NAME in str(e.get("new")) and shown.set())
-    window.append(time.perf_counter())
-    await student.patch(
-        [
-            changed(upload, "mime_type", "text/csv"),
-            changed(upload, "filename", UPLOAD_NAME),
-            changed(upload, "value", data),
-        ],
-        wait=False,
+    return next(i for i, m in student.models.items() if wind_input(m))
+
+
+async def post_upload(student: Student, data: bytes) -> int:
+    """Send ``data`` as the page sends a wind file: "sending" on its upload channel, the bytes
+    by HTTP POST (the session's id from its token, the student's cookies: a proxy's stickiness),
+    then "posted <id>" (or why not). The POST's HTTP status: 404 or 405, the server has no
+    upload route (nothing more is sent)."""
+    from urllib.parse import urlencode
+
+    from bokeh.util.token import get_session_id
+
+    channel = next(i for i, m in student.models.items() if CHANNEL in m.get("css_classes", []))
+
+    async def tell(state: str) -> None:
+        value = f"{len(data)}\t{int(1e3 * time.time())}\twind\t{UPLOAD_NAME}\t{state}"
+        await student.patch([changed(channel, "value", value)], wait=False)
+
+    parsed = urlparse(student.url)
+    query = urlencode(
+        {"session": get_session_id(student.token), "kind": "wind", "name": UPLOAD_NAME}
     )
-    await asyncio.wait_for(shown.wait(), WAIT)
-    window.append(time.perf_counter())
-    student.close()
+    await tell("sending")
+    request = HTTPRequest(
+        f"http://{parsed.netloc}{parsed.path}/upload?{query}",
+        method="POST",
+        body=data,
+        headers={"Content-Type": "application/octet-stream", **student.cookie_header()},
+        request_timeout=WAIT,
+    )
+    response = await AsyncHTTPClient().fetch(request, raise_error=False)
+    if response.code in (404, 405):
+        return response.code
+    answer = json.loads(response.body or b"{}")
+    await tell(f"posted {answer['id']}" if response.code == 200 else f"failed {answer['refused']}")
+    return response.code
 
 
 # -- the report ----------------------------------------------------------------------------------
@@ -542,8 +634,16 @@ def report(hall: Hall) -> None:
         f"  {BURST} moving at once ({BURSTS} times), round trip [ms]: "
         f"{percentiles(hall.burst, 1e3, '{:.0f}')}"
     )
-    for phase, trips in hall.upload.items():
+    for phase in ("before", "while", "after"):
+        trips = hall.upload.get(phase, [])
         print(f"  others' moves {phase} a 10 MB upload [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
+    for phase, when in (("calm", "2 s before it"), ("sending", "10 ms after its first byte")):
+        trips = hall.upload.get(phase, [])
+        print(f"  {WITNESSES} more moving at once {when} [ms]: {percentiles(trips, 1e3, '{:.0f}')}")
+    if hall.upload.get("window"):
+        print(
+            f"  the upload, from its first byte to the server reading it: {hall.upload['window'][0]:.2f} s"
+        )
     per_session = (memory["idle"] - memory["before"]) / hall.n / mb
     print(
         f"  server memory [MB]: before {memory['before'] / mb:.0f}, {hall.n} idle "

@@ -77,6 +77,9 @@ def open_page(browser, url, width=1400, height=1000, query=""):
     scripts, received = [], []
     page.on("request", lambda r: scripts.append(r.url) if r.resource_type == "script" else None)
     page.on("websocket", lambda ws: ws.on("framereceived", lambda frame: received.append(frame)))
+    sent, posts = [], []  # the sizes of the page's websocket frames [chars]; its POSTs' URLs
+    page.on("websocket", lambda ws: ws.on("framesent", lambda frame: sent.append(len(frame))))
+    page.on("request", lambda r: posts.append(r.url) if r.method == "POST" else None)
     page.goto(url + query, timeout=120_000)
     page.wait_for_function(
         f"() => ({DEEP_TEXT})('[data-name=mean_flow]') !== null", timeout=120_000
@@ -85,6 +88,7 @@ def open_page(browser, url, width=1400, height=1000, query=""):
         page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
     page.problems, page.elsewhere, page.scripts = problems, elsewhere, scripts
     page.received = received  # the server's messages over the page's websocket
+    page.sent, page.posts = sent, posts
     return page
 
 
@@ -782,20 +786,39 @@ def test_the_wind_tab_on_a_phone(browser, url):
         page.close()
 
 
+def open_wind_tab(page):
+    page.get_by_text("Wind", exact=True).first.click()
+    page.wait_for_function(
+        f"() => /^[0-9,]+$/.test(({DEEP_TEXT})('[data-name=day_litres]') || '')",
+        timeout=120_000,
+    )
+    return page.locator("input[type=file]").nth(1)
+
+
+def a_day_of_wind(name: str, step: float = 1.0) -> dict:
+    rows = "".join(f"{t:.1f},{5 + math.sin(t / 900):.3f}\n" for t in np.arange(0, 86_401, step))
+    return {"name": name, "mimeType": "text/csv", "buffer": ("t,V\n" + rows).encode()}
+
+
 def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url):
+    """The file goes to the server by HTTP (app/upload_route.py), not over the websocket; of two
+    chosen one after the other the later one is the day; an empty file and one over the limit
+    are said, and the page keeps working."""
     page = open_page(browser, url)
     try:
-        page.get_by_text("Wind", exact=True).first.click()
-        page.wait_for_function(
-            f"() => /^[0-9,]+$/.test(({DEEP_TEXT})('[data-name=day_litres]') || '')",
-            timeout=120_000,
-        )
-        rows = "".join(f"{t:.1f},{5 + math.sin(t / 900):.3f}\n" for t in range(0, 86_401))
-        day = {"name": "mast.csv", "mimeType": "text/csv", "buffer": ("t,V\n" + rows).encode()}
+        upload = open_wind_tab(page)
+        day = a_day_of_wind("mast.csv")
         assert len(day["buffer"]) > 1_000_000  # over the lab file's limit, within the wind's
-        upload = page.locator("input[type=file]").nth(1)
         upload.set_input_files(files=[day])
         page.get_by_text("the measured record mast.csv").first.wait_for(timeout=120_000)
+        assert any("/app/upload?" in post for post in page.posts)
+        assert max(page.sent) < 100_000  # its reference went over the websocket, not the file
+        early, late = a_day_of_wind("early.csv"), a_day_of_wind("late.csv", step=2.0)
+        upload.set_input_files(files=[early])
+        upload.set_input_files(files=[late])  # while the early one is sent or read
+        page.get_by_text("the measured record late.csv").first.wait_for(timeout=120_000)
+        time.sleep(3.0)  # the early file's outcome, had it come later, would show by now
+        assert page.get_by_text("the measured record early.csv").count() == 0
         empty = {"name": "empty.csv", "mimeType": "text/csv", "buffer": b""}
         upload.set_input_files(files=[empty])
         page.get_by_text("This wind file cannot be used: the file is empty").wait_for(
@@ -804,7 +827,24 @@ def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url
         huge = {"name": "huge.csv", "mimeType": "text/csv", "buffer": b"0,5\n" * 3_000_000}
         upload.set_input_files(files=[huge])
         page.get_by_text("it has 12,000,000 bytes").first.wait_for(timeout=60_000)
+        press(page, "Head h [m]", "ArrowRight", 1)  # the session is alive and keeps its design
+        wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=3.1)))
         assert page.problems == []
+    finally:
+        page.close()
+
+
+def test_without_the_upload_route_a_wind_file_goes_over_the_websocket(browser, url):
+    """A server without the route (404: one older than it) still gets the file, Bokeh's way."""
+    page = open_page(browser, url)
+    try:
+        page.route("**/app/upload?*", lambda route: route.fulfill(status=404, body="Not Found"))
+        upload = open_wind_tab(page)
+        upload.set_input_files(files=[a_day_of_wind("mast.csv", step=10.0)])
+        page.get_by_text("the measured record mast.csv").first.wait_for(timeout=120_000)
+        assert any("/app/upload?" in post for post in page.posts)  # tried first
+        assert max(page.sent) > 100_000  # then sent whole over the websocket
+        assert page.problems == [] or all("404" in p for p in page.problems), page.problems
     finally:
         page.close()
 

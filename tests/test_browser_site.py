@@ -87,11 +87,17 @@ def test_a_link_opens_the_site_tab_and_presentation_enlarges_its_readouts(browse
 
 
 def test_a_weather_file_over_the_limit_is_refused_in_the_page(browser, url):
-    """The page's size check (uploads.js) knows the Site tab's upload: 10 MB, said in the tab."""
+    """The page's size check (uploads.js) knows the Site tab's upload: 10 MB, said in the tab;
+    a file within it goes to the server by HTTP (app/upload_route.py) and becomes the site."""
     page = open_page(browser, url)
     try:
         page.get_by_role("tab", name="Site").click()
         page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
+        hours = "".join(f"{3600 * h},{5 + (h % 7) / 3:.2f}\n" for h in range(3 * 24))
+        three = {"name": "three.csv", "mimeType": "text/csv", "buffer": ("t,V\n" + hours).encode()}
+        page.locator(".site-upload input[type=file]").set_input_files(files=[three])
+        page.get_by_text("the uploaded file three").first.wait_for(timeout=60_000)
+        assert any("/app/upload?" in post for post in page.posts)
         huge = {"name": "huge.epw", "mimeType": "text/plain", "buffer": b"0,5\n" * 3_000_000}
         page.locator(".site-upload input[type=file]").set_input_files(files=[huge])
         page.get_by_text("This weather file cannot be used: it has 12,000,000 bytes").wait_for(

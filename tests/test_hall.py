@@ -26,6 +26,8 @@ def test_a_small_hall_opens_moves_and_uploads(monkeypatch, capsys):
     assert len(hall.moves) >= 3
     assert all(trip > 0 for trip in hall.moves + hall.burst)
     assert hall.upload["while"] is not None
+    witnesses = bench_hall.WITNESSES
+    assert len(hall.upload["calm"]) == len(hall.upload["sending"]) == witnesses  # all answered
     printed = capsys.readouterr().out
     assert "hall of 3" in printed and "server CPU per page" in printed
 

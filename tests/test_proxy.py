@@ -45,6 +45,15 @@ async def a_class_behind_the_proxy(url: str, servers, ports):
     seen = {"built on": [s.ws_cookies[COOKIE] for s in students]}
     seen["connected to"] = [s.cookies[COOKIE] for s in students]
     seen["moves"] = [len(s.moves) for s in students]
+    # A wind file posted by HTTP (app/upload_route.py) reaches the process of its page's session,
+    # by the same cookie; sent to the other process, it is refused (no such session there).
+    record = bench_hall.wind_record(200_000)
+    seen["posted"] = [await bench_hall.post_upload(s, record) for s in students]
+    elsewhere = bench_hall.Student(url, random.Random(0))
+    elsewhere.token, elsewhere.models = students[0].token, students[0].models
+    other = next(b for b in seen["built on"] if b != seen["built on"][0])
+    elsewhere.cookies, elsewhere.ws = {COOKIE: other}, students[0].ws
+    seen["elsewhere"] = await bench_hall.post_upload(elsewhere, record)
     # One process dies: its pages lose their websocket and reopen from their link, as the page's
     # script does (serving.RECONNECT_JS), with ?restored=true.
     victim = f"127.0.0.1:{ports[0]}"
@@ -81,6 +90,7 @@ def test_sessions_spread_stick_and_reopen_on_the_other_process():
     assert set(seen["built on"]) == backends  # spread over both
     assert seen["connected to"] == seen["built on"]  # each websocket reached its page's process
     assert seen["moves"] == [1] * STUDENTS  # each move answered (by its own process)
+    assert seen["posted"] == [200] * STUDENTS and seen["elsewhere"] == 403
     assert reopened, "no page was on the killed process"
     for head, value, now_on, notice in reopened:
         assert value == pytest.approx(head)  # the state from the link

@@ -1,0 +1,286 @@
+"""A wind record or a site's weather file sent by HTTP, not over the page's websocket.
+
+Bokeh sends a FileInput's file whole, as one base64 JSON message on the page's websocket (~13 MB
+for a 10 MB file); reading that message and setting the property holds the server's one event loop
+~80 ms, and every other page's moves wait for it. The page (``uploads.js``) posts the file's bytes
+to ``<app>/upload`` instead (``UploadHandler``): Tornado reads the body in 64 KB pieces between
+the other pages' messages. Only a short reference (an id, the name, the size) then goes over the
+websocket, through the page's upload channel (``uploads.UploadChannel``); the session takes the
+bytes (``UPLOADS.take``) and reads them as it read a FileInput's value (off the loop, in the
+file-reading process).
+
+The store is small and bounded (``Uploads``): bytes only for a session of this server that is
+open, the newest file of each of its uploads (a later one replaces one not yet taken), gone once
+taken, after ``LIFETIME`` s, or when the session closes. ``serve_uploads`` adds the route when
+``panel serve app/`` starts (``app_hooks.on_server_loaded``); a server without it (``panel serve
+app/main.py``, a notebook) leaves the page on Bokeh's websocket path.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import re
+import secrets
+import threading
+import time
+from collections.abc import Callable
+
+from tornado import web
+
+from .uploads import KINDS, WIND_MAX_BYTES, refused_size
+
+log = logging.getLogger("windpump.app")
+
+ROUTE = "/upload"  # after the app's own path: <prefix>/app/upload
+LIFETIME = 120.0  # [s] bytes not taken by then are dropped (the page's reference comes in ms)
+MAX_ITEMS = 8  # files held at once, for every session of the server
+MAX_HELD = 4 * WIND_MAX_BYTES  # [bytes] held at once
+
+# Why a post is refused: (HTTP status, what the page is told).
+REFUSALS = {
+    "kind": 400,  # not a wind or site upload
+    "empty": 400,
+    "size": 413,
+    "session": 403,  # no open session of this server has this id
+    "busy": 503,  # the store is full: choose the file again in a moment
+}
+
+
+class Refused(Exception):
+    """A post the store does not keep: ``reason`` is a key of REFUSALS."""
+
+    def __init__(self, reason: str, message: str):
+        super().__init__(message)
+        self.reason = reason
+        self.status = REFUSALS[reason]
+
+
+@dataclasses.dataclass(frozen=True)
+class Posted:
+    """A file posted by a session's page, until the session takes it."""
+
+    session_id: str
+    kind: str  # "wind" or "site"
+    name: str
+    data: bytes
+    at: float  # [s] the store's clock when it arrived
+
+
+def refusal_text(reason: str, kind: str, size: int) -> str:
+    """What the page says of a post refused for ``reason`` (REFUSALS): the size's words are the
+    page's own refusal (``uploads.refused_size``)."""
+    word, what = KINDS.get(kind, ("wind", ""))
+    if reason == "size":
+        return refused_size(word, size, what) or ""
+    if reason == "empty":
+        return f"This {word} file cannot be used: the file is empty"
+    if reason == "session":
+        return (
+            f"This {word} file did not reach the page: the server does not hold this page's "
+            "session any more. Reload the page (its link keeps the design) and choose it again."
+        )
+    if reason == "busy":
+        return f"The server is receiving other files: choose this {word} file again in a moment."
+    return f"This {word} file could not be sent to the server: choose it again."
+
+
+class Uploads:
+    """The files posted and not yet taken, for the sessions of this server that are open."""
+
+    def __init__(
+        self,
+        max_items: int = MAX_ITEMS,
+        max_held: int = MAX_HELD,
+        lifetime: float = LIFETIME,
+        clock: Callable[[], float] = time.monotonic,
+    ):
+        self.max_items, self.max_held, self.lifetime, self.clock = (
+            max_items,
+            max_held,
+            lifetime,
+            clock,
+        )
+        self.url = ""  # the route's path, once served (``serve_uploads``); "": none
+        self._lock = threading.Lock()
+        self._sessions: set[str] = set()
+        self._items: dict[str, Posted] = {}
+        self._replaced: dict[str, None] = {}  # ids of files a later one replaced (the newest)
+
+    def opened(self, session_id: str) -> None:
+        with self._lock:
+            self._sessions.add(session_id)
+
+    def closed(self, session_id: str) -> None:
+        """A session closed: it posts no more, and what it posted is dropped."""
+        with self._lock:
+            self._sessions.discard(session_id)
+            for key in [k for k, item in self._items.items() if item.session_id == session_id]:
+                del self._items[key]
+
+    def is_open(self, session_id: str) -> bool:
+        with self._lock:
+            return session_id in self._sessions
+
+    def put(self, session_id: str, kind: str, name: str, data: bytes) -> str:
+        """Keep ``data`` for the session; its id. Raises ``Refused``."""
+        if kind not in KINDS:
+            raise Refused("kind", f"kind must be one of {sorted(KINDS)}, not {kind!r}")
+        if not data:
+            raise Refused("empty", refusal_text("empty", kind, 0))
+        if len(data) > WIND_MAX_BYTES:
+            raise Refused("size", refusal_text("size", kind, len(data)))
+        with self._lock:
+            if session_id not in self._sessions:
+                raise Refused("session", refusal_text("session", kind, len(data)))
+            now = self.clock()
+            for key, item in list(self._items.items()):
+                later = item.session_id == session_id and item.kind == kind  # a later file wins
+                if later or now - item.at > self.lifetime:
+                    del self._items[key]
+                if later:
+                    self._replaced[key] = None
+                    while len(self._replaced) > 4 * self.max_items:
+                        del self._replaced[next(iter(self._replaced))]
+            held = sum(len(item.data) for item in self._items.values())
+            if len(self._items) >= self.max_items or held + len(data) > self.max_held:
+                raise Refused("busy", refusal_text("busy", kind, len(data)))
+            upload_id = secrets.token_urlsafe(12)
+            self._items[upload_id] = Posted(session_id, kind, name, data, now)
+        return upload_id
+
+    def take(self, session_id: str, upload_id: str) -> Posted | str:
+        """The file ``upload_id`` of the session, removed from the store; if it is not there,
+        why: "replaced" (a later file of the same upload replaced it: that one's reference
+        follows) or "gone" (expired, the session's store emptied, another session's)."""
+        with self._lock:
+            item = self._items.get(upload_id)
+            if item is None or item.session_id != session_id:
+                return "replaced" if upload_id in self._replaced else "gone"
+            del self._items[upload_id]
+        return item if self.clock() - item.at <= self.lifetime else "gone"
+
+    def held(self) -> int:
+        """The files held now."""
+        with self._lock:
+            return len(self._items)
+
+
+UPLOADS = Uploads()
+
+
+def page_opened(document) -> dict[str, str]:
+    """A served page's session may post files (until it is destroyed): what its page needs to
+    (``url``, ``session``); both "" when the route is not served, or the page not served."""
+    context = getattr(document, "session_context", None)
+    if not UPLOADS.url or context is None:
+        return {"url": "", "session": ""}
+    UPLOADS.opened(context.id)
+    document.on_session_destroyed(session_destroyed)
+    return {"url": UPLOADS.url, "session": context.id}
+
+
+def session_destroyed(session_context) -> None:  # Bokeh requires exactly this signature
+    UPLOADS.closed(session_context.id)
+
+
+@web.stream_request_body
+class UploadHandler(web.RequestHandler):
+    """``POST <app>/upload?session=ID&kind=wind|site&name=NAME`` with the file's bytes as the
+    body: 200 ``{"id", "size"}``, or a refusal (REFUSALS) ``{"refused", "message"}``.
+
+    Streamed (``stream_request_body``): the body is checked as it comes, and a refused one is
+    read and dropped (up to twice the limit; beyond that Tornado closes the connection), so the
+    client gets the answer rather than a reset connection."""
+
+    def initialize(self, uploads: Uploads) -> None:
+        self.uploads = uploads
+        self.chunks: list[bytes] = []
+        self.size = 0
+        self.refusal = ""
+
+    def check_xsrf_cookie(self) -> None:
+        """The page's session id is the credential (it is what opens the session's websocket)."""
+
+    def prepare(self) -> None:
+        self.session_id = self.get_query_argument("session", "")
+        self.kind = self.get_query_argument("kind", "")
+        self.name = self.get_query_argument("name", "")[:300]
+        self.request.connection.set_max_body_size(2 * WIND_MAX_BYTES)
+        length = self.request.headers.get("Content-Length", "")
+        self.declared = int(length) if length.isdigit() else None
+        if self.kind not in KINDS:
+            self.refusal = "kind"
+        elif not self.uploads.is_open(self.session_id):
+            self.refusal = "session"
+        elif self.declared is not None and self.declared > WIND_MAX_BYTES:
+            self.refusal = "size"
+
+    def data_received(self, chunk: bytes) -> None:
+        self.size += len(chunk)
+        if self.refusal:
+            return  # read and dropped
+        if self.size > WIND_MAX_BYTES:
+            self.refusal, self.chunks = "size", []
+            return
+        self.chunks.append(chunk)
+
+    def post(self) -> None:
+        try:
+            if self.refusal:
+                size = self.size if self.declared is None else self.declared
+                raise Refused(self.refusal, refusal_text(self.refusal, self.kind, size))
+            data = b"".join(self.chunks)
+            self.chunks = []
+            upload_id = self.uploads.put(self.session_id, self.kind, self.name, data)
+        except Refused as refused:
+            self.set_status(refused.status)
+            self.write({"refused": refused.reason, "message": str(refused)})
+            return
+        self.write({"id": upload_id, "size": len(data)})
+
+
+def serve_uploads(server_context, servers: list) -> str:
+    """Add the upload route to each running Bokeh server (``BokehTornado``, a Tornado
+    application: ``add_handlers``), after the app's own path (its prefix too); the path, or ""
+    when there is no server to add it to."""
+    application = getattr(server_context, "application_context", None)
+    app_url = getattr(application, "url", None) or "/app"
+    for server in servers:
+        url = f"{getattr(server, '_prefix', '')}{app_url}{ROUTE}"
+        server.add_handlers(r".*", [(re.escape(url), UploadHandler, {"uploads": UPLOADS})])
+        UPLOADS.url = url
+        log.info("files are uploaded by HTTP at %s", url)
+    return UPLOADS.url
+
+
+def deliver(channel, tab, session_id: str) -> bool:
+    """What the page's upload channel (``uploads.UploadChannel``) says of a wind or site file,
+    done in its tab (the Wind or Site tab: ``refuse_size``, ``sending``, ``load_data``, ``say``):
+    a posted file is taken from the store and read as a FileInput's value is. True when a
+    refusal was said now (the page scrolls it into view); a reading's outcome scrolls itself."""
+    state, detail = channel.state
+    size, name = channel.size or 0, channel.filename
+    if state == "refused":
+        tab.refuse_size(size)
+        return True
+    if state == "sending":
+        tab.sending(name, size)
+        return False
+    if state == "empty":
+        tab.load_data(b"", name)  # the core's words for an empty file
+        return False
+    if state == "posted":
+        posted = UPLOADS.take(session_id, detail)
+        if isinstance(posted, Posted):
+            tab.load_data(posted.data, posted.name or name)
+            return False
+        if posted == "replaced":
+            return False  # a later file's reference follows
+        tab.say(
+            f"{name or 'The file'} did not reach the page in time: it was dropped after "
+            f"{LIFETIME:.0f} s on the server. Choose it again."
+        )
+        return True
+    tab.say(refusal_text(detail if detail in REFUSALS else "network", channel.kind, size))
+    return True

@@ -1,0 +1,377 @@
+"""A wind record or a site's weather file sent by HTTP (``app/upload_route.py``): the bounded
+store, the page's channel read in-process, and the route of a real `panel serve app/` (bad input,
+and a 10 MB record posted while another page moves)."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import math
+import random
+import sys
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from windpump_app.explorer import Explorer
+from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
+from windpump_app.uploads import WIND_MAX_BYTES
+
+from served import served_app
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+import bench_hall  # noqa: E402
+
+LIMIT = 10_000_000  # [bytes] the page's limit for a wind or weather file, as the docs say
+
+
+class Clock:
+    def __init__(self):
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def rows(n: int = 121) -> bytes:
+    lines = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(n))
+    return ("t [s],V [m/s]\n" + lines + "\n").encode()
+
+
+# -- the store --------------------------------------------------------------------------------
+
+
+def test_the_limit_is_the_pages():
+    assert WIND_MAX_BYTES == LIMIT
+
+
+def test_only_an_open_session_may_post_and_what_it_posted_is_taken_once():
+    store = Uploads()
+    with pytest.raises(Refused) as refused:
+        store.put("nobody", "wind", "a.csv", b"0,5\n")
+    assert refused.value.reason == "session" and refused.value.status == 403
+    store.opened("s1")
+    upload_id = store.put("s1", "wind", "a.csv", b"0,5\n")
+    assert store.take("s2", upload_id) == "gone"  # another session's
+    taken = store.take("s1", upload_id)
+    assert isinstance(taken, Posted) and taken.data == b"0,5\n" and taken.name == "a.csv"
+    assert store.take("s1", upload_id) == "gone" and store.held() == 0
+
+
+def test_an_empty_file_a_file_too_large_and_an_unknown_kind_are_refused_in_words():
+    store = Uploads()
+    store.opened("s1")
+    for kind, data, reason, status, said in [
+        ("wind", b"", "empty", 400, "This wind file cannot be used: the file is empty"),
+        (
+            "wind",
+            b"0" * (LIMIT + 1),
+            "size",
+            413,
+            "This wind file cannot be used: it has 10,000,001 bytes; at most 10,000,000 are read",
+        ),
+        (
+            "site",
+            b"0" * (LIMIT + 1),
+            "size",
+            413,
+            "This weather file cannot be used: it has 10,000,001 bytes",
+        ),
+        ("lab", b"1,2\n", "kind", 400, "kind must be one of"),
+    ]:
+        with pytest.raises(Refused) as refused:
+            store.put("s1", kind, "a.csv", data)
+        assert refused.value.reason == reason and refused.value.status == status
+        assert said in str(refused.value)
+    store.put("s1", "wind", "a.csv", b"0" * LIMIT)  # the limit itself is taken
+
+
+def test_a_later_file_of_the_same_upload_replaces_one_not_taken():
+    store = Uploads()
+    store.opened("s1")
+    first = store.put("s1", "wind", "a.csv", b"0,5\n")
+    site = store.put("s1", "site", "year.epw", b"x")
+    second = store.put("s1", "wind", "b.csv", b"0,6\n")
+    assert store.take("s1", first) == "replaced"  # its reference is dropped quietly
+    assert store.take("s1", second).name == "b.csv"
+    assert store.take("s1", site).name == "year.epw"  # another upload's: kept
+
+
+def test_a_file_expires_and_a_closed_session_leaves_nothing():
+    clock = Clock()
+    store = Uploads(lifetime=120.0, clock=clock)
+    store.opened("s1")
+    store.opened("s2")
+    old = store.put("s1", "wind", "a.csv", b"0,5\n")
+    clock.now = 121.0
+    assert store.take("s1", old) == "gone"
+    kept = store.put("s2", "wind", "b.csv", b"0,6\n")
+    store.put("s2", "site", "c.csv", b"0,6\n")
+    store.closed("s2")
+    assert store.held() == 0 and store.take("s2", kept) == "gone"
+    with pytest.raises(Refused):
+        store.put("s2", "wind", "b.csv", b"0,6\n")  # closed: it posts no more
+
+
+def test_a_full_store_refuses_until_something_is_taken_or_expires():
+    clock = Clock()
+    store = Uploads(max_items=2, max_held=100, lifetime=10.0, clock=clock)
+    for session in ("a", "b", "c", "d"):
+        store.opened(session)
+    first = store.put("a", "wind", "a.csv", b"1" * 10)
+    store.put("b", "wind", "b.csv", b"1" * 10)
+    with pytest.raises(Refused) as refused:
+        store.put("c", "wind", "c.csv", b"1" * 10)
+    assert refused.value.reason == "busy" and refused.value.status == 503
+    store.take("a", first)
+    store.put("c", "wind", "c.csv", b"1" * 10)
+    with pytest.raises(Refused):
+        store.put("d", "wind", "d.csv", b"1" * 90)  # over max_held
+    clock.now = 11.0  # both expired: dropped as the next arrives
+    store.put("d", "wind", "d.csv", b"1" * 90)
+    assert store.held() == 1
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(
+        st.tuples(
+            st.sampled_from(["put", "take", "close", "tick"]),
+            st.sampled_from(["a", "b", "c"]),
+            st.sampled_from(["wind", "site"]),
+            st.integers(0, 60),
+        ),
+        max_size=40,
+    )
+)
+def test_the_store_never_holds_more_than_its_bounds_nor_a_closed_sessions_file(steps):
+    clock = Clock()
+    store = Uploads(max_items=3, max_held=100, lifetime=5.0, clock=clock)
+    ids: list[str] = []
+    for session in "abc":
+        store.opened(session)
+    for action, session, kind, size in steps:
+        if action == "put":
+            try:
+                ids.append(store.put(session, kind, "f.csv", b"1" * size))
+            except Refused as refused:
+                assert refused.reason in ("empty", "busy", "session")
+        elif action == "take" and ids:
+            store.take(session, ids[size % len(ids)])
+        elif action == "close":
+            store.closed(session)
+        else:
+            clock.now += size / 10
+        items = list(store._items.values())
+        assert len(items) <= 3 and sum(len(i.data) for i in items) <= 100
+        assert all(i.session_id in store._sessions for i in items)
+        assert len({(i.session_id, i.kind) for i in items}) == len(items)  # the newest of each
+
+
+def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
+    """Without the route (``panel serve app/main.py``, a notebook) the page sends the file
+    Bokeh's way; with it, a served page's session may post and its page is told where."""
+
+    class Context:
+        id = "a-session"
+
+    class Document:
+        session_context = Context()
+        destroyed: list = []
+
+        def on_session_destroyed(self, callback):
+            self.destroyed.append(callback)
+
+    store = Uploads()
+    monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
+    assert page_opened(Document()) == {"url": "", "session": ""} and not store.is_open("a-session")
+    store.url = "/app/upload"
+    page = Document()
+    assert page_opened(page) == {"url": "/app/upload", "session": "a-session"}
+    assert store.is_open("a-session")
+    page.destroyed[0](Context())  # Bokeh destroys the session
+    assert not store.is_open("a-session")
+
+
+# -- the page's channel, in-process ----------------------------------------------------------
+
+
+@pytest.fixture
+def app():
+    explorer = Explorer()
+    explorer.main().active = 2  # open the Wind tab
+    UPLOADS.opened("")  # not served: the session id is ""
+    yield explorer
+    UPLOADS.closed("")
+
+
+def tell(app, size: int, kind: str, name: str, state: str) -> None:
+    app.sidebar.refused_upload.value = f"{size}\t{random.random()}\t{kind}\t{name}\t{state}"
+
+
+def test_a_posted_wind_file_is_taken_and_read_as_a_chosen_one_is(app):
+    data = rows()
+    tell(app, len(data), "wind", "mast.csv", "sending")
+    message = app.wind.upload_message
+    assert message.visible and message.alert_type == "info" and "Sending mast.csv" in message.object
+    upload_id = UPLOADS.put("", "wind", "mast.csv", data)
+    tell(app, len(data), "wind", "mast.csv", f"posted {upload_id}")
+    assert app.wind.last_run.t[-1] == 7200.0 and "mast.csv" in app.wind.day_note.object
+    assert not message.visible and UPLOADS.take("", upload_id) == "gone"  # taken
+
+
+def test_a_posted_weather_file_becomes_the_site(app):
+    import numpy as np
+
+    hours = np.arange(3 * 24)
+    data = ("t,V\n" + "".join(f"{3600 * h},{5 + (h % 7) / 3:.2f}\n" for h in hours)).encode()
+    upload_id = UPLOADS.put("", "site", "three.csv", data)
+    tell(app, len(data), "site", "three.csv", f"posted {upload_id}")
+    assert app.site_inputs.site == "uploaded", app.site.upload_message.object
+
+
+def test_what_could_not_be_sent_is_said_and_the_day_stays(app):
+    day = app.wind.last_run
+    message = app.wind.upload_message
+    for state, said in [
+        ("failed size", "it has 12,000,000 bytes; at most 10,000,000 are read"),
+        ("failed session", "Reload the page"),
+        ("failed busy", "The server is receiving other files"),
+        ("failed network", "could not be sent to the server"),
+        ("failed <b>tampered</b>", "could not be sent to the server"),
+        ("posted nothing-of-that-id", "did not reach the page"),
+        ("empty", "This wind file cannot be used: the file is empty"),
+    ]:
+        tell(app, 12_000_000 if "size" in state else 0, "wind", "year.csv", state)
+        assert message.visible and said in message.object, (state, message.object)
+        assert message.alert_type == "danger" and app.wind.last_run is day
+        assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
+
+
+def test_a_file_replaced_by_a_later_one_says_nothing_of_itself(app):
+    first = UPLOADS.put("", "wind", "first.csv", rows())
+    second = UPLOADS.put("", "wind", "second.csv", rows(61))
+    tell(app, 1, "wind", "second.csv", "sending")
+    tell(app, 1, "wind", "first.csv", f"posted {first}")  # came late
+    assert "Sending second.csv" in app.wind.upload_message.object
+    tell(app, 1, "wind", "second.csv", f"posted {second}")
+    assert app.wind.last_run.t[-1] == 3600.0 and "second.csv" in app.wind.day_note.object
+
+
+def test_served_of_two_wind_files_the_later_wins_though_the_earlier_is_read_last(monkeypatch):
+    from windpump_app import wind_tab
+
+    held: list = []
+    monkeypatch.setattr(wind_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    explorer = Explorer()
+    explorer.main().active = 2
+    while held:
+        work, then = held.pop(0)
+        then(work())
+    explorer.wind.load_data(rows(), "early.csv")
+    explorer.wind.sending("late.csv", 4000)
+    explorer.wind.load_data(rows(61), "late.csv")
+    (early, late) = held
+    held.clear()
+    late[1](late[0]())
+    while held:  # the late file's day
+        work, then = held.pop(0)
+        then(work())
+    early[1](early[0]())  # the earlier file, read last: not shown
+    assert "late.csv" in explorer.wind.day_note.object
+    assert explorer.wind.last_run.t[-1] == 3600.0
+
+
+# -- the route of a real server ---------------------------------------------------------------
+
+
+def post(url: str, data: bytes, headers: dict | None = None) -> tuple[int, dict]:
+    request = urllib.request.Request(url, data=data, method="POST", headers=headers or {})
+    try:
+        with urllib.request.urlopen(request, timeout=120) as response:
+            return response.status, json.loads(response.read())
+    except urllib.error.HTTPError as error:
+        return error.code, json.loads(error.read())
+
+
+@pytest.fixture(scope="module")
+def served():
+    with served_app() as (url, process):
+        yield url, process
+
+
+def a_session(url: str) -> str:
+    """A page's session, built by its GET (as a browser's): its id."""
+    from bokeh.util.token import get_session_id
+
+    with urllib.request.urlopen(url, timeout=180) as page:
+        token = bench_hall.TOKEN.search(page.read().decode()).group(1)
+    return get_session_id(token)
+
+
+@pytest.mark.timeout(600)
+def test_served_bad_posts_are_refused_in_words_and_a_good_one_kept(served):
+    url, _process = served
+    route = f"{url}/upload"
+    status, answer = post(f"{route}?session=made-up&kind=wind&name=a.csv", b"0,5\n")
+    assert status == 403 and answer["refused"] == "session" and "Reload" in answer["message"]
+    session = a_session(url)
+    status, answer = post(f"{route}?session={session}&kind=wind&name=a.csv", b"")
+    assert status == 400 and answer["refused"] == "empty"
+    assert answer["message"] == "This wind file cannot be used: the file is empty"
+    status, answer = post(f"{route}?session={session}&kind=lab&name=a.csv", b"1,2\n")
+    assert status == 400 and answer["refused"] == "kind"
+    big = b"0" * (LIMIT + 1)
+    status, answer = post(f"{route}?session={session}&kind=wind&name=big.csv", big)
+    assert status == 413 and answer["refused"] == "size"
+    assert "it has 10,000,001 bytes; at most 10,000,000 are read" in answer["message"]
+    status, answer = post(f"{route}?session={session}&kind=wind&name=a.csv", b"0,5\n10,6\n")
+    assert status == 200 and answer["size"] == len(b"0,5\n10,6\n") and answer["id"]
+
+
+@pytest.mark.timeout(600)
+def test_served_a_10_mb_record_posted_while_another_page_moves_its_move_is_answered(served):
+    url, _process = served
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+
+    async def hall() -> tuple[bench_hall.Student, list[str]]:
+        loader = bench_hall.Student(url, random.Random(1))
+        mover = bench_hall.Student(url, random.Random(2))
+        await asyncio.gather(loader.open(), mover.open())
+        await bench_hall.wind_tab(loader)
+        said: list[str] = []
+        loader.watchers.append(lambda e: said.append(str(e.get("new"))))
+        record = bench_hall.wind_record(9_900_000)
+        moves = len(mover.moves)
+        posting = asyncio.ensure_future(bench_hall.post_upload(loader, record))
+        await asyncio.sleep(0.01)
+        await mover.move()  # sent while the record is being posted
+        assert await asyncio.wait_for(posting, 300) == 200  # the route kept it
+        deadline = asyncio.get_running_loop().time() + 300
+        drawn = lambda s: "Integrated in full" in s and bench_hall.UPLOAD_NAME in s  # noqa: E731
+        while not any(drawn(s) for s in said):  # read in its process, its day run
+            assert asyncio.get_running_loop().time() < deadline, said[-3:]
+            await asyncio.sleep(0.2)
+        await mover.move()
+        loader.close()
+        mover.close()
+        assert len(mover.moves) == moves + 2, mover.errors  # both moves answered
+        return loader, said
+
+    loader, said = asyncio.run(hall())
+    assert loader.errors == []
+    assert any(f"Reading {bench_hall.UPLOAD_NAME}" in s for s in said)  # the tab said it worked
+
+
+@pytest.mark.timeout(600)
+def test_the_upload_benchmark_runs(capsys):
+    """benchmarks/bench_upload.py keeps working (how fast is printed there, not asserted)."""
+    import bench_upload
+
+    bench_upload.main(["1"])
+    printed = capsys.readouterr().out
+    assert "HTTP POST + reference" in printed and "ratio during / no upload" in printed

@@ -16,8 +16,10 @@ it loads), so that ``perf report --sort sym`` names the kernels.
 
 from __future__ import annotations
 
+import ctypes
 import math
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -91,18 +93,42 @@ def alternated(first, second, repeats):
     """:func:`median_times` of two functions run in turn, ``repeats`` times each: a ratio of the
     two holds whatever else the machine does meanwhile (the ideal machine timed once and the real
     runs over the next minute, between their references, made every effect 4.0-4.4x by CPU time
-    where alternated runs gave 2.8x)."""
-    times = ([], [], [], [])
+    where alternated runs gave 2.8x). Also the median of each one's minor page faults a run
+    (:func:`steady_heap`). Returns ((wall, CPU) of the first, of the second, faults of the first,
+    of the second), the second's last result."""
+    times = ([], [], [], [], [], [])
     for _ in range(repeats):
         for k, function in enumerate((first, second)):
+            faults = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
             start, start_cpu = time.perf_counter(), time.thread_time()
             result = function()
             times[2 * k + 1].append(time.thread_time() - start_cpu)
             times[2 * k].append(time.perf_counter() - start)
+            times[4 + k].append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - faults)
     return tuple(statistics.median(t) for t in times), result
 
 
+def steady_heap() -> bool:
+    """Keep glibc's malloc from giving freed memory back to the kernel: a run's arrays (~5 MB)
+    then come from pages the process already has, whatever ran before. Without it, the heap
+    that the references' scipy runs left behind made the next runs of both machines fault in
+    fresh pages, ~400 a run (zeroed by the kernel, counted as this thread's CPU time): the
+    ideal machine's runs, alternated with a rising main's, took 1.6-1.9 ms, not 1.1-1.2 ms, and
+    the ratio moved with it (the "main" line 1.8x, then 2.1x with this). False when it cannot
+    (not glibc)."""
+    try:
+        libc = ctypes.CDLL("libc.so.6")
+    except OSError:
+        return False
+    M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3  # glibc's malloc.h
+    # (the largest mmap threshold glibc takes is 32 MB; the trim threshold is unbounded)
+    return bool(
+        libc.mallopt(M_MMAP_THRESHOLD, 32 << 20) and libc.mallopt(M_TRIM_THRESHOLD, 1 << 30)
+    )
+
+
 def main():
+    heap = steady_heap()
     design = windpump.Design.seed_example()
     args = (design, T_END, THETA0, THETA_DOT0)
     ref = reference_run(*args)
@@ -128,7 +154,7 @@ def main():
     print()
     configurations(design, fast)
     print()
-    real_machine(design)
+    real_machine(design, heap)
 
 
 def configurations(seed: windpump.Design, seed_time: float):
@@ -159,12 +185,13 @@ def configurations(seed: windpump.Design, seed_time: float):
         )
 
 
-def real_machine(seed: windpump.Design):
+def real_machine(seed: windpump.Design, heap: bool = False):
     """The seed example with every effect of the real machine on, against the ideal machine timed
     in this process (the issue asks at most 2x), each effect alone, and each against
     tests/real_reference.py (DOP853 of the issue's equations, rtol 1e-11). Wall time and this
     thread's CPU time (:func:`median_times`: the CPU ratio is the one a busy machine leaves
-    alone), each real run alternated with an ideal one (:func:`alternated`)."""
+    alone), each real run alternated with an ideal one (:func:`alternated`), and the median page
+    faults a run of each (0 with ``heap``, :func:`steady_heap`)."""
     effects = {
         "m_r = 1 kg": {"m_r": 1.0},
         "eta_t = 0.9": {"eta_t": 0.9},
@@ -176,17 +203,17 @@ def real_machine(seed: windpump.Design):
     ideal, ideal_cpu, _ = median_times(lambda: windpump.simulate(seed, T_END), 51)
     print(
         f"real machine, 600 s from the kick      (the ideal machine: {ideal * 1e3:.2f} ms, "
-        f"CPU {ideal_cpu * 1e3:.2f} ms)"
+        f"CPU {ideal_cpu * 1e3:.2f} ms; malloc keeps freed pages: {'yes' if heap else 'no'})"
     )
     print(
         f"{'':32s}{'median time':>14s}{'x ideal':>9s}{'CPU':>10s}{'x ideal':>9s}{'steps':>8s}"
-        f"{'speed':>10s}{'volume':>10s}"
+        f"{'speed':>10s}{'volume':>10s}{'faults':>10s}"
     )
     for name, design in [("every effect on", every)] + [
         (name, seed.replace(**change)) for name, change in effects.items()
     ]:
         windpump.simulate(design, T_END)
-        (ideal, ideal_cpu, seconds, cpu), run = alternated(
+        (ideal, ideal_cpu, seconds, cpu, ideal_faults, faults), run = alternated(
             lambda: windpump.simulate(seed, T_END),
             lambda design=design: windpump.simulate(design, T_END),
             31,
@@ -200,6 +227,7 @@ def real_machine(seed: windpump.Design):
             f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / ideal:9.2f}"
             f"{cpu * 1e3:7.2f} ms{cpu / ideal_cpu:9.2f}{run.steps:8d}"
             + "".join(f"{e:10.1e}" for e in errors)
+            + f"{ideal_faults:5.0f}/{faults:<4.0f}"
         )
 
 

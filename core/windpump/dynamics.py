@@ -563,12 +563,15 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
         friction = leak = np.zeros_like(run.t)
     else:  # the real machine
         if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
-            volume = swept - run.leaked
+            volume = np.subtract(swept, run.leaked, out=run.leaked)  # (the kernel's own copy)
         friction = run.friction_loss
         # The kernel integrates the load's excess over the static head; the static head's work
-        # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's.
-        lift = design.rho_w * design.g * design.h
-        leak = lift * (swept - volume) + run.leak_loss - friction
+        # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's:
+        # lift (swept - volume) + the excess's work - friction, in place (no temporaries).
+        leak = np.subtract(swept, volume)
+        leak *= design.rho_w * design.g * design.h
+        leak += run.leak_loss
+        leak -= friction
     arrays = (
         run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work, run.stops, run.starts,
         swept, friction, leak,

@@ -122,8 +122,12 @@ def run(
         capacity,
     )
     out, n = ran.out, ran.samples
-    t, theta, theta_dot, strokes, flow, work = (out[row, :n].copy() for row in range(driver.ROWS))
-    if machine.real is not None and machine.real.q_L > 0.0:  # the delivered flow's factor
+    leaky = machine.real is not None and machine.real.q_L > 0.0
+    t, theta, theta_dot, strokes, flow, work = (
+        out[row, :0] if leaky and row == driver.FLOW_FACTOR else out[row, :n].copy()
+        for row in range(driver.ROWS)
+    )  # (a leak hole's flow factor is the delivered flow's, not the driver's: not copied)
+    if leaky:
         from .real import leaky_flow_factors
 
         flow = leaky_flow_factors(theta, theta_dot, samples_per_stroke, machine)

@@ -460,17 +460,41 @@ def _inertia_since(theta, segment, machine):
 @kernel
 def _lambda_between(a, b, segment, machine):
     """int_a^b Lambda dtheta inside a segment [J/(kg m^2) rad], by Gauss-Legendre
-    (:func:`friction_between`'s pieces: Lambda is analytic inside a segment)."""
+    (:func:`friction_between`'s pieces: Lambda is analytic inside a segment). Lambda at a node
+    is :func:`conservative_work`'s sums, each piston's x/R there worked out once for the head
+    and the weights, and at the segment's start once a call (a run's grid tables and sub-step
+    tables take ~10,000 nodes: 4 sincos a node and cylinder, 1 now)."""
     reach = math.acosh(machine.L_over_R)
     pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
     length = (b - a) / pieces
+    start = segment_start(segment, machine)
+    x_start = np.empty(machine.cylinders)
+    for k in range(machine.cylinders):
+        x_start[k] = piston_over_R(start - phase(k, machine), machine.L_over_R)
     total = 0.0
     x, w = GAUSS8
     for p in range(pieces):
-        start = a + p * length
+        first = a + p * length
         for q in range(8):
-            total += w[q] * conservative_work(start + x[q] * length, segment, machine)
+            total += w[q] * _work_at_node(first + x[q] * length, x_start, segment, machine)
     return total * length
+
+
+@kernel
+def _work_at_node(theta, x_start, segment, machine):
+    """:func:`conservative_work` at theta, the pistons' x/R at the segment's start given: the
+    same sums in the same order (:func:`~.model.load_work`, :func:`_weight_work`)."""
+    head = weights = 0.0
+    for k in range(machine.cylinders):
+        x = piston_over_R(theta - phase(k, machine), machine.L_over_R) - x_start[k]
+        face = delivering_face(segment, k, machine)
+        if face != NEITHER:
+            head += face * x
+        weights += x
+    work = machine.load_torque * machine.inv_I_eff * head
+    if machine.real.weight_torque == 0.0:
+        return work + 0.0
+    return work + machine.real.weight_torque * machine.inv_I_eff * weights
 
 
 @kernel

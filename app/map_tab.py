@@ -31,7 +31,7 @@ from windpump.units import SECONDS_PER_DAY
 
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
-from .serving import off_the_loop
+from .serving import Newest, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .views import refill
@@ -289,7 +289,7 @@ class MapTab(Tab):
         self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
         self._mapped_key: windpump.Design | None = None  # what the map drawn is of
-        self._wanted: windpump.Design | None = None  # the design last asked for
+        self.maps = Newest()  # the map and mark of the design last asked for
 
     def _figure(self):
         s = self.sources
@@ -384,30 +384,26 @@ class MapTab(Tab):
 
     def draw(self, seen: windpump.Exploration) -> None:
         """Map the design (when anything but R₁ and h changed) and mark it: worked out off the
-        event loop (``serving.off_the_loop``), the newest design winning. A design superseded
-        before its turn in the pool is not worked out: a leaky pump's map is ~1.7 s of one of
-        the two threads every page shares, and a dragged slider asks one a move."""
+        event loop (``serving.Newest``: the newest design wins, and one superseded before its
+        turn in the pool is not worked out; a leaky pump's map is ~1.7 s of quadrature)."""
         design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
-        self._wanted = design
         if self._mapped_key is None:  # the first map: later ones replace it when they come
             self.readout.object = self.placeholder(design)
         elif key != self._mapped_key:  # the map drawn is another design's until the new one comes
             self.image.glyph.global_alpha = STALE_ALPHA
         grid = self.grid
 
-        def work() -> tuple | None:
-            if design != self._wanted:  # superseded before its turn: worked out for nobody
-                return None
-            return map_of(key, *grid), marks_of(design, grid[0])
-
-        off_the_loop(work, lambda outcome: self._show(design, key, outcome))
+        self.maps.ask(
+            design,
+            lambda: (map_of(key, *grid), marks_of(design, grid[0])),
+            lambda outcome: self._show(design, key, outcome),
+            off_the_loop,
+        )
 
     def _show(self, design: windpump.Design, key: windpump.Design, outcome) -> None:
-        """Draw the map and mark ``outcome`` of ``design`` (None: superseded before it was
-        worked out), unless a newer design is wanted; one that cannot be mapped says why."""
-        if design != self._wanted or outcome is None:
-            return  # a newer design was asked for meanwhile: its map and mark draw
+        """Draw the map and mark ``outcome`` of ``design`` (the newest asked for); one that
+        cannot be mapped says why."""
         if isinstance(outcome, Exception):
             said = str(outcome)
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive

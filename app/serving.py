@@ -6,6 +6,7 @@ import asyncio
 import ctypes
 import ctypes.util
 import dataclasses
+import functools
 import gc
 import json
 import logging
@@ -768,6 +769,58 @@ def off_the_loop(work: Callable[[], Any], then: Callable[[Any], None]) -> None:
         then(_outcome(work))
         return
     in_thread(OFF_THE_LOOP, document, work, then)
+
+
+SUPERSEDED = object()  # what ``Newest``'s work gives when it was superseded before its turn
+
+
+class Newest:
+    """A tab's newest request for work off the event loop: a request superseded before its turn
+    in the pool is not worked out (a leaky pump's map, a day of wind: ~1-2 s of one of the two
+    threads every page shares, and a dragged slider asks one a move), and an outcome that comes
+    back superseded is not drawn over the newer one's.
+
+    ``same(a, b)``: whether two requests ask for the same work (``==`` by default).
+
+    Examples
+    --------
+    >>> drawn = []
+    >>> maps = Newest()
+    >>> maps.ask(1, lambda: "map 1", drawn.append, lambda work, then: None)  # held in the pool
+    >>> maps.ask(2, lambda: "map 2", drawn.append, lambda work, then: then(work()))
+    >>> drawn
+    ['map 2']
+    """
+
+    def __init__(self, same: Callable[[Any, Any], bool] = lambda a, b: bool(a == b)):
+        self.same = same
+        self.wanted: Any = None  # the request last asked for (None: none yet)
+
+    def wants(self, asked: Any) -> bool:
+        """Whether ``asked`` is still the request last asked for."""
+        return self.wanted is not None and self.same(asked, self.wanted)
+
+    def ask(
+        self,
+        asked: Any,
+        work: Callable[[], Any],
+        then: Callable[[Any], None],
+        run: Callable[[Callable[[], Any], Callable[[Any], None]], None] | None = None,
+    ) -> None:
+        """Ask for ``work()`` as request ``asked``, run by ``run`` (``off_the_loop``); ``then``
+        draws its outcome (or the exception it raised) on the loop, unless superseded."""
+        self.wanted = asked
+
+        @functools.wraps(work)
+        def unless_superseded() -> Any:
+            return work() if self.wants(asked) else SUPERSEDED
+
+        @functools.wraps(then)
+        def drawn(outcome: Any) -> None:
+            if outcome is not SUPERSEDED and self.wants(asked):
+                then(outcome)
+
+        (run or off_the_loop)(unless_superseded, drawn)
 
 
 def _outcome(work: Callable[[], Any]) -> Any:

@@ -21,7 +21,7 @@ from .figures import palette
 from .inputs import clipped
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
-from .serving import off_the_loop
+from .serving import Newest, off_the_loop
 from .sidebar import PromptSlider
 from .site_figures import (
     level_figure,
@@ -115,7 +115,7 @@ class SiteTab(Tab):
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._drawn: Asked | None = None  # what the year drawn was asked for
-        self._wanted: Asked | None = None  # what the year last asked for is
+        self.years = Newest()  # the year last asked for
         self._files = 0  # the files chosen so far: the newest one's outcome is shown
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
 
@@ -154,7 +154,7 @@ class SiteTab(Tab):
         uploaded = self.records.uploaded if values["site"] == UPLOADED else None
         largest = self.site.param["tank"].bounds[1]
         asked = Asked(self.design, **values, uploaded=uploaded, largest_tank=largest)
-        self._wanted = asked
+        self.years.wanted = asked  # a year in flight is superseded, by the one drawn too
         if self.supplied is not None and asked == self._drawn:  # the steady wind V moved
             self.computing.visible = self.error.visible = False
             return
@@ -163,18 +163,16 @@ class SiteTab(Tab):
             placeholder_year(self.sources, tank_range(asked.tank, math.inf, asked.largest_tank))
         records, curve, tank_5 = self.records, self._curve, self.tank_5  # as drawn now
 
-        def work() -> Year | None:
-            if asked != self._wanted:  # a newer year was asked for before this one started
-                return None
-            return run_year(records, asked, curve, tank_5)
-
-        off_the_loop(work, lambda outcome: self._show(asked, outcome))
+        self.years.ask(
+            asked,
+            lambda: run_year(records, asked, curve, tank_5),
+            lambda outcome: self._show(asked, outcome),
+            off_the_loop,
+        )
 
     def _show(self, asked: Asked, outcome) -> None:
-        """Draw the year ``outcome`` (a ``Year``; None: superseded before it ran) of ``asked``,
-        unless a newer one is wanted; a year that cannot be run says why, the one drawn stays."""
-        if asked != self._wanted or outcome is None:
-            return  # a newer design or input was asked for meanwhile: its year draws
+        """Draw the year ``outcome`` (a ``Year``) of ``asked`` (the newest asked for); a year
+        that cannot be run says why, the one drawn stays."""
         self.computing.visible = False
         if isinstance(outcome, ValueError):
             self.failed(f"The year cannot be run: {outcome}")

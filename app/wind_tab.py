@@ -28,7 +28,7 @@ from .envelope import band
 from .figures import palette
 from .inputs import clipped
 from .readouts import PAIR, Readout
-from .serving import in_a_process, off_the_loop
+from .serving import Newest, in_a_process, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .uploads import (
@@ -195,8 +195,8 @@ class WindTab(Tab):
         self._drawn_day: tuple = ()  # (design, record, theta0, kick) of last_run
         self._ready_day: tuple | None = None  # (run_of, (day, low, high)), run ahead with a file
         self._drawn_curve: tuple = ()  # (design, mean wind, k, V) of the curve drawn
-        self._wanted_curve: tuple = ()  # and of the one last asked for
-        self._wanted_day: tuple = ()  # (design, record, theta0, kick) of the day last asked for
+        self.curves = Newest()  # and the one last asked for
+        self.days = Newest(_same_day)  # (design, record, theta0, kick) of the day last asked for
         self._files = 0  # the files chosen so far: the newest one's outcome is shown
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
@@ -222,20 +222,20 @@ class WindTab(Tab):
         """The steady wind's numbers (``wind_steady``), off the event loop when served; a newer
         request wins, and one the drawn curve already answers is not asked again."""
         asked = (design, inputs.mean_wind, inputs.k, inputs.V)
+        self.curves.wanted = asked  # a curve in flight is superseded, by the one drawn too
         if asked == self._drawn_curve:
             return
-        self._wanted_curve = asked
         if not self._drawn_curve:  # a first curve: the figure gets ranges until it comes
             refill(self.sources["curve"], {"V": [0.0, 20.0], "flow": [0.0, 0.0]})
 
-        def work():  # a curve superseded before its turn in the pool is not worked out
-            return steady_wind(*asked) if asked == self._wanted_curve else None
-
-        off_the_loop(work, lambda outcome: self._draw_curve(asked, outcome))
+        self.curves.ask(
+            asked,
+            lambda: steady_wind(*asked),
+            lambda outcome: self._draw_curve(asked, outcome),
+            off_the_loop,
+        )
 
     def _draw_curve(self, asked: tuple, outcome) -> None:
-        if asked != self._wanted_curve or outcome is None:
-            return  # a newer design or wind was asked for meanwhile: its curve draws
         if isinstance(outcome, Exception):
             said = str(outcome)
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
@@ -272,10 +272,12 @@ class WindTab(Tab):
 
         Served, the run goes off the event loop (``serving.off_the_loop``, as an upload's), so
         the other pages' moves are answered meanwhile; the tab says it is working, and a run
-        asked for since (a newer design or wind) wins: an older day is never drawn over it."""
+        asked for since (a newer design or wind) wins (``serving.Newest``): an older day is never
+        drawn over it, nor worked out once superseded."""
         wind = self.wind(inputs)
         # keyed by the kick the day gets: a windmill that starts on its own ignores the slider's
         run_of = (design, wind, inputs.theta0, kick_in_wind(design, inputs.theta_dot0))
+        self.days.wanted = run_of  # a day in flight is superseded, by the one drawn too
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         source = (
@@ -284,7 +286,6 @@ class WindTab(Tab):
             else f"a gusty day (seed {int(round(inputs.seed))})"
         )
         ready, self._ready_day = self._ready_day, None
-        self._wanted_day = run_of
         if ready is not None and _same_day(run_of, ready[0]):  # run off the loop with its record
             self._draw_day(run_of, source, ready[1])
             return
@@ -295,12 +296,12 @@ class WindTab(Tab):
 
         theta0, kick = inputs.theta0, inputs.theta_dot0  # as asked: the inputs move on
 
-        def work() -> tuple | None:
-            if not _same_day(run_of, self._wanted_day):  # superseded before its turn: a day
-                return None  # (~1 s) run for nobody would hold the pool from every page
-            return run_day(design, wind_of(wind), theta0, kick)
-
-        off_the_loop(work, lambda outcome: self._draw_day(run_of, source, outcome))
+        self.days.ask(  # a day (~1 s) run for nobody would hold the pool from every page
+            run_of,
+            lambda: run_day(design, wind_of(wind), theta0, kick),
+            lambda outcome: self._draw_day(run_of, source, outcome),
+            off_the_loop,
+        )
 
     def _placeholder_day(self, duration: float) -> None:
         """Flat, empty bands over the day, so that its figures have ranges before it is run
@@ -311,10 +312,8 @@ class WindTab(Tab):
         refill(self.sources["litres"], {"t": x, "litres": [0.0, 0.0]})
 
     def _draw_day(self, run_of: tuple, source: str, outcome) -> None:
-        """Draw the day ``outcome`` = (day, low, high) of ``run_of``, unless a newer one is
-        wanted; a refused day says why."""
-        if not _same_day(run_of, self._wanted_day) or outcome is None:
-            return  # a newer design or wind was asked for meanwhile: its run draws
+        """Draw the day ``outcome`` = (day, low, high) of ``run_of`` (the newest asked for); a
+        refused day says why."""
         if isinstance(outcome, ValueError):
             self.error.object = f"The day cannot be run: {outcome}"
             self.error.visible = True

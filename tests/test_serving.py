@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import pytest
 from bokeh import __version__ as bokeh_version
+from hypothesis import given
+from hypothesis import strategies as st
 
-from windpump_app.serving import ReadoutsFirst
+from windpump_app.serving import Newest, ReadoutsFirst
 
 
 class Document:
@@ -536,3 +538,30 @@ def test_changes_queued_while_a_page_sends_are_sent_when_its_sending_ends(monkey
 
     asyncio.run(sending())
     assert page._socket.sent == ["the move's readouts", "the map's mark"]
+
+
+@given(
+    asks=st.lists(st.integers(0, 3), min_size=1, max_size=8),
+    order=st.randoms(use_true_random=False),
+)
+def test_only_the_newest_request_is_drawn_and_none_superseded_is_worked_out(asks, order):
+    """Requests held in a pool and run in any order, each asked for when the one before was
+    held: the outcome drawn is the last request's (and only once it is run), and a request's
+    work is done only while it is the one last asked for (repeats of it count as it)."""
+    held: list = []  # (work, then) as the pool holds them
+    worked: list = []
+    drawn: list = []
+    newest = Newest()
+    for i, asked in enumerate(asks):
+        newest.ask(
+            asked,
+            lambda a=asked, i=i: worked.append(i) or a,
+            drawn.append,
+            lambda w, t: held.append((w, t)),
+        )
+    order.shuffle(held)
+    for work, then in held:
+        then(work())
+    last = asks[-1]
+    assert set(drawn) <= {last} and len(drawn) == asks.count(last)
+    assert all(asks[i] == last for i in worked)  # nothing else was worked out

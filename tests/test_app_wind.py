@@ -357,3 +357,29 @@ def test_served_the_steady_winds_numbers_are_worked_out_off_the_loop_the_newest_
     assert value(explorer, "thresholds").startswith(f"{V_stop:.1f} · ")
     low, high = windpump.water_per_day(design, explorer.inputs.mean_wind, explorer.inputs.k)
     assert value(explorer, "site_bounds") == f"{1e3 * low:,.0f} … {1e3 * high:,.0f}"
+
+
+def test_served_a_day_and_curve_in_flight_are_not_drawn_once_the_inputs_are_back_to_those_drawn(
+    monkeypatch,
+):
+    """A move and its undo before the move's day and curve come back: the inputs are the ones
+    drawn, so nothing new is asked, and the day and curve in flight, for inputs the page no
+    longer has, are not drawn over them (nor worked out if not yet started)."""
+    from windpump_app import wind_tab
+
+    held: list = []
+    monkeypatch.setattr(wind_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+    explorer = Explorer()
+    explorer.main().active = 2
+    for work, then in held:  # the first day and curve, drawn
+        then(work())
+    curve = list(explorer.wind.sources["curve"].data["flow"])
+    litres = value(explorer, "day_litres")
+    held.clear()
+    explorer.set_values(h=6.0)  # a day and a curve in flight
+    explorer.set_values(h=3.0)  # back: the day and curve drawn are this design's
+    assert len(held) == 2
+    for work, then in held:
+        then(work())
+    assert list(explorer.wind.sources["curve"].data["flow"]) == curve
+    assert value(explorer, "day_litres") == litres

@@ -12,7 +12,7 @@ import windpump
 
 from .buttons import ActionButton
 from .keyboard import FOCUS_CSS
-from .serving import in_a_process, off_the_loop
+from .serving import Newest, in_a_process, off_the_loop
 from .session import sentence
 from .styles import TEXT
 from .uploads import Encoded, FileUpload, Reveal, chosen, decoded
@@ -49,7 +49,7 @@ class LabData:
             label="Apply this fit anyway", color="warning", visible=False, **button
         )
         self.pending_fit: windpump.TorqueFit | None = None
-        self._files = 0  # files chosen: the newest one's fit is shown
+        self.files = Newest()  # the file last chosen: its fit is shown, not an earlier one's
         self.upload.param.watch(lambda *_e: self.load(chosen(self.upload)), ["value", "filename"])
         self.apply_fit.on_click(lambda _e: self.apply(self.pending_fit))
 
@@ -60,15 +60,12 @@ class LabData:
         process: a 1 MB file is ~0.1 s of pure Python); the newest file wins."""
         self.apply_fit.visible = False
         self.pending_fit = None
-        self._files += 1
         if data is None:
+            self.files.supersede()
             return
-        asked = self._files
-        off_the_loop(lambda: fitted(data), lambda outcome: self._fitted(asked, outcome))
+        self.files.ask(object(), lambda: fitted(data), self._fitted, off_the_loop)
 
-    def _fitted(self, asked: int, outcome) -> None:
-        if asked != self._files:  # a newer file was chosen meanwhile
-            return
+    def _fitted(self, outcome) -> None:
         if isinstance(outcome, Exception):
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
                 log.error("reading a lab file failed", exc_info=outcome)

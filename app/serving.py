@@ -822,6 +822,11 @@ class Newest:
 
         (run or off_the_loop)(unless_superseded, drawn)
 
+    def supersede(self) -> None:
+        """Supersede whatever was asked before without asking for new work here (a file on its
+        way by HTTP, worked out once it has come): nothing asked earlier is drawn."""
+        self.wanted = object()
+
 
 def _outcome(work: Callable[[], Any]) -> Any:
     try:

@@ -18,7 +18,6 @@ from bokeh.models import ColumnDataSource
 import windpump
 
 from .figures import palette
-from .inputs import clipped
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
 from .serving import Newest, off_the_loop
@@ -36,7 +35,7 @@ from .site_record import SiteRecords, read_upload, span, supply_status
 from .site_year import Asked, Year, run_year, tank_range
 from .styles import CAPTION_CSS, COMPACT, TEXT
 from .tab import Tab
-from .uploads import Encoded
+from .uploads import Encoded, sending_note
 from .views import refill
 
 log = logging.getLogger("windpump.app")
@@ -116,7 +115,7 @@ class SiteTab(Tab):
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._drawn: Asked | None = None  # what the year drawn was asked for
         self.years = Newest()  # the year last asked for
-        self._files = 0  # the files chosen so far: the newest one's outcome is shown
+        self.files = Newest()  # the file last chosen: its outcome is shown, not an earlier one's
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
 
     def _build_controls(self) -> None:
@@ -233,16 +232,15 @@ class SiteTab(Tab):
         if data is None:
             return
         name = (self.upload.filename or "") if name is None else name
-        self._files += 1
-        chosen = self._files
         self.records.reading(name)
-        off_the_loop(
-            lambda: read_upload(data, name), lambda outcome: self._loaded(chosen, name, outcome)
+        self.files.ask(
+            object(),
+            lambda: read_upload(data, name),
+            lambda outcome: self._loaded(name, outcome),
+            off_the_loop,
         )
 
-    def _loaded(self, chosen: int, name: str, outcome) -> None:
-        if chosen != self._files:
-            return  # a file chosen since: its outcome is shown
+    def _loaded(self, name: str, outcome) -> None:
         if not self.records.accept(outcome, name):
             self.reveal.show(SITE_MESSAGE)
             return
@@ -265,8 +263,8 @@ class SiteTab(Tab):
     def sending(self, name: str, size: int) -> None:
         """The page is sending the file ``name`` by HTTP (``upload_route``): say so; an earlier
         file's outcome, still to come, is not shown."""
-        self._files += 1
-        self.say(f"Sending {clipped(name) or 'the file'} ({size / 1e6:.1f} MB)…", "info")
+        self.files.supersede()
+        self.say(sending_note(name, size), "info")
 
     # -- layout ------------------------------------------------------------------------------
 

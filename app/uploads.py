@@ -24,6 +24,8 @@ from bokeh.models import CustomJS
 from windpump.labdata import MAX_BYTES
 from windpump.wind import MAX_CSV_BYTES
 
+from .inputs import clipped
+
 # A wind record is sent whole too: its limit stays below the ~15 MB that closes the connection.
 WIND_MAX_BYTES = min(MAX_CSV_BYTES, 10_000_000)
 WIND_CLASS = "wind-upload"
@@ -154,6 +156,11 @@ def refused_size(kind: str, size: int, what: str) -> str | None:
         f"This {kind} file cannot be used: it has {size:,} bytes; at most "
         f"{WIND_MAX_BYTES:,} are read ({what})."
     )
+
+
+def sending_note(name: str, size: int) -> str:
+    """What a tab says while the page sends the file ``name`` of ``size`` bytes by HTTP."""
+    return f"Sending {clipped(name) or 'the file'} ({size / 1e6:.1f} MB)…"
 
 
 class Encoded(str):

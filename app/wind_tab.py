@@ -41,6 +41,7 @@ from .uploads import (
     chosen,
     decoded,
     refused_size,
+    sending_note,
 )
 from .views import refill
 from .wind_figures import curve_figure, day_figures
@@ -197,7 +198,7 @@ class WindTab(Tab):
         self._drawn_curve: tuple = ()  # (design, mean wind, k, V) of the curve drawn
         self.curves = Newest()  # and the one last asked for
         self.days = Newest(_same_day)  # (design, record, theta0, kick) of the day last asked for
-        self._files = 0  # the files chosen so far: the newest one's outcome is shown
+        self.files = Newest()  # the file last chosen: its outcome is shown, not an earlier one's
         self.upload.param.watch(
             lambda *_e: self.load_data(chosen(self.upload)), ["value", "filename"]
         )
@@ -386,8 +387,8 @@ class WindTab(Tab):
     def sending(self, name: str, size: int) -> None:
         """The page is sending the file ``name`` by HTTP (``upload_route``): say so; an earlier
         file's outcome, still to come, is not shown."""
-        self._files += 1
-        self.say(f"Sending {clipped(name) or 'the file'} ({size / 1e6:.1f} MB)…", "info")
+        self.files.supersede()
+        self.say(sending_note(name, size), "info")
 
     def forget(self) -> None:
         self.measured, self.measured_name = None, ""
@@ -404,8 +405,6 @@ class WindTab(Tab):
         if data is None:
             return
         name = (self.upload.filename or "") if name is None else name
-        self._files += 1
-        chosen = self._files
         self.say(f"Reading {clipped(name) or 'the file'} and running the day…", "info")
         design, theta0, kick = (
             self.inputs.design_at_v_ref(),
@@ -423,11 +422,9 @@ class WindTab(Tab):
             except ValueError:  # the day's redraw says why
                 return record, None
 
-        off_the_loop(work, lambda outcome: self._loaded(outcome, name, chosen))
+        self.files.ask(object(), work, lambda outcome: self._loaded(outcome, name), off_the_loop)
 
-    def _loaded(self, outcome, name: str, chosen: int) -> None:
-        if chosen != self._files:
-            return  # a file chosen since: its outcome is shown
+    def _loaded(self, outcome, name: str) -> None:
         if isinstance(outcome, Exception):  # a bug: say so, log it, keep the session alive
             log.error("reading a wind file failed", exc_info=outcome)
             outcome = (f"This wind file cannot be used: {type(outcome).__name__}: {outcome}", None)

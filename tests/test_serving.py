@@ -565,3 +565,35 @@ def test_only_the_newest_request_is_drawn_and_none_superseded_is_worked_out(asks
     last = asks[-1]
     assert set(drawn) <= {last} and len(drawn) == asks.count(last)
     assert all(asks[i] == last for i in worked)  # nothing else was worked out
+
+
+@given(
+    sent_at=st.integers(0, 4),
+    files=st.integers(1, 4),
+    order=st.randoms(use_true_random=False),
+)
+def test_a_file_on_its_way_supersedes_every_file_chosen_before_it(sent_at, files, order):
+    """A tab's files (each a request of its own), one of them posted by HTTP: while it is on its
+    way (``supersede``), no file chosen before it is read or drawn, in whatever order the pool
+    runs them; of those chosen after it, only the last is drawn."""
+    sent_at %= files + 1  # before the first file, between two, or after the last
+    held: list = []
+    worked: list = []
+    drawn: list = []
+    files_of_tab = Newest()
+    for i in range(files + 1):
+        if i == sent_at:
+            files_of_tab.supersede()
+        if i < files:
+            files_of_tab.ask(
+                object(),
+                lambda i=i: worked.append(i) or i,
+                drawn.append,
+                lambda w, t: held.append((w, t)),
+            )
+    order.shuffle(held)
+    for work, then in held:
+        then(work())
+    expected = [files - 1] if sent_at < files else []
+    assert drawn == expected
+    assert set(worked) <= set(expected)

@@ -103,6 +103,38 @@ def test_the_stall_boundary_is_where_the_margin_is_one():
             assert windpump.stall_margin(point) == pytest.approx(1.0, rel=1e-12)
 
 
+def test_a_tight_pumps_speed_jumps_up_at_its_stall_boundary():
+    result = design_map(SEED, RATIOS, HEADS)
+    np.testing.assert_array_equal(result.jump_gear_ratio, result.stall_gear_ratio)
+
+
+@pytest.mark.parametrize("d_leak, T_0", [(0.004, 0.0), (0.003, 0.25)])
+def test_a_leaky_pumps_speed_jumps_up_at_its_jump_ratio_and_only_there(d_leak, T_0):
+    """A leak hole never stalls; at the jump ratio its steady speed (steady_speeds, the scalar
+    averaged theory) goes from a slow one lifting little or nothing to a delivering one many
+    times faster, within 1/1024 of the grid's step, and rises smoothly either side of it."""
+    leaky = SEED.replace(d_leak=d_leak, T_0=T_0)
+    ratios, heads = np.linspace(0.5, 10.0, 31), np.array([2.0, 9.0, 15.5, 22.0, 27.0])
+    result = design_map(leaky, ratios, heads)
+    assert np.all(result.stall_gear_ratio == 0.0)
+    step = ratios[1] - ratios[0]
+    for edge, h in zip(result.jump_gear_ratio, heads, strict=True):
+        assert ratios[0] < edge < ratios[-1]
+        at = [edge - 0.5 * step, edge - step / 1024, edge, edge + 0.5 * step]
+        speeds = [windpump.steady_speeds(leaky.replace(R1=leaky.R0 * r, h=h))[0] for r in at]
+        flows = [windpump.steady_flow(leaky.replace(R1=leaky.R0 * r, h=h), SEED.V_ref) for r in at]
+        # over 1/1024 of a step, more than over half a step either side: a jump
+        jump, before, after = speeds[2] - speeds[1], speeds[1] - speeds[0], speeds[3] - speeds[2]
+        assert jump > max(abs(before), abs(after)) and speeds[2] > 1.5 * speeds[1]
+        assert flows[2] > 10 * flows[1] and flows[2] > 0.0
+
+
+def test_a_leaky_maps_jump_ratio_is_nan_where_the_grid_holds_no_jump():
+    leaky = SEED.replace(d_leak=0.004)
+    result = design_map(leaky, [0.5, 0.6, 0.7], [1.0, 30.0])
+    assert np.isnan(result.jump_gear_ratio).all()  # running at 1 m; slow (lifting none) at 30
+
+
 def test_a_map_writes_csv_with_units():
     result = design_map(SEED, [2.0, 4.0], [3.0, 50.0])
     lines = result.to_csv().splitlines()

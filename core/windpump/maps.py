@@ -36,6 +36,10 @@ MEASURED_TURNS = 10
 SETTLE_TAUS, FEWEST_TURNS, MOST_TURNS = 8.0, 60, 4000
 """A numeric run lasts SETTLE_TAUS time constants, from FEWEST_TURNS to MOST_TURNS revolutions."""
 
+JUMP = 3.0
+"""A rise of alpha+ from one ratio of a map to the next over JUMP times the rises beside it is a
+jump (:attr:`DesignMap.jump_gear_ratio`)."""
+
 POINTS_PER_REPORT = 1000
 """A numeric map reports its progress after about this many runs."""
 
@@ -94,6 +98,34 @@ class DesignMap:
         if d.friction_coefficient == 0.0:
             return mean_load / (d.eta_t * d.T_m)
         return _stall_ratio_with_pipe(d, self.heads, mean_load / (d.eta_t * d.T_m))
+
+    @property
+    def jump_gear_ratio(self) -> np.ndarray:
+        """For each head, the gear ratio at which the averaged pump's running speed jumps up
+        [-]: where it starts lifting water in earnest.
+
+        A tight pump's is its stall boundary (:attr:`stall_gear_ratio`): from rest to alpha+.
+        A pump with a leak hole never stalls, but at small ratios the averaged equation's only
+        steady speed is a slow one at which the hole passes all (or nearly all) the piston
+        sweeps; where a faster root of F(alpha) = 0 appears (a fold) the running speed jumps to
+        it and the flow with it. Found on the map's grid, each head's largest rise of alpha+
+        from one ratio to the next when it is over ``JUMP`` times the rises beside it, then by
+        bisection of the averaged theory (Eq. 21 with the real machine's load) to 1/1024 of
+        the grid's step; NaN where the grid holds no such jump (a smooth rise, or a jump at or
+        below its first ratio or above its last).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from windpump import Design, design_map
+        >>> leaky = Design.seed_example().replace(d_leak=0.004)
+        >>> m = design_map(leaky, np.linspace(0.5, 8.0, 41), [15.5])
+        >>> float(m.stall_gear_ratio[0]), round(float(m.jump_gear_ratio[0]), 2)
+        (0.0, 4.01)
+        """
+        if self.design.d_leak == 0.0:
+            return self.stall_gear_ratio
+        return _jump_ratio(self.design, self.gear_ratios, self.heads, self.alpha_plus)
 
     def design_at(self, row: int, column: int) -> Design:
         """The design at heads[row] and gear_ratios[column]."""
@@ -241,6 +273,31 @@ def _averaged_grid(design: Design, ratios: np.ndarray, heads: np.ndarray):
     where margin <= 1: the averaged equation of :mod:`windpump.theory`, broadcast."""
     speeds = running_speeds(design, gear_ratio=ratios[np.newaxis, :], head=heads[:, np.newaxis])
     return speeds.margin, speeds.alpha_plus, speeds.tau, speeds.mean_flow
+
+
+def _jump_ratio(
+    design: Design, ratios: np.ndarray, heads: np.ndarray, alpha: np.ndarray, steps: int = 10
+) -> np.ndarray:
+    """:attr:`DesignMap.jump_gear_ratio` of a leaky pump (never stalled: alpha > 0), all heads'
+    brackets bisected ``steps`` times at once: the middle is on the fast side when its speed is
+    nearer the fast end's."""
+    rises = np.diff(alpha, axis=1)
+    at = np.argmax(rises, axis=1)
+    rows = np.arange(len(heads))
+    padded = np.pad(np.abs(rises), ((0, 0), (1, 1)))  # no rise beyond the grid's ends
+    beside = np.maximum(padded[rows, at], padded[rows, at + 2])
+    rows = np.flatnonzero((rises[rows, at] > JUMP * beside) & (rises[rows, at] > 0.0))
+    low, high = ratios[at[rows]], ratios[at[rows] + 1]
+    slow, fast = alpha[rows, at[rows]], alpha[rows, at[rows] + 1]
+    for _ in range(steps if rows.size else 0):
+        middle = 0.5 * (low + high)
+        speed = running_speeds(design, gear_ratio=middle, head=heads[rows]).alpha_plus
+        up = speed - slow > fast - speed
+        low, slow = np.where(up, low, middle), np.where(up, slow, speed)
+        high, fast = np.where(up, middle, high), np.where(up, speed, fast)
+    edge = np.full(heads.shape, np.nan)
+    edge[rows] = high
+    return edge
 
 
 def _best_gear_ratio(design: Design, ratios: np.ndarray, heads: np.ndarray) -> np.ndarray:

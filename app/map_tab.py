@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 import panel as pn
+from bokeh.core.properties import value as text_value
 from bokeh.events import Tap
 from bokeh.models import (
     ColorBar,
@@ -109,6 +110,7 @@ def label_place(
     y_range,
     stall: np.ndarray | None = None,
     taken: list[tuple[float, float, float, float]] | None = None,
+    size: tuple[float, float] | None = None,
 ) -> tuple[float, float, str, str] | None:
     """Where a contour's label goes, (x, y, text_align, text_baseline), clear of the labels
     already placed (``taken``: their boxes, ``label_box``): its middle vertex away from the
@@ -116,7 +118,9 @@ def label_place(
     else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at heads
     spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from it.
     None where every place covers a label (the colour bar tells the line's level, as
-    Matplotlib's ``clabel`` leaves a label out where it does not fit)."""
+    Matplotlib's ``clabel`` leaves a label out where it does not fit). ``size``: a label's
+    width and height as shares of the map's (``LABEL_SIZE`` by default)."""
+    size = size or LABEL_SIZE
     finite = np.isfinite(xs) & np.isfinite(ys)
     (x0, x1), (y0, y1) = x_range, y_range
     inner = (
@@ -126,16 +130,17 @@ def label_place(
         & (ys > y0 + 0.05 * (y1 - y0))
         & (ys < y1 - 0.05 * (y1 - y0))
     )
-    anchors = [label_anchor(x, y, x_range, y_range) for x, y in zip(xs, ys, strict=True)]
+    anchors = [label_anchor(x, y, x_range, y_range, size) for x, y in zip(xs, ys, strict=True)]
     aligns = np.array([align for align, _ in anchors])
     baselines = np.array([baseline for _, baseline in anchors])
-    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall, size)
     # not clear as anchored: extending rightwards instead, where the label still fits the map
-    rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & (xs < x1 - 0.2 * (x1 - x0))
+    fits = xs < x1 - max(0.2, size[0]) * (x1 - x0)
+    rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & fits
     aligns = np.where(rightwards, "left", aligns)
-    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall)
+    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall, size)
     clear = finite & (clearance > LABEL_MARGIN)
-    boxes = label_box(xs, ys, aligns, baselines, x_range, y_range)
+    boxes = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
     free = finite & ~np.any([overlap(boxes, box) for box in taken or []], axis=0)
     if not free.any():
         return None  # every place on the line covers a label placed before
@@ -150,9 +155,13 @@ def label_place(
 
 
 # A contour label's size as a share of the map's width and height ("100 m³/day" at 15 px on a
-# map ~600 x 330 px), and the gap it keeps from the stall boundary, a share of the width.
+# map ~600 x 330 px: LABEL_PX) until the page says the map's size, and the gap it keeps from the
+# stall boundary, a share of the width.
+LABEL_PX = (96.0, 23.0)
 LABEL_SIZE = (0.16, 0.07)
 LABEL_MARGIN = 0.02
+# The red line's legend: a tight pump's stall boundary, where a leaky one starts lifting water.
+STALL_LABEL, DELIVERY_LABEL = "stall boundary (margin 1)", "lifts water right of this"
 SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # of its width, left of its anchor
 RISE = {"bottom": 1.0, "middle": 0.5, "top": 0.0}  # of its height, above its anchor
 
@@ -165,6 +174,7 @@ def label_clearance(
     x_range,
     y_range,
     stall: np.ndarray | None,
+    size: tuple[float, float] | None = None,
 ) -> np.ndarray:
     """How far right of the stall boundary labels at (xs, ys), so aligned, start, as a share of
     the map's width, where the boundary is farthest right over each label's height (its ratio
@@ -175,19 +185,26 @@ def label_clearance(
     if not known.any():
         return np.full(len(xs), np.inf)
     heads = np.linspace(y0, y1, len(stall))
-    box = label_box(xs, ys, aligns, baselines, x_range, y_range)
+    box = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
     left, top = box[:, 0], np.minimum(box[:, 3], 1.0)
     boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
     return left - (boundary - x0) / (x1 - x0)
 
 
 def label_box(
-    xs: np.ndarray, ys: np.ndarray, aligns: np.ndarray, baselines: np.ndarray, x_range, y_range
+    xs: np.ndarray,
+    ys: np.ndarray,
+    aligns: np.ndarray,
+    baselines: np.ndarray,
+    x_range,
+    y_range,
+    size: tuple[float, float] | None = None,
 ) -> np.ndarray:
     """The boxes (left, bottom, right, top) of labels at (xs, ys), so aligned, as shares of
-    the map's width and height (``LABEL_SIZE``), one row a label."""
+    the map's width and height (a label's: ``size``, ``LABEL_SIZE`` by default), one row a
+    label."""
     (x0, x1), (y0, y1) = x_range, y_range
-    width, height = LABEL_SIZE
+    width, height = size or LABEL_SIZE
     shift = np.array([SHIFT[align] for align in aligns], dtype=float)
     rise = np.array([RISE[baseline] for baseline in baselines], dtype=float)
     left = (np.asarray(xs, dtype=float) - x0) / (x1 - x0) - shift * width
@@ -203,20 +220,25 @@ def overlap(boxes: np.ndarray, box) -> np.ndarray:
     )
 
 
-def label_anchor(x: float, y: float, x_range, y_range) -> tuple[str, str]:
+def label_anchor(
+    x: float, y: float, x_range, y_range, size: tuple[float, float] | None = None
+) -> tuple[str, str]:
     """(text_align, text_baseline) that keep a label at (x, y) inside the map: a label near an
-    edge extends away from it."""
+    edge extends away from it (nearer than a quarter of the map or half the label's width,
+    ``size``)."""
     (x0, x1), (y0, y1) = x_range, y_range
     across, up = (x - x0) / (x1 - x0), (y - y0) / (y1 - y0)
-    align = "left" if across < 0.25 else "right" if across > 0.75 else "center"
+    edge = max(0.25, 0.5 * (size or LABEL_SIZE)[0])
+    align = "left" if across < edge else "right" if across > 1 - edge else "center"
     baseline = "bottom" if up < 0.1 else "top" if up > 0.9 else "middle"
     return align, baseline
 
 
 @functools.lru_cache(maxsize=4)
 def map_of(key: windpump.Design, ratios: tuple, heads: tuple) -> tuple:
-    """(flow [m^3/s], stall and best gear ratios by head) of the design ``key`` (every input
-    but R₁ and h) over the ``ratios`` and ``heads`` (the page's grid, as (low, high, points)).
+    """(flow [m^3/s], stall (or, with a leak hole, delivery) and best gear ratios by head) of the
+    design ``key`` (every input but R₁ and h) over the ``ratios`` and ``heads`` (the page's grid,
+    as (low, high, points)).
     A leaky pump's averaged theory is a quadrature a point (~1 ms): it is mapped on a coarser
     grid and interpolated onto the page's (a 160 x 160 map took 25 s; this one ~1.7 s, off the
     event loop). Kept: the pages of a class mapping one design share it."""
@@ -227,14 +249,56 @@ def map_of(key: windpump.Design, ratios: tuple, heads: tuple) -> tuple:
     coarse_ratios = np.linspace(ratios[0], ratios[1], LEAKY_GRID)
     coarse_heads = np.linspace(heads[0], heads[1], LEAKY_GRID)
     mapped = windpump.design_map(key, coarse_ratios, coarse_heads)
-    coarse = np.nan_to_num(mapped.mean_flow)  # bilinear: along the ratios, then the heads
-    rows = np.array([np.interp(ratios_, coarse_ratios, row) for row in coarse])
-    flow = np.array([np.interp(heads_, coarse_heads, column) for column in rows.T]).T
-    return (
-        flow,
-        np.interp(heads_, coarse_heads, mapped.stall_gear_ratio),
-        np.interp(heads_, coarse_heads, mapped.best_gear_ratio),
+    # Where its speed jumps up the flow jumps too: interpolated across the jump, the coarse grid
+    # drew a staircase along it. Each side is interpolated from its own values and the two are
+    # joined at the jump (found to ~2e-4 of the ratio), over the heads within a coarse row of one.
+    jump = mapped.jump_gear_ratio
+    flow_of = np.nan_to_num(mapped.mean_flow)
+    below, above = one_side(flow_of, coarse_ratios, jump)
+    left, right = (
+        bilinear(side, coarse_ratios, coarse_heads, ratios_, heads_) for side in (below, above)
     )
+    boundary = jump_between(jump, coarse_heads, heads_)
+    flow = np.where(ratios_[np.newaxis, :] < boundary[:, np.newaxis], left, right)
+    return flow, boundary, np.interp(heads_, coarse_heads, mapped.best_gear_ratio)
+
+
+def one_side(flow: np.ndarray, ratios: np.ndarray, jump: np.ndarray) -> tuple:
+    """``flow`` (rows: heads) twice: with each row's values right of its ``jump`` (a ratio, NaN:
+    none) given its last one left of it, and with those left of it given its first one right."""
+    columns = np.arange(len(ratios))[np.newaxis, :]
+    last = np.searchsorted(ratios, np.nan_to_num(jump, nan=np.inf))[:, np.newaxis] - 1
+    last = np.clip(last, 0, len(ratios) - 2)  # a NaN row: last left of a jump never reached
+    rows = np.arange(len(flow))[:, np.newaxis]
+    jumps = np.isfinite(jump)[:, np.newaxis]
+    below = np.where(jumps & (columns > last), flow[rows, last], flow)
+    above = np.where(jumps & (columns <= last), flow[rows, last + 1], flow)
+    return below, above
+
+
+def bilinear(
+    values: np.ndarray, xs: np.ndarray, ys: np.ndarray, at_x: np.ndarray, at_y: np.ndarray
+):
+    """``values`` on (ys, xs) interpolated onto (at_y, at_x): along x, then along y."""
+    rows = np.array([np.interp(at_x, xs, row) for row in values])
+    return np.array([np.interp(at_y, ys, column) for column in rows.T]).T
+
+
+def jump_between(jump: np.ndarray, heads: np.ndarray, at: np.ndarray) -> np.ndarray:
+    """The ``jump`` ratios by ``heads`` interpolated at the heads ``at`` (extrapolated along the
+    line past its ends); NaN at a head neither of whose two rows has one."""
+    known = np.isfinite(jump)
+    if not known.any():
+        return np.full(at.shape, np.nan)
+    ends, jumps = heads[known], jump[known]
+    boundary = np.interp(at, ends, jumps)
+    if len(ends) > 1:  # past the first or last, along the line's end (it leaves the map there)
+        for out, k in ((at < ends[0], 0), (at > ends[-1], -2)):
+            slope = (jumps[k + 1] - jumps[k]) / (ends[k + 1] - ends[k])
+            boundary[out] = jumps[k] + slope * (at[out] - ends[k])
+    row = np.clip(np.searchsorted(heads, at, side="right") - 1, 0, len(heads) - 2)
+    near = known[row] | known[row + 1] | np.isin(at, heads[known])
+    return np.where(near, boundary, np.nan)
 
 
 def marks_of(design: windpump.Design, ratios: tuple) -> tuple[float, float, float]:
@@ -287,6 +351,8 @@ class MapTab(Tab):
         self.figure = self._figure()
         self.figure.name = "map_figure"  # a browser test finds it by name
         self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
+        self.label_size = LABEL_SIZE  # a contour label's, as shares of the map's (LABEL_PX)
+        self.figure.on_change("inner_width", lambda _attr, _old, _new: self.resized())
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
         self._mapped_key: windpump.Design | None = None  # what the map drawn is of
         self.maps = Newest()  # the map and mark of the design last asked for
@@ -364,10 +430,10 @@ class MapTab(Tab):
                 ],
             )
         )
-        legend(
+        self.legend = legend(
             fig,
             {
-                "stall boundary (margin 1)": stall,
+                STALL_LABEL: stall,
                 "best sprocket ratio": best,
                 "this design": here,
             },
@@ -415,6 +481,8 @@ class MapTab(Tab):
         with pn.io.hold():
             if key != self._mapped_key:
                 self._draw_map(mapped)
+                said = DELIVERY_LABEL if key.d_leak > 0.0 else STALL_LABEL
+                self.legend[STALL_LABEL].label = text_value(said)  # a text, not a column's name
                 self._mapped_key = key
             self._mark(design, *marks)
 
@@ -468,11 +536,12 @@ class MapTab(Tab):
     ) -> dict | None:
         """A level's label clear of the boxes ``taken``, its box added (None: none fits)."""
         bounds = (self.ratios[0], self.ratios[-1]), (self.heads[0], self.heads[-1])
-        at = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float), taken)
+        size = self.label_size
+        at = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float), taken, size)
         if at is None:
             return None
         x, y, align, baseline = at
-        taken.append(label_box([x], [y], [align], [baseline], *bounds)[0])
+        taken.append(label_box([x], [y], [align], [baseline], *bounds, size)[0])
         return {
             "x": x,
             "y": y,
@@ -483,6 +552,21 @@ class MapTab(Tab):
             "align": align,
             "baseline": baseline,
         }
+
+    def resized(self) -> None:
+        """The page laid the map out (``inner_width`` and ``inner_height``: its frame's pixels):
+        a label's share of it follows, and the labels are placed again when it changed (a
+        phone's map is a third of a projector's width; its labels two or three times wider)."""
+        width, height = self.figure.inner_width, self.figure.inner_height
+        if not width or not height:
+            return
+        size = (LABEL_PX[0] / width, LABEL_PX[1] / height)
+        if np.allclose(size, self.label_size, rtol=0.1):
+            return
+        self.label_size = size
+        if self.mapped is not None:
+            flow, stall, _best = self.mapped
+            self._draw_contours(flow * SECONDS_PER_DAY, stall)
 
     def _mark(self, design: windpump.Design, here: float, best_ratio: float, best_flow: float):
         refill(self.sources["here"], {"ratio": [design.R_dagger], "h": [design.h], "flow": [here]})
@@ -517,7 +601,8 @@ class MapTab(Tab):
             pn.pane.HTML(
                 "<p>Colour (a log scale) and contours labelled in m³/day (1, 2, 5 × 10ᵏ): mean flow "
                 "m A R α₊/π of the averaged theory (Eq. 21) for every other input as set. Left of the red line the stall margin "
-                "(Eq. 22) is below 1 and the pump cannot run; the dashed line is the best ratio "
+                "(Eq. 22) is below 1 and the pump cannot run (with a leak hole it turns, too "
+                "slowly to lift water past the hole); the dashed line is the best ratio "
                 "at each head (stall margin 9/8 without torque at rest). Tap the map to move the "
                 "design there.</p>",
                 stylesheets=CAPTION_CSS,

@@ -169,7 +169,7 @@ def on_a_grid_edge(tab, flow, x, y) -> float:
 def test_a_leaky_pumps_map_is_its_coarse_map_interpolated(app):
     """A hole's averaged theory is a quadrature a point: the tab maps LEAKY_GRID^2 points and
     interpolates them onto its grid; on the coarse grid's own points it is that map."""
-    from windpump_app.map_tab import LEAKY_GRID
+    from windpump_app.map_tab import DELIVERY_LABEL, LEAKY_GRID, STALL_LABEL
 
     app.set_values(d_leak_mm=3.0, T_0=0.25)
     tab = app.design_map
@@ -179,10 +179,51 @@ def test_a_leaky_pumps_map_is_its_coarse_map_interpolated(app):
     coarse = windpump.design_map(app.seen.design, ratios, heads)
     coarse_flow = np.nan_to_num(coarse.mean_flow)
     # Both grids share their corners, and the first ratio's column is interpolated in h alone.
+    assert coarse_flow[0, 0] > 0 and coarse_flow[-1, -1] > 0
     assert flow[0, 0] == pytest.approx(coarse_flow[0, 0])
     assert flow[-1, -1] == pytest.approx(coarse_flow[-1, -1])
     assert flow[7, 0] == pytest.approx(np.interp(tab.heads[7], heads, coarse_flow[:, 0]))
-    assert stall == pytest.approx(np.interp(tab.heads, heads, coarse.stall_gear_ratio))
+    # The red line: where its speed jumps up, interpolated between the coarse heads that have
+    # a jump, and drawn between two coarse heads at least one of which has one.
+    edge = coarse.jump_gear_ratio
+    known = np.isfinite(edge)
+    assert known.sum() > LEAKY_GRID // 2
+    drawn = np.isfinite(stall)
+    hs, js, step = heads[known], edge[known], heads[1] - heads[0]  # the line, a row past its ends
+    hs = np.concatenate([[hs[0] - step], hs, [hs[-1] + step]])
+    js = np.concatenate([[2 * js[0] - js[1]], js, [2 * js[-1] - js[-2]]])
+    assert np.allclose(np.diff(heads[known])[[0, -1]], step)  # the ends' rows are neighbours
+    expected = np.interp(tab.heads[drawn], hs, js)
+    assert stall[drawn] == pytest.approx(expected)
+    between = np.searchsorted(heads, tab.heads, side="right").clip(1, LEAKY_GRID - 1)
+    assert np.array_equal(drawn, known[between - 1] | known[between])
+    assert tab.legend[STALL_LABEL].label.value == DELIVERY_LABEL  # a text, not a column
+
+
+def test_a_leaky_pumps_map_is_joined_at_its_jump_not_interpolated_across_it(app):
+    """Where a leaky pump's speed jumps up its flow jumps from (nearly) nothing: the map is
+    interpolated on either side and joined there, not across the jump on the coarse grid (which
+    drew a staircase along it: cells left of the line coloured as lifting, right of it dark)."""
+    app.set_values(d_leak_mm=3.0, T_0=0.25)
+    tab = app.design_map
+    flow, boundary, _best = tab.mapped
+    left = tab.ratios[np.newaxis, :] < boundary[:, np.newaxis]
+    # Two columns either side of the line, at every tenth head it crosses, against the scalar
+    # averaged theory there: little or nothing left of it, and right of it what the pump lifts.
+    design, checked = app.seen.design, 0
+    for row in range(0, len(tab.heads), 10):
+        first = int(np.argmax(~left[row]))
+        if not np.isfinite(boundary[row]) or not 2 <= first < len(tab.ratios) - 2:
+            continue
+        lifted = []
+        for column in (first - 2, first + 2):
+            point = design.replace(R1=design.R0 * tab.ratios[column], h=tab.heads[row])
+            lifted.append(float(windpump.steady_flow(point, design.V_ref)))
+        assert lifted[0] < 0.05 * lifted[1]  # a jump it is
+        assert flow[row, first - 2] == pytest.approx(lifted[0], abs=0.02 * lifted[1]), row
+        assert flow[row, first + 2] == pytest.approx(lifted[1], rel=0.1), row
+        checked += 1
+    assert checked >= 5
 
 
 def test_served_the_map_and_mark_are_worked_out_off_the_loop_the_newest_winning(monkeypatch):
@@ -290,3 +331,27 @@ def test_served_a_tap_on_a_leaky_pumps_map_marks_the_design_tapped(monkeypatch):
     assert explorer.design_map.sources["here"].data["flow"] == [pytest.approx(here, rel=1e-12)]
     row = windpump.design_map(design, np.linspace(0.5, 10.0, GRID), [12.3])
     assert f"R₁/R₀ = {row.best_gear_ratio[0]:.2f}" in explorer.design_map.readout.object
+
+
+@pytest.mark.parametrize("width, height", [(210, 270), (600, 330), (1400, 480)])
+def test_once_the_page_says_the_maps_size_every_label_lies_inside_it_clear_of_the_others(
+    app, width, height
+):
+    """A phone's map is a third of a projector's width, and its labels two or three times wider
+    a share of it: once the browser reports the frame's pixels (``inner_width``, a read-only
+    property it sets), the labels are placed for them: inside the map and apart."""
+    from windpump_app.map_tab import LABEL_PX, label_box, overlap
+
+    app.set_values(d_leak_mm=2.0)
+    tab = app.design_map
+    tab.figure.set_from_json("inner_height", height)
+    tab.figure.set_from_json("inner_width", width)  # as the page sends them
+    size = (LABEL_PX[0] / width, LABEL_PX[1] / height)
+    labels = tab.sources["contour_labels"].data
+    assert len(labels["x"]) >= 2
+    bounds = (tab.ratios[0], tab.ratios[-1]), (tab.heads[0], tab.heads[-1])
+    boxes = label_box(labels["x"], labels["y"], labels["align"], labels["baseline"], *bounds, size)
+    assert np.all(boxes[:, 0] >= -1e-9) and np.all(boxes[:, 2] <= 1 + 1e-9)
+    assert np.all(boxes[:, 1] >= -1e-9) and np.all(boxes[:, 3] <= 1 + 1e-9)
+    for i, box in enumerate(boxes):
+        assert not np.delete(overlap(boxes, box), i).any()

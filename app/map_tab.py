@@ -15,6 +15,7 @@ import math
 import numpy as np
 import panel as pn
 from bokeh.core.properties import value as text_value
+from bokeh.core.property.descriptors import UnsetValueError
 from bokeh.events import Tap
 from bokeh.models import (
     ColorBar,
@@ -352,7 +353,8 @@ class MapTab(Tab):
         self.figure.name = "map_figure"  # a browser test finds it by name
         self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
         self.label_size = LABEL_SIZE  # a contour label's, as shares of the map's (LABEL_PX)
-        self.figure.on_change("inner_width", lambda _attr, _old, _new: self.resized())
+        for side in ("inner_width", "inner_height"):
+            self.figure.on_change(side, lambda _attr, _old, _new: self.resized())
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
         self._mapped_key: windpump.Design | None = None  # what the map drawn is of
         self.maps = Newest()  # the map and mark of the design last asked for
@@ -557,7 +559,10 @@ class MapTab(Tab):
         """The page laid the map out (``inner_width`` and ``inner_height``: its frame's pixels):
         a label's share of it follows, and the labels are placed again when it changed (a
         phone's map is a third of a projector's width; its labels two or three times wider)."""
-        width, height = self.figure.inner_width, self.figure.inner_height
+        try:
+            width, height = self.figure.inner_width, self.figure.inner_height
+        except UnsetValueError:  # the page has sent one of them, not yet the other
+            return
         if not width or not height:
             return
         size = (LABEL_PX[0] / width, LABEL_PX[1] / height)

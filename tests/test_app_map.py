@@ -344,8 +344,8 @@ def test_once_the_page_says_the_maps_size_every_label_lies_inside_it_clear_of_th
 
     app.set_values(d_leak_mm=2.0)
     tab = app.design_map
+    tab.figure.set_from_json("inner_width", width)  # as the page sends them: one, then the other
     tab.figure.set_from_json("inner_height", height)
-    tab.figure.set_from_json("inner_width", width)  # as the page sends them
     size = (LABEL_PX[0] / width, LABEL_PX[1] / height)
     labels = tab.sources["contour_labels"].data
     assert len(labels["x"]) >= 2

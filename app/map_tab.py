@@ -134,14 +134,15 @@ def label_place(
     anchors = [label_anchor(x, y, x_range, y_range, size) for x, y in zip(xs, ys, strict=True)]
     aligns = np.array([align for align, _ in anchors])
     baselines = np.array([baseline for _, baseline in anchors])
-    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall, size)
+    boxes = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
+    clearance = label_clearance(boxes, x_range, y_range, stall)
     # not clear as anchored: extending rightwards instead, where the label still fits the map
     fits = xs < x1 - max(0.2, size[0]) * (x1 - x0)
     rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & fits
     aligns = np.where(rightwards, "left", aligns)
-    clearance = label_clearance(xs, ys, aligns, baselines, x_range, y_range, stall, size)
-    clear = finite & (clearance > LABEL_MARGIN)
     boxes = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
+    clearance = label_clearance(boxes, x_range, y_range, stall)
+    clear = finite & (clearance > LABEL_MARGIN)
     free = finite & ~np.any([overlap(boxes, box) for box in taken or []], axis=0)
     if not free.any():
         return None  # every place on the line covers a label placed before
@@ -167,27 +168,17 @@ SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # of its width, left of its 
 RISE = {"bottom": 1.0, "middle": 0.5, "top": 0.0}  # of its height, above its anchor
 
 
-def label_clearance(
-    xs: np.ndarray,
-    ys: np.ndarray,
-    aligns: np.ndarray,
-    baselines: np.ndarray,
-    x_range,
-    y_range,
-    stall: np.ndarray | None,
-    size: tuple[float, float] | None = None,
-) -> np.ndarray:
-    """How far right of the stall boundary labels at (xs, ys), so aligned, start, as a share of
-    the map's width, where the boundary is farthest right over each label's height (its ratio
-    grows with the head: at the label's top). ``stall``: the boundary's ratio at heads spanning
-    ``y_range`` evenly (non-finite: none at that head); +inf where it has none."""
+def label_clearance(boxes: np.ndarray, x_range, y_range, stall: np.ndarray | None) -> np.ndarray:
+    """How far right of the stall boundary labels (their ``label_box`` rows) start, as a share
+    of the map's width, where the boundary is farthest right over each label's height (its
+    ratio grows with the head: at the label's top). ``stall``: the boundary's ratio at heads
+    spanning ``y_range`` evenly (non-finite: none at that head); +inf where it has none."""
     (x0, x1), (y0, y1) = x_range, y_range
     known = np.isfinite(stall) if stall is not None else np.array([False])
     if not known.any():
-        return np.full(len(xs), np.inf)
+        return np.full(len(boxes), np.inf)
     heads = np.linspace(y0, y1, len(stall))
-    box = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
-    left, top = box[:, 0], np.minimum(box[:, 3], 1.0)
+    left, top = boxes[:, 0], np.minimum(boxes[:, 3], 1.0)
     boundary = np.interp(y0 + top * (y1 - y0), heads[known], stall[known])
     return left - (boundary - x0) / (x1 - x0)
 

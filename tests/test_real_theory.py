@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 from scipy import integrate, optimize
 
@@ -457,3 +457,19 @@ def test_a_leaky_pumps_flow_over_a_records_many_winds_is_its_flow_at_each():
     table = windpump.steady_flow(design, winds)
     one_by_one = np.array([windpump.steady_flow(design, float(v)) for v in winds[::37]])
     assert np.max(np.abs(table[::37] - one_by_one)) <= 1e-3 * one_by_one.max()
+
+
+@given(
+    ratio=st.floats(0.5, 10.0),
+    d_leak=st.floats(0.0005, 0.01),
+    T_0=st.sampled_from([0.0, 0.25]),
+)
+@example(ratio=5.5, d_leak=0.003, T_0=0.0)  # F(runaway) was 4e-17 > 0: no root found
+def test_a_leaky_pump_with_no_head_runs_at_the_windmills_runaway_speed(ratio, d_leak, T_0):
+    """No head and no pipe: no load at any speed (the hole passes nothing against no head), so
+    alpha+ is where the windmill's torque vanishes, T(R+ alpha) = 0 (Eq. 11): its runaway speed
+    over R+. F is zero there give or take round-off, which left alpha+ NaN at some ratios."""
+    design = SEED.replace(d_leak=d_leak, h=0.0, T_0=T_0, R1=SEED.R0 * ratio)
+    alpha_plus, _alpha_minus = windpump.steady_speeds(design)
+    assert alpha_plus == pytest.approx(design.runaway_speed / ratio, rel=1e-12)
+    assert math.isfinite(windpump.time_constant(design))

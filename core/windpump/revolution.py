@@ -260,9 +260,11 @@ def leaky_running_speeds(design, *, gear_ratio=None, head=None, V=None):
 def largest_roots(points: Points, upper, crawl: bool = False):
     """The largest root of F in (0, upper) where F falls (alpha+), and the root below it where F
     rises (alpha-) [rad/s], NaN where there is none, of every point: F sampled at SCAN_POINTS
-    speeds, the brackets refined by :func:`_root`. F(upper) must be < 0. With ``crawl`` also
-    the largest falling root below alpha- (where a pump started below alpha- settles)."""
-    grid = np.concatenate([[1e-9], np.arange(1, SCAN_POINTS + 1) / SCAN_POINTS])
+    speeds, the brackets refined by :func:`_root`. F must be < 0 just above ``upper`` (the
+    runaway speed: with no load at all, no head, F(upper) is 0 give or take round-off, and the
+    scan ends a hair above it). With ``crawl`` also the largest falling root below alpha- (where
+    a pump started below alpha- settles)."""
+    grid = np.concatenate([[1e-9], np.arange(1, SCAN_POINTS) / SCAN_POINTS, [1.0 + 1e-9]])
     alpha = np.asarray(upper)[:, None] * grid
     positive = points.net_torque(alpha) > 0.0
     index = np.arange(grid.size)

@@ -451,7 +451,7 @@ class OperatingView(View):
 
     def update(self, seen, bins):
         d, s, op = seen.design, self.sources, seen.operating_point
-        omega = np.linspace(0.0, 2.1 * d.omega_m, 211)
+        omega = np.linspace(0.0, 1.05 * d.runaway_speed, 211)  # to where T is 0, and a little
         refill(s["curve"], {"omega": omega, "power": windpump.windmill_power(d, omega)})
         refill(s["load_line"], {"omega": omega, "power": windpump.load_power(d, omega)})
         refill(s["stable"], {"omega": [op.omega] if op else [], "power": [op.power] if op else []})

@@ -131,6 +131,23 @@ def test_status_reads_at_a_glance(app, changes, status):
         assert "–" in readout_text(app, "tau")  # no time constant for a run that never started
 
 
+@pytest.mark.parametrize(
+    "preset", ["A deep well with a heavy pump rod", "A leak hole lets it start"]
+)
+def test_the_operating_points_dots_lie_where_its_drawn_lines_meet(app, preset):
+    """The Operating point view: the windmill's curve runs to where its torque is 0 (with a
+    torque at rest beyond 2 omega_m: the curve stopped short of the dot), and the dot lies on
+    both lines (the load line was the ideal machine's: no chain, pipe or hole)."""
+    app.sidebar.preset.value = preset
+    s, op = app.sources, app.seen.operating_point
+    omega = np.asarray(s["curve"].data["omega"])
+    assert omega[-1] >= app.seen.design.runaway_speed > op.omega
+    assert s["curve"].data["power"][-1] <= 0.0  # past the runaway: a brake
+    for name in ("curve", "load_line"):
+        drawn = np.interp(op.omega, omega, s[name].data["power"])
+        assert drawn == pytest.approx(op.power, rel=2e-3), name  # on a 211-point line
+
+
 def test_no_kick_draws_a_time_axis_from_zero(app):
     app.inputs.theta_dot0 = 0.0
     assert (app.pump.time_range.start, app.pump.time_range.end) == (0.0, 600.0)

@@ -473,3 +473,22 @@ def test_a_leaky_pump_with_no_head_runs_at_the_windmills_runaway_speed(ratio, d_
     alpha_plus, _alpha_minus = windpump.steady_speeds(design)
     assert alpha_plus == pytest.approx(design.runaway_speed / ratio, rel=1e-12)
     assert math.isfinite(windpump.time_constant(design))
+
+
+@pytest.mark.parametrize("design", REAL + HOLED + CLOSED[:1], ids=range(len(REAL + HOLED) + 1))
+def test_the_load_line_is_the_real_load_reflected_and_meets_the_curve_at_the_operating_point(
+    design,
+):
+    """Eq. (5) of the real machine: the mean load torque on the crank (by quadrature here) at
+    omega / R+, reflected through the chain, times omega; the operating point (alpha+ and
+    alpha-, from steady_speeds) lies on it: the Operating point view's dot on its line."""
+    for omega in (1.0, 20.0, 70.0):
+        expected = reference_mean_load(design, omega / design.R_dagger) * omega
+        expected /= design.eta_t * design.R_dagger
+        # (the reference's adaptive quadrature across a hole's kinks: ~3e-8)
+        assert float(windpump.load_power(design, omega)) == pytest.approx(expected, rel=1e-7)
+    op = windpump.operating_point(design)
+    assert float(windpump.load_power(design, op.omega)) == pytest.approx(op.power, rel=1e-9)
+    if math.isfinite(op.omega_unstable) and op.omega_unstable > 0.0:
+        unstable = float(windpump.load_power(design, op.omega_unstable))
+        assert unstable == pytest.approx(op.power_unstable, rel=1e-8)

@@ -12,6 +12,7 @@ from ._kernels.equations import windmill_torque as _torque_curve
 from .averaged import steady_speeds
 from .design import Design
 from .errors import ParameterError
+from .revolution import mean_load
 from .theory import running_speeds
 from .validation import LARGEST, finite_array, flag
 
@@ -52,19 +53,30 @@ def windmill_power(design: Design, omega):
 
 
 def load_power(design: Design, omega):
-    """Mean power the pump draws at steady windmill speed omega [W] (Eq. 5, m deliveries).
+    """Mean power the pump draws from the windmill at steady windmill speed omega [W] (Eq. 5,
+    m deliveries; the real machine's load).
 
-    ``P = m rho_w g h (A R / pi) (R0 / R1) omega``: a straight line through the origin; m =
-    cylinders x (2 if double-acting else 1) (Eq. 5 has m = 1).
+    ``P = L-bar(omega / R+) omega / (eta_t R+)``: the revolution mean of the load torque on the
+    crank at the crank speed omega / R+ (:func:`windpump.revolution.mean_load`, with a rising
+    main's friction and a leak hole), reflected through the chain of efficiency eta_t. Without
+    a pipe or a hole, Eq. (5): ``m rho_w g h (A R / pi) (R0 / R1) omega / eta_t``, a straight
+    line through the origin. It meets the windmill's power curve at the operating point
+    (:func:`operating_point`).
 
     Examples
     --------
     >>> from windpump import Design
     >>> round(float(load_power(Design.seed_example(), 40.0)), 3)
     4.709
+    >>> round(float(load_power(Design.seed_example().replace(L_main=30.0), 40.0)), 3)
+    4.753
     """
     omega = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST)
-    return design.mean_load_torque / design.R_dagger * omega
+    reflected = design.eta_t * design.R_dagger
+    if design.d_leak == 0.0 and design.friction_coefficient == 0.0:
+        return design.mean_load_torque / reflected * omega
+    load, _flow = mean_load(design, omega / design.R_dagger)
+    return load / reflected * omega
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,7 +88,8 @@ class OperatingPoint:
     omega : float
         Stable windmill speed [rad/s] (R+ alpha+ omega_m).
     power : float
-        Shaft power there [W] (= rho_w g h Q, the hydraulic power at the mean flow Q).
+        Shaft power there [W] (:func:`load_power`; the ideal machine's: rho_w g h Q, the
+        hydraulic power at the mean flow Q).
     crank_speed : float
         Crank speed omega / R+ [rad/s].
     flow : float

@@ -178,6 +178,11 @@ def start_text(seen: windpump.Exploration) -> str:
         return "From rest it needs a kick (no torque at rest, T₀ = 0)."
     at_rest = d.rest_torque_on_crank
     peak = windpump.peak_load_torque(d)
+    if seen.starts_from_rest and peak == 0.0:  # a leak hole, no reciprocating weight
+        return (
+            f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m; at rest the water "
+            "slips back through the leak hole and the piston carries no load)."
+        )
     if seen.starts_from_rest:
         return f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m > peak load {peak:.2f} N·m)."
     return f"It does not start on its own from every angle (R†T₀ = {at_rest:.2f} N·m ≤ peak load {peak:.2f} N·m)."

@@ -160,6 +160,7 @@ def label_place(
 # map ~600 x 330 px: LABEL_PX) until the page says the map's size, and the gap it keeps from the
 # stall boundary, a share of the width.
 LABEL_PX = (96.0, 23.0)
+STAR_PX = 28.0  # this design's star (24 px) and its outline: no label under it
 LABEL_SIZE = (0.16, 0.07)
 LABEL_MARGIN = 0.02
 # The red line's legend: a tight pump's stall boundary, where a leaky one starts lifting water.
@@ -323,6 +324,7 @@ class MapTab(Tab):
 
     def build(self) -> None:
         self.mapped: tuple | None = None  # the last map drawn: (flow, stall and best ratios)
+        self._lines = None  # its contour lines (bokeh's contour_data), labelled by place_labels
         self.colors = palette(self.dark)
         self.grid = (  # (low, high, points) of the ratios and of the heads
             (*self.inputs.param["R_dagger"].bounds, GRID),
@@ -491,19 +493,30 @@ class MapTab(Tab):
         refill(self.sources["best"], {"ratio": best, "h": self.heads})
 
     def _draw_contours(self, flow: np.ndarray, stall: np.ndarray) -> None:
-        """The round levels' lines, each in black or white for its level's colour and labelled
-        with its value at a point of it clear of the other labels and, where it can be, of the
-        stall boundary (``stall``, by head): the shortest lines, with the fewest places, first;
-        a line with no place clear of the others' labels goes without one."""
+        """The round levels' lines, each in black or white for its level's colour, and their
+        labels (``place_labels``)."""
         levels = contour_levels(flow)
         lines: dict[str, list] = {"xs": [], "ys": [], "levels": [], "color": []}
-        placed: dict[int, dict] = {}  # each labelled line's label, by its index in the lines
+        self._lines = None
         if len(levels):
             drawn = contour_data(self.ratios, self.heads, flow, levels, want_fill=False).line_data
             lines = {**drawn.asdict(), "color": []}
             lines["color"] = [ink_on(mapped_colour(self.mapper, level)) for level in drawn.levels]
+            self._lines = drawn
+        self.contours.line_renderer.data_source.data = lines
+        self.contours.levels = [float(level) for level in levels]
+        self.place_labels()
+
+    def place_labels(self) -> None:
+        """Each line labelled with its value at a point of it clear of the other labels and of
+        this design's star and, where it can be, of the red line: the shortest lines, with the
+        fewest places, first; a line with no place clear goes without one. Sent only when the
+        labels move (this is redone when the star moves or the page lays the map out anew)."""
+        drawn, placed = self._lines, {}  # each labelled line's label, by its index in the lines
+        if drawn is not None and self.mapped is not None:
+            stall = self.mapped[1]
             places = [int(np.isfinite(xs).sum()) for xs in drawn.xs]
-            taken: list = []  # the boxes of the labels placed so far (``label_box``)
+            taken: list = [self.star_box()]  # then the boxes of the labels placed (label_box)
             for i in sorted(np.flatnonzero(places), key=places.__getitem__):
                 under = mapped_colour(self.mapper, drawn.levels[i])
                 xs, ys = np.asarray(drawn.xs[i]), np.asarray(drawn.ys[i])
@@ -514,9 +527,20 @@ class MapTab(Tab):
         for i in sorted(placed):  # in the lines' order
             for name, value in placed[i].items():
                 labels[name].append(value)
-        self.contours.line_renderer.data_source.data = lines
-        self.contours.levels = [float(level) for level in levels]
-        refill(self.sources["contour_labels"], labels)
+        if labels != dict(self.sources["contour_labels"].data):
+            refill(self.sources["contour_labels"], labels)
+
+    def star_box(self) -> tuple[float, float, float, float]:
+        """This design's star's box (left, bottom, right, top) as shares of the map: STAR_PX
+        square, in the label's pixels (``label_size``)."""
+        here = self.sources["here"].data
+        if not len(here["ratio"]):
+            return (-1.0, -1.0, -1.0, -1.0)  # no star yet: a box outside the map
+        x = (here["ratio"][0] - self.ratios[0]) / (self.ratios[-1] - self.ratios[0])
+        y = (here["h"][0] - self.heads[0]) / (self.heads[-1] - self.heads[0])
+        half_w = 0.5 * STAR_PX * self.label_size[0] / LABEL_PX[0]
+        half_h = 0.5 * STAR_PX * self.label_size[1] / LABEL_PX[1]
+        return (x - half_w, y - half_h, x + half_w, y + half_h)
 
     def _contour_label(
         self,
@@ -560,12 +584,11 @@ class MapTab(Tab):
         if np.allclose(size, self.label_size, rtol=0.1):
             return
         self.label_size = size
-        if self.mapped is not None:
-            flow, stall, _best = self.mapped
-            self._draw_contours(flow * SECONDS_PER_DAY, stall)
+        self.place_labels()
 
     def _mark(self, design: windpump.Design, here: float, best_ratio: float, best_flow: float):
         refill(self.sources["here"], {"ratio": [design.R_dagger], "h": [design.h], "flow": [here]})
+        self.place_labels()  # clear of the star where it now is
         if np.isnan(best_ratio):
             self.readout.object = (
                 f"At h = {design.h:.1f} m no sprocket ratio on this map carries the load: "

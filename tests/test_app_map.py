@@ -355,3 +355,21 @@ def test_once_the_page_says_the_maps_size_every_label_lies_inside_it_clear_of_th
     assert np.all(boxes[:, 1] >= -1e-9) and np.all(boxes[:, 3] <= 1 + 1e-9)
     for i, box in enumerate(boxes):
         assert not np.delete(overlap(boxes, box), i).any()
+
+
+def test_no_label_lies_under_this_designs_star_wherever_it_moves(app):
+    """The star marks the design on the map; a label under it could not be read (a phone
+    showed "100 m³/d★"): the labels are placed again clear of it each time it moves."""
+    from windpump_app.map_tab import label_box, overlap
+
+    tab = app.design_map
+    bounds = (tab.ratios[0], tab.ratios[-1]), (tab.heads[0], tab.heads[-1])
+    labels = tab.sources["contour_labels"].data
+    moved = 0
+    for x, y in list(zip(labels["x"], labels["y"], strict=True)):  # onto each label in turn
+        app.set_values(R_dagger=round(x, 1), h=round(y, 1))
+        now = tab.sources["contour_labels"].data
+        boxes = label_box(now["x"], now["y"], now["align"], now["baseline"], *bounds)
+        assert not overlap(boxes, tab.star_box()).any()
+        moved += 1
+    assert moved >= 3

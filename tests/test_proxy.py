@@ -81,11 +81,12 @@ def test_each_process_of_the_hall_gets_the_allocator(monkeypatch):
 
 
 def test_a_process_started_so_runs_on_jemalloc():
-    library = proxy.jemalloc_library()
-    if library is None:
-        pytest.skip("jemalloc is not installed (apt-get install -y libjemalloc2)")
+    from served import require_jemalloc
+
+    library = require_jemalloc()
     code = "print(open('/proc/self/maps').read())"
     env = proxy.allocator_env("jemalloc")
+    assert env["LD_PRELOAD"].split()[0] == library
     maps = subprocess.run(
         [sys.executable, "-c", code],
         env=env,

@@ -68,8 +68,8 @@ def allocator_env(
     own allocator keeps 1 MiB arenas pinned by a few survivors (docs/known-issues.rst). If the
     library is missing (``library`` None and none in ``LIBRARY_DIRS``), Python's allocator, and
     a line logged saying so. ``"malloc"``: glibc's malloc; ``"python"``: as ``panel serve``
-    starts. Both read when Python starts, hence set for the child process, not in it.
-    """
+    starts. ``PYTHONMALLOC`` and ``LD_PRELOAD`` are read when a process starts: set for the
+    servers, not in them. Figures: docs/measured.rst, "the allocator"."""
     if allocator not in ALLOCATORS:
         raise ValueError(f"allocator {allocator!r}: one of {', '.join(ALLOCATORS)}")
     env = dict(os.environ if env is None else env)
@@ -207,11 +207,8 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     origins = args.host or [f"{name}:{args.port}" for name in _names()]
     listen = f"{args.address}:{args.port}"
-    with hall(args.processes, listen, origins, *extra, allocator=args.allocator) as (
-        servers,
-        proxy,
-        ports,
-    ):
+    with hall(args.processes, listen, origins, *extra, allocator=args.allocator) as started:
+        servers, proxy, ports = started
         print(f"{len(servers)} servers on 127.0.0.1:{','.join(map(str, ports))}; nginx on {listen}")
         print(f"students open http://{origins[0]}/app  (Ctrl-C stops them all)", flush=True)
         with contextlib.suppress(KeyboardInterrupt):

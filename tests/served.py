@@ -174,6 +174,21 @@ def require_nginx() -> None:
     pytest.skip(f"{proxy.NGINX} is not installed (apt-get install -y nginx)")
 
 
+def require_jemalloc() -> str:
+    """jemalloc's library, which the proxy's processes start on; skip on a user's machine
+    without it (they fall back to Python's allocator); in CI its absence is a failure."""
+    import pytest
+
+    from windpump_app import proxy
+
+    library = proxy.jemalloc_library()
+    if library is not None:
+        return library
+    if os.environ.get("CI"):
+        pytest.fail(f"CI must run the proxy on jemalloc, but {proxy.JEMALLOC} is missing")
+    pytest.skip(f"{proxy.JEMALLOC} is not installed (apt-get install -y libjemalloc2)")
+
+
 def resident_memory(pid: int) -> int:
     """Resident set size of a process [bytes], from /proc."""
     for line in Path(f"/proc/{pid}/status").read_text().splitlines():

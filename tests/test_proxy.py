@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import asyncio
 import html
+import logging
 import random
+import subprocess
 import sys
 from pathlib import Path
 from urllib.parse import urlparse
@@ -30,6 +32,70 @@ def test_the_config_names_every_process_and_listens_where_asked(tmp_path):
     assert text.count("server 127.0.0.1:5001") == 1 and text.count("server 127.0.0.1:5002") == 1
     assert '"127.0.0.1:5002" 127.0.0.1:5002;' in text
     assert "@" not in text.replace("@pool", "")  # every field filled in
+
+
+def test_the_servers_start_with_jemalloc_and_python_hands_it_its_small_objects(tmp_path):
+    library = tmp_path / "lib" / proxy.JEMALLOC
+    library.parent.mkdir()
+    library.write_bytes(b"")
+    assert proxy.jemalloc_library((str(tmp_path / "none"), str(library.parent))) == str(library)
+    env = proxy.allocator_env("jemalloc", {"PATH": "/bin", "LD_PRELOAD": "x.so"}, str(library))
+    assert env["LD_PRELOAD"] == f"{library} x.so" and env["PYTHONMALLOC"] == "malloc"
+    assert env["MALLOC_CONF"] == proxy.JEMALLOC_CONF and env["PATH"] == "/bin"
+    mine = proxy.allocator_env("jemalloc", {"MALLOC_CONF": "narenas:1"}, str(library))
+    assert mine["MALLOC_CONF"] == "narenas:1"  # an instructor's own setting is kept
+    assert proxy.allocator_env("malloc", {})["PYTHONMALLOC"] == "malloc"
+    assert proxy.allocator_env("python", {"A": "1"}) == {"A": "1"}
+    with pytest.raises(ValueError, match="tcmalloc"):
+        proxy.allocator_env("tcmalloc", {})
+
+
+def test_without_jemalloc_the_servers_start_as_panel_serve_does_and_say_so(monkeypatch, caplog):
+    monkeypatch.setattr(proxy, "LIBRARY_DIRS", ("/nonexistent",))
+    with caplog.at_level(logging.WARNING, logger="windpump.app"):
+        env = proxy.allocator_env("jemalloc", {"A": "1"})
+    assert env == {"A": "1"}
+    assert "jemalloc" in caplog.text and "apt-get install -y libjemalloc2" in caplog.text
+
+
+def test_each_process_of_the_hall_gets_the_allocator(monkeypatch):
+    """hall() hands each server the environment allocator_env builds (nginx is not reached)."""
+    started = []
+
+    class Started(Exception):
+        pass
+
+    def popen(command, env=None, **_):
+        started.append((command, env))
+        raise Started
+
+    monkeypatch.setattr(proxy.subprocess, "Popen", popen)
+    monkeypatch.setattr(proxy, "NGINX", sys.executable)  # present: the check passes
+    monkeypatch.setattr(proxy, "jemalloc_library", lambda: "/opt/libjemalloc.so.2")
+    with pytest.raises(Started), proxy.hall(2, "127.0.0.1:1", ["127.0.0.1:1"]):
+        pass
+    ((command, env),) = started
+    assert command[1:4] == ["-m", "panel", "serve"]
+    assert env["LD_PRELOAD"].startswith("/opt/libjemalloc.so.2")
+    assert env["PYTHONMALLOC"] == "malloc" and env["MALLOC_CONF"] == proxy.JEMALLOC_CONF
+
+
+def test_a_process_started_so_runs_on_jemalloc():
+    from served import require_jemalloc
+
+    library = require_jemalloc()
+    code = "print(open('/proc/self/maps').read())"
+    env = proxy.allocator_env("jemalloc")
+    assert env["LD_PRELOAD"].split()[0] == library
+    maps = subprocess.run(
+        [sys.executable, "-c", code],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=True,
+    ).stdout
+    assert "libjemalloc" in maps
 
 
 def shown_text(student, needle: str) -> bool:

@@ -124,3 +124,31 @@ def test_importing_the_core_does_not_import_the_app_libraries():
         "assert 'panel' not in sys.modules and 'bokeh' not in sys.modules, 'app library imported'"
     )
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_a_leaky_runs_deferred_fields_are_frozen_arrays_that_pickle():
+    """A leak hole's flow and leak loss are worked out when first read (dynamics.Deferred): the
+    same read-only array every time, not settable, and a pickled or copied run carries them (a
+    function in the pickle would fail: pickle refuses lambdas)."""
+    import copy
+    import dataclasses
+    import pickle
+
+    run = windpump.simulate(SEED.replace(d_leak=0.0015, L_main=10.0, D_main=0.025), 20.0)
+    copied = copy.copy(run)
+    flow, leak = run.flow, run.leak_loss
+    assert run.flow is flow and run.leak_loss is leak
+    assert not flow.flags.writeable and not leak.flags.writeable
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        run.flow = flow  # type: ignore[misc]
+    for other in (pickle.loads(pickle.dumps(windpump.simulate(run.design, 20.0))), copied):
+        np.testing.assert_array_equal(other.flow, flow)
+        np.testing.assert_array_equal(other.leak_loss, leak)
+    # What it is: what the face delivers past its hole (one single-acting cylinder: its exhaust)
+    d = run.design
+    arms = np.abs(windpump.kinematics.lever_arm(run.theta, d.L_over_R))
+    delivering = np.sin(run.theta) < 0.0
+    swept = d.A * d.R * arms * run.theta_dot
+    expected = np.where(delivering, np.maximum(swept - d.leak_capacity, 0.0), 0.0)
+    np.testing.assert_allclose(flow, expected, rtol=1e-12, atol=1e-15 * d.leak_capacity)
+    assert leak[-1] > 0.0 and np.all(np.isfinite(leak))

@@ -11,6 +11,8 @@ import functools
 import io
 import math
 import os
+import typing
+from collections.abc import Callable
 
 import numpy as np
 
@@ -37,6 +39,55 @@ SMALLEST_KICK = 1e-300
 
 RTOL = 1e-8
 """Local relative tolerance of the integrator (u = theta_dot^2/2, and the time per step)."""
+
+
+class Deferred:
+    """A result's array field that may be given as a function of no arguments, called when the
+    field is first read (its array kept, read-only, and returned from then on): work a run
+    would do that its caller may never read, as the flow of a pump with a leak hole (a sample's
+    flow is a sum over its faces at its speed, 0.13 ms of the seed example's 600 s run, more
+    than a tenth of the ideal machine's whole run). The numbers are those the function would
+    have given at once; the result stays frozen (a field cannot be set from outside, and a
+    pickled or copied result carries the arrays, not the functions).
+
+    A descriptor of a frozen dataclass's field: ``__init__`` hands it the value given, the
+    instance's ``__dict__`` keeps it under the field's name.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Held:
+    ...     x: Deferred = Deferred()
+    >>> held = Held(lambda: np.arange(3.0))
+    >>> held.x.tolist(), held.x.flags.writeable
+    ([0.0, 1.0, 2.0], False)
+    """
+
+    def __init__(self, default: Callable[[], np.ndarray] | None = None) -> None:
+        self.default = default  # a function: a field's default is hashable
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, instance: object, owner: type | None = None) -> np.ndarray:
+        if instance is None:  # the class's: the field's default, or none (AttributeError)
+            if self.default is None:
+                raise AttributeError(self.name)
+            return self.default  # type: ignore[return-value]
+        value = instance.__dict__[self.name]
+        if not isinstance(value, np.ndarray):
+            value = value()
+            value.flags.writeable = False
+            instance.__dict__[self.name] = value
+        return value
+
+    def __set__(self, instance: object, value: np.ndarray | Callable[[], np.ndarray]) -> None:
+        instance.__dict__[self.name] = value
+
+
+def _no_samples() -> np.ndarray:
+    return np.empty(0)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -90,7 +141,10 @@ class SimulationResult:
     theta: np.ndarray
     theta_dot: np.ndarray
     volume: np.ndarray
-    flow: np.ndarray
+    if typing.TYPE_CHECKING:  # (an array; a function before it is read, as it was given)
+        flow: np.ndarray
+    else:
+        flow: Deferred = Deferred()
     shaft_work: np.ndarray
     stalled: bool
     t_stall: float | None
@@ -100,7 +154,14 @@ class SimulationResult:
     wind: WindRecord | None = None
     swept_volume: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
     friction_loss: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
-    leak_loss: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    if typing.TYPE_CHECKING:
+        leak_loss: np.ndarray = dataclasses.field(default_factory=_no_samples)
+    else:
+        leak_loss: Deferred = Deferred(_no_samples)
+
+    def __getstate__(self) -> dict:
+        """The fields as pickle and copy take them: every :class:`Deferred` one worked out."""
+        return {field.name: getattr(self, field.name) for field in dataclasses.fields(self)}
 
     @property
     def wind_speed(self) -> np.ndarray:
@@ -553,31 +614,28 @@ def _refuse_too_many_samples(t_end: float, bound: float) -> None:
 
 def _simulation_result(design: Design, run, record: WindRecord | None) -> SimulationResult:
     """The kernels' run (a ``_kernels.KernelRun``) as a :class:`SimulationResult`: volume and flow
-    (Eq. 16, every face) from the strokes and flow factor, every array read-only."""
+    (Eq. 16, every face) from the strokes and flow factor, every array read-only; a leak hole's
+    flow and loss are worked out when first read (:class:`Deferred`)."""
     from . import _kernels
 
     swept = design.stroke_volume * (run.strokes - run.strokes[0])
+    volume = swept
     # Eq. (16); with a leak hole the kernel's flow factor is the delivered flow's, not the swept
-    volume, flow = swept, design.stroke_volume * run.flow_factor * run.theta_dot
+    flow = _flow(design.stroke_volume, run.flow_factor, run.theta_dot)
     if run.leaked is None:  # the ideal machine
         friction = leak = np.zeros_like(run.t)
     else:  # the real machine
         if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
             volume = np.subtract(swept, run.leaked, out=run.leaked)  # (the kernel's own copy)
         friction = run.friction_loss
-        # The kernel integrates the load's excess over the static head; the static head's work
-        # on the swept volume is closed form. What neither lifted water nor rubbed is the leak's:
-        # lift (swept - volume) + the excess's work - friction, in place (no temporaries).
-        leak = np.subtract(swept, volume)
-        leak *= design.rho_w * design.g * design.h
-        leak += run.leak_loss
-        leak -= friction
+        leak = functools.partial(_leak_loss, design, swept, volume, run.leak_loss, friction)
     arrays = (
         run.t, run.theta, run.theta_dot, volume, flow, run.shaft_work, run.stops, run.starts,
         swept, friction, leak,
     )  # fmt: skip
     for array in arrays:
-        array.flags.writeable = False
+        if isinstance(array, np.ndarray):
+            array.flags.writeable = False
     stalled = run.outcome in (_kernels.STALLED, _kernels.RESTING)
     t_stall = None
     if stalled:
@@ -600,6 +658,27 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
         friction_loss=friction,
         leak_loss=leak,
     )
+
+
+def _flow(stroke_volume: float, factor, theta_dot: np.ndarray):
+    """The flow [m^3/s] of Eq. (16), ``stroke_volume`` [m^3] times the flow factor times the
+    crank speed; a function working it out when the factor is one (a leak hole's:
+    :class:`Deferred`)."""
+    if isinstance(factor, np.ndarray):
+        return stroke_volume * factor * theta_dot
+    return lambda: stroke_volume * factor() * theta_dot
+
+
+def _leak_loss(design: Design, swept, volume, excess_work, friction) -> np.ndarray:
+    """The work lost through the leak holes [J]: the kernel integrates the load's excess over the
+    static head (``excess_work``); the static head's work on the swept volume is closed form.
+    What neither lifted water nor rubbed is the leak's: lift (swept - volume) + the excess's
+    work - friction, in place (no temporaries)."""
+    leak = np.subtract(swept, volume)
+    leak *= design.rho_w * design.g * design.h
+    leak += excess_work
+    leak -= friction
+    return leak
 
 
 def kernel_machine(design: Design, record: WindRecord | None = None):

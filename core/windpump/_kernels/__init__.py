@@ -29,6 +29,7 @@ equations both sides share) without the compiler; the names below load it on fir
 
 from __future__ import annotations
 
+import functools
 import importlib
 import typing
 
@@ -72,8 +73,9 @@ class KernelRun(typing.NamedTuple):
     theta_dot: np.ndarray  # [rad/s]
     shaft_work: np.ndarray  # [J]
     strokes: np.ndarray  # stroke volumes 2 R A delivered since theta = 0 [-]
-    flow_factor: np.ndarray  # sum of f2 (Eq. 16) over the delivering faces [-]; with a leak
-    # hole the delivered flow over 2 R A theta_dot
+    flow_factor: np.ndarray | typing.Callable[[], np.ndarray]  # sum of f2 (Eq. 16) over the
+    # delivering faces [-]; with a leak hole the delivered flow over 2 R A theta_dot, as a
+    # function that works it out (0.13 ms of the seed example's 600 s, a caller may never read)
     outcome: int  # REACHED_T_END, STALLED, RESTING or OVER_BUDGET
     steps: int  # Dormand-Prince steps taken, rejected ones included
     stops: np.ndarray  # times the crank came to rest and waited for the wind [s]
@@ -127,10 +129,12 @@ def run(
         out[row, :0] if leaky and row == driver.FLOW_FACTOR else out[row, :n].copy()
         for row in range(driver.ROWS)
     )  # (a leak hole's flow factor is the delivered flow's, not the driver's: not copied)
-    if leaky:
+    if leaky:  # worked out when the flow is first read (:class:`KernelRun`)
         from .real import leaky_flow_factors
 
-        flow = leaky_flow_factors(theta, theta_dot, samples_per_stroke, machine)
+        flow = functools.partial(
+            leaky_flow_factors, theta.view(), theta_dot.view(), samples_per_stroke, machine
+        )  # (views: the arrays are made read-only, which numba would compile again for)
     real = [out[row, :n].copy() for row in range(driver.ROWS, out.shape[0])]
     times, kinds = ran.events[0, : ran.event_count], ran.events[1, : ran.event_count]
     return KernelRun(

@@ -212,16 +212,30 @@ class LoopWatch:
             gc.callbacks.remove(self.on_gc)
 
 
+WATCHED: list[LoopWatch] = []  # the server's LoopWatch, once started (``watch_the_loop``)
+
+
 def watch_the_loop() -> LoopWatch | None:
-    """A LoopWatch on the running loop if ``WINDPUMP_LOOP_WATCH`` names a file, else nothing."""
+    """A LoopWatch on the running loop if ``WINDPUMP_LOOP_WATCH`` names a file, else nothing;
+    ``WINDPUMP_LOOP_WATCH_SLOW`` [s]: how late the loop is written down (0.05 s unless said)."""
     path = os.environ.get("WINDPUMP_LOOP_WATCH")
     if not path:
         return None
     from tornado.ioloop import IOLoop
 
-    watch = LoopWatch(path)
+    slow = float(os.environ.get("WINDPUMP_LOOP_WATCH_SLOW") or 0.05)
+    watch = LoopWatch(path, slow=slow, every=min(0.05, slow))
     watch.start(IOLoop.current().asyncio_loop)  # type: ignore[attr-defined]
+    WATCHED[:] = [watch]
     return watch
+
+
+def mark(step: str, **more: Any) -> None:
+    """Write a step of the server's work (an upload's: its first byte, its body read, its
+    reading started, ...) beside the loop's stalls, when the loop is watched (``LoopWatch``);
+    nothing otherwise. Any thread."""
+    for watch in WATCHED:
+        watch.write("mark", 0.0, step=step, thread=threading.current_thread().name, **more)
 
 
 def without_mathjax() -> None:
@@ -731,9 +745,14 @@ class FileReaders:
             return function(*args)
         spawn = multiprocessing.get_context("spawn")
         lower = {"initializer": os.nice, "initargs": (self.NICENESS,)} if _NICE else {}
+        mark("reader: starting")
         with ProcessPoolExecutor(max_workers=1, mp_context=spawn, **lower) as pool:
             try:
-                return _read_only(pool.submit(function, *args).result())
+                future = pool.submit(function, *args)
+                mark("reader: submitted")
+                value = future.result()
+                mark("reader: answered")
+                return _read_only(value)
             except BrokenProcessPool:  # the reader died (killed, out of memory)
                 raise RuntimeError("the process reading the file stopped") from None
 

@@ -747,7 +747,12 @@ class FileReaders:
             return function(*args)
         spawn = multiprocessing.get_context("spawn")
         niceness = min(19, os.getpriority(os.PRIO_PROCESS, 0) + self.NICENESS) if _NICE else 0
-        lower = {"initializer": _niced, "initargs": (niceness,)} if _NICE else {}
+        # os.setpriority, not a function of this module: the reader could not import it
+        lower = (
+            {"initializer": os.setpriority, "initargs": (os.PRIO_PROCESS, 0, niceness)}
+            if _NICE
+            else {}
+        )
         mark("reader: starting")
         with ProcessPoolExecutor(max_workers=1, mp_context=spawn, **lower) as pool:
             try:

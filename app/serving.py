@@ -26,7 +26,7 @@ log = logging.getLogger("windpump.app")
 
 _LIBC_NAME = ctypes.util.find_library("c")
 _LIBC = ctypes.CDLL(_LIBC_NAME) if _LIBC_NAME else None
-_NICE = hasattr(os, "nice")  # Unix: a file-reading process runs below the server's priority
+_NICE = hasattr(os, "setpriority")  # Unix: a file-reading process runs below the server's priority
 
 
 def session_closed(session_context) -> None:  # Bokeh requires exactly this signature
@@ -212,16 +212,30 @@ class LoopWatch:
             gc.callbacks.remove(self.on_gc)
 
 
+WATCHED: list[LoopWatch] = []  # the server's LoopWatch, once started (``watch_the_loop``)
+
+
 def watch_the_loop() -> LoopWatch | None:
-    """A LoopWatch on the running loop if ``WINDPUMP_LOOP_WATCH`` names a file, else nothing."""
+    """A LoopWatch on the running loop if ``WINDPUMP_LOOP_WATCH`` names a file, else nothing;
+    ``WINDPUMP_LOOP_WATCH_SLOW`` [s]: how late the loop is written down (0.05 s unless said)."""
     path = os.environ.get("WINDPUMP_LOOP_WATCH")
     if not path:
         return None
     from tornado.ioloop import IOLoop
 
-    watch = LoopWatch(path)
+    slow = float(os.environ.get("WINDPUMP_LOOP_WATCH_SLOW") or 0.05)
+    watch = LoopWatch(path, slow=slow, every=min(0.05, slow))
     watch.start(IOLoop.current().asyncio_loop)  # type: ignore[attr-defined]
+    WATCHED[:] = [watch]
     return watch
+
+
+def mark(step: str, **more: Any) -> None:
+    """Write a step of the server's work (an upload's: its first byte, its body read, its
+    reading started, ...) beside the loop's stalls, when the loop is watched (``LoopWatch``);
+    nothing otherwise. Any thread."""
+    for watch in WATCHED:
+        watch.write("mark", 0.0, step=step, thread=threading.current_thread().name, **more)
 
 
 def without_mathjax() -> None:
@@ -708,7 +722,9 @@ class FileReaders:
 
     The reader runs ``NICENESS`` steps below the server's CPU priority: on a laptop's two cores
     the server, a reader and the browsers share the CPU, and a reader at the same priority took
-    a core from the pages' moves for the ~2 s of a big file.
+    a core from the pages' moves for the ~2 s of a big file. It is lowered as soon as it is
+    started, not by the pool's initializer only: that runs once its interpreter has started
+    (~0.04 s of a core at the server's priority, just as the file arrives).
     """
 
     NICENESS = 10  # added to the reader's nice value (Unix): the server's moves come first
@@ -730,12 +746,33 @@ class FileReaders:
         if not self.started:
             return function(*args)
         spawn = multiprocessing.get_context("spawn")
-        lower = {"initializer": os.nice, "initargs": (self.NICENESS,)} if _NICE else {}
+        niceness = min(19, os.getpriority(os.PRIO_PROCESS, 0) + self.NICENESS) if _NICE else 0
+        # os.setpriority, not a function of this module: the reader could not import it
+        lower = (
+            {"initializer": os.setpriority, "initargs": (os.PRIO_PROCESS, 0, niceness)}
+            if _NICE
+            else {}
+        )
+        mark("reader: starting")
         with ProcessPoolExecutor(max_workers=1, mp_context=spawn, **lower) as pool:
             try:
-                return _read_only(pool.submit(function, *args).result())
+                future = pool.submit(function, *args)  # starts the process
+                for process in getattr(pool, "_processes", {}).values() if _NICE else ():
+                    _niced(niceness, process.pid)  # from its interpreter's start, not its task
+                mark("reader: submitted")
+                value = future.result()
+                mark("reader: answered")
+                return _read_only(value)
             except BrokenProcessPool:  # the reader died (killed, out of memory)
                 raise RuntimeError("the process reading the file stopped") from None
+
+
+def _niced(niceness: int, pid: int = 0) -> None:
+    """Process ``pid`` (0: this one) at ``niceness``, if it still runs."""
+    try:
+        os.setpriority(os.PRIO_PROCESS, pid, niceness)
+    except (ProcessLookupError, PermissionError):
+        pass
 
 
 def _read_only(value: Any) -> Any:

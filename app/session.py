@@ -203,9 +203,13 @@ def shared_explore(design: windpump.Design, t_end: float, *start: float) -> wind
     with SHARING:
         seen = SHARED_RUNS.get(key)
     if seen is None:
+        serving.mark("run: worked out")
         seen = windpump.explore(design, t_end, *start)
+        serving.mark("run: done")
         with SHARING:
             seen = SHARED_RUNS.setdefault(key, seen)
+    else:
+        serving.mark("run: shared")
     return seen
 
 

@@ -28,6 +28,7 @@ from collections.abc import Callable
 
 from tornado import web
 
+from .serving import mark
 from .uploads import KINDS, WIND_MAX_BYTES, refused_size
 
 log = logging.getLogger("windpump.app")
@@ -217,6 +218,8 @@ class UploadHandler(web.RequestHandler):
             self.refusal = "size"
 
     def data_received(self, chunk: bytes) -> None:
+        if not self.size:
+            mark("upload: first piece")
         self.size += len(chunk)
         if self.refusal:
             return  # read and dropped
@@ -226,6 +229,7 @@ class UploadHandler(web.RequestHandler):
         self.chunks.append(chunk)
 
     def post(self) -> None:
+        mark("upload: body read", size=self.size)
         try:
             if self.refusal:
                 size = self.size if self.declared is None else self.declared
@@ -272,6 +276,7 @@ def deliver(channel, tab, session_id: str) -> bool:
         return False
     if state == "posted":
         posted = UPLOADS.take(session_id, detail)
+        mark("upload: reference")
         if isinstance(posted, Posted):
             tab.load_data(posted.data, posted.name or name)
             return False

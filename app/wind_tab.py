@@ -28,7 +28,7 @@ from .envelope import band
 from .figures import palette
 from .inputs import clipped
 from .readouts import PAIR, Readout
-from .serving import Newest, in_a_process, off_the_loop
+from .serving import Newest, in_a_process, mark, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .uploads import (
@@ -418,7 +418,10 @@ class WindTab(Tab):
                 return record, None
             try:
                 run_of = (design, record, theta0, kick_in_wind(design, kick))
-                return record, (run_of, run_day(design, record, theta0, kick))
+                mark("day: starting")
+                day = run_day(design, record, theta0, kick)
+                mark("day: run")
+                return record, (run_of, day)
             except ValueError:  # the day's redraw says why
                 return record, None
 

@@ -21,10 +21,12 @@ input (before it) builds every view anyway and is sent nothing.
 
 ``--upload``: while the hall moves, one more student loads a 10 MB wind record into the Wind tab,
 as the page sends it (by HTTP POST, its reference over the websocket; a server without the upload
-route, as a FileInput's base64 value), and the others' round trips are split into
-before/while/after (while: from the first byte sent until the server says it reads the file).
-Ten more students, who move at no other time, move at once 2 s before the upload and again 10 ms
-after its first byte: the same moves, with and without a file arriving.
+route, as a FileInput's base64 value), from a process of its own as a student's browser is
+(``bench_upload.py``'s loader), and the others' round trips are split into before/while/after
+(while: from the first byte sent until the server says it reads the file). Ten more students,
+who move at no other time, move at once 2 s before the upload and again 10 ms after its first
+byte, each time to a design no other page holds (its run worked out, not shared): the same work,
+with and without a file arriving.
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
 ``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
@@ -183,6 +185,11 @@ class Student:
         value = current
         while value == current:
             value = round(low + step * self.rng.randrange(int((high - low) / step) + 1), 6)
+        await self.move_to(title, value)
+
+    async def move_to(self, title: str, value: float) -> None:
+        """Move the slider ``title`` to ``value``; time until the readout changes."""
+        model, _ = self.sliders[title]
         self.readout_changed.clear()
         sent = time.perf_counter()
         await self.patch([changed(model, "value", value)], wait=False)
@@ -481,41 +488,72 @@ def wind_record(size: int) -> bytes:
 
 
 WITNESSES = 10  # students who move at once as the upload is sent, and 2 s before it
+# Their moves: witness k sets the windmill's torque to CALM_TORQUE + k * TORQUE_APART 2 s before the
+# upload and to that + TORQUE_APART / 2 just after it: designs no other page of the hall holds
+# (MOVES keeps T_m <= 1.5), so both times each move's run is worked out, not shared with a page
+# (``session.shared_explore``), and the two bursts do the same work. Random moves of the hall's
+# kind were shared more often the first time than the second: the ten's round trips were half as
+# long 2 s before the upload, with or without one.
+WITNESS_SLIDER = "Windmill torque Tₘ [N·m]"
+CALM_TORQUE, TORQUE_APART = 1.55, 0.1  # [N·m]
 
 
 async def one_upload(
     url: str, end: float, window: list[float], witnessed: dict[str, list[float]]
 ) -> None:
-    """A student who opens the Wind tab and loads a 10 MB record, as the page sends it
-    (``app/uploads.js``): its bytes by HTTP POST to the app's upload route, and their reference
-    over the websocket (``post_upload``); to a server without the route, as the FileInput's
-    value in base64, as the page then sends it. ``window`` gets (sent, the server reading it)
-    [perf_counter]. WITNESSES more students (who move at no other time) move at once 2 s before
-    the upload and again 10 ms after its first byte: ``witnessed`` gets their round trips [s],
+    """A student who opens the Wind tab and loads a 10 MB record, in a process of its own as a
+    student's browser is (``bench_upload.loader``: the bytes by HTTP POST, their reference over
+    the websocket; to a server without the route, the FileInput's value in base64). ``window``
+    gets (sent, the server reading it) [perf_counter]. WITNESSES more students (who move at no
+    other time) move at once 2 s before the upload and again 10 ms after its first byte, each
+    to a design no other page holds (WITNESS_SLIDER): ``witnessed`` gets their round trips [s],
     "calm" and "sending"."""
-    student = Student(url, random.Random(0))
     witnesses = [Student(url, random.Random(100 + k)) for k in range(WITNESSES)]
-    await asyncio.gather(student.open(), *(w.open() for w in witnesses))
-    await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
-    upload = await wind_tab(student)
-    route = await has_upload_route(student)
-    record = wind_record(UPLOAD_BYTES)
-    shown = asyncio.Event()
-    reading = lambda new: UPLOAD_NAME in new and "Sending" not in new  # noqa: E731
-    student.watchers.append(lambda e: reading(str(e.get("new"))) and shown.set())
-    witnessed["calm"] = await moving_at_once(witnesses)
-    await asyncio.sleep(2.0)
-    window.append(time.perf_counter())
-    sending = asyncio.ensure_future(
-        post_upload(student, record) if route else in_base64(student, upload, record)
+    loader = Path(__file__).resolve().parent / "bench_upload.py"
+    child = await asyncio.create_subprocess_exec(
+        sys.executable,
+        str(loader),
+        "--loader",
+        url,
+        str(UPLOAD_BYTES),
+        stdin=asyncio.subprocess.PIPE,
+        stdout=asyncio.subprocess.PIPE,
     )
-    await asyncio.sleep(0.01)
-    witnessed["sending"] = await moving_at_once(witnesses)
-    await sending
-    await asyncio.wait_for(shown.wait(), WAIT)
-    window.append(time.perf_counter())
-    for one in (student, *witnesses):
-        one.close()
+    assert child.stdin is not None and child.stdout is not None
+    try:
+        await asyncio.gather(*(w.open() for w in witnesses))
+        ready = await asyncio.wait_for(child.stdout.readline(), WAIT)  # its page and Wind tab
+        if not ready.startswith(b"ready"):
+            raise RuntimeError(f"the uploading student's process did not start: {ready!r}")
+        await asyncio.sleep(max(0.0, min(15.0, (end - time.perf_counter()) / 3)))
+        torque = [CALM_TORQUE + k * TORQUE_APART for k in range(WITNESSES)]
+        witnessed["calm"] = await moving_to(witnesses, torque)
+        await asyncio.sleep(2.0)
+        window.append(time.perf_counter())
+        child.stdin.write(b"go\n")
+        await child.stdin.drain()
+        await asyncio.sleep(0.01)
+        witnessed["sending"] = await moving_to(witnesses, [t + TORQUE_APART / 2 for t in torque])
+        read = await asyncio.wait_for(child.stdout.readline(), WAIT)
+        if not read.startswith(b"read"):
+            raise RuntimeError(f"the uploading student's process: {read!r}")
+        window.append(time.perf_counter())
+        await asyncio.wait_for(child.wait(), WAIT)
+    finally:
+        if child.returncode is None:
+            child.kill()
+            await child.wait()
+        for one in witnesses:
+            one.close()
+
+
+async def moving_to(students: list[Student], torques: list[float]) -> list[float]:
+    """Each student sets the windmill's torque [N·m] at the same moment: their round trips."""
+    counts = [len(s.moves) for s in students]
+    await asyncio.gather(
+        *(s.move_to(WITNESS_SLIDER, round(t, 6)) for s, t in zip(students, torques, strict=True))
+    )
+    return [rt for s, k in zip(students, counts, strict=True) for _, rt in s.moves[k:]]
 
 
 async def has_upload_route(student: Student) -> bool:

@@ -35,15 +35,16 @@ CALM = 2.0  # [s] of the witness's moves with no upload, each round
 DURING = 0.6  # [s] after the upload's first byte: the witness's moves sent then
 
 
-async def loader(url: str) -> None:
-    """The loader's process: open a page and its Wind tab, print "ready"; on a line of stdin,
-    send the record; print when the server says it reads it."""
+async def loader(url: str, size: int = bench_hall.UPLOAD_BYTES) -> None:
+    """The loader's process (``bench_hall.py --upload``'s too): open a page and its Wind tab,
+    make a record of ``size`` bytes, print "ready"; on a line of stdin, send the record; print
+    "read" and the seconds until the server says it reads it."""
     bench_hall.AsyncHTTPClient.configure(None, max_clients=4)
     student = bench_hall.Student(url, random.Random(0))
     await student.open()
     upload = await bench_hall.wind_tab(student)
     route = await bench_hall.has_upload_route(student)
-    record = bench_hall.wind_record(bench_hall.UPLOAD_BYTES)
+    record = bench_hall.wind_record(size)
     shown = asyncio.Event()
     name = bench_hall.UPLOAD_NAME
     reading = lambda new: name in new and "Sending" not in new  # noqa: E731
@@ -136,7 +137,7 @@ def main(argv: list[str] | None = None) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["--loader"]:
-        asyncio.run(loader(sys.argv[2]))
+    if sys.argv[1:2] == ["--loader"]:  # --loader URL [BYTES]
+        asyncio.run(loader(sys.argv[2], *map(int, sys.argv[3:4])))
     else:
         main()

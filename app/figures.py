@@ -80,6 +80,7 @@ def palette(dark: bool = False) -> dict[str, str]:
 # Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
 PRESENTATION_SIZES = {TITLE: "22px", LABEL: "19px", TICKS: "18px"}  # text glyphs are LABEL
 LINE_SCALE = 1.5  # lines in presentation mode
+SWATCH = 20  # a legend's swatch [px], Bokeh's default; 1.4 times larger in presentation mode
 
 
 def present(fig, large: bool) -> None:
@@ -102,7 +103,8 @@ def present(fig, large: bool) -> None:
             if isinstance(value, str) and value in size:
                 setattr(panel, prop, size[value])
         if isinstance(panel, Legend):
-            panel.glyph_width = panel.glyph_height = 28 if large else 20
+            swatch = getattr(panel, "_swatch", SWATCH)
+            panel.glyph_width = panel.glyph_height = round(swatch * 1.4) if large else swatch
     scale = LINE_SCALE if large else 1 / LINE_SCALE
     for renderer in fig.renderers:
         glyph = getattr(renderer, "glyph", None)
@@ -246,10 +248,12 @@ def legend_columns(labels) -> int:
     return 2 if 2 * 0.55 * 14 * (longest + 4) <= LEGEND_WIDTH else 1
 
 
-def legend(fig, items: dict, location="top_left", place="below"):
+def legend(fig, items: dict, location="top_left", place="below", swatch: int = SWATCH):
     """A legend of {label: renderer, or a list of renderers drawn as one swatch} beside the plot
-    (``place``; below by default, so it never covers data), in as many columns as fit. Returns
-    {label: LegendItem}, so an update can hide the items of what is not drawn."""
+    (``place``; below by default, so it never covers data), in as many columns as fit, each
+    swatch ``swatch`` px square (Bokeh draws a marker in it 0.4 of that across, whatever its size
+    on the plot). Returns {label: LegendItem}, so an update can hide the items of what is not
+    drawn."""
     entries = {
         label: LegendItem(
             label=label, renderers=list(drawn) if isinstance(drawn, list | tuple) else [drawn]
@@ -265,7 +269,10 @@ def legend(fig, items: dict, location="top_left", place="below"):
         label_text_font_size=TICKS,
         click_policy="hide",
         background_fill_alpha=0.7,
+        glyph_width=swatch,
+        glyph_height=swatch,
     )
+    box._swatch = swatch  # present() scales it
     fig.add_layout(box, place)
     if across and hasattr(fig, "_fit_text"):
         box.js_on_change("label_text_font_size", fig._fit_text)

@@ -143,7 +143,8 @@ def new_figure(
 
 # A figure's canvas text in the browser, whenever its size, a text or a text's size changes: each
 # title and axis label at the size the server set, or smaller down to 14 px if it would be cut
-# (a phone, presentation mode); legends below a plot in two columns if two fit, else one.
+# (a phone, presentation mode); legends below a plot in two columns if two fit (from the frame's
+# left edge to the figure's right), else one.
 FIT_TEXT_JS = """
 const P = plot.__fit_text ?? (plot.__fit_text = {asked: new Map(), busy: false})
 if (P.busy) return
@@ -194,13 +195,18 @@ try {
     range == null ? 0 : Math.max(...[range.start, range.end].map(v => measure(shown(v), label(axis), '')))
   for (const axis of plot.below) if (axis.ticker !== undefined) ticks(axis, width, Math.max(widestTick(axis, plot.x_range), label(axis)))
   for (const axis of plot.left) if (axis.ticker !== undefined) ticks(axis, height, label(axis))
+  // A legend below (or above) starts at the frame's left edge, past the y axis: its room runs
+  // from there to the figure's right edge (over a colour bar's border on the right).
+  const frame = window.Bokeh?.index?.find_one?.(plot)?.frame?.bbox
+  const room = plot.outer_width - (frame != null ? frame.left : (plot.outer_width - width) * 0.8)
   for (const legend of [...plot.below, ...plot.above]) {
     if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
     ctx.font = `${legend.label_text_font_size} helvetica`
     const texts = legend.items.map(item => item.label?.value ?? String(item.label ?? ''))
     const widest = Math.max(0, ...texts.map(text => ctx.measureText(text).width))
-    const column = widest + legend.glyph_width + legend.label_standoff + legend.spacing + 2 * legend.padding
-    const ncols = 2 * column + 2 * legend.margin <= plot.outer_width ? 2 : 1
+    const column = widest + legend.glyph_width + legend.label_standoff + legend.spacing
+    const box = 2 * column + 2 * legend.padding + 2 * legend.margin + 2 * legend.border_line_width
+    const ncols = box <= room ? 2 : 1
     if (legend.ncols !== ncols) legend.setv({ncols}, {sync: false})
   }
 } finally {
@@ -276,6 +282,8 @@ def legend(fig, items: dict, location="top_left", place="below", swatch: int = S
     fig.add_layout(box, place)
     if across and hasattr(fig, "_fit_text"):
         box.js_on_change("label_text_font_size", fig._fit_text)
+        for entry in entries.values():  # a label changed later (a leaky pump's map's red line)
+            entry.js_on_change("label", fig._fit_text)
     return entries
 
 

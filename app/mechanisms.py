@@ -138,14 +138,16 @@ class Mechanisms(Tab):
         slider, dark = self.slider, self.dark
         self.slider_crank = SliderCrank(slider, dark)
         self.link_colors = self.slider_crank.link_colors
-        self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
+        self.kind = pn.widgets.RadioButtonGroup(
+            options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR, stylesheets=TEXT
+        )
         self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
         self.links.update({name: slider(*spec, "0.00") for name, spec in SECOND_LOOP.items()})
         self.links["beta"].format = "0"
         self.input_angle = slider("Input angle θ₁ [°]", -360.0, 360.0, 1.0, 60.0, "0")
-        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1)
+        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1, stylesheets=TEXT)
         self.second_branch = pn.widgets.RadioButtonGroup(
-            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1
+            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1, stylesheets=TEXT
         )
         self.second_loop = pn.Column(
             *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False

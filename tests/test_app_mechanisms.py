@@ -230,3 +230,25 @@ def test_the_double_loop_closes_both_loops(app):
     assert bar_lengths(app.sources["linkage_links"]) == pytest.approx(lengths)
     m.kind.value = "Four-bar"
     assert not m.second_loop.visible and len(app.sources["linkage_links"].data["xs"]) == 3
+
+
+def test_every_button_and_choice_in_the_tabs_is_14px_or_more():
+    """Nothing a student must read below 14 px: each button, button group and select of the tabs
+    is given a stylesheet that sizes its text (Bokeh's own is 12.8 px: the Four-bar / Watt
+    six-bar and branch buttons were)."""
+    import re
+
+    import panel as pn
+
+    explorer = Explorer()
+    tabs = explorer.main()
+    for index in range(len(tabs)):
+        tabs.active = index  # each tab built
+    kinds = (pn.widgets.Button, pn.widgets.Toggle, pn.widgets.RadioButtonGroup, pn.widgets.Select)
+    widgets = [w for w in tabs.select(pn.widgets.Widget) if isinstance(w, kinds)]
+    assert explorer.mechanisms.kind in widgets and explorer.mechanisms.branch in widgets
+    for widget in widgets:
+        css = " ".join(str(sheet) for sheet in widget.stylesheets)
+        rules = re.findall(r"\.bk-btn[^{]*\{[^}]*font-size: calc\((\d+(?:\.\d+)?)px", css)
+        rules += re.findall(r"select[^{]*\{[^}]*font-size: calc\((\d+(?:\.\d+)?)px", css)
+        assert rules and min(float(size) for size in rules) >= 14, (type(widget).__name__, css)

@@ -56,3 +56,30 @@ def test_no_label_shows_a_caret():
 def test_the_theme_button_offers_the_other_theme():
     assert Explorer(query={"theme": [b"dark"]}).sidebar.dark_toggle.label == "Light theme"
     assert Explorer().sidebar.dark_toggle.label == "Dark theme"
+
+
+def test_every_presets_name_shows_in_full_in_its_select():
+    """A select shows its chosen option on one line, cut where it does not fit: every preset's
+    name fits the sidebar's select, in DejaVu Sans (the page's font on Debian) at the select's
+    15 px, enlarged by presentation mode. The room: the select of a 330 px sidebar is 292 px
+    wide, less its 12 px and 20 px padding (the arrow), as chromium lays it out."""
+    import subprocess
+
+    import panel as pn
+    import pytest
+    from PIL import ImageFont
+
+    from windpump_app.inputs import PRESETS
+    from windpump_app.page import page
+    from windpump_app.styles import PRESENTATION_ZOOM
+
+    font_file = subprocess.run(
+        ["fc-match", "-f", "%{file}", "DejaVu Sans"], capture_output=True, text=True
+    ).stdout
+    if "DejaVuSans" not in font_file:
+        pytest.skip("no DejaVu Sans")
+    assert page(pn.Column(), pn.Column(), False, False).sidebar_width == 330
+    font = ImageFont.truetype(font_file, 15 * PRESENTATION_ZOOM)
+    room = 292 - 12 - 20
+    too_long = {name: font.getlength(name) for name in PRESETS if font.getlength(name) > room}
+    assert too_long == {}

@@ -252,3 +252,23 @@ def test_every_button_and_choice_in_the_tabs_is_14px_or_more():
         rules = re.findall(r"\.bk-btn[^{]*\{[^}]*font-size: calc\((\d+(?:\.\d+)?)px", css)
         rules += re.findall(r"select[^{]*\{[^}]*font-size: calc\((\d+(?:\.\d+)?)px", css)
         assert rules and min(float(size) for size in rules) >= 14, (type(widget).__name__, css)
+
+
+def test_the_waterfalls_axis_is_plain_numbers_over_the_bars():
+    """A deep well's 70,000 J: the axis's ticks in plain numbers with thousands separators (Bokeh's
+    default formatter writes 1.500e+5 past 10⁵), the range the bars' (1.02 of the longest; the
+    page widens it by what the labels beside the bars need, FIT_BARS_JS), not 2.4 times it."""
+    from bokeh.models import CustomJS, NumeralTickFormatter
+
+    explorer = Explorer()
+    explorer.show_views()
+    explorer.sidebar.preset.value = "A deep well, a heavy rod"
+    view = explorer.pump.built["energy"]
+    right = view.sources["losses"].data["right"]
+    assert max(right) > 5e4  # tens of thousands of joules
+    fig = view.figure
+    (axis,) = fig.xaxis
+    assert isinstance(axis.formatter, NumeralTickFormatter) and axis.formatter.format == "0,0"
+    assert fig.x_range.end == pytest.approx(1.02 * max(right))
+    fits = view.sources["losses"].js_property_callbacks["change:data"]
+    assert any(isinstance(f, CustomJS) and "x_range.end" in f.code for f in fits)

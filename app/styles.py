@@ -9,6 +9,8 @@ browser. (The figures draw their text on a canvas: ``figures.present`` sizes it 
 
 from __future__ import annotations
 
+import re
+
 PRESENTATION_ZOOM = 1.25
 ZOOM_VARIABLE = "--windpump-zoom"
 
@@ -61,3 +63,43 @@ ZOOM_JS = f"""
 document.documentElement.style.setProperty(
   '{ZOOM_VARIABLE}', cb_obj.active ? '{PRESENTATION_ZOOM}' : '1')
 """
+
+
+# A number and its unit, on one line: a span that does not wrap (the text a reader or a test sees
+# keeps its ordinary space). Units the page writes after a number; the longest first.
+UNITS = "m³/day|L/day|rad/s|L/s|m/s|N·m|N m|kg|mm|J|W|s|L|m|%|°"
+NUMBER_AND_UNIT = re.compile(rf"(?<![\w.,])([−-]?\d[\d,]*(?:\.\d+)?) ({UNITS})(?![\w/³²·])")
+NOWRAP = '<span style="white-space: nowrap">'
+
+
+def keep_units(text: str) -> str:
+    """``text`` (Markdown or HTML) with each number and its unit kept on one line.
+
+    >>> keep_units("at 1.00 N·m, 5 %")
+    'at <span style="white-space: nowrap">1.00 N·m</span>, <span style="white-space: nowrap">5 %</span>'
+    """
+    return NUMBER_AND_UNIT.sub(rf"{NOWRAP}\1 \2</span>", text)
+
+
+def keep_terms(value: str) -> str:
+    """A readout's ``value`` with each of its terms on one line, the lines breaking only between
+    them: at " = ", " + ", " · " or ", " outside parentheses ("13,526 J = 265 J + 3,925 J",
+    "2.2 · never (T₀ = 0)").
+
+    >>> keep_terms("2.2 · never (T₀ = 0)")
+    '<span style="white-space: nowrap">2.2</span> · <span style="white-space: nowrap">never (T₀ = 0)</span>'
+    """
+    parts, depth, start, i = [], 0, 0, 0
+    while i < len(value):
+        char = value[i]
+        depth += (char == "(") - (char == ")")
+        separator = re.match(r" [=+·] |, ", value[i:]) if depth == 0 else None
+        if separator:
+            parts += [value[start:i], separator.group()]
+            i = start = i + len(separator.group())
+            continue
+        i += 1
+    parts.append(value[start:])
+    return "".join(
+        part if k % 2 else f"{NOWRAP}{part}</span>" for k, part in enumerate(parts) if part or k % 2
+    )

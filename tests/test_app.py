@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 from decimal import Decimal
 
 import numpy as np
@@ -33,7 +34,8 @@ def expected(design=SEED, t_end=600.0, theta0=math.pi / 2, theta_dot0=3.0):
 
 
 def readout_text(app, name):
-    return app.readouts[name].object
+    """A readout's text as the page shows it: its HTML's tags left out."""
+    return re.sub(r"<[^>]+>", "", app.readouts[name].object)
 
 
 def test_the_default_is_the_papers_example(app):
@@ -725,7 +727,7 @@ def test_cylinders_double_acting_and_torque_at_rest_reach_every_view(app):
     flow = np.asarray(app.sources["closeup"].data["flow"])
     np.testing.assert_allclose(total, flow, rtol=1e-9, atol=1e-9 * flow.max())
     peak = windpump.peak_load_torque(design)
-    assert f"peak load {peak:.2f} N·m" in app.readouts.status.object
+    assert f"peak load {peak:.2f} N·m" in re.sub(r"<[^>]+>", "", app.readouts.status.object)
 
 
 def test_a_start_from_rest_needs_torque_at_rest(app):
@@ -921,3 +923,19 @@ def test_ragged_columns_are_compared_column_by_column():
     old = {"xs": [[0.0, 1.0], [2.0, 3.0, 4.0]], "ys": [[0.0, 1.0], [2.0, 3.0, 4.0]]}
     new = {"xs": [[0.0, 1.0], [2.0, 3.0, 4.0]], "ys": [[0.0, 1.0], [2.0, 3.0, 5.0]]}
     assert not same(old, new) and same(old, {key: list(v) for key, v in old.items()})
+
+
+def test_no_number_is_parted_from_its_unit():
+    """On a phone a readout's value or the status wraps: never between a number and its unit
+    ("3,925" and a lone "J" on the next line), each such pair in a span that does not wrap."""
+    app = Explorer()
+    app.sidebar.preset.value = "A leak hole lets it start"  # losses: four terms of energy
+    texts = [readout.object for readout in app.readouts.readouts.values()]
+    texts.append(app.readouts.status.object)
+    kept = re.compile(r'<span style="white-space: nowrap">([^<]*)</span>')
+    units = r"\d (?:J|N·m|rad/s|L/s|s|%|L)(?!\w)"
+    for text in texts:
+        assert re.search(units, text) is None or kept.search(text), text
+        assert re.search(units, kept.sub("", text)) is None, text  # none left outside a span
+    energy = kept.findall(app.readouts["energy"].object)
+    assert len(energy) == 4 and all(term.endswith(" J") for term in energy)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -26,7 +27,8 @@ def app():
 
 def value(app, name):
     html = app.wind.readouts[name].object
-    return html.split(f'data-name="{name}">')[1].split("<")[0]
+    value = html.split(f'data-name="{name}">')[1].rsplit("</div></div>", 1)[0]
+    return re.sub(r"<[^>]+>", "", value)  # as the page shows it
 
 
 def litres(number: float) -> str:

@@ -77,9 +77,7 @@ class PumpInputs(param.Parameterized):
     T_0 = param.Number(0.0, bounds=(0.0, 4.95), step=0.05, label="Torque at rest T₀ [N·m]")
     double_acting = param.Boolean(False, label="Double-acting pistons (both faces deliver)")
     # The real machine (Design.REAL_MACHINE), the ideal machine by default; diameters in mm
-    m_r = param.Number(
-        SEED.m_r, bounds=(0.0, 50.0), step=0.5, label="Piston and pump rod mass mᵣ [kg]"
-    )
+    m_r = param.Number(SEED.m_r, bounds=(0.0, 50.0), step=0.5, label="Rod and piston mass mᵣ [kg]")
     eta_t = param.Number(
         SEED.eta_t, bounds=(0.1, 1.0), step=0.01, label="Chain drive efficiency ηₜ"
     )
@@ -96,7 +94,7 @@ class PumpInputs(param.Parameterized):
         SEED.d_leak * MM_PER_M, bounds=(0.0, 40.0), step=0.1, label="Leak hole diameter [mm]"
     )
     Cd_leak = param.Number(
-        SEED.Cd_leak, bounds=(0.05, 1.0), step=0.01, label="Leak hole discharge coefficient"
+        SEED.Cd_leak, bounds=(0.05, 1.0), step=0.01, label="Leak discharge coefficient"
     )
     V = param.Number(
         SEED.V_ref, bounds=(0.5, 20.0), step=0.1, label="Steady wind V [m/s] (Tₘ, ωₘ, T₀ at 5 m/s)"

@@ -58,28 +58,53 @@ def test_the_theme_button_offers_the_other_theme():
     assert Explorer().sidebar.dark_toggle.label == "Dark theme"
 
 
+def dejavu(size: float, bold: bool = False):
+    """DejaVu Sans, the page's font on Debian, at ``size`` px (a test skips without it)."""
+    import subprocess
+
+    import pytest
+    from PIL import ImageFont
+
+    name = "DejaVu Sans:bold" if bold else "DejaVu Sans"
+    found = subprocess.run(["fc-match", "-f", "%{file}", name], capture_output=True, text=True)
+    if "DejaVuSans" not in found.stdout:
+        pytest.skip("no DejaVu Sans")
+    return ImageFont.truetype(found.stdout, size)
+
+
 def test_every_presets_name_shows_in_full_in_its_select():
     """A select shows its chosen option on one line, cut where it does not fit: every preset's
     name fits the sidebar's select, in DejaVu Sans (the page's font on Debian) at the select's
     15 px, enlarged by presentation mode. The room: the select of a 330 px sidebar is 292 px
     wide, less its 12 px and 20 px padding (the arrow), as chromium lays it out."""
-    import subprocess
-
     import panel as pn
-    import pytest
-    from PIL import ImageFont
 
     from windpump_app.inputs import PRESETS
     from windpump_app.page import page
     from windpump_app.styles import PRESENTATION_ZOOM
 
-    font_file = subprocess.run(
-        ["fc-match", "-f", "%{file}", "DejaVu Sans"], capture_output=True, text=True
-    ).stdout
-    if "DejaVuSans" not in font_file:
-        pytest.skip("no DejaVu Sans")
     assert page(pn.Column(), pn.Column(), False, False).sidebar_width == 330
-    font = ImageFont.truetype(font_file, 15 * PRESENTATION_ZOOM)
+    font = dejavu(15 * PRESENTATION_ZOOM)
     room = 292 - 12 - 20
     too_long = {name: font.getlength(name) for name in PRESETS if font.getlength(name) > room}
+    assert too_long == {}
+
+
+def test_every_sidebar_slider_keeps_its_value_on_its_titles_line():
+    """At 1280 x 720 a slider's title and value, "Rod and piston mass mᵣ [kg]: 50.0" at its
+    widest, stay on one line: 15 px, the value bold, in the 294 px of a slider's title in the
+    sidebar and 284 px in a card (chromium's layout of a 330 px sidebar)."""
+    from windpump_app.inputs import FORMATS, PumpInputs
+
+    font, bold = dejavu(15), dejavu(15, bold=True)
+    inputs = PumpInputs()
+    too_long = {}
+    for name, (fmt, place) in FORMATS.items():
+        if place not in ("main", "more", "real"):
+            continue
+        decimals = len(fmt.split(".")[1]) if "." in fmt else 0
+        widest = f"{inputs.param[name].bounds[1]:.{decimals}f}"
+        width = font.getlength(f"{inputs.param[name].label}: ") + bold.getlength(widest)
+        if width > (294 if place == "main" else 284):
+            too_long[name] = width
     assert too_long == {}

@@ -39,6 +39,7 @@ SECOND_LOOP = {
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
 NOTE_CSS = TEXT[:1]
+SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")  # θ₂, as the sliders write θ₁
 
 
 def degrees(angle: float) -> str:
@@ -253,7 +254,8 @@ class Mechanisms(Tab):
         values = closures[-1].values
         names = ["theta2", "theta3"] + (["theta4", "theta5"] if len(closures) > 1 else [])
         angles = ", ".join(
-            f"θ{name[-1]} = {degrees(values[name] % (2 * math.pi))}" for name in names
+            f"θ{name[-1].translate(SUBSCRIPT)} = {degrees(values[name] % (2 * math.pi))}"
+            for name in names
         )
         branch = linkage.four_bar_branch(values["theta2"], values["theta3"])
         v = [self.links[name].value for name in FIRST_LOOP]

@@ -175,7 +175,7 @@ def test_the_four_bar_is_drawn_from_its_closed_loop(app, branch, angle):
     np.testing.assert_allclose(
         B, D + 2.5 * np.array([math.cos(theta3), math.sin(theta3)]), atol=1e-12
     )
-    assert f"θ2 = {math.degrees(theta2):.1f}°" in m.linkage_note.object
+    assert f"θ₂ = {math.degrees(theta2):.1f}°" in m.linkage_note.object  # θ₁'s subscripts
     assert f"Branch {branch:+d}" in m.linkage_note.object and not m.linkage_error.visible
     assert len(app.sources["linkage_path"].data["x"]) > 100  # B's whole coupler path
 
@@ -226,7 +226,7 @@ def test_the_double_loop_closes_both_loops(app):
     assert lengths == pytest.approx([v[k] for k in ("r1", "r2", "r3", "r3p", "r4", "r5")])
     _, D, E = points(app.sources["linkage_pivots"], "x", "y")
     np.testing.assert_allclose(E, D + [v["r6p"], 0.0], atol=1e-12)
-    assert "θ4 = " in m.linkage_note.object and "θ5 = " in m.linkage_note.object
+    assert "θ₄ = " in m.linkage_note.object and "θ₅ = " in m.linkage_note.object
     m.input_angle.value = 120.0
     assert bar_lengths(app.sources["linkage_links"]) == pytest.approx(lengths)
     m.kind.value = "Four-bar"

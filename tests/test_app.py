@@ -620,8 +620,8 @@ def test_the_dark_theme_comes_from_the_link():
     [
         (
             {"T_0": [b"0.9"]},  # above the default T_m = 0.6
-            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed: "
-            "T_0 must be < T_m = 0.6 N m",
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T₀ = 0.9 N·m is not allowed: "
+            "T₀ must be < Tₘ = 0.6 N·m",  # the page's symbols, as in its labels
             SEED,
         ),
         (
@@ -631,7 +631,7 @@ def test_the_dark_theme_comes_from_the_link():
         ),
         (
             {"T_0": [b"0.5"], "T_m": [b"0.4"]},
-            "(T_0) = “0.5” ignored: T_0 = 0.5 N m is not allowed: T_0 must be < T_m = 0.4 N m",
+            "(T_0) = “0.5” ignored: T₀ = 0.5 N·m is not allowed: T₀ must be < Tₘ = 0.4 N·m",
             SEED.replace(T_m=0.4),
         ),
     ],
@@ -747,7 +747,8 @@ def test_a_start_from_rest_needs_torque_at_rest(app):
 
 def test_torque_at_rest_above_the_peak_is_refused_and_named(app):
     app.set_values(T_0=0.8)  # above T_m = 0.6
-    assert app.error.visible and "T_0 = 0.8" in app.error.object and "< T_m" in app.error.object
+    assert app.error.visible and "T₀ = 0.8 N·m" in app.error.object and "< Tₘ" in app.error.object
+    assert "T_0" not in app.error.object and " N m" not in app.error.object  # the page's symbols
     app.set_values(T_0=0.2)
     assert not app.error.visible
 

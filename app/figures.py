@@ -244,14 +244,15 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
 
 
 LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
+LEGEND_SPACING = 12  # [px] between a legend's items (Bokeh's 3 ran "max▬ ▬ mean" together)
 
 
 def legend_columns(labels) -> int:
     """The server's first guess, before the browser measures them (``FIT_TEXT_JS``): two columns
     of labels below a plot when two fit in LEGEND_WIDTH at 14 px, else one."""
     longest = max((len(label) for label in labels), default=0)
-    # a label: ~0.55 of the font size a character; a swatch and gaps of ~2 characters
-    return 2 if 2 * 0.55 * 14 * (longest + 4) <= LEGEND_WIDTH else 1
+    # a label: ~0.55 of the font size a character; a swatch and gaps (LEGEND_SPACING) of ~5
+    return 2 if 2 * 0.55 * 14 * (longest + 5) <= LEGEND_WIDTH else 1
 
 
 def legend(fig, items: dict, location="top_left", place="below", swatch: int = SWATCH):
@@ -275,6 +276,7 @@ def legend(fig, items: dict, location="top_left", place="below", swatch: int = S
         label_text_font_size=TICKS,
         click_policy="hide",
         background_fill_alpha=0.7,
+        spacing=LEGEND_SPACING,
         glyph_width=swatch,
         glyph_height=swatch,
     )

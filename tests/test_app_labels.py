@@ -108,3 +108,12 @@ def test_every_sidebar_slider_keeps_its_value_on_its_titles_line():
         if width > (294 if place == "main" else 284):
             too_long[name] = width
     assert too_long == {}
+
+
+def test_a_legends_items_stand_apart():
+    """Bokeh's 3 px between a legend's items put a swatch against the label before it
+    ("(12)▬▬ averaged"): every legend leaves at least 10 px between its items."""
+    figures = every_figure(Explorer())
+    legends = [legend for fig in figures for legend in fig.select(type=Legend)]
+    assert len(legends) >= 8
+    assert [legend.spacing for legend in legends if legend.spacing < 10] == []

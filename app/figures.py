@@ -202,11 +202,13 @@ try {
   for (const legend of [...plot.below, ...plot.above]) {
     if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
     ctx.font = `${legend.label_text_font_size} helvetica`
-    const texts = legend.items.map(item => item.label?.value ?? String(item.label ?? ''))
-    const widest = Math.max(0, ...texts.map(text => ctx.measureText(text).width))
-    const column = widest + legend.glyph_width + legend.label_standoff + legend.spacing
-    const box = 2 * column + 2 * legend.padding + 2 * legend.margin + 2 * legend.border_line_width
-    const ncols = box <= room ? 2 : 1
+    // in two columns, row by row: the first column holds items 0, 2, 4..., the second 1, 3, 5...
+    const shown = legend.items.filter(item => item.visible !== false)
+    const widths = shown.map(item => ctx.measureText(item.label?.value ?? String(item.label ?? '')).width)
+    const widest = (j) => Math.max(0, ...widths.filter((_, i) => i % 2 === j))
+    const swatch = legend.glyph_width + legend.label_standoff
+    const box = widest(0) + widest(1) + 2 * swatch + column_gap + 2 * legend.padding + 2 * legend.border_line_width
+    const ncols = box <= room - legend.margin ? 2 : 1
     if (legend.ncols !== ncols) legend.setv({ncols}, {sync: false})
   }
 } finally {
@@ -217,7 +219,7 @@ try {
 
 def fit_text_in_the_browser(fig) -> None:
     """Keep a figure's canvas text inside it at every width (``FIT_TEXT_JS``)."""
-    fit = CustomJS(args=dict(plot=fig), code=FIT_TEXT_JS)
+    fit = CustomJS(args=dict(plot=fig, column_gap=LEGEND_COLUMN_GAP), code=FIT_TEXT_JS)
     fig.js_on_change("outer_width", fit)
     fig.js_on_change("inner_height", fit)
     fig.title.js_on_change("text", fit)
@@ -244,14 +246,17 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
 
 
 LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
-LEGEND_SPACING = 12  # [px] between a legend's items (Bokeh's 3 ran "max▬ ▬ mean" together)
+# [px] between a legend's columns (its ``spacing``, 3 px, ran a swatch into the label before it:
+# "max▬ ▬ mean"); its rows keep theirs (Bokeh's legend is a CSS grid: ``gap`` sets both)
+LEGEND_COLUMN_GAP = 14
+LEGEND_GAP_CSS = f".bk-grid {{ column-gap: {LEGEND_COLUMN_GAP}px !important; }}"
 
 
 def legend_columns(labels) -> int:
     """The server's first guess, before the browser measures them (``FIT_TEXT_JS``): two columns
     of labels below a plot when two fit in LEGEND_WIDTH at 14 px, else one."""
     longest = max((len(label) for label in labels), default=0)
-    # a label: ~0.55 of the font size a character; a swatch and gaps (LEGEND_SPACING) of ~5
+    # a label: ~0.55 of the font size a character; a swatch and gaps (LEGEND_COLUMN_GAP) of ~5
     return 2 if 2 * 0.55 * 14 * (longest + 5) <= LEGEND_WIDTH else 1
 
 
@@ -276,7 +281,7 @@ def legend(fig, items: dict, location="top_left", place="below", swatch: int = S
         label_text_font_size=TICKS,
         click_policy="hide",
         background_fill_alpha=0.7,
-        spacing=LEGEND_SPACING,
+        stylesheets=[LEGEND_GAP_CSS],
         glyph_width=swatch,
         glyph_height=swatch,
     )

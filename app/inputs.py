@@ -62,7 +62,7 @@ class PumpInputs(param.Parameterized):
         SEED.R_dagger, bounds=(0.5, 10.0), step=0.1, label="R₁/R₀, sprocket ratio"
     )
     h = param.Number(SEED.h, bounds=(0.0, 30.0), step=0.1, label="Head h [m]")
-    T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Windmill torque Tₘ [N·m]")
+    T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Peak torque Tₘ [N·m]")
     omega_m = param.Number(
         SEED.omega_m, bounds=(5.0, 150.0), step=1.0, label="Windmill peak speed ωₘ [rad/s]"
     )

@@ -406,7 +406,7 @@ def test_a_poor_fit_outside_the_sliders_is_explained_and_not_offered(app):
     app.load_lab_data(swapped)
     message = app.sidebar.lab.message.object
     assert app.sidebar.lab.message.visible and "A poor fit" in message
-    assert f"Windmill torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
+    assert f"Peak torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
     assert f"Windmill peak speed ωₘ [rad/s] = {fit.omega_m:.3g} is outside 5–150" in message
     assert "cannot be applied" in message and "Nothing was changed" in message
     assert not app.sidebar.lab.apply_fit.visible  # only what can be applied is offered

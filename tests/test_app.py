@@ -283,7 +283,7 @@ def test_a_link_to_a_design_of_its_own_says_it_is_the_links():
     assert app.sidebar.preset.value == PRESET_PROMPT
     assert app.sidebar.preset_note.object == "Your design, from the link."
     assert app.sidebar.preset_note.visible
-    plain = Explorer(query={"tab": [b"wind"]})  # no design in the link: the prompt alone
+    plain = Explorer(query={"tab": [b"wind"], "foo": [b"1"]})  # no design: the prompt alone
     assert plain.sidebar.preset.value == PRESET_PROMPT and not plain.sidebar.preset_note.visible
 
 
@@ -940,3 +940,31 @@ def test_no_number_is_parted_from_its_unit():
         assert re.search(units, kept.sub("", text)) is None, text  # none left outside a span
     energy = kept.findall(app.readouts["energy"].object)
     assert len(energy) == 4 and all(term.endswith(" J") for term in energy)
+
+
+@pytest.mark.parametrize(
+    "query",
+    [
+        {"h": [b"-5"]},
+        {"h": [b"-5"], "T_m": [b"abc"], "foo": [b"1"], "cylinders": [b"2.5"], "T_0": [b"0.9"]},
+    ],
+    ids=["h", "several"],
+)
+def test_a_link_whose_values_are_all_refused_says_it_shows_the_papers_example(query):
+    """Every value of these links is refused (out of range, not a number, not whole, beyond
+    Tₘ): each opens on the paper's example and says so, as a link to it does, under its notices."""
+    app = Explorer(query=query)
+    assert app.inputs.design() == SEED
+    assert app.sidebar.preset.value == "The paper's example"
+    assert app.sidebar.preset_note.visible and PRESETS["The paper's example"][1] in (
+        app.sidebar.preset_note.object
+    )
+    assert app.notices.visible and "(h) = “-5” ignored" in app.notices.object
+
+
+def test_a_phones_link_notices_show_whole():
+    """On a phone the notices' list once scrolled within a line and a half, unmarked."""
+    from windpump_app.styles import NOTICE
+
+    css = " ".join(NOTICE)
+    assert "max-height" not in css and "overflow" not in css

@@ -38,12 +38,19 @@ COMPACT = [
     "p { margin: 0; }",
     PHONE_ALERT,
 ]
-# The link's notices above the readouts, whole on a phone too, in its tighter alert (its list once
-# scrolled within 4.4 em, a line and a half of five notices, with nothing saying it scrolled).
+# The link's notices above the readouts: on a phone their list scrolls within two whole lines,
+# so that the status under the readouts stays in view, and says so: the title says how many
+# notices to scroll through (link.notices_text's "scroll-hint", shown on a phone only), and the
+# scroll bar is styled where the browser draws one (a phone's overlay bar shows only in a scroll).
 NOTICE = [
     *TEXT,
     PHONE_ALERT,
-    "@media (max-width: 700px) { p { margin: 0 0 2px; } ul { margin: 0; padding-left: 1.2em; } }",
+    ".scroll-hint { display: none; }",
+    "@media (max-width: 700px) { p { margin: 0 0 2px; } "
+    ".scroll-hint { display: inline; white-space: nowrap; } "
+    "ul { margin: 0; padding-left: 1.2em; line-height: 1.5; max-height: 3em; overflow-y: scroll; } "
+    "ul::-webkit-scrollbar { width: 6px; } "
+    "ul::-webkit-scrollbar-thumb { background: currentColor; border-radius: 3px; } }",
 ]
 CAPTION_CSS = [f":host {{ font-size: {px(15)}; margin: 0 8px; }} p {{ margin: 2px 0; }}"]
 

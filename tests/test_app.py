@@ -962,9 +962,17 @@ def test_a_link_whose_values_are_all_refused_says_it_shows_the_papers_example(qu
     assert app.notices.visible and "(h) = “-5” ignored" in app.notices.object
 
 
-def test_a_phones_link_notices_show_whole():
-    """On a phone the notices' list once scrolled within a line and a half, unmarked."""
+def test_a_phones_link_notices_say_that_they_scroll():
+    """On a phone the notices' list scrolls within two whole lines (the status under the
+    readouts stays in view), once a line and a half with nothing saying it scrolled: its title
+    says how many notices to scroll through, on a phone only, and the scroll bar is drawn."""
     from windpump_app.styles import NOTICE
 
-    css = " ".join(NOTICE)
-    assert "max-height" not in css and "overflow" not in css
+    app = Explorer(query={"h": [b"-5"], "T_m": [b"abc"], "foo": [b"1"]})
+    assert '<span class="scroll-hint">(3: scroll the list)</span>' in app.notices.object
+    assert "scroll-hint" not in Explorer(query={"h": [b"-5"]}).notices.object  # one: all shown
+    phone = " ".join(NOTICE).split("@media (max-width: 700px)")[-1]
+    assert "max-height: 3em" in phone and "line-height: 1.5;" in phone  # two whole lines
+    assert "overflow-y: scroll" in phone and "::-webkit-scrollbar-thumb" in phone
+    assert ".scroll-hint { display: inline; white-space: nowrap; }" in phone
+    assert ".scroll-hint { display: none; }" in NOTICE  # elsewhere the list is whole

@@ -511,7 +511,7 @@ def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(bro
     page = open_page(browser, url, query="?T_0=0.9&h=5")
     try:
         page.get_by_text(
-            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed"
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T₀ = 0.9 N·m is not allowed"
         ).first.wait_for(timeout=30_000)
         wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=5.0)))
         assert "Running" in page.get_by_text("Running.").first.inner_text()

@@ -77,15 +77,21 @@ document.documentElement.style.setProperty(
 UNITS = "m³/day|L/day|rad/s|L/s|m/s|N·m|N m|kg|mm|J|W|s|L|m|%|°"
 NUMBER_AND_UNIT = re.compile(rf"(?<![\w.,])([−-]?\d[\d,]*(?:\.\d+)?) ({UNITS})(?![\w/³²·])")
 NOWRAP = '<span style="white-space: nowrap">'
+# A short symbol equal to a bare number ("T₀ = 0"), on one line too ("T₀" and "= 0)" once parted)
+SYMBOL_IS_NUMBER = re.compile(r"(?<![^\s(])([^\s(<>]{1,4}) = ([−-]?\d[\d,]*(?:\.\d+)?)(?![\d<])")
 
 
 def keep_units(text: str) -> str:
-    """``text`` (Markdown or HTML) with each number and its unit kept on one line.
+    """``text`` (Markdown or HTML) with each number and its unit kept on one line, and each
+    short symbol equal to a bare number.
 
     >>> keep_units("at 1.00 N·m, 5 %")
     'at <span style="white-space: nowrap">1.00 N·m</span>, <span style="white-space: nowrap">5 %</span>'
+    >>> keep_units("(no torque at rest, T₀ = 0).")
+    '(no torque at rest, <span style="white-space: nowrap">T₀ = 0</span>).'
     """
-    return NUMBER_AND_UNIT.sub(rf"{NOWRAP}\1 \2</span>", text)
+    text = NUMBER_AND_UNIT.sub(rf"{NOWRAP}\1 \2</span>", text)
+    return SYMBOL_IS_NUMBER.sub(rf"{NOWRAP}\1 = \2</span>", text)
 
 
 def keep_terms(value: str) -> str:

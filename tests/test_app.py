@@ -940,6 +940,8 @@ def test_no_number_is_parted_from_its_unit():
         assert re.search(units, kept.sub("", text)) is None, text  # none left outside a span
     energy = kept.findall(app.readouts["energy"].object)
     assert len(energy) == 4 and all(term.endswith(" J") for term in energy)
+    app.sidebar.preset.value = "The paper's example"  # no torque at rest: "T₀" and "= 0" once
+    assert "T₀ = 0" in kept.findall(app.readouts.status.object)  # parted on a phone
 
 
 @pytest.mark.parametrize(

@@ -19,7 +19,7 @@ import param
 import windpump
 
 from .figures import present
-from .inputs import FROM_THE_LINK, PRESETS, preset_of
+from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -107,7 +107,9 @@ class Explorer(Session, pn.viewable.Viewer):
             self.presentation = presentation
         self.inputs.param.update(**values)
         self._location: PageLink | None = None  # the page's address, once followed
-        self._link = (values, notices)  # what start() runs first
+        # what start() runs first, and whether the link names the design (taken or refused)
+        designs = any(key in FORMATS or key in SWITCHES for key in pump_query)
+        self._link = (values, notices, designs)
         if start:
             self.start()
         else:
@@ -154,10 +156,12 @@ class Explorer(Session, pn.viewable.Viewer):
         then every change of an input runs again."""
         if self._link is None:
             return
-        values, notices = self._link
+        values, notices, designs = self._link
         self._link = None
         seen = self.run_link(values, notices)
-        if values:  # a reopened link says what it shows, as a chosen preset does
+        # A reopened link that names the design says what it shows, as a chosen preset does,
+        # whatever of it was refused (?h=-5 shows the paper's example, and says so).
+        if designs:
             self._say_what_the_link_shows()
         self.notices.object = notices_text(notices)
         self.notices.visible = bool(notices)

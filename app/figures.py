@@ -80,6 +80,7 @@ def palette(dark: bool = False) -> dict[str, str]:
 # Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
 PRESENTATION_SIZES = {TITLE: "22px", LABEL: "19px", TICKS: "18px"}  # text glyphs are LABEL
 LINE_SCALE = 1.5  # lines in presentation mode
+SWATCH = 20  # a legend's swatch [px], Bokeh's default; 1.4 times larger in presentation mode
 
 
 def present(fig, large: bool) -> None:
@@ -102,7 +103,8 @@ def present(fig, large: bool) -> None:
             if isinstance(value, str) and value in size:
                 setattr(panel, prop, size[value])
         if isinstance(panel, Legend):
-            panel.glyph_width = panel.glyph_height = 28 if large else 20
+            swatch = getattr(panel, "_swatch", SWATCH)
+            panel.glyph_width = panel.glyph_height = round(swatch * 1.4) if large else swatch
     scale = LINE_SCALE if large else 1 / LINE_SCALE
     for renderer in fig.renderers:
         glyph = getattr(renderer, "glyph", None)
@@ -141,7 +143,8 @@ def new_figure(
 
 # A figure's canvas text in the browser, whenever its size, a text or a text's size changes: each
 # title and axis label at the size the server set, or smaller down to 14 px if it would be cut
-# (a phone, presentation mode); legends below a plot in two columns if two fit, else one.
+# (a phone, presentation mode); legends below a plot in two columns if two fit (from the frame's
+# left edge to the figure's right), else one.
 FIT_TEXT_JS = """
 const P = plot.__fit_text ?? (plot.__fit_text = {asked: new Map(), busy: false})
 if (P.busy) return
@@ -192,13 +195,20 @@ try {
     range == null ? 0 : Math.max(...[range.start, range.end].map(v => measure(shown(v), label(axis), '')))
   for (const axis of plot.below) if (axis.ticker !== undefined) ticks(axis, width, Math.max(widestTick(axis, plot.x_range), label(axis)))
   for (const axis of plot.left) if (axis.ticker !== undefined) ticks(axis, height, label(axis))
+  // A legend below (or above) starts at the frame's left edge, past the y axis: its room runs
+  // from there to the figure's right edge (over a colour bar's border on the right).
+  const frame = window.Bokeh?.index?.find_one?.(plot)?.frame?.bbox
+  const room = plot.outer_width - (frame != null ? frame.left : (plot.outer_width - width) * 0.8)
   for (const legend of [...plot.below, ...plot.above]) {
     if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
     ctx.font = `${legend.label_text_font_size} helvetica`
-    const texts = legend.items.map(item => item.label?.value ?? String(item.label ?? ''))
-    const widest = Math.max(0, ...texts.map(text => ctx.measureText(text).width))
-    const column = widest + legend.glyph_width + legend.label_standoff + legend.spacing + 2 * legend.padding
-    const ncols = 2 * column + 2 * legend.margin <= plot.outer_width ? 2 : 1
+    // in two columns, row by row: the first column holds items 0, 2, 4..., the second 1, 3, 5...
+    const shown = legend.items.filter(item => item.visible !== false)
+    const widths = shown.map(item => ctx.measureText(item.label?.value ?? String(item.label ?? '')).width)
+    const widest = (j) => Math.max(0, ...widths.filter((_, i) => i % 2 === j))
+    const swatch = legend.glyph_width + legend.label_standoff
+    const box = widest(0) + widest(1) + 2 * swatch + column_gap + 2 * legend.padding + 2 * legend.border_line_width
+    const ncols = box <= room - legend.margin ? 2 : 1
     if (legend.ncols !== ncols) legend.setv({ncols}, {sync: false})
   }
 } finally {
@@ -209,7 +219,7 @@ try {
 
 def fit_text_in_the_browser(fig) -> None:
     """Keep a figure's canvas text inside it at every width (``FIT_TEXT_JS``)."""
-    fit = CustomJS(args=dict(plot=fig), code=FIT_TEXT_JS)
+    fit = CustomJS(args=dict(plot=fig, column_gap=LEGEND_COLUMN_GAP), code=FIT_TEXT_JS)
     fig.js_on_change("outer_width", fit)
     fig.js_on_change("inner_height", fit)
     fig.title.js_on_change("text", fit)
@@ -236,20 +246,26 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
 
 
 LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
+# [px] between a legend's columns (its ``spacing``, 3 px, ran a swatch into the label before it:
+# "max▬ ▬ mean"); its rows keep theirs (Bokeh's legend is a CSS grid: ``gap`` sets both)
+LEGEND_COLUMN_GAP = 14
+LEGEND_GAP_CSS = f".bk-grid {{ column-gap: {LEGEND_COLUMN_GAP}px !important; }}"
 
 
 def legend_columns(labels) -> int:
     """The server's first guess, before the browser measures them (``FIT_TEXT_JS``): two columns
     of labels below a plot when two fit in LEGEND_WIDTH at 14 px, else one."""
     longest = max((len(label) for label in labels), default=0)
-    # a label: ~0.55 of the font size a character; a swatch and gaps of ~2 characters
-    return 2 if 2 * 0.55 * 14 * (longest + 4) <= LEGEND_WIDTH else 1
+    # a label: ~0.55 of the font size a character; a swatch and gaps (LEGEND_COLUMN_GAP) of ~5
+    return 2 if 2 * 0.55 * 14 * (longest + 5) <= LEGEND_WIDTH else 1
 
 
-def legend(fig, items: dict, location="top_left", place="below"):
+def legend(fig, items: dict, location="top_left", place="below", swatch: int = SWATCH):
     """A legend of {label: renderer, or a list of renderers drawn as one swatch} beside the plot
-    (``place``; below by default, so it never covers data), in as many columns as fit. Returns
-    {label: LegendItem}, so an update can hide the items of what is not drawn."""
+    (``place``; below by default, so it never covers data), in as many columns as fit, each
+    swatch ``swatch`` px square (Bokeh draws a marker in it 0.4 of that across, whatever its size
+    on the plot). Returns {label: LegendItem}, so an update can hide the items of what is not
+    drawn."""
     entries = {
         label: LegendItem(
             label=label, renderers=list(drawn) if isinstance(drawn, list | tuple) else [drawn]
@@ -265,10 +281,16 @@ def legend(fig, items: dict, location="top_left", place="below"):
         label_text_font_size=TICKS,
         click_policy="hide",
         background_fill_alpha=0.7,
+        stylesheets=[LEGEND_GAP_CSS],
+        glyph_width=swatch,
+        glyph_height=swatch,
     )
+    box._swatch = swatch  # present() scales it
     fig.add_layout(box, place)
     if across and hasattr(fig, "_fit_text"):
         box.js_on_change("label_text_font_size", fig._fit_text)
+        for entry in entries.values():  # a label changed later (a leaky pump's map's red line)
+            entry.js_on_change("label", fig._fit_text)
     return entries
 
 

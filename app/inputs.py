@@ -62,7 +62,7 @@ class PumpInputs(param.Parameterized):
         SEED.R_dagger, bounds=(0.5, 10.0), step=0.1, label="R₁/R₀, sprocket ratio"
     )
     h = param.Number(SEED.h, bounds=(0.0, 30.0), step=0.1, label="Head h [m]")
-    T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Windmill torque Tₘ [N·m]")
+    T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Peak torque Tₘ [N·m]")
     omega_m = param.Number(
         SEED.omega_m, bounds=(5.0, 150.0), step=1.0, label="Windmill peak speed ωₘ [rad/s]"
     )
@@ -77,9 +77,7 @@ class PumpInputs(param.Parameterized):
     T_0 = param.Number(0.0, bounds=(0.0, 4.95), step=0.05, label="Torque at rest T₀ [N·m]")
     double_acting = param.Boolean(False, label="Double-acting pistons (both faces deliver)")
     # The real machine (Design.REAL_MACHINE), the ideal machine by default; diameters in mm
-    m_r = param.Number(
-        SEED.m_r, bounds=(0.0, 50.0), step=0.5, label="Piston and pump rod mass mᵣ [kg]"
-    )
+    m_r = param.Number(SEED.m_r, bounds=(0.0, 50.0), step=0.5, label="Rod and piston mass mᵣ [kg]")
     eta_t = param.Number(
         SEED.eta_t, bounds=(0.1, 1.0), step=0.01, label="Chain drive efficiency ηₜ"
     )
@@ -96,7 +94,7 @@ class PumpInputs(param.Parameterized):
         SEED.d_leak * MM_PER_M, bounds=(0.0, 40.0), step=0.1, label="Leak hole diameter [mm]"
     )
     Cd_leak = param.Number(
-        SEED.Cd_leak, bounds=(0.05, 1.0), step=0.01, label="Leak hole discharge coefficient"
+        SEED.Cd_leak, bounds=(0.05, 1.0), step=0.01, label="Leak discharge coefficient"
     )
     V = param.Number(
         SEED.V_ref, bounds=(0.5, 20.0), step=0.1, label="Steady wind V [m/s] (Tₘ, ωₘ, T₀ at 5 m/s)"
@@ -301,7 +299,7 @@ PRESETS = {
         "With a hundredth of the inertia the crank speed swings within every revolution: the "
         "averaged theory (Eq. 24) smooths over what the full Eq. (12) shows.",
     ),
-    "Two cylinders, torque at rest": (
+    "Two cylinders, self-starting": (
         {"cylinders": 2.0, "T_0": 0.4, "theta_dot0": 0.0},
         "Two cylinders half a turn apart and a windmill with torque at rest: R†T₀ beats the load "
         "at every angle, so it starts from rest with no kick, and the flow pulses twice a turn.",
@@ -311,7 +309,7 @@ PRESETS = {
         "Both faces of the piston deliver: the flow pulses twice per revolution, never stops, and "
         "the load doubles (the margin halves at the same head).",
     ),
-    "A deep well with a heavy pump rod": (
+    "A deep well, a heavy rod": (
         {
             "h": 25.0,
             "T_m": 2.5,

@@ -82,7 +82,10 @@ def notices_text(notices: list[str]) -> str:
     listed = [f"- {notice}" for notice in notices[:MAX_NOTICES]]
     if len(notices) > MAX_NOTICES:
         listed.append(f"- … and {len(notices) - MAX_NOTICES} more ignored.")
-    return "**Some values in the link were ignored:**\n\n" + "\n".join(listed)
+    # a phone shows two lines of the list (styles.NOTICE): more than one notice scrolls
+    hint = f' <span class="scroll-hint">({len(listed)}: scroll the list)</span>'
+    title = "**Some values in the link were ignored:**" + (hint if len(listed) > 1 else "")
+    return title + "\n\n" + "\n".join(listed)
 
 
 def page_query(inputs, presentation: bool, dark: bool, full: bool, *more: str) -> str:

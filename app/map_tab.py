@@ -164,6 +164,7 @@ STAR_PX = 28.0  # this design's star (24 px) and its outline: no label under it
 LABEL_SIZE = (0.16, 0.07)
 LABEL_MARGIN = 0.02
 # The red line's legend: a tight pump's stall boundary, where a leaky one starts lifting water.
+STAR_SWATCH = 32  # the legend's swatches [px]: its star 0.4 of that, ~13 px (24 on the map)
 STALL_LABEL, DELIVERY_LABEL = "stall boundary (margin 1)", "lifts water right of this"
 SHIFT = {"left": 0.0, "center": 0.5, "right": 1.0}  # of its width, left of its anchor
 RISE = {"bottom": 1.0, "middle": 0.5, "top": 0.0}  # of its height, above its anchor
@@ -430,9 +431,22 @@ class MapTab(Tab):
             {
                 STALL_LABEL: stall,
                 "best sprocket ratio": best,
-                "this design": here,
+                "this design": self._swatch(fig, here),
             },
+            swatch=STAR_SWATCH,
         )
+
+    def _swatch(self, fig, here):
+        """The star the legend draws for ``here`` (which it would draw 0.4 of its swatch across,
+        its black outline all that is seen): outlined thinly in the theme's ink, so it reads on
+        either theme's legend; drawn nowhere on the map, hidden and shown with ``here``."""
+        c = self.colors
+        star = fig.scatter(
+            [np.nan], [np.nan], marker="star", size=24, fill_color=c["star"],
+            line_color=c["ink"], line_width=1.0,
+        )  # fmt: skip
+        star.js_link("visible", here, "visible")
+        return star
 
     def move_to(self, ratio: float, h: float) -> None:
         """A tap on the map: the sprocket ratio and head there, on the sliders' steps."""

@@ -39,6 +39,7 @@ SECOND_LOOP = {
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
 NOTE_CSS = TEXT[:1]
+SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")  # θ₂, as the sliders write θ₁
 
 
 def degrees(angle: float) -> str:
@@ -138,14 +139,16 @@ class Mechanisms(Tab):
         slider, dark = self.slider, self.dark
         self.slider_crank = SliderCrank(slider, dark)
         self.link_colors = self.slider_crank.link_colors
-        self.kind = pn.widgets.RadioButtonGroup(options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR)
+        self.kind = pn.widgets.RadioButtonGroup(
+            options=[FOUR_BAR, SIX_BAR], value=FOUR_BAR, stylesheets=TEXT
+        )
         self.links = {name: slider(*spec, "0.00") for name, spec in FIRST_LOOP.items()}
         self.links.update({name: slider(*spec, "0.00") for name, spec in SECOND_LOOP.items()})
         self.links["beta"].format = "0"
         self.input_angle = slider("Input angle θ₁ [°]", -360.0, 360.0, 1.0, 60.0, "0")
-        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1)
+        self.branch = pn.widgets.RadioButtonGroup(options=BRANCHES, value=1, stylesheets=TEXT)
         self.second_branch = pn.widgets.RadioButtonGroup(
-            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1
+            options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1, stylesheets=TEXT
         )
         self.second_loop = pn.Column(
             *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
@@ -251,7 +254,8 @@ class Mechanisms(Tab):
         values = closures[-1].values
         names = ["theta2", "theta3"] + (["theta4", "theta5"] if len(closures) > 1 else [])
         angles = ", ".join(
-            f"θ{name[-1]} = {degrees(values[name] % (2 * math.pi))}" for name in names
+            f"θ{name[-1].translate(SUBSCRIPT)} = {degrees(values[name] % (2 * math.pi))}"
+            for name in names
         )
         branch = linkage.four_bar_branch(values["theta2"], values["theta3"])
         v = [self.links[name].value for name in FIRST_LOOP]

@@ -16,7 +16,7 @@ import windpump
 from windpump import Status
 from windpump.units import LITRES_PER_M3
 
-from .styles import COMPACT, ZOOM_VARIABLE, px
+from .styles import COMPACT, ZOOM_VARIABLE, keep_terms, keep_units, px
 
 # Sizes follow the page's zoom (styles.px): presentation mode enlarges every tab's readouts, in
 # the browser, with the rest of the page's text: the labels by a quarter (14 -> 17.5 px), the
@@ -49,10 +49,11 @@ STATUS_STYLE = {
 
 
 def readout_html(label: str, value: str, name: str) -> str:
-    """A label over a value; ``data-name`` lets a test or a script find the value."""
+    """A label over a value, whose lines break only between its terms (``keep_terms``: never
+    between a number and its unit); ``data-name`` lets a test or a script find the value."""
     return (
         f'<div class="readout"><div class="label">{label}</div>'
-        f'<div class="value" data-name="{name}">{value}</div></div>'
+        f'<div class="value" data-name="{name}">{keep_terms(value)}</div></div>'
     )
 
 
@@ -115,7 +116,7 @@ class Readouts(pn.viewable.Viewer):
         # first screen has no row to spare.
         self.readouts["efficiency"].visible = not seen.design.is_ideal
         self.status.object, self.status.alert_type = (
-            f"{status_text(seen)} {start_text(seen)}",
+            keep_units(f"{status_text(seen)} {start_text(seen)}"),
             STATUS_STYLE[seen.status],
         )
 

@@ -4,6 +4,7 @@ one (``stale``: the last input was refused)."""
 from __future__ import annotations
 
 import logging
+import re
 import threading
 import weakref
 
@@ -122,7 +123,7 @@ class Session(param.Parameterized):
             with pn.io.hold():
                 self._draw(seen)
         except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
-            self._show_error(f"{self.culprit(error)}cannot be run: {error}")
+            self._show_error(f"{self.culprit(error)}cannot be run: {page_symbols(str(error))}")
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("update failed")
             self._show_error(
@@ -228,10 +229,27 @@ CORE_TO_INPUT = {"L": "L_over_R", "R1": "R_dagger", "D_main": "D_main_mm", "d_le
 
 
 def sentence(error: Exception) -> str:
-    """The error's message as a sentence: capitalised, unless it starts with a parameter's name
-    (``d_leak = ...`` stays as the core spells it), and ending in a full stop."""
+    """The error's message as a sentence, in the page's symbols (``page_symbols``): capitalised,
+    unless it starts with a parameter's name (``d_leak = ...`` stays as the core spells it), and
+    ending in a full stop."""
     text = str(error)
     name = getattr(error, "name", None)
     if not (name and text.startswith(f"{name} ")):
         text = text[0].upper() + text[1:]
-    return text + ("" if text.endswith(".") else ".")
+    return page_symbols(text + ("" if text.endswith(".") else "."))
+
+
+# The core's plain-text names of the quantities the page writes with its symbols (its labels: "Torque
+# at rest T₀ [N·m]"), and its unit N m, which the page writes N·m.
+PAGE_SYMBOLS = {"T_0": "T₀", "T_m": "Tₘ", "omega_m": "ωₘ", "eta_t": "ηₜ", "m_r": "mᵣ"}
+CORE_SYMBOL = re.compile(rf"\b({'|'.join(PAGE_SYMBOLS)})\b")
+
+
+def page_symbols(text: str) -> str:
+    """The core's message ``text`` in the page's symbols and units.
+
+    >>> page_symbols("T_0 = 0.9 N m is not allowed: T_0 must be < T_m = 0.6 N m")
+    'T₀ = 0.9 N·m is not allowed: T₀ must be < Tₘ = 0.6 N·m'
+    """
+    text = CORE_SYMBOL.sub(lambda found: PAGE_SYMBOLS[found.group()], text)
+    return re.sub(r"(\d) N m\b", "\\1 N·m", text)

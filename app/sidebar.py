@@ -13,12 +13,18 @@ from .buttons import ActionButton
 from .inputs import FORMATS, PRESETS, REAL_MACHINE_INPUTS, SWITCHES, PumpInputs
 from .keyboard import FOCUS_CSS
 from .lab import LabData
-from .styles import TEXT, ZOOM_JS
+from .styles import TEXT, ZOOM_JS, px
 from .uploads import RefusedUploads, Reveal
 
 # Two buttons share a row of the sidebar: in presentation mode a label wraps inside its button.
 BUTTON_CSS = ".bk-btn { white-space: normal; padding-left: 4px; padding-right: 4px; }"
 PRESET_PROMPT = "Choose a preset…"
+# The card's title stays one line, like "More parameters"; what it holds is said inside.
+REAL_MACHINE_NOTE = (
+    "The pump rod, the chain, the rising main and a leak hole: what the paper's ideal machine "
+    "leaves out."
+)
+CARD_NOTE_CSS = [*TEXT, f":host {{ font-size: {px(15)}; margin: 0 10px 4px; opacity: 0.85; }}"]
 
 
 class PromptSlider(pn.widgets.FloatSlider):
@@ -60,7 +66,9 @@ def design_filename(design: windpump.Design) -> str:
 
 def card_header(title: str) -> pn.pane.HTML:
     """A card's title at the page's text size (Panel's own title keeps a fixed size)."""
-    return pn.pane.HTML(f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; }"])
+    return pn.pane.HTML(
+        f"<b>{title}</b>", stylesheets=[*TEXT, ":host { margin: 2px 6px; text-align: left; }"]
+    )
 
 
 # The card's chevron, in the text's colour: Panel 1.9 strokes it with --background-text-color,
@@ -121,7 +129,7 @@ class Sidebar(pn.viewable.Viewer):
             for name in SWITCHES
         }
         self.more_card = self.card("More parameters", "more")
-        self.real_card = self.card("Real machine: rod, chain, pipe, leak", "real")
+        self.real_card = self.card("Real machine", "real", REAL_MACHINE_NOTE)
         # a preset or a link that sets the real machine opens its card, so the student sees it
         inputs.param.watch(self._open_real_card, list(REAL_MACHINE_INPUTS))
         button = dict(stylesheets=[*TEXT, BUTTON_CSS, FOCUS_CSS], sizing_mode="stretch_width")
@@ -167,14 +175,17 @@ class Sidebar(pn.viewable.Viewer):
         if not all(inputs.is_default(name, getattr(inputs, name)) for name in REAL_MACHINE_INPUTS):
             self.real_card.collapsed = False
 
-    def card(self, title: str, place: str) -> pn.Card:
-        """A collapsed card of the sliders that sit in ``place`` (FORMATS), empty until first
-        opened (by the student, or by a preset or a link that sets one of its inputs): a page
-        whose cards stay closed sends none of their sliders (28 of its 184 models)."""
-        return closed_card(
-            title,
-            lambda: [self.sliders[name] for name, (_f, where) in FORMATS.items() if where == place],
-        )
+    def card(self, title: str, place: str, note: str = "") -> pn.Card:
+        """A collapsed card of the sliders that sit in ``place`` (FORMATS), under a ``note`` of
+        what they are if any, empty until first opened (by the student, or by a preset or a link
+        that sets one of its inputs): a page whose cards stay closed sends none of their sliders
+        (28 of its 184 models)."""
+
+        def build() -> list:
+            said = [pn.pane.HTML(note, stylesheets=CARD_NOTE_CSS)] if note else []
+            return said + [self.sliders[n] for n, (_f, where) in FORMATS.items() if where == place]
+
+        return closed_card(title, build)
 
     def __panel__(self) -> pn.Column:
         main = [self.sliders[name] for name, (_f, place) in FORMATS.items() if place == "main"]

@@ -10,7 +10,14 @@ import math
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColumnDataSource, FactorRange, HoverTool, Range1d
+from bokeh.models import (
+    ColumnDataSource,
+    CustomJS,
+    FactorRange,
+    HoverTool,
+    NumeralTickFormatter,
+    Range1d,
+)
 
 import windpump
 from windpump.units import LITRES_PER_M3
@@ -286,6 +293,24 @@ class CloseupView(View):
         )
 
 
+# The waterfall's x range in the browser, where the frame's width and the labels' are known: to
+# the right of each bar its label (at ``offset`` px), so the range ends where the farthest label
+# ends, and no further (the bars as long as the labels leave room for).
+FIT_BARS_JS = """
+const right = source.data.right, labels = source.data.label, width = plot.inner_width
+if (!right || right.length === 0 || !(width > 0)) return
+const ctx = document.createElement('canvas').getContext('2d')
+const size = glyph.text_font_size  // a glyph's: a value spec, {value: '15px'}
+ctx.font = `${size?.value ?? size} helvetica`
+let end = 1.02 * Math.max(...right, 1e-9)
+for (let i = 0; i < right.length; i++) {
+  const share = (ctx.measureText(String(labels[i])).width + offset + 6) / width
+  end = Math.max(end, right[i] / Math.max(1 - share, 0.25))  // its label ends at the range's end
+}
+if (plot.x_range.end !== end) plot.x_range.end = end
+"""
+
+
 class EnergyView(View):
     caption = (
         "Over the run, the windmill's work W = ∫ T ω dt, and where it went: the chain (1 − η_t) W, "
@@ -308,12 +333,20 @@ class EnergyView(View):
         )
         source = self.sources["losses"]
         fig.hbar(y="step", left="left", right="right", height=0.6, color="color", source=source)
-        fig.text(
+        labels = fig.text(
             x="at", y="step", text="label", source=source, text_baseline="middle",
             text_font_size=LABEL, x_offset=6, color=self.colors["ink"],
         )  # fmt: skip
         fig.x_range.start = 0
         fig.xaxis.ticker.desired_num_ticks = 3  # "10000 15000 20000" ran together at 300 px
+        fig.xaxis.formatter = NumeralTickFormatter(format="0,0")  # 150,000, not 1.500e+5
+        fit = CustomJS(
+            args=dict(plot=fig, source=source, glyph=labels.glyph, offset=6), code=FIT_BARS_JS
+        )
+        source.js_on_change("data", fit)
+        fig.js_on_change("inner_width", fit)
+        fig.x_range.js_on_change("end", fit)  # the server's, set with new bars
+        labels.glyph.js_on_change("text_font_size", fit)  # presentation mode
 
     def update(self, seen, bins):
         refill(self.sources["losses"], self.waterfall(seen.energy_totals))
@@ -333,8 +366,8 @@ class EnergyView(View):
         share = [100.0 * v / W if W > 0 else 0.0 for v in values]
         labels = [f"{v:,.0f} J, {p:.0f} %" for v, p in zip(values, share, strict=True)]
         labels[4] = labels[4] if spin >= 0 else f"{-spin:,.0f} J given back"
-        # room for the labels: "11,967 J, 100 %" at 19 px beside a bar of 1/2.4 of a 300 px frame
-        self.figure.x_range.end = 2.4 * max(max(right), 1e-9)
+        # the bars; the page makes room for their labels (FIT_BARS_JS)
+        self.figure.x_range.end = 1.02 * max(max(right), 1e-9)
         return {
             "step": list(self.STEPS),
             "left": left,

@@ -74,6 +74,23 @@ def duration_text(seconds: float) -> str:
     return f"{hours} h {minutes} min" if hours else f"{minutes} min"
 
 
+def times(count: int) -> str:
+    """A count of events in words: "once", "twice", "3 times"."""
+    return {1: "once", 2: "twice"}.get(count, f"{count} times")
+
+
+def stops_and_starts(stops: int, starts: int) -> str:
+    """How often a day's pump stops and starts again, in words.
+
+    >>> stops_and_starts(0, 0), stops_and_starts(1, 0), stops_and_starts(3, 2)
+    ('never stops', 'stops once and never starts again', 'stops 3 times and starts again twice')
+    """
+    if stops == 0 and starts == 0:
+        return "never stops"
+    again = f"starts again {times(starts)}" if starts else "never starts again"
+    return f"stops {times(stops)} and {again}" if stops else again
+
+
 def is_a_day(duration: float) -> bool:
     """Whether a record [s] is a day long (to the minute): its litres are then a day's."""
     return math.isclose(duration, SECONDS_PER_DAY, abs_tol=60.0)
@@ -355,8 +372,9 @@ class WindTab(Tab):
             source += f" ({duration / SECONDS_PER_HOUR:.1f} h)"
         start = "starts on its own" if day.kick == 0.0 else f"is kicked at {day.kick:g} rad/s"
         self.day_note.object = (
-            f"Integrated in full over {source}: the pump {start}, stops {len(day.stops)} "
-            f"time(s) and starts {len(day.starts)} time(s); mean wind {day.mean_wind:.2f} m/s."
+            f"Integrated in full over {source}: the pump {start}, "
+            f"{stops_and_starts(len(day.stops), len(day.starts))}; "
+            f"mean wind {day.mean_wind:.2f} m/s."
         )
 
     # -- a measured record -------------------------------------------------------------------

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 from decimal import Decimal
 
 import numpy as np
@@ -33,7 +34,8 @@ def expected(design=SEED, t_end=600.0, theta0=math.pi / 2, theta_dot0=3.0):
 
 
 def readout_text(app, name):
-    return app.readouts[name].object
+    """A readout's text as the page shows it: its HTML's tags left out."""
+    return re.sub(r"<[^>]+>", "", app.readouts[name].object)
 
 
 def test_the_default_is_the_papers_example(app):
@@ -298,7 +300,7 @@ def test_a_link_to_a_design_of_its_own_says_it_is_the_links():
     assert app.sidebar.preset.value == PRESET_PROMPT
     assert app.sidebar.preset_note.object == "Your design, from the link."
     assert app.sidebar.preset_note.visible
-    plain = Explorer(query={"tab": [b"wind"]})  # no design in the link: the prompt alone
+    plain = Explorer(query={"tab": [b"wind"], "foo": [b"1"]})  # no design: the prompt alone
     assert plain.sidebar.preset.value == PRESET_PROMPT and not plain.sidebar.preset_note.visible
 
 
@@ -421,7 +423,7 @@ def test_a_poor_fit_outside_the_sliders_is_explained_and_not_offered(app):
     app.load_lab_data(swapped)
     message = app.sidebar.lab.message.object
     assert app.sidebar.lab.message.visible and "A poor fit" in message
-    assert f"Windmill torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
+    assert f"Peak torque Tₘ [N·m] = {fit.T_m:.3g} is outside 0.05–5" in message
     assert f"Windmill peak speed ωₘ [rad/s] = {fit.omega_m:.3g} is outside 5–150" in message
     assert "cannot be applied" in message and "Nothing was changed" in message
     assert not app.sidebar.lab.apply_fit.visible  # only what can be applied is offered
@@ -635,8 +637,8 @@ def test_the_dark_theme_comes_from_the_link():
     [
         (
             {"T_0": [b"0.9"]},  # above the default T_m = 0.6
-            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed: "
-            "T_0 must be < T_m = 0.6 N m",
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T₀ = 0.9 N·m is not allowed: "
+            "T₀ must be < Tₘ = 0.6 N·m",  # the page's symbols, as in its labels
             SEED,
         ),
         (
@@ -646,7 +648,7 @@ def test_the_dark_theme_comes_from_the_link():
         ),
         (
             {"T_0": [b"0.5"], "T_m": [b"0.4"]},
-            "(T_0) = “0.5” ignored: T_0 = 0.5 N m is not allowed: T_0 must be < T_m = 0.4 N m",
+            "(T_0) = “0.5” ignored: T₀ = 0.5 N·m is not allowed: T₀ must be < Tₘ = 0.4 N·m",
             SEED.replace(T_m=0.4),
         ),
     ],
@@ -742,7 +744,7 @@ def test_cylinders_double_acting_and_torque_at_rest_reach_every_view(app):
     flow = np.asarray(app.sources["closeup"].data["flow"])
     np.testing.assert_allclose(total, flow, rtol=1e-9, atol=1e-9 * flow.max())
     peak = windpump.peak_load_torque(design)
-    assert f"peak load {peak:.2f} N·m" in app.readouts.status.object
+    assert f"peak load {peak:.2f} N·m" in re.sub(r"<[^>]+>", "", app.readouts.status.object)
 
 
 def test_a_start_from_rest_needs_torque_at_rest(app):
@@ -762,7 +764,8 @@ def test_a_start_from_rest_needs_torque_at_rest(app):
 
 def test_torque_at_rest_above_the_peak_is_refused_and_named(app):
     app.set_values(T_0=0.8)  # above T_m = 0.6
-    assert app.error.visible and "T_0 = 0.8" in app.error.object and "< T_m" in app.error.object
+    assert app.error.visible and "T₀ = 0.8 N·m" in app.error.object and "< Tₘ" in app.error.object
+    assert "T_0" not in app.error.object and " N m" not in app.error.object  # the page's symbols
     app.set_values(T_0=0.2)
     assert not app.error.visible
 
@@ -938,3 +941,57 @@ def test_ragged_columns_are_compared_column_by_column():
     old = {"xs": [[0.0, 1.0], [2.0, 3.0, 4.0]], "ys": [[0.0, 1.0], [2.0, 3.0, 4.0]]}
     new = {"xs": [[0.0, 1.0], [2.0, 3.0, 4.0]], "ys": [[0.0, 1.0], [2.0, 3.0, 5.0]]}
     assert not same(old, new) and same(old, {key: list(v) for key, v in old.items()})
+
+
+def test_no_number_is_parted_from_its_unit():
+    """On a phone a readout's value or the status wraps: never between a number and its unit
+    ("3,925" and a lone "J" on the next line), each such pair in a span that does not wrap."""
+    app = Explorer()
+    app.sidebar.preset.value = "A leak hole lets it start"  # losses: four terms of energy
+    texts = [readout.object for readout in app.readouts.readouts.values()]
+    texts.append(app.readouts.status.object)
+    kept = re.compile(r'<span style="white-space: nowrap">([^<]*)</span>')
+    units = r"\d (?:J|N·m|rad/s|L/s|s|%|L)(?!\w)"
+    for text in texts:
+        assert re.search(units, text) is None or kept.search(text), text
+        assert re.search(units, kept.sub("", text)) is None, text  # none left outside a span
+    energy = kept.findall(app.readouts["energy"].object)
+    assert len(energy) == 4 and all(term.endswith(" J") for term in energy)
+    app.sidebar.preset.value = "The paper's example"  # no torque at rest: "T₀" and "= 0" once
+    assert "T₀ = 0" in kept.findall(app.readouts.status.object)  # parted on a phone
+
+
+@pytest.mark.parametrize(
+    "query",
+    [
+        {"h": [b"-5"]},
+        {"h": [b"-5"], "T_m": [b"abc"], "foo": [b"1"], "cylinders": [b"2.5"], "T_0": [b"0.9"]},
+    ],
+    ids=["h", "several"],
+)
+def test_a_link_whose_values_are_all_refused_says_it_shows_the_papers_example(query):
+    """Every value of these links is refused (out of range, not a number, not whole, beyond
+    Tₘ): each opens on the paper's example and says so, as a link to it does, under its notices."""
+    app = Explorer(query=query)
+    assert app.inputs.design() == SEED
+    assert app.sidebar.preset.value == "The paper's example"
+    assert app.sidebar.preset_note.visible and PRESETS["The paper's example"][1] in (
+        app.sidebar.preset_note.object
+    )
+    assert app.notices.visible and "(h) = “-5” ignored" in app.notices.object
+
+
+def test_a_phones_link_notices_say_that_they_scroll():
+    """On a phone the notices' list scrolls within two whole lines (the status under the
+    readouts stays in view), once a line and a half with nothing saying it scrolled: its title
+    says how many notices to scroll through, on a phone only, and the scroll bar is drawn."""
+    from windpump_app.styles import NOTICE
+
+    app = Explorer(query={"h": [b"-5"], "T_m": [b"abc"], "foo": [b"1"]})
+    assert '<span class="scroll-hint">(3: scroll the list)</span>' in app.notices.object
+    assert "scroll-hint" not in Explorer(query={"h": [b"-5"]}).notices.object  # one: all shown
+    phone = " ".join(NOTICE).split("@media (max-width: 700px)")[-1]
+    assert "max-height: 3em" in phone and "line-height: 1.5;" in phone  # two whole lines
+    assert "overflow-y: scroll" in phone and "::-webkit-scrollbar-thumb" in phone
+    assert ".scroll-hint { display: inline; white-space: nowrap; }" in phone
+    assert ".scroll-hint { display: none; }" in NOTICE  # elsewhere the list is whole

@@ -37,6 +37,7 @@ from bokeh.models.glyphs import HArea, Line, Patch, Patches, VArea
 from panel.theme.bootstrap import BootstrapDarkTheme
 
 from windpump_app.explorer import Explorer
+from windpump_app.figures import present
 from windpump_app.mechanisms import SIX_BAR
 
 APP = Path(__file__).resolve().parents[1] / "app"
@@ -322,3 +323,29 @@ def test_the_check_sees_a_faint_line():
     for axis in (*fig.xaxis, *fig.yaxis):
         axis.major_label_text_color = "#e0e0e0"
     assert len(failures_of(fig)) == 1
+
+
+@pytest.mark.parametrize("dark", [False, True], ids=["light", "dark"])
+def test_the_design_maps_star_reads_in_its_legend(dark):
+    """Bokeh draws a legend's marker at 0.4 of its swatch's box whatever its size on the plot: the
+    map's star in its legend is at least 12 px across, its outline thin beside it (so its fill is
+    seen, not a black blot) and standing out from the legend's background by 3:1; presentation
+    mode makes it larger, never smaller."""
+    app = Explorer(query={"theme": [b"dark"]} if dark else {})
+    themed(app, dark)
+    fig = app.design_map.figure
+    (legend,) = fig.select(type=Legend)
+    border = over(fig.border_fill_color, fig.border_fill_alpha, "white")
+    behind = over(legend.background_fill_color, legend.background_fill_alpha, border)
+    sizes = []
+    for large in (False, True, False):
+        present(fig, large)
+        sizes.append(0.4 * min(legend.glyph_width, legend.glyph_height))  # Bokeh's MarkerView's
+    size = sizes[0]
+    assert size >= 12 and sizes[1] > size and sizes[2] == size
+    item = next(i for i in legend.items if i.label.value == "this design")
+    (star,) = [r.glyph for r in item.renderers]
+    assert star.marker == "star"
+    assert star.line_width <= 0.1 * size
+    assert contrast(star.line_color, behind) >= MINIMUM
+    assert contrast(star.fill_color, behind) >= MINIMUM or not dark  # the light theme's: outlined

@@ -373,3 +373,17 @@ def test_no_label_lies_under_this_designs_star_wherever_it_moves(app):
         assert not overlap(boxes, tab.star_box()).any()
         moved += 1
     assert moved >= 3
+
+
+def test_the_legend_refits_when_its_red_lines_label_changes(app):
+    """A leaky pump's map renames the red line's legend item once mapped: the page measures the
+    legend's columns again (figures.FIT_TEXT_JS), from the frame's left edge, where a legend
+    below the plot starts, not the figure's."""
+    from windpump_app.figures import FIT_TEXT_JS
+    from windpump_app.map_tab import STALL_LABEL
+
+    fit = app.design_map.figure._fit_text
+    for label, item in app.design_map.legend.items():
+        assert fit in item.js_property_callbacks.get("change:label", []), label
+    assert STALL_LABEL in app.design_map.legend
+    assert "frame.left" in FIT_TEXT_JS

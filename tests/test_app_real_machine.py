@@ -36,10 +36,13 @@ def test_the_real_machine_has_its_own_card_closed_on_the_ideal_machine(app):
     card = app.sidebar.real_card
     assert card.collapsed and "Real machine" in card.header.object
     assert list(card.objects) == []  # its sliders are built when it first opens
+    assert card.header.object == "<b>Real machine</b>"  # one line, as "More parameters"
     card.collapsed = False  # as the student's click does
-    assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
+    note, *sliders = card.objects  # what it holds, said under its short title
+    assert "rod" in note.object and "chain" in note.object and "leak" in note.object
+    assert sliders == [app.sidebar.sliders[name] for name in SETTINGS]
     card.collapsed = True  # closed again, it keeps them
-    assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
+    assert list(card.objects)[1:] == [app.sidebar.sliders[name] for name in SETTINGS]
     labels = [app.sidebar.sliders[name].name for name in SETTINGS]
     assert labels[0].endswith("[kg]") and labels[2].endswith("[m]")
     assert labels[3].endswith("[mm]") and labels[5].endswith("[mm]")  # diameters in mm
@@ -60,7 +63,7 @@ def test_a_link_that_sets_the_real_machine_opens_its_card_with_its_sliders():
     app = Explorer(query={"d_leak_mm": [b"3"]})
     card = app.sidebar.real_card
     assert not card.collapsed and app.inputs.d_leak_mm == 3.0
-    assert list(card.objects) == [app.sidebar.sliders[name] for name in SETTINGS]
+    assert list(card.objects)[1:] == [app.sidebar.sliders[name] for name in SETTINGS]
     assert app.sidebar.sliders["d_leak_mm"].value == 3.0  # the slider shows the link's value
 
 
@@ -210,7 +213,7 @@ def margin_and_kick_force(design: windpump.Design, kick: float) -> tuple[float, 
 
 
 def test_the_deep_well_preset_still_runs(app):
-    app.sidebar.preset.value = "A deep well with a heavy pump rod"
+    app.sidebar.preset.value = "A deep well, a heavy rod"
     design = app.inputs.design()
     assert design == SEED.replace(h=25.0, T_m=2.5, m_r=15.0, eta_t=0.8, L_main=30.0, D_main=0.025)
     assert app.inputs.theta_dot0 == 6.0 and not app.sidebar.real_card.collapsed
@@ -249,7 +252,7 @@ def test_the_leak_preset_starts_from_rest_and_the_tight_pump_does_not(app):
 
 
 def test_the_deep_well_preset_runs_as_the_issues_equations_say(app):
-    app.sidebar.preset.value = "A deep well with a heavy pump rod"
+    app.sidebar.preset.value = "A deep well, a heavy rod"
     design = app.inputs.design()
     ref = real_reference_run(design, 120.0, app.inputs.theta0, app.inputs.theta_dot0)
     run = app.seen.run

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -32,7 +33,8 @@ def app():
 
 def value(app, name):
     html = app.site.readouts[name].object
-    return html.split(f'data-name="{name}">')[1].split("<")[0]
+    value = html.split(f'data-name="{name}">')[1].rsplit("</div></div>", 1)[0]
+    return re.sub(r"<[^>]+>", "", value)  # as the page shows it
 
 
 def year(design=SEED, site="greensboro", hub=10.0, demand=10.0, tank=5.0, restart="attended"):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -26,7 +27,8 @@ def app():
 
 def value(app, name):
     html = app.wind.readouts[name].object
-    return html.split(f'data-name="{name}">')[1].split("<")[0]
+    value = html.split(f'data-name="{name}">')[1].rsplit("</div></div>", 1)[0]
+    return re.sub(r"<[^>]+>", "", value)  # as the page shows it
 
 
 def litres(number: float) -> str:
@@ -74,6 +76,9 @@ def test_a_self_starting_pump_needs_no_kick_and_stops_and_starts_with_the_wind(a
     assert np.all(run.theta_dot[run.t < run.starts[0]] == 0.0)
     assert len(run.stops) >= 1 and len(run.starts) >= 2
     assert "starts on its own" in app.wind.day_note.object
+    note = app.wind.day_note.object  # the counts in words, not "stops 0 time(s)"
+    said = {1: "once", 2: "twice"}.get(len(run.starts), f"{len(run.starts)} times")
+    assert "time(s)" not in note and f"starts again {said}" in note
     assert len(app.wind.sources["starts_litres"].data["t"]) == len(run.starts)
 
 
@@ -187,6 +192,7 @@ def test_the_stops_and_starts_legend_lists_only_what_the_day_has(app):
     run = app.wind.last_run
     assert len(run.stops) == len(run.starts) == 0
     assert legend_labels(app.wind.day_wind) == []
+    assert "never stops;" in app.wind.day_note.object  # not "stops 0 time(s)"
     app.forget_wind_data()
     app.set_values(cylinders=2.0, T_0=0.4, mean_wind=3.0, time_scale=600.0, I0=0.2)
     run = app.wind.last_run

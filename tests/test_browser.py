@@ -31,7 +31,7 @@ MAIN_SLIDERS = [
     "L/R, rod / crank",
     "R₁/R₀, sprocket ratio",
     "Head h [m]",
-    "Windmill torque Tₘ [N·m]",
+    "Peak torque Tₘ [N·m]",
 ]
 SIZES = [(1280, 720), (1366, 768), (1920, 1080), (390, 844)]
 SPEED_DATA = "() => Array.from(window.Bokeh.documents[0].get_model_by_name('speed').data.upper)"
@@ -323,7 +323,7 @@ def test_every_lab_uploads_outcome_is_shown_in_view_at_1280x720(browser, url):
         for name, content, shown in [
             ("typo.csv", b"10,0.216x\n50,0.6\n90,0.2\n", "Line 1, column 2: '0.216x' is not"),
             ("empty.csv", b"", "The file is empty"),
-            ("swapped.csv", swapped, "It cannot be applied: Windmill torque"),
+            ("swapped.csv", swapped, "It cannot be applied: Peak torque"),
         ]:
             page.evaluate(TO_THE_TOP)  # the sidebar scrolled back: the upload's messages below
             upload.set_input_files(
@@ -443,7 +443,7 @@ def wait_for_link(page, search):
 
 def test_the_link_reads_as_the_sliders_and_reset_leaves_it_bare(page):
     press(page, "Head h [m]", "ArrowRight", 1)
-    press(page, "Windmill torque Tₘ [N·m]", "ArrowRight", 2)
+    press(page, "Peak torque Tₘ [N·m]", "ArrowRight", 2)
     wait_for_link(page, "?h=3.1&T_m=0.7")  # not h=3.0999999999999996, T_m=0.7000000000000001
     wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=3.1, T_m=0.7)))
     press(page, "Head h [m]", "ArrowRight", 9)
@@ -511,7 +511,7 @@ def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(bro
     page = open_page(browser, url, query="?T_0=0.9&h=5")
     try:
         page.get_by_text(
-            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T_0 = 0.9 N m is not allowed"
+            "Torque at rest T₀ [N·m] (T_0) = “0.9” ignored: T₀ = 0.9 N·m is not allowed"
         ).first.wait_for(timeout=30_000)
         wait_for_readout(page, "mean_flow", flow_readout(SEED.replace(h=5.0)))
         assert "Running" in page.get_by_text("Running.").first.inner_text()

@@ -299,14 +299,14 @@ CUT_TITLES = """() => { const out = []; const walk = (r) => {
 def test_the_cards_show_their_chevron_and_every_slider_its_value(browser, url, query):
     """A newcomer sees that "More parameters" and "Real machine" open (a chevron, painted in
     the text's colour), and, with both open in presentation mode at 1280×720, every slider's
-    title and value in full ("Leak hole discharge coefficient: 0.60" wraps, not cut)."""
+    title and value in full ("Leak discharge coefficient: 0.60" wraps, not cut)."""
     page = open_page(browser, url, 1280, 720, query)
     try:
         strokes = page.evaluate(CHEVRONS)
         assert len(strokes) >= 2 and "none" not in strokes, strokes
         for title in ("More parameters", "Real machine"):
             page.get_by_text(title).first.click()
-        page.locator(".bk-slider-title", has_text="Leak hole discharge coefficient").wait_for()
+        page.locator(".bk-slider-title", has_text="Leak discharge coefficient").wait_for()
         time.sleep(1.0)
         assert page.evaluate(CUT_TITLES) == []
         assert page.problems == []

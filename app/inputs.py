@@ -299,7 +299,7 @@ PRESETS = {
         "With a hundredth of the inertia the crank speed swings within every revolution: the "
         "averaged theory (Eq. 24) smooths over what the full Eq. (12) shows.",
     ),
-    "Two cylinders, self-starting": (
+    "Two cylinders, torque at rest": (
         {"cylinders": 2.0, "T_0": 0.4, "theta_dot0": 0.0},
         "Two cylinders half a turn apart and a windmill with torque at rest: R†T₀ beats the load "
         "at every angle, so it starts from rest with no kick, and the flow pulses twice a turn.",
@@ -309,7 +309,7 @@ PRESETS = {
         "Both faces of the piston deliver: the flow pulses twice per revolution, never stops, and "
         "the load doubles (the margin halves at the same head).",
     ),
-    "A deep well, a heavy rod": (
+    "A deep well with a heavy pump rod": (
         {
             "h": 25.0,
             "T_m": 2.5,

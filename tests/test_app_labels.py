@@ -72,24 +72,6 @@ def dejavu(size: float, bold: bool = False):
     return ImageFont.truetype(found.stdout, size)
 
 
-def test_every_presets_name_shows_in_full_in_its_select():
-    """A select shows its chosen option on one line, cut where it does not fit: every preset's
-    name fits the sidebar's select, in DejaVu Sans (the page's font on Debian) at the select's
-    15 px, enlarged by presentation mode. The room: the select of a 330 px sidebar is 292 px
-    wide, less its 12 px and 20 px padding (the arrow), as chromium lays it out."""
-    import panel as pn
-
-    from windpump_app.inputs import PRESETS
-    from windpump_app.page import page
-    from windpump_app.styles import PRESENTATION_ZOOM
-
-    assert page(pn.Column(), pn.Column(), False, False).sidebar_width == 330
-    font = dejavu(15 * PRESENTATION_ZOOM)
-    room = 292 - 12 - 20
-    too_long = {name: font.getlength(name) for name in PRESETS if font.getlength(name) > room}
-    assert too_long == {}
-
-
 def test_every_sidebar_slider_keeps_its_value_on_its_titles_line():
     """At 1280 x 720 a slider's title and value, "Rod and piston mass mᵣ [kg]: 50.0" at its
     widest, stay on one line: 15 px, the value bold, in the 294 px of a slider's title in the

@@ -57,6 +57,8 @@ from tornado.httpclient import AsyncHTTPClient, HTTPRequest
 from tornado.websocket import websocket_connect
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from windpump_app.inputs import PumpInputs  # noqa: E402
+
 from served import cpu_seconds, resident_memory, served_app  # noqa: E402
 
 MAX_SESSIONS = 400
@@ -65,12 +67,14 @@ MOVE_EVERY = (5.0, 20.0)  # [s] a student's pause between two moves
 WAIT = 300.0  # [s] the longest a page's opening is waited for
 MOVE_WAIT = 60.0  # [s] the longest a move's readouts are waited for
 SAMPLE_EVERY = 0.5  # [s] the server's CPU and memory
-# The sliders a student moves, by their title on the page: (lowest, highest) value sent, inside the
-# slider's range and where the paper's example still runs (a stalled design shows no new flow).
+# The sliders a student moves, by their title on the page (the app's labels: a renamed slider was
+# not found): (lowest, highest) value sent, inside the slider's range and where the paper's example
+# still runs (a stalled design shows no new flow).
+TITLE = {name: PumpInputs.param[name].label for name in ("h", "T_m", "t_end")}
 MOVES = {
-    "Head h [m]": (1.0, 6.0),
-    "Windmill torque Tₘ [N·m]": (0.5, 1.5),
-    "Duration t_end [s]": (200.0, 900.0),
+    TITLE["h"]: (1.0, 6.0),
+    TITLE["T_m"]: (0.5, 1.5),
+    TITLE["t_end"]: (200.0, 900.0),
 }
 TOKEN = re.compile(r'"token":"([^"]+)"')
 READOUT = 'data-name="mean_flow"'
@@ -494,7 +498,7 @@ WITNESSES = 10  # students who move at once as the upload is sent, and 2 s befor
 # (``session.shared_explore``), and the two bursts do the same work. Random moves of the hall's
 # kind were shared more often the first time than the second: the ten's round trips were half as
 # long 2 s before the upload, with or without one.
-WITNESS_SLIDER = "Windmill torque Tₘ [N·m]"
+WITNESS_SLIDER = TITLE["T_m"]
 CALM_TORQUE, TORQUE_APART = 1.55, 0.1  # [N·m]
 
 

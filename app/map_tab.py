@@ -33,6 +33,7 @@ from windpump.units import SECONDS_PER_DAY
 
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
+from .page import pane_height_css
 from .serving import Newest, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
@@ -46,6 +47,16 @@ STALE_ALPHA = (
     0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
 )
 DECADES = 2
+MAP_HEIGHT = 520  # [px] the figure: its frame ~335 px high on a projector, the legend below
+# On a phone the figure is no higher than what the tabs' pane shows (page.pane_height_css, ~433
+# of its ~442 px at 390×844): a student sees it whole, colour bar and legend (at 520 px its top
+# went under the header once scrolled to its foot). Not below 300 px (a frame of ~90 px). Its
+# height and its flex basis: Panel lays it out in a column, where the basis (520 px) rules.
+PHONE_HEIGHT = f"clamp(300px, {pane_height_css()}, {MAP_HEIGHT}px)"
+PHONE_CSS = (
+    f"@media (max-width: 700px) {{ :host {{ height: {PHONE_HEIGHT} !important; "
+    f"flex-basis: {PHONE_HEIGHT} !important; }} }}"
+)
 
 
 def colour_range(flow: np.ndarray) -> tuple[float, float]:
@@ -360,8 +371,9 @@ class MapTab(Tab):
             "Water a day over sprocket ratio and head",
             "sprocket ratio R₁/R₀",
             "head h [m]",
-            height=520,
+            height=MAP_HEIGHT,
             tools="tap,pan,wheel_zoom,reset,save",
+            stylesheets=[PHONE_CSS],
             x_range=(x0, x1),
             y_range=(y0, y1),
         )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -387,3 +388,45 @@ def test_the_legend_refits_when_its_red_lines_label_changes(app):
         assert fit in item.js_property_callbacks.get("change:label", []), label
     assert STALL_LABEL in app.design_map.legend
     assert "frame.left" in FIT_TEXT_JS
+
+
+def css_px(length: str, screen_height: float) -> float:
+    """A CSS length made of px, 100vh, calc() and clamp() [px] on a screen ``screen_height`` px
+    high (as the browser computes it)."""
+    expression = length.replace("calc", "").replace("100vh", f"{screen_height}").replace("px", "")
+    assert re.fullmatch(r"[\d\s.+\-*/(),]*(clamp[\d\s.+\-*/(),]*)*", expression), length
+    return eval(
+        expression, {"__builtins__": {}, "clamp": lambda low, x, high: max(low, min(x, high))}
+    )
+
+
+def phone_rules(figure) -> dict[str, str]:
+    """The properties a figure's own stylesheets set on it below 700 px (a phone held upright)."""
+    rules: dict[str, str] = {}
+    for sheet in figure.stylesheets:
+        found = re.search(r"@media \(max-width: 700px\) \{ :host \{(.*)\} \}", str(sheet))
+        for rule in found.group(1).split(";") if found else []:
+            if rule.strip():
+                name, said = rule.split(":", 1)
+                rules[name.strip()] = said.strip()
+    return rules
+
+
+@pytest.mark.parametrize("screen_height", [640, 844, 915])
+def test_on_a_phone_the_map_fits_the_tabs_pane_and_keeps_its_height_elsewhere(app, screen_height):
+    """On a phone (page.NARROW_CSS) the tabs' pane is 58 % of the screen below the header (54 px
+    at 390×844), less its padding (4 px above, 12 below): the map's figure, 520 px high, was
+    taller than the pane (~442 px at 390×844) and its top went under the header once scrolled
+    to its foot. There it fits the pane; elsewhere it stays 520 px high."""
+    figure = app.design_map.figure
+    assert (figure.height, figure.sizing_mode) == (520, "stretch_width")  # 1280×720 and wider
+    rules = phone_rules(figure)
+    # Panel lays the figure out in a column, where its flex basis (520 px) rules over its height
+    assert {"height", "flex-basis"} <= set(rules), rules
+    pane = (screen_height - 54) * 0.58 - (4 + 12)
+    for name in ("height", "flex-basis"):
+        length, important = rules[name].removesuffix("!important").strip(), "!important"
+        assert rules[name].endswith(important)  # over the figure's own 520 px
+        drawn = css_px(length, screen_height)
+        assert drawn <= pane, (name, drawn, pane)
+        assert drawn >= min(300.0, pane) and drawn >= min(520.0, pane - 20.0), (name, drawn, pane)

@@ -915,3 +915,14 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         assert page.problems == []
     finally:
         page.close()
+
+
+def map_settled(page) -> dict:
+    """The Design map's canvas box once mapped and still (its readout laid out above it)."""
+    page.get_by_text("the best sprocket ratio is").wait_for(timeout=60_000)
+    canvases = [c for c in page.locator("canvas").all() if c.is_visible()]
+    map_canvas = max(canvases, key=lambda c: c.bounding_box()["height"])
+    box, deadline = None, time.monotonic() + 30
+    while box != (box := map_canvas.bounding_box()) and time.monotonic() < deadline:
+        page.wait_for_timeout(250)
+    return box

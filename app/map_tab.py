@@ -20,6 +20,7 @@ from bokeh.events import Tap
 from bokeh.models import (
     ColorBar,
     ColumnDataSource,
+    CustomJSHover,
     FixedTicker,
     HoverTool,
     LogColorMapper,
@@ -57,6 +58,16 @@ PHONE_CSS = (
     f"@media (max-width: 700px) {{ :host {{ height: {PHONE_HEIGHT} !important; "
     f"flex-basis: {PHONE_HEIGHT} !important; }} }}"
 )
+# The hover's flow: the core's mean flow [m³/day], NaN where the pump cannot run (DesignMap: stall
+# margin 1 or less, left of a tight pump's red line), said in words there (it said "NaN m³/day").
+# Bokeh writes "NaN" for a NaN field before any formatter sees it: the formatter is given the
+# hovered pixel's index ($image_index) and reads the flow there itself, as Bokeh reads @image.
+STALLED = "0 m³/day: it stalls"
+FLOW_HOVER_JS = """
+const image = source.data.image[value.index]
+const flow = Array.isArray(image[0]) ? image[value.j][value.i] : image[value.flat_index]
+return Number.isFinite(flow) ? `${flow.toFixed(1)} m³/day` : stalled
+"""
 
 
 def colour_range(flow: np.ndarray) -> tuple[float, float]:
@@ -344,7 +355,8 @@ class MapTab(Tab):
         )
         self.ratios, self.heads = (np.linspace(*axis) for axis in self.grid)
         self.sources: dict[str, ColumnDataSource] = {
-            "flow": ColumnDataSource({"image": [np.full((2, 2), np.nan)]}),
+            # no image until the first map comes (a blank one's hover said NaN, now "it stalls")
+            "flow": ColumnDataSource({"image": []}),
             "stall": empty("ratio", "h"),
             "best": empty("ratio", "h"),
             "here": empty("ratio", "h", "flow"),
@@ -434,8 +446,13 @@ class MapTab(Tab):
                 tooltips=[
                     ("R₁/R₀", "$x{0.00}"),
                     ("h", "$y{0.0} m"),
-                    ("flow", "@image{0.0} m³/day"),
+                    ("flow", "$image_index{custom}"),
                 ],
+                formatters={
+                    "$image_index": CustomJSHover(
+                        args=dict(source=s["flow"], stalled=STALLED), code=FLOW_HOVER_JS
+                    )
+                },
             )
         )
         self.legend = legend(

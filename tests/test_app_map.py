@@ -430,3 +430,48 @@ def test_on_a_phone_the_map_fits_the_tabs_pane_and_keeps_its_height_elsewhere(ap
         drawn = css_px(length, screen_height)
         assert drawn <= pane, (name, drawn, pane)
         assert drawn >= min(300.0, pane) and drawn >= min(520.0, pane - 20.0), (name, drawn, pane)
+
+
+def test_the_hover_says_in_words_where_the_pump_stalls(app):
+    """Left of a tight pump's stall line the core's mean flow is NaN (DesignMap: the stall
+    margin is 1 or less, Eq. 22): the map's hover said "NaN m³/day" there. Its flow is formatted
+    in the page: in words where the core's flow is NaN, in m³/day elsewhere."""
+    from bokeh.models import CustomJSHover, HoverTool
+
+    from windpump_app.map_tab import STALLED
+
+    tab = app.design_map
+    (hover,) = [tool for tool in tab.figure.tools if isinstance(tool, HoverTool)]
+    # Bokeh writes "NaN" for a NaN field (@image) before its formatter: the pixel's index is
+    # formatted, the formatter reading the flow source's image there
+    assert dict(hover.tooltips)["flow"] == "$image_index{custom}"
+    formatter = hover.formatters["$image_index"]
+    assert isinstance(formatter, CustomJSHover)
+    assert formatter.args == {"source": tab.sources["flow"], "stalled": STALLED}
+    assert "Number.isFinite(flow)" in formatter.code and "m³/day" in formatter.code
+    assert "NaN" not in STALLED and "stalls" in STALLED
+    # the words stand exactly where the core says the pump cannot run
+    design = app.inputs.design()
+    core = windpump.design_map(design, np.linspace(0.5, 10.0, GRID), np.linspace(0.0, 30.0, GRID))
+    image = tab.sources["flow"].data["image"][0]
+    stalled = core.margin <= 1.0
+    assert stalled.any() and (~stalled).any()
+    np.testing.assert_array_equal(~np.isfinite(image), stalled)
+
+
+def test_before_its_first_map_the_tab_draws_no_image_to_hover():
+    """Until the first map comes (a leaky pump's takes ~1.7 s) there is no image: a blank one's
+    hover would say the pump stalls everywhere."""
+    from windpump_app import map_tab
+
+    held: list = []
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(map_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+        explorer = Explorer()
+        explorer.main().active = 3
+    tab = explorer.design_map
+    assert held and tab.mapped is None
+    assert list(tab.sources["flow"].data["image"]) == []
+    work, then = held[-1]
+    then(work())
+    assert np.shape(tab.sources["flow"].data["image"][0]) == (GRID, GRID)

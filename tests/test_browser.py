@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import time
 from pathlib import Path
 from urllib.parse import parse_qs, urlparse
@@ -926,3 +927,29 @@ def map_settled(page) -> dict:
     while box != (box := map_canvas.bounding_box()) and time.monotonic() < deadline:
         page.wait_for_timeout(250)
     return box
+
+
+def test_the_design_maps_hover_says_where_the_pump_stalls(browser, url):
+    """Left of the red line the core's flow is NaN (the pump cannot run): the hover said
+    "NaN m³/day" there; it says so in words, and the flow in m³/day right of the line."""
+    from windpump_app.map_tab import STALLED
+
+    page = open_page(browser, url, width=1280, height=720, query="?tab=map")
+    try:
+        page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
+        box = map_settled(page)
+        for point, said in (([2.0, 20.0], STALLED), ([8.0, 5.0], None)):  # left, right of it
+            x, y = page.evaluate(MAP_POINT, point)
+            page.mouse.move(box["x"] + x, box["y"] + y)
+            row = page.locator(".bk-tooltip-content").filter(visible=True).first
+            row.wait_for(timeout=30_000)
+            shown = row.inner_text()
+            assert "NaN" not in shown, shown
+            if said is not None:
+                assert said in shown, shown
+            else:
+                assert re.search(r"flow:\s*\d+\.\d m³/day", shown) and STALLED not in shown, shown
+            page.mouse.move(0, 0)  # off the map: the tooltip goes
+        assert page.problems == []
+    finally:
+        page.close()

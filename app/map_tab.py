@@ -20,6 +20,7 @@ from bokeh.events import Tap
 from bokeh.models import (
     ColorBar,
     ColumnDataSource,
+    CustomJSHover,
     FixedTicker,
     HoverTool,
     LogColorMapper,
@@ -33,6 +34,7 @@ from windpump.units import SECONDS_PER_DAY
 
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
+from .page import pane_height_css
 from .serving import Newest, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
@@ -46,6 +48,26 @@ STALE_ALPHA = (
     0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
 )
 DECADES = 2
+MAP_HEIGHT = 520  # [px] the figure: its frame ~335 px high on a projector, the legend below
+# On a phone the figure is no higher than what the tabs' pane shows (page.pane_height_css, ~433
+# of its ~442 px at 390×844): a student sees it whole, colour bar and legend (at 520 px its top
+# went under the header once scrolled to its foot). Not below 300 px (a frame of ~90 px). Its
+# height and its flex basis: Panel lays it out in a column, where the basis (520 px) rules.
+PHONE_HEIGHT = f"clamp(300px, {pane_height_css()}, {MAP_HEIGHT}px)"
+PHONE_CSS = (
+    f"@media (max-width: 700px) {{ :host {{ height: {PHONE_HEIGHT} !important; "
+    f"flex-basis: {PHONE_HEIGHT} !important; }} }}"
+)
+# The hover's flow: the core's mean flow [m³/day], NaN where the pump cannot run (DesignMap: stall
+# margin 1 or less, left of a tight pump's red line), said in words there (it said "NaN m³/day").
+# Bokeh writes "NaN" for a NaN field before any formatter sees it: the formatter is given the
+# hovered pixel's index ($image_index) and reads the flow there itself, as Bokeh reads @image.
+STALLED = "0 m³/day: it stalls"
+FLOW_HOVER_JS = """
+const image = source.data.image[value.index]
+const flow = Array.isArray(image[0]) ? image[value.j][value.i] : image[value.flat_index]
+return Number.isFinite(flow) ? `${flow.toFixed(1)} m³/day` : stalled
+"""
 
 
 def colour_range(flow: np.ndarray) -> tuple[float, float]:
@@ -333,7 +355,8 @@ class MapTab(Tab):
         )
         self.ratios, self.heads = (np.linspace(*axis) for axis in self.grid)
         self.sources: dict[str, ColumnDataSource] = {
-            "flow": ColumnDataSource({"image": [np.full((2, 2), np.nan)]}),
+            # no image until the first map comes (a blank one's hover said NaN, now "it stalls")
+            "flow": ColumnDataSource({"image": []}),
             "stall": empty("ratio", "h"),
             "best": empty("ratio", "h"),
             "here": empty("ratio", "h", "flow"),
@@ -360,8 +383,9 @@ class MapTab(Tab):
             "Water a day over sprocket ratio and head",
             "sprocket ratio R₁/R₀",
             "head h [m]",
-            height=520,
+            height=MAP_HEIGHT,
             tools="tap,pan,wheel_zoom,reset,save",
+            stylesheets=[PHONE_CSS],
             x_range=(x0, x1),
             y_range=(y0, y1),
         )
@@ -422,8 +446,13 @@ class MapTab(Tab):
                 tooltips=[
                     ("R₁/R₀", "$x{0.00}"),
                     ("h", "$y{0.0} m"),
-                    ("flow", "@image{0.0} m³/day"),
+                    ("flow", "$image_index{custom}"),
                 ],
+                formatters={
+                    "$image_index": CustomJSHover(
+                        args=dict(source=s["flow"], stalled=STALLED), code=FLOW_HOVER_JS
+                    )
+                },
             )
         )
         self.legend = legend(

@@ -43,21 +43,32 @@ CITATION_CSS = [
 # move, above; the controls below, in a pane of their own that scrolls, in reach of a thumb and
 # hidden by the header's toggle. A student who moves a slider sees the readouts change without
 # scrolling (the sidebar once stacked ~900 px of controls above the readouts).
-NARROW_CSS = """
-#header .title { white-space: normal; }
-@media (max-width: 700px) {
-  #header .title { font-size: 1.05rem; }
-  #content { flex-direction: column; flex-wrap: nowrap; overflow: hidden !important; }
-  #content > #main {
+CONTROLS_SHARE = 0.42  # of the screen below the header: the controls' pane on a phone
+PANE_PADDING = (4, 12)  # [px] the tabs' pane's padding on a phone, above and below its content
+HEADER_AT_MOST = 70  # [px] a phone's header, one line (~54 px; tests/test_layout.py)
+NARROW_CSS = f"""
+#header .title {{ white-space: normal; }}
+@media (max-width: 700px) {{
+  #header .title {{ font-size: 1.05rem; }}
+  #content {{ flex-direction: column; flex-wrap: nowrap; overflow: hidden !important; }}
+  #content > #main {{
     order: -1; flex: 1 1 0; min-height: 0; max-height: none !important; width: 100%;
-    overflow-y: auto !important; overflow-x: hidden !important; padding: 4px 6px 12px 4px;
-  }
-  #content > #sidebar {  /* outranks the template's width */
-    order: 1; flex: 0 0 auto; height: 42% !important; max-width: 100% !important;
+    overflow-y: auto !important; overflow-x: hidden !important;
+    padding: {PANE_PADDING[0]}px 6px {PANE_PADDING[1]}px 4px;
+  }}
+  #content > #sidebar {{  /* outranks the template's width */
+    order: 1; flex: 0 0 auto; height: {CONTROLS_SHARE:.0%} !important; max-width: 100% !important;
     width: 100% !important; overflow-y: auto !important; overflow-x: hidden !important;
     border-right: none; border-top: 1px solid var(--bs-border-color);
     box-shadow: 0 -4px 8px rgba(0, 0, 0, 0.15);
-  }
-  #content > #sidebar.collapsing { height: 0 !important; width: 100% !important; }
-}
+  }}
+  #content > #sidebar.collapsing {{ height: 0 !important; width: 100% !important; }}
+}}
 """
+
+
+def pane_height_css() -> str:
+    """The height of what the tabs' pane shows on a phone (below 700 px), its padding taken off,
+    as a CSS length: at least this (the header is ``HEADER_AT_MOST`` at most). A figure this
+    high, or lower, fits the pane whole (390×844: ~433 px of the pane's 442)."""
+    return f"calc((100vh - {HEADER_AT_MOST}px) * {1 - CONTROLS_SHARE:g} - {sum(PANE_PADDING)}px)"

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -387,3 +388,90 @@ def test_the_legend_refits_when_its_red_lines_label_changes(app):
         assert fit in item.js_property_callbacks.get("change:label", []), label
     assert STALL_LABEL in app.design_map.legend
     assert "frame.left" in FIT_TEXT_JS
+
+
+def css_px(length: str, screen_height: float) -> float:
+    """A CSS length made of px, 100vh, calc() and clamp() [px] on a screen ``screen_height`` px
+    high (as the browser computes it)."""
+    expression = length.replace("calc", "").replace("100vh", f"{screen_height}").replace("px", "")
+    assert re.fullmatch(r"[\d\s.+\-*/(),]*(clamp[\d\s.+\-*/(),]*)*", expression), length
+    return eval(
+        expression, {"__builtins__": {}, "clamp": lambda low, x, high: max(low, min(x, high))}
+    )
+
+
+def phone_rules(figure) -> dict[str, str]:
+    """The properties a figure's own stylesheets set on it below 700 px (a phone held upright)."""
+    rules: dict[str, str] = {}
+    for sheet in figure.stylesheets:
+        found = re.search(r"@media \(max-width: 700px\) \{ :host \{(.*)\} \}", str(sheet))
+        for rule in found.group(1).split(";") if found else []:
+            if rule.strip():
+                name, said = rule.split(":", 1)
+                rules[name.strip()] = said.strip()
+    return rules
+
+
+@pytest.mark.parametrize("screen_height", [640, 844, 915])
+def test_on_a_phone_the_map_fits_the_tabs_pane_and_keeps_its_height_elsewhere(app, screen_height):
+    """On a phone (page.NARROW_CSS) the tabs' pane is 58 % of the screen below the header (54 px
+    at 390×844), less its padding (4 px above, 12 below): the map's figure, 520 px high, was
+    taller than the pane (~442 px at 390×844) and its top went under the header once scrolled
+    to its foot. There it fits the pane; elsewhere it stays 520 px high."""
+    figure = app.design_map.figure
+    assert (figure.height, figure.sizing_mode) == (520, "stretch_width")  # 1280×720 and wider
+    rules = phone_rules(figure)
+    # Panel lays the figure out in a column, where its flex basis (520 px) rules over its height
+    assert {"height", "flex-basis"} <= set(rules), rules
+    pane = (screen_height - 54) * 0.58 - (4 + 12)
+    for name in ("height", "flex-basis"):
+        length, important = rules[name].removesuffix("!important").strip(), "!important"
+        assert rules[name].endswith(important)  # over the figure's own 520 px
+        drawn = css_px(length, screen_height)
+        assert drawn <= pane, (name, drawn, pane)
+        assert drawn >= min(300.0, pane) and drawn >= min(520.0, pane - 20.0), (name, drawn, pane)
+
+
+def test_the_hover_says_in_words_where_the_pump_stalls(app):
+    """Left of a tight pump's stall line the core's mean flow is NaN (DesignMap: the stall
+    margin is 1 or less, Eq. 22): the map's hover said "NaN m³/day" there. Its flow is formatted
+    in the page: in words where the core's flow is NaN, in m³/day elsewhere."""
+    from bokeh.models import CustomJSHover, HoverTool
+
+    from windpump_app.map_tab import STALLED
+
+    tab = app.design_map
+    (hover,) = [tool for tool in tab.figure.tools if isinstance(tool, HoverTool)]
+    # Bokeh writes "NaN" for a NaN field (@image) before its formatter: the pixel's index is
+    # formatted, the formatter reading the flow source's image there
+    assert dict(hover.tooltips)["flow"] == "$image_index{custom}"
+    formatter = hover.formatters["$image_index"]
+    assert isinstance(formatter, CustomJSHover)
+    assert formatter.args == {"source": tab.sources["flow"], "stalled": STALLED}
+    assert "Number.isFinite(flow)" in formatter.code and "m³/day" in formatter.code
+    assert "NaN" not in STALLED and "stalls" in STALLED
+    # the words stand exactly where the core says the pump cannot run
+    design = app.inputs.design()
+    core = windpump.design_map(design, np.linspace(0.5, 10.0, GRID), np.linspace(0.0, 30.0, GRID))
+    image = tab.sources["flow"].data["image"][0]
+    stalled = core.margin <= 1.0
+    assert stalled.any() and (~stalled).any()
+    np.testing.assert_array_equal(~np.isfinite(image), stalled)
+
+
+def test_before_its_first_map_the_tab_draws_no_image_to_hover():
+    """Until the first map comes (a leaky pump's takes ~1.7 s) there is no image: a blank one's
+    hover would say the pump stalls everywhere."""
+    from windpump_app import map_tab
+
+    held: list = []
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(map_tab, "off_the_loop", lambda work, then: held.append((work, then)))
+        explorer = Explorer()
+        explorer.main().active = 3
+    tab = explorer.design_map
+    assert held and tab.mapped is None
+    assert list(tab.sources["flow"].data["image"]) == []
+    work, then = held[-1]
+    then(work())
+    assert np.shape(tab.sources["flow"].data["image"][0]) == (GRID, GRID)

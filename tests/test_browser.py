@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import time
 from pathlib import Path
 from urllib.parse import parse_qs, urlparse
@@ -912,6 +913,43 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         # the sliders and the run followed: the main readout is this design's margin
         design = SEED.with_ratios(R_dagger=ratio, h=head)
         wait_for_readout(page, "margin", f"{windpump.stall_margin(design):.3f}")
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+def map_settled(page) -> dict:
+    """The Design map's canvas box once mapped and still (its readout laid out above it)."""
+    page.get_by_text("the best sprocket ratio is").wait_for(timeout=60_000)
+    canvases = [c for c in page.locator("canvas").all() if c.is_visible()]
+    map_canvas = max(canvases, key=lambda c: c.bounding_box()["height"])
+    box, deadline = None, time.monotonic() + 30
+    while box != (box := map_canvas.bounding_box()) and time.monotonic() < deadline:
+        page.wait_for_timeout(250)
+    return box
+
+
+def test_the_design_maps_hover_says_where_the_pump_stalls(browser, url):
+    """Left of the red line the core's flow is NaN (the pump cannot run): the hover said
+    "NaN m³/day" there; it says so in words, and the flow in m³/day right of the line."""
+    from windpump_app.map_tab import STALLED
+
+    page = open_page(browser, url, width=1280, height=720, query="?tab=map")
+    try:
+        page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
+        box = map_settled(page)
+        for point, said in (([2.0, 20.0], STALLED), ([8.0, 5.0], None)):  # left, right of it
+            x, y = page.evaluate(MAP_POINT, point)
+            page.mouse.move(box["x"] + x, box["y"] + y)
+            row = page.locator(".bk-tooltip-content").filter(visible=True).first
+            row.wait_for(timeout=30_000)
+            shown = row.inner_text()
+            assert "NaN" not in shown, shown
+            if said is not None:
+                assert said in shown, shown
+            else:
+                assert re.search(r"flow:\s*\d+\.\d m³/day", shown) and STALLED not in shown, shown
+            page.mouse.move(0, 0)  # off the map: the tooltip goes
         assert page.problems == []
     finally:
         page.close()

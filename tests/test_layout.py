@@ -8,7 +8,7 @@ import time
 
 import pytest
 from playwright.sync_api import expect
-from test_browser import ARTIFACTS, SIZES, handle, open_page, text
+from test_browser import ARTIFACTS, MAP_MARKER, SIZES, handle, map_settled, open_page, text
 
 from served import DEEP_TEXT, show_view
 
@@ -415,6 +415,35 @@ def test_a_short_tab_does_not_scroll_into_blank_space(browser, url, tab):
         assert box["y"] + box["height"] >= 360, f"scrolled past {tab}'s content into blank: {box}"
         page.get_by_text("Wind pump", exact=True).first.click()  # the first tab is whole again
         page.wait_for_function(f"(n) => ({VIEW_BOX})(n).height > 100", arg="speed_figure")
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_design_map_fits_the_tabs_pane_whole(browser, url, width, height):
+    """Scrolled to its top, the Design map's figure (title, colour bar, legend) is wholly in the
+    tabs' pane: on a phone it was 520 px high in a pane of ~458 and its top went under the
+    header once scrolled to its foot. Wider screens keep its 520 px."""
+    page = open_page(browser, url, width, height)
+    try:
+        page.get_by_text("Design map", exact=True).first.click()
+        page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
+        map_settled(page)
+        page.evaluate(
+            "() => window.Bokeh.index.find_one(window.Bokeh.documents[0]"
+            ".get_model_by_name('map_figure')).el.scrollIntoView({block: 'start'})"
+        )
+        time.sleep(0.5)
+        box = page.evaluate(VIEW_BOX, "map_figure")
+        header = page.locator("#header").bounding_box()
+        pane = page.locator("#main").bounding_box()
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"design_map_top_{width}x{height}.png"))
+        assert box["y"] >= bottom(header) - 1, (box, header)
+        assert bottom(box) <= min(bottom(pane), height) + 1, (box, pane)
+        if width > 700:
+            assert abs(box["height"] - 520) <= 1, box
         assert page.problems == []
     finally:
         page.close()

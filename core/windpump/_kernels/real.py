@@ -84,8 +84,9 @@ delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
-# and (at the last node) the integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`)
+ROW = 14  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
+# (at the last node) the integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`),
+# and what the ANGLE domain's rates take of j and the arms (:func:`_row_extras`)
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -191,6 +192,15 @@ def _sums(row, theta, segment, machine, slopes):
 
 
 @kernel
+def _row_extras(j, arms, machine):
+    """What the ANGLE domain's rates take of a node's j and delivering arms (sum |a|), kept in
+    its row's columns 10-13 (:func:`step_rows`): 2 / j, A R sum |a| (the faces' swept volume per
+    radian), the main's frozen friction torque per unit e_ref (:func:`_frozen_friction`) and
+    j - 1. Worked out when the row is filled (a tabled row once per run), not at every stage."""
+    return 2.0 / j, machine.real.AR * arms, _frozen_friction(arms, j, 1.0, machine), j - 1.0
+
+
+@kernel
 def _face_loads(theta_dot, row, machine):
     """(load torque [N m], delivered flow Q [m^3/s], friction head h_f [m], sum |a|) of the
     delivering faces whose lever arms ``row`` holds, at crank speed theta_dot."""
@@ -218,36 +228,46 @@ def _continued_loads(theta_dot, row, faces, machine):
     wherever every delivering face sweeps more than q_L; smooth inside a segment, where a
     delivering segment's steps take it, the windows next to its dead centres being corrected
     apart (:func:`window_jump`)."""
-    real = machine.real
     arms = 0.0
     for k in range(machine.cylinders):
         arms += row[1 + k]
-    Q = real.AR * arms * theta_dot - faces * real.q_L
-    h_f = real.friction * Q * Q
-    return machine.load_torque * arms + real.rho_g * h_f * real.AR * arms, Q, h_f, arms
+    Q, h_f, friction = _continued_friction(
+        theta_dot, machine.real.AR * arms, faces * machine.real.q_L, machine
+    )
+    return machine.load_torque * arms + friction, Q, h_f, arms
+
+
+@kernel
+def _continued_friction(theta_dot, swept, held, machine):
+    """(Q [m^3/s], h_f [m], the main's friction torque rho_w g h_f A R sum |a| [N m]) of
+    :func:`_continued_loads`, from the delivering faces' swept volume per radian ``swept`` = A R
+    sum |a| [m^3/rad] and what their holes pass, ``held`` = faces q_L [m^3/s]."""
+    Q = swept * theta_dot - held
+    h_f = machine.real.friction * Q * Q
+    return Q, h_f, machine.real.rho_g * h_f * swept
 
 
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
-    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref, row[9] the delivering faces
-    # of a segment whose hole's windows are corrected apart, or -1, row[10] tau, row[11]
-    # 1 / e_ref: :func:`step_rows`)
-    theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
+    # ``row`` is a stage's :func:`step_rows` tuple: everything that does not depend on the state
+    # is worked out there, before the step, so that only the speed's root and a few products
+    # lie between one stage and the next (the stages are sequential: their latency is the cost).
+    theta_dot = math.sqrt((x0 + (aux - row[7])) * row[0])  # x0 = e - Lambda + e_ref C
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
-    if row[9] >= 0.0:
-        load, Q, h_f, arms = _continued_loads(theta_dot, row, row[9], machine)
+    if row[9] >= 0.0:  # on the loads continued past the hole's windows (:func:`_continued_loads`)
+        Q, h_f, friction = _continued_friction(theta_dot, row[12], row[13], machine)
+        excess = friction - row[8]
     else:
         load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+        excess = load - machine.load_torque * arms - row[8]
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
     # relief) is integrated, and so is the water lifted and the friction; of the friction, less
-    # its frozen part (at e_ref: :func:`friction_density`), whose work e_ref C is tabulated.
-    frozen = _frozen_friction(arms, row[0], row[8], machine)
-    excess = load - machine.load_torque * arms - frozen
+    # its frozen part (at e_ref: :func:`friction_density`, row[8]), whose work e_ref C is tabulated.
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
-    leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
-    friction = real.rho_g * h_f * Q * per_radian - frozen
-    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less its frozen ripple
+    leaked = row[12] - Q * per_radian  # swept less delivered: small, so accurate
+    friction = real.rho_g * h_f * Q * per_radian - row[8]
+    time = per_radian - (row[10] - aux * row[11])  # less its frozen ripple
     return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
@@ -365,6 +385,10 @@ def _no_row(row, theta, segment, machine):
 
 def _fill_row(row, theta, segment, machine):
     _sums(row, theta, segment, machine, False)
+    arms = 0.0
+    for k in range(machine.cylinders):
+        arms += row[1 + k]
+    row[10], row[11], row[12], row[13] = _row_extras(row[0], arms, machine)
 
 
 _entry(fill_row)(_no_row, _fill_row)
@@ -413,8 +437,15 @@ def _real_stages(aux, rows, theta, h, segment, machine):
         weights = rows[stage, 7] * (real.weight_torque * machine.inv_I_eff)
         aux[stage] = work + (weights if real.weight_torque != 0.0 else 0.0)
         rows[stage, 0] = 1.0 + real.mass_ratio * rows[stage, 0]
+        arms = 0.0
+        for k in range(machine.cylinders):
+            arms += rows[stage, 1 + k]
+        extras = _row_extras(rows[stage, 0], arms, machine)
+        rows[stage, 10], rows[stage, 11], rows[stage, 12], rows[stage, 13] = extras
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
+        rows[6, column] = rows[5, column]
+    for column in range(10, ROW):
         rows[6, column] = rows[5, column]
     # the sub-step's integrals of j - 1 and Lambda (:func:`time_frozen`)
     rows[6, 8] = _inertia_since(theta + h, segment, machine) - _inertia_since(
@@ -1181,32 +1212,36 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
 
 
 def step_rows(rows, e_ref, faces, frozen_time, machine):
-    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
-    (column 7) times the frozen energy e_ref in its place, e_ref after it, ``faces``: the
-    delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
-    corrected apart) or -1.0, and tau and 1 / e_ref (:func:`time_frozen`) last (the ideal
-    machine's: ``rows`` as they are). A stage's row taken
-    from the array is a view, whose reference is counted atomically as it is made and dropped:
-    14 atomic operations a step, a third of the time of the real machine's steps (eta_t
-    alone)."""
+    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each what the
+    ANGLE domain's rates (:func:`angle_rates`) take at its node, worked out before the step so
+    that little but the speed's root lies between one stage and the next (the stages are
+    sequential: their latency is the step's cost): 2 / j, the delivering faces' |lever arms|
+    (6), e_ref C, the main's frozen friction torque at e_ref (:func:`_frozen_friction`),
+    ``faces`` (the delivering faces of a segment stepped on :func:`_continued_loads`, its hole's
+    windows corrected apart, or -1.0), tau (j - 1) and tau / u (:func:`time_frozen`), A R sum
+    |a| and faces q_L. The ideal machine's: ``rows`` as they are. A stage's row taken from the
+    array is a view, whose reference is counted atomically as it is made and dropped: 14 atomic
+    operations a step, a third of the time of the real machine's steps (eta_t alone)."""
 
 
 @kernel
-def _row(rows, stage, e_ref, faces, frozen_time):
+def _row(rows, stage, e_ref, faces, frozen_time, machine):
+    tau, per_u = frozen_time
     return (
-        rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
-        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref, faces,
-        frozen_time[0], frozen_time[1],
+        rows[stage, 10], rows[stage, 1], rows[stage, 2], rows[stage, 3], rows[stage, 4],
+        rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref * rows[stage, 12], faces,
+        tau * rows[stage, 13], tau * per_u, rows[stage, 11],
+        faces * machine.real.q_L if faces >= 0.0 else 0.0,
     )  # fmt: skip
 
 
 def _step_rows(rows, e_ref, faces, frozen_time, machine):
-    f = frozen_time
+    f, m = frozen_time, machine
     return (
-        _row(rows, 0, e_ref, faces, f), _row(rows, 1, e_ref, faces, f),
-        _row(rows, 2, e_ref, faces, f), _row(rows, 3, e_ref, faces, f),
-        _row(rows, 4, e_ref, faces, f), _row(rows, 5, e_ref, faces, f),
-        _row(rows, 6, e_ref, faces, f),
+        _row(rows, 0, e_ref, faces, f, m), _row(rows, 1, e_ref, faces, f, m),
+        _row(rows, 2, e_ref, faces, f, m), _row(rows, 3, e_ref, faces, f, m),
+        _row(rows, 4, e_ref, faces, f, m), _row(rows, 5, e_ref, faces, f, m),
+        _row(rows, 6, e_ref, faces, f, m),
     )  # fmt: skip
 
 

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from real_reference import real_reference_run
 
@@ -284,16 +284,50 @@ def _mains(draw):
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(design=_mains(), theta=st.floats(-20.0, 20.0), e=st.floats(1e-3, 1e4))
 def test_the_kernels_frozen_friction_is_the_numpy_sides(design, theta, e):
-    """The kernels' friction split at a frozen energy (c(theta) e_ref I_eff: its own copy of the
-    main's friction, kept for speed) is faces_load's friction at that energy's speed."""
+    """The kernels' friction split at a frozen energy (c(theta) . (e_ref, sqrt(e_ref), 1) I_eff:
+    its own copy of the main's friction, kept for speed) is faces_load's friction at that
+    energy's speed."""
     from windpump._kernels import model, real
 
     machine = kernel_machine(design)
     segment = model.segment_at(theta, machine)
-    compiled = real.friction_density(theta, segment, machine) * e * design.I_eff
+    first, second, third = real.friction_density(theta, segment, machine)
+    compiled = (first * e + second * math.sqrt(e) + third) * design.I_eff
     expected = _numpy_frozen_friction(design, theta, e)
+    assert second == third == 0.0  # (a tight piston's friction is the first part alone)
     scale = design.load_torque * 1e-12 * design.cylinders
     assert compiled == pytest.approx(expected, rel=1e-11, abs=scale)
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    design=_mains(), hole=st.floats(0.001, 0.5), theta=st.floats(-20.0, 20.0),
+    e=st.floats(1e-3, 1e4),
+)  # fmt: skip
+def test_with_a_hole_the_frozen_friction_is_the_continued_loads_friction(design, hole, theta, e):
+    """With a leak hole the frozen friction's three parts, at the weights (e, sqrt(e), 1), are
+    the main's friction of the loads continued past the hole's windows (each delivering face
+    delivers what it sweeps less q_L) at that energy's speed: rho_w g K q (q theta_dot -
+    faces q_L)^2, q = A R sum |dx/dtheta| / R, written here from the issue's conventions."""
+    from windpump._kernels import model, real
+
+    design = design.replace(d_leak=hole * design.bore)
+    angles = np.mod(windpump.kinematics.cylinder_angles(np.array([theta]), design.cylinders), np.pi)
+    assume(np.all(np.minimum(angles, np.pi - angles) > 1e-9))  # no face at a dead centre
+    machine = kernel_machine(design)
+    segment = model.segment_at(theta, machine)
+    first, second, third = real.friction_density(theta, segment, machine)
+    compiled = (first * e + second * math.sqrt(e) + third) * design.I_eff
+    levers = windpump.kinematics.face_levers(np.array([theta]), design)[:, 0]
+    J = float(reciprocating.crank_inertia(design, theta))
+    theta_dot = math.sqrt(2.0 * e * design.I_eff / J)
+    q = design.A * design.R * float(levers.sum())
+    held = float((levers > 0.0).sum()) * design.leak_capacity
+    expected = (
+        design.rho_w * design.g * design.friction_coefficient * q * (q * theta_dot - held) ** 2
+    )
+    scale = design.load_torque * 1e-12 * design.cylinders
+    assert compiled == pytest.approx(expected, rel=1e-10, abs=scale)
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -316,7 +350,8 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
     width = math.pi / design.cylinders
     start = model.segment_start(segment, machine)
     a, b = (start + width * f for f in sorted(ends))
-    compiled = real.friction_between(a, b, segment, machine)
+    compiled, second, third = real.friction_between(a, b, segment, machine)
+    assert second == third == 0.0  # (a tight piston)
 
     def density(theta):
         return _numpy_frozen_friction(design, theta, 1.0) / design.I_eff

@@ -1270,17 +1270,18 @@ def _open_windows(theta, u, slope, h, segment, delta, j, machine):
     real = machine.real
     if real.q_L == 0.0 or not u > 0.0:
         return -1.0
-    theta_dot = math.sqrt(2.0 * u / j)
-    target = real.q_L / (real.AR * theta_dot)
+    target = real.q_L / real.AR * math.sqrt(0.5 * j / u)  # q_L / (A R theta_dot)
     if not target <= WINDOW_TARGET:
         return -1.0
-    reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
+    ratio = machine.L_over_R
+    reach = 2.0 * target * ratio / (ratio - 1.0)  # twice the widest window
     if reach * abs(slope) > WINDOW_DRIFT * u or reach > h:
         return -1.0
     start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
-    if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
+    per_delta = 1.0 / delta
+    if math.floor((start + reach) * per_delta) * delta > start + 1e-9 * delta:
         return -1.0
-    if math.ceil((end - reach) / delta) * delta < end - 1e-9 * delta:
+    if math.ceil((end - reach) * per_delta) * delta < end - 1e-9 * delta:
         return -1.0
     faces = 0.0
     for k in range(machine.cylinders):
@@ -1416,9 +1417,10 @@ def _window_kink(target, top, L_over_R, iterations):
     k = 1.0 if top else -1.0  # |a| = sin s (1 + k cos s / r), r = sqrt((L/R)^2 - sin^2 s)
     inv_L = 1.0 / L_over_R
     c1 = 1.0 + k * inv_L
+    inv_c1 = 1.0 / c1
     c3 = -c1 / 6.0 + k * inv_L * (0.5 * inv_L * inv_L - 0.5)
-    first = target / c1
-    s = first - c3 * first * first * first / c1
+    first = target * inv_c1
+    s = first - c3 * first * first * first * inv_c1
     if not 0.0 < s < 0.5 * math.pi:
         s = first if first < 0.5 * math.pi else target
     for _ in range(iterations):
@@ -1445,15 +1447,17 @@ def _window_widths(e, slope, side, j, rows, machine):
     WINDOW_NEWTON iterations (:func:`_window_kink`): the kink is where the face's flow reaches
     q_L at the speed of e taken linear across the window, itself an approximation."""
     real = machine.real
-    guess = real.q_L / (real.AR * math.sqrt(2.0 * e / j))  # the arm at a kink, at the edge's speed
+    q = real.q_L / real.AR  # the arm at a kink times the crank's speed [rad/s]
+    half_j = 0.5 * j
+    guess = q * math.sqrt(half_j / e)  # the arm at a kink, at the edge's speed
     first = second = math.inf
     for k in range(machine.cylinders):
         if rows[2, k] == 0.0:
             continue  # its dead centre is not the edge, or it does not deliver
         top = rows[2, k] > 0.0
-        c1 = 1.0 + 1.0 / machine.L_over_R if top else 1.0 - 1.0 / machine.L_over_R
-        theta_dot = math.sqrt(2.0 * (e + side * slope * guess / c1) / j)
-        psi = _window_kink(real.q_L / (real.AR * theta_dot), top, machine.L_over_R, WINDOW_NEWTON)
+        c1 = 1.0 + (1.0 if top else -1.0) * (1.0 / machine.L_over_R)  # the arm's slope there
+        target = q * math.sqrt(half_j / (e + side * slope * guess * (1.0 / c1)))
+        psi = _window_kink(target, top, machine.L_over_R, WINDOW_NEWTON)
         if psi < first:
             first, second = psi, first
         elif first < psi < second:

@@ -1410,17 +1410,20 @@ def _edge_phases(edge, segment, rows, machine):
 @inline_kernel
 def _window_kink(target, top, L_over_R, iterations):
     """The distance s [rad] from a dead centre (the top one, phi = 0, or the bottom one) where
-    the lever arm's size |a| reaches ``target`` (< 1): from its Taylor series to s^3, |a| = c1 s
-    + c3 s^3 + ..., then at most ``iterations`` of Newton's method, each squaring the error,
-    until a step is below 1e-8 of s (from O(target^5), one is enough but next to a short rod's
+    the lever arm's size |a| reaches ``target`` (< 1): from its Taylor series to s^5, |a| = c1 s
+    + c3 s^3 + c5 s^5 + ..., inverted, then at most ``iterations`` of Newton's method, each squaring the error,
+    until a step is below 1e-8 of s (from O(target^7), one is enough but next to a short rod's
     bottom dead centre, whose arm grows as (1 - R/L) s)."""
     k = 1.0 if top else -1.0  # |a| = sin s (1 + k cos s / r), r = sqrt((L/R)^2 - sin^2 s)
     inv_L = 1.0 / L_over_R
     c1 = 1.0 + k * inv_L
     inv_c1 = 1.0 / c1
-    c3 = -c1 / 6.0 + k * inv_L * (0.5 * inv_L * inv_L - 0.5)
+    inv_L2 = inv_L * inv_L
+    c3 = -c1 / 6.0 + k * inv_L * (0.5 * inv_L2 - 0.5)
+    c5 = 1.0 / 120.0 + k * inv_L * (2.0 / 15.0 + inv_L2 * (-0.5 + 0.375 * inv_L2))
     first = target * inv_c1
-    s = first - c3 * first * first * first * inv_c1
+    cube = first * first * first
+    s = first + cube * inv_c1 * (-c3 + (3.0 * c3 * c3 - c1 * c5) * first * first * inv_c1)
     if not 0.0 < s < 0.5 * math.pi:
         s = first if first < 0.5 * math.pi else target
     for _ in range(iterations):

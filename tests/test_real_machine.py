@@ -502,6 +502,78 @@ def test_the_continued_loads_are_the_face_loads_where_every_face_delivers(
         assert Q == pytest.approx(float(expected_Q[0]), rel=1e-9, abs=1e-18)
 
 
+@settings(max_examples=200, deadline=None)
+@given(s=st.floats(-0.3, 0.3))
+def test_a_windows_sine_and_cosine_are_the_librarys(s):
+    """A window's sin s and cos s (Taylor's up to SMALL_ANGLE) to round-off."""
+    from windpump._kernels import real
+
+    sin, cos = real._sin_cos(s)
+    assert sin == pytest.approx(math.sin(s), rel=3e-16, abs=1e-300)
+    assert cos == pytest.approx(math.cos(s), rel=3e-16)
+
+
+@settings(max_examples=200, deadline=None)
+@given(phi=st.floats(-7.0, 7.0), ratio=st.floats(1.05, 10.0))
+def test_a_windows_lever_arm_is_eq_1s(phi, ratio):
+    """The windows' lever arm and its slope from sin and cos are equations.lever_arm's and
+    lever_arm_slope's."""
+    from windpump._kernels import equations, real
+
+    arm, slope = real._arm_of(math.sin(phi), math.cos(phi), ratio)
+    assert arm == pytest.approx(float(equations.lever_arm(phi, ratio)), rel=1e-13, abs=1e-15)
+    expected = float(equations.lever_arm_slope(phi, ratio))
+    assert slope == pytest.approx(expected, rel=1e-13, abs=1e-13)
+
+
+@settings(max_examples=100, deadline=None)
+@given(target=st.floats(1e-6, 0.05), ratio=st.floats(1.1, 10.0), top=st.booleans())
+def test_a_windows_kink_is_where_the_arm_reaches_its_target(target, ratio, top):
+    """s past a dead centre where |lever arm| = target: against a 30-digit root of Eq. (1)'s
+    derivative (mpmath, the dead centre pi exact)."""
+    import mpmath
+
+    from windpump._kernels import real
+
+    s = real._window_kink(target, top, ratio, real.WINDOW_NEWTON)
+    with mpmath.workdps(30):
+        k, L = (1 if top else -1), mpmath.mpf(ratio)
+
+        def arm(x):  # |x'/R| at s past the top (phi = s) or bottom (phi = pi + s) dead centre
+            return mpmath.sin(x) * (1 + k * mpmath.cos(x) / mpmath.sqrt(L**2 - mpmath.sin(x) ** 2))
+
+        exact = mpmath.findroot(lambda x: arm(x) - mpmath.mpf(target), mpmath.mpf(s))
+        assert s == pytest.approx(float(exact), rel=1e-14)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    levers=st.lists(st.floats(0.0, 1.5), min_size=1, max_size=6),
+    theta_dot=st.floats(0.5, 60.0),
+    leak=st.floats(0.01, 0.9),
+    L_main=st.floats(0.0, 60.0),
+)
+def test_a_windows_loads_are_the_face_loads_less_the_continued(levers, theta_dot, leak, L_main):
+    """The windows' twin of faces' loads less the continued loads (their load, delivered flow
+    and friction) is the two kernels' difference."""
+    from windpump._kernels import real
+
+    design = SEED.replace(cylinders=len(levers), d_leak=leak * SEED.bore, L_main=L_main)
+    machine = kernel_machine(design)
+    row = np.zeros(real.ROW + 2)
+    row[1 : 1 + len(levers)] = levers
+    faces = float(len(levers))
+    load, Q, h_f, _ = real._face_loads(theta_dot, row, machine)
+    load_c, Q_c, h_f_c, _ = real._continued_loads(theta_dot, row, faces, machine)
+    d_load, d_Q, d_friction = real._window_loads(theta_dot, row, faces, machine)
+    scale = design.load_torque * max(sum(levers), 1.0)  # a load, a flow and their friction's
+    flow = design.A * design.R * max(sum(levers), 1.0) * theta_dot + faces * machine.real.q_L
+    assert d_load == pytest.approx(load - load_c, rel=1e-12, abs=1e-12 * scale)
+    assert d_Q == pytest.approx(Q_c - Q, rel=1e-12, abs=1e-15 * flow)
+    friction = machine.real.friction * flow**3
+    assert d_friction == pytest.approx(h_f * Q - h_f_c * Q_c, rel=1e-12, abs=1e-12 * friction)
+
+
 LEAKY_RUNS = {  # (design, samples per stroke, rtol): windows jumped, and where they are not
     "seed, 1 mm": (SEED.replace(d_leak=0.001), 16, 1e-6),
     "seed, 1.5 mm": (SEED.replace(d_leak=0.0015), 16, 1e-6),

@@ -61,7 +61,7 @@ from .dopri5 import (
     NODES,
     dense_value,
 )  # fmt: skip
-from .jit import OPTIONS, kernel
+from .jit import OPTIONS, inline_kernel, kernel
 from .model import (
     NEITHER,
     Real,
@@ -1513,8 +1513,8 @@ _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
 
 WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
 WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
-WINDOW_NEWTON = 1  # Newton's iterations for a window's kink (from a first guess off by ~target^2:
-# a second moved no run of tests/real_reference.py's designs by a bit)
+WINDOW_NEWTON = 4  # at most Newton's iterations for a window's kink (:func:`_window_kink`: one
+# but for a short rod's bottom dead centre; its error moves a jump only to second order)
 WINDOW_NODES = 3  # Gauss-Legendre nodes between a window's kinks (4 moved the runs by < 1e-12;
 # 2 missed a 3 mm hole's jump at a slow crank, 0.09 rad windows, by 4e-4 of itself)
 GAUSS_WINDOW = _gauss(WINDOW_NODES)
@@ -1539,17 +1539,18 @@ def _open_windows(theta, u, slope, h, segment, delta, j, machine):
     real = machine.real
     if real.q_L == 0.0 or not u > 0.0:
         return -1.0
-    theta_dot = math.sqrt(2.0 * u / j)
-    target = real.q_L / (real.AR * theta_dot)
+    target = real.q_L / real.AR * math.sqrt(0.5 * j / u)  # q_L / (A R theta_dot)
     if not target <= WINDOW_TARGET:
         return -1.0
-    reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
+    ratio = machine.L_over_R
+    reach = 2.0 * target * ratio / (ratio - 1.0)  # twice the widest window
     if reach * abs(slope) > WINDOW_DRIFT * u or reach > h:
         return -1.0
     start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
-    if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
+    per_delta = 1.0 / delta
+    if math.floor((start + reach) * per_delta) * delta > start + 1e-9 * delta:
         return -1.0
-    if math.ceil((end - reach) / delta) * delta < end - 1e-9 * delta:
+    if math.ceil((end - reach) * per_delta) * delta < end - 1e-9 * delta:
         return -1.0
     faces = 0.0
     for k in range(machine.cylinders):
@@ -1612,45 +1613,170 @@ def _energy_slope(rate, e_ref, edge, machine):
 _entry(energy_slope)(lambda rate, e_ref, edge, machine: 0.0, _energy_slope)
 
 
-@kernel
-def _window_widths(theta, e, slope, side, segment, j, machine):
+# A window's angles are counted from its dead centre, s (a few hundredths of a radian): each
+# node's sin s and cos s from their Taylor series, and each cylinder's arm there by the angle
+# addition from its phase at the segment's edge (a multiple of pi / n, worked out once a
+# window), with no sincos (a window's kink and 3 nodes took 4 of the real machine's 7 % in
+# it) and no round-off of the crank's angle (1e-12 rad after 600 s of a seed example's run).
+SMALL_ANGLE = 0.25  # |s| up to which a window's sin s and cos s are Taylor's (:func:`_sin_cos`)
+
+
+@inline_kernel
+def _sin_cos(s):
+    """(sin s, cos s) [-] of an angle s [rad] off a dead centre: for |s| <= SMALL_ANGLE (every
+    window but a very short rod's) their Taylor series to s^11 and s^12, whose next terms are
+    below 1e-17 of them there; math's beyond."""
+    if not abs(s) <= SMALL_ANGLE:
+        return math.sin(s), math.cos(s)
+    z = s * s
+    sin = s + s * z * (
+        -1.0 / 6.0 + z * (1.0 / 120.0 + z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 - z / 39916800.0)))
+    )
+    cos = 1.0 + z * (
+        -0.5
+        + z * (
+            1.0 / 24.0
+            + z * (-1.0 / 720.0 + z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0 + z / 479001600.0)))
+        )
+    )  # fmt: skip
+    return sin, cos
+
+
+@inline_kernel
+def _arm_of(sin, cos, L_over_R):
+    """Eq. (1)'s lever arm (:func:`~.equations.lever_arm`) [-] of the angle whose sine and
+    cosine are given, and its derivative (:func:`~.equations.lever_arm_slope`) [-]."""
+    inv_r = 1.0 / math.sqrt(L_over_R * L_over_R - sin * sin)
+    q = cos * inv_r
+    arm = sin * (1.0 + q)
+    slope = cos + (cos * cos - sin * sin) * inv_r + sin * sin * q * q * inv_r
+    return arm, slope
+
+
+@inline_kernel
+def _edge_phases(edge, segment, rows, machine):
+    """At the segment's edge ``edge`` pi / n, for each cylinder k: in ``rows[4, k]`` and
+    ``rows[5, k]`` the sine and cosine of its angle there, a multiple of pi / n (exact at a dead
+    centre); in ``rows[3, k]`` 1.0 if its face delivers in the segment, else 0.0; in
+    ``rows[2, k]`` 1.0 (-1.0) if that face has its top (bottom) dead centre there, else 0.0.
+    Returns how many delivering faces have their dead centre there."""
+    n = machine.cylinders
+    at_dead_centre = 0
+    for k in range(n):
+        p = (edge - 2 * k) % (2 * n)  # the angle p pi / n, in [0, 2 pi)
+        delivers = delivering_face(segment, k, machine) != NEITHER
+        rows[3, k] = 1.0 if delivers else 0.0
+        rows[2, k] = 0.0
+        if p == 0 or p == n:
+            rows[4, k], rows[5, k] = 0.0, 1.0 if p == 0 else -1.0
+            if delivers:
+                rows[2, k] = rows[5, k]
+                at_dead_centre += 1
+        else:
+            rows[4, k], rows[5, k] = math.sin(p * math.pi / n), math.cos(p * math.pi / n)
+    return at_dead_centre
+
+
+@inline_kernel
+def _window_kink(target, top, L_over_R, iterations):
+    """The distance s [rad] from a dead centre (the top one, phi = 0, or the bottom one) where
+    the lever arm's size |a| reaches ``target`` (< 1): from its Taylor series to s^5, |a| = c1 s
+    + c3 s^3 + c5 s^5 + ..., inverted, then at most ``iterations`` of Newton's method, each squaring the error,
+    until a step is below 1e-8 of s (from O(target^7), one is enough but next to a short rod's
+    bottom dead centre, whose arm grows as (1 - R/L) s)."""
+    k = 1.0 if top else -1.0  # |a| = sin s (1 + k cos s / r), r = sqrt((L/R)^2 - sin^2 s)
+    inv_L = 1.0 / L_over_R
+    c1 = 1.0 + k * inv_L
+    inv_c1 = 1.0 / c1
+    inv_L2 = inv_L * inv_L
+    c3 = -c1 / 6.0 + k * inv_L * (0.5 * inv_L2 - 0.5)
+    c5 = 1.0 / 120.0 + k * inv_L * (2.0 / 15.0 + inv_L2 * (-0.5 + 0.375 * inv_L2))
+    first = target * inv_c1
+    cube = first * first * first
+    s = first + cube * inv_c1 * (-c3 + (3.0 * c3 * c3 - c1 * c5) * first * first * inv_c1)
+    if not 0.0 < s < 0.5 * math.pi:
+        s = first if first < 0.5 * math.pi else target
+    for _ in range(iterations):
+        sin, cos = _sin_cos(s)
+        arm, slope = _arm_of(k * sin, k * cos, L_over_R)
+        arm, slope = k * arm, k * slope  # |a| and its slope in s
+        step = (arm - target) / slope if slope > 0.0 else 0.0
+        if not 0.0 < s - step < 0.5 * math.pi:
+            break
+        s -= step
+        if abs(step) <= 1e-8 * s:  # the next step would be below round-off
+            break
+    return s
+
+
+@inline_kernel
+def _window_widths(e, slope, side, j, rows, machine):
     """The widths [rad] of the windows of the faces whose dead centre is the segment's start
-    (side 1) or end (side -1), theta: (the narrowest, the next wider or inf), inf where there is
-    none (at most two faces share a dead centre: a cylinder's and the opposite one's). The kink
-    is where the face's swept flow reaches q_L at the speed there, e growing linearly from theta
-    (the speed taken at the kink's first guess, from the arm's slope at the dead centre; J / I_eff
-    = j there). Newton stops after WINDOW_NEWTON iterations: the kink is where the face's flow
-    reaches q_L at the speed of e taken linear across the window, itself an approximation."""
+    (side 1) or end (side -1), as :func:`_edge_phases` wrote them in ``rows``: (the narrowest,
+    the next wider or inf), inf where there is none (at most two faces share a dead centre: a
+    cylinder's and the opposite one's). The kink is where the face's swept flow reaches q_L at
+    the speed there, e growing linearly from the edge (the speed taken at the kink's first
+    guess, from the arm's slope at the dead centre; J / I_eff = j there). Newton stops after
+    WINDOW_NEWTON iterations (:func:`_window_kink`): the kink is where the face's flow reaches
+    q_L at the speed of e taken linear across the window, itself an approximation."""
     real = machine.real
-    width = math.pi / machine.cylinders
-    middle = segment_start(segment, machine) + 0.5 * width
+    q = real.q_L / real.AR  # the arm at a kink times the crank's speed [rad/s]
+    half_j = 0.5 * j
+    guess = q * math.sqrt(half_j / e)  # the arm at a kink, at the edge's speed
     first = second = math.inf
     for k in range(machine.cylinders):
-        if delivering_face(segment, k, machine) == NEITHER:
-            continue
-        lag = phase(k, machine)
-        half = math.floor(
-            (middle - lag) / math.pi
-        )  # the face's half turn (:func:`_next_leak_kink`)
-        edge = lag + (half if side > 0 else half + 1) * math.pi
-        if abs(edge - theta) > 1e-9 * width:
-            continue
-        dead_centre = math.pi * (half % 2)
-        sign = 1.0 if half % 2 == 0 else -1.0
-        at_top = (dead_centre == 0.0) == (side > 0)
-        arm_slope = 1.0 + 1.0 / machine.L_over_R if at_top else 1.0 - 1.0 / machine.L_over_R
-        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / j))
-        guess /= arm_slope
-        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / j)
-        target = real.q_L / (real.AR * theta_dot)
-        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R, WINDOW_NEWTON)
-        if side < 0:
-            psi = math.pi - psi
+        if rows[2, k] == 0.0:
+            continue  # its dead centre is not the edge, or it does not deliver
+        top = rows[2, k] > 0.0
+        c1 = 1.0 + (1.0 if top else -1.0) * (1.0 / machine.L_over_R)  # the arm's slope there
+        target = q * math.sqrt(half_j / (e + side * slope * guess * (1.0 / c1)))
+        psi = _window_kink(target, top, machine.L_over_R, WINDOW_NEWTON)
         if psi < first:
             first, second = psi, first
         elif first < psi < second:
             second = psi
     return first, second
+
+
+@inline_kernel
+def _window_arms(row, sin_s, cos_s, rows, machine):
+    """:func:`_sums`' row at the angle s past the edge whose phases :func:`_edge_phases` wrote
+    into ``rows`` (sin s and cos s given): J / I_eff, and |lever arm| of each delivering face."""
+    squares = 0.0
+    for k in range(machine.cylinders):
+        sin = rows[4, k] * cos_s + rows[5, k] * sin_s
+        cos = rows[5, k] * cos_s - rows[4, k] * sin_s
+        a = _arm_of(sin, cos, machine.L_over_R)[0]
+        squares += a * a
+        row[1 + k] = abs(a) * rows[3, k]
+    row[0] = 1.0 + machine.real.mass_ratio * squares
+
+
+@inline_kernel
+def _window_loads(theta_dot, row, faces, machine):
+    """:func:`_face_loads` less :func:`_continued_loads` at crank speed theta_dot [rad/s] on the
+    faces whose arms ``row`` holds: (the load torque's [N m], the delivered flow's, continued
+    less true [m^3/s], and the friction's, h_f Q less h_f Q continued [m^4/s]). Their twin for
+    a window's nodes, with a hole (q_L > 0): :func:`~.equations.face_pressure`'s two branches
+    as a branch (its form without one, for numpy, cost a window 25 ns)."""
+    real = machine.real
+    Q = arms = 0.0
+    for k in range(machine.cylinders):
+        Q += max(real.AR * row[1 + k] * theta_dot - real.q_L, 0.0)  # :func:`delivered_flow`
+        arms += row[1 + k]
+    h_f = real.friction * Q * Q
+    Q_c = real.AR * arms * theta_dot - faces * real.q_L
+    h_f_c = real.friction * Q_c * Q_c
+    heads = 0.0  # sum over the faces of their head times their arm [m]
+    for k in range(machine.cylinders):
+        u = real.AR * row[1 + k] * theta_dot
+        if u > real.q_L:  # delivering: the head and the main's friction
+            heads += (real.h + h_f) * row[1 + k]
+        else:  # what drives u through the hole
+            heads += real.h * (u / real.q_L) * (u / real.q_L) * row[1 + k]
+    load = real.rho_g * real.AR * heads
+    load_c = (machine.load_torque + real.rho_g * h_f_c * real.AR) * arms
+    return load - load_c, Q_c - Q, h_f * Q - h_f_c * Q_c
 
 
 def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
@@ -1663,39 +1789,39 @@ def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
     e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
     (WINDOW_NODES) between the kinks (the integrand is smooth between them). ``j`` is J / I_eff
-    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, the last
+    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, rows 3 to 6
     written): one allocated per call cost the seed with a hole 0.1 us a window, and its last
     row handed as a view an atomic reference pair."""
 
 
 @kernel
 def _window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
-    real = machine.real
     row = rows[6]
+    if _edge_phases(segment if side > 0 else segment + 1, segment, rows, machine) == 0:
+        return 0.0, 0.0, (0.0, 0.0, 0.0, 0.0)  # no delivering face's dead centre: no window
     x, w = GAUSS_WINDOW
-    jump = dt = leaked = friction = excess = 0.0
+    dt = leaked = friction = excess = 0.0
     low = 0.0
-    widths = _window_widths(theta, e, slope, side, segment, j, machine)
-    for high in widths:
+    for high in _window_widths(e, slope, side, j, rows, machine):
         if high == math.inf:
             break
         for q in range(WINDOW_NODES):
             s = low + x[q] * (high - low)
-            at = theta + side * s
             e_at = e + slope * s * side
-            _sums(row, at, segment, machine, False)
+            inv_2e = 0.5 / e_at
+            sin_s, cos_s = _sin_cos(side * s)
+            _window_arms(row, sin_s, cos_s, rows, machine)
             theta_dot = math.sqrt(2.0 * e_at / row[0])
-            load, Q, h_f, _ = _face_loads(theta_dot, row, machine)
-            load_c, Q_c, h_f_c, _ = _continued_loads(theta_dot, row, faces, machine)
+            load, Q, h_f_Q = _window_loads(theta_dot, row, faces, machine)
             weight = w[q] * (high - low)
-            excess += weight * (load - load_c)
-            leaked += weight * (Q_c - Q) / theta_dot
-            friction += weight * real.rho_g * (h_f * Q - h_f_c * Q_c) / theta_dot
-            rate = -(load - load_c) * machine.inv_I_eff
-            dt += side * weight * s * rate / (2.0 * e_at * theta_dot)
+            per_radian = weight * theta_dot * row[0] * inv_2e  # weight / theta_dot
+            excess += weight * load
+            leaked += per_radian * Q
+            friction += per_radian * h_f_Q
+            dt -= side * per_radian * s * load * inv_2e
         low = high
-    jump = -excess * machine.inv_I_eff
-    return jump, dt, (0.0, leaked, friction, excess)
+    inv_I_eff = machine.inv_I_eff
+    return -excess * inv_I_eff, dt * inv_I_eff, (0.0, leaked, friction * machine.real.rho_g, excess)
 
 
 _entry(window_jump)(

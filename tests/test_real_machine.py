@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, example, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 from real_reference import real_reference_run
 
@@ -284,16 +284,50 @@ def _mains(draw):
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(design=_mains(), theta=st.floats(-20.0, 20.0), e=st.floats(1e-3, 1e4))
 def test_the_kernels_frozen_friction_is_the_numpy_sides(design, theta, e):
-    """The kernels' friction split at a frozen energy (c(theta) e_ref I_eff: its own copy of the
-    main's friction, kept for speed) is faces_load's friction at that energy's speed."""
+    """The kernels' friction split at a frozen energy (c(theta) . (e_ref, sqrt(e_ref), 1) I_eff:
+    its own copy of the main's friction, kept for speed) is faces_load's friction at that
+    energy's speed."""
     from windpump._kernels import model, real
 
     machine = kernel_machine(design)
     segment = model.segment_at(theta, machine)
-    compiled = real.friction_density(theta, segment, machine) * e * design.I_eff
+    first, second, third = real.friction_density(theta, segment, machine)
+    compiled = (first * e + second * math.sqrt(e) + third) * design.I_eff
     expected = _numpy_frozen_friction(design, theta, e)
+    assert second == third == 0.0  # (a tight piston's friction is the first part alone)
     scale = design.load_torque * 1e-12 * design.cylinders
     assert compiled == pytest.approx(expected, rel=1e-11, abs=scale)
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    design=_mains(), hole=st.floats(0.001, 0.5), theta=st.floats(-20.0, 20.0),
+    e=st.floats(1e-3, 1e4),
+)  # fmt: skip
+def test_with_a_hole_the_frozen_friction_is_the_continued_loads_friction(design, hole, theta, e):
+    """With a leak hole the frozen friction's three parts, at the weights (e, sqrt(e), 1), are
+    the main's friction of the loads continued past the hole's windows (each delivering face
+    delivers what it sweeps less q_L) at that energy's speed: rho_w g K q (q theta_dot -
+    faces q_L)^2, q = A R sum |dx/dtheta| / R, written here from the issue's conventions."""
+    from windpump._kernels import model, real
+
+    design = design.replace(d_leak=hole * design.bore)
+    angles = np.mod(windpump.kinematics.cylinder_angles(np.array([theta]), design.cylinders), np.pi)
+    assume(np.all(np.minimum(angles, np.pi - angles) > 1e-9))  # no face at a dead centre
+    machine = kernel_machine(design)
+    segment = model.segment_at(theta, machine)
+    first, second, third = real.friction_density(theta, segment, machine)
+    compiled = (first * e + second * math.sqrt(e) + third) * design.I_eff
+    levers = windpump.kinematics.face_levers(np.array([theta]), design)[:, 0]
+    J = float(reciprocating.crank_inertia(design, theta))
+    theta_dot = math.sqrt(2.0 * e * design.I_eff / J)
+    q = design.A * design.R * float(levers.sum())
+    held = float((levers > 0.0).sum()) * design.leak_capacity
+    expected = (
+        design.rho_w * design.g * design.friction_coefficient * q * (q * theta_dot - held) ** 2
+    )
+    scale = design.load_torque * 1e-12 * design.cylinders
+    assert compiled == pytest.approx(expected, rel=1e-10, abs=scale)
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -316,7 +350,8 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
     width = math.pi / design.cylinders
     start = model.segment_start(segment, machine)
     a, b = (start + width * f for f in sorted(ends))
-    compiled = real.friction_between(a, b, segment, machine)
+    compiled, second, third = real.friction_between(a, b, segment, machine)
+    assert second == third == 0.0  # (a tight piston)
 
     def density(theta):
         return _numpy_frozen_friction(design, theta, 1.0) / design.I_eff
@@ -465,6 +500,78 @@ def test_the_continued_loads_are_the_face_loads_where_every_face_delivers(
         scale = design.load_torque * max(sum(levers), 1.0)
         assert load == pytest.approx(float(expected_load[0]), rel=1e-12, abs=1e-12 * scale)
         assert Q == pytest.approx(float(expected_Q[0]), rel=1e-9, abs=1e-18)
+
+
+@settings(max_examples=200, deadline=None)
+@given(s=st.floats(-0.3, 0.3))
+def test_a_windows_sine_and_cosine_are_the_librarys(s):
+    """A window's sin s and cos s (Taylor's up to SMALL_ANGLE) to round-off."""
+    from windpump._kernels import real
+
+    sin, cos = real._sin_cos(s)
+    assert sin == pytest.approx(math.sin(s), rel=3e-16, abs=1e-300)
+    assert cos == pytest.approx(math.cos(s), rel=3e-16)
+
+
+@settings(max_examples=200, deadline=None)
+@given(phi=st.floats(-7.0, 7.0), ratio=st.floats(1.05, 10.0))
+def test_a_windows_lever_arm_is_eq_1s(phi, ratio):
+    """The windows' lever arm and its slope from sin and cos are equations.lever_arm's and
+    lever_arm_slope's."""
+    from windpump._kernels import equations, real
+
+    arm, slope = real._arm_of(math.sin(phi), math.cos(phi), ratio)
+    assert arm == pytest.approx(float(equations.lever_arm(phi, ratio)), rel=1e-13, abs=1e-15)
+    expected = float(equations.lever_arm_slope(phi, ratio))
+    assert slope == pytest.approx(expected, rel=1e-13, abs=1e-13)
+
+
+@settings(max_examples=100, deadline=None)
+@given(target=st.floats(1e-6, 0.05), ratio=st.floats(1.1, 10.0), top=st.booleans())
+def test_a_windows_kink_is_where_the_arm_reaches_its_target(target, ratio, top):
+    """s past a dead centre where |lever arm| = target: against a 30-digit root of Eq. (1)'s
+    derivative (mpmath, the dead centre pi exact)."""
+    import mpmath
+
+    from windpump._kernels import real
+
+    s = real._window_kink(target, top, ratio, real.WINDOW_NEWTON)
+    with mpmath.workdps(30):
+        k, L = (1 if top else -1), mpmath.mpf(ratio)
+
+        def arm(x):  # |x'/R| at s past the top (phi = s) or bottom (phi = pi + s) dead centre
+            return mpmath.sin(x) * (1 + k * mpmath.cos(x) / mpmath.sqrt(L**2 - mpmath.sin(x) ** 2))
+
+        exact = mpmath.findroot(lambda x: arm(x) - mpmath.mpf(target), mpmath.mpf(s))
+        assert s == pytest.approx(float(exact), rel=1e-14)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    levers=st.lists(st.floats(0.0, 1.5), min_size=1, max_size=6),
+    theta_dot=st.floats(0.5, 60.0),
+    leak=st.floats(0.01, 0.9),
+    L_main=st.floats(0.0, 60.0),
+)
+def test_a_windows_loads_are_the_face_loads_less_the_continued(levers, theta_dot, leak, L_main):
+    """The windows' twin of faces' loads less the continued loads (their load, delivered flow
+    and friction) is the two kernels' difference."""
+    from windpump._kernels import real
+
+    design = SEED.replace(cylinders=len(levers), d_leak=leak * SEED.bore, L_main=L_main)
+    machine = kernel_machine(design)
+    row = np.zeros(real.ROW + 2)
+    row[1 : 1 + len(levers)] = levers
+    faces = float(len(levers))
+    load, Q, h_f, _ = real._face_loads(theta_dot, row, machine)
+    load_c, Q_c, h_f_c, _ = real._continued_loads(theta_dot, row, faces, machine)
+    d_load, d_Q, d_friction = real._window_loads(theta_dot, row, faces, machine)
+    scale = design.load_torque * max(sum(levers), 1.0)  # a load, a flow and their friction's
+    flow = design.A * design.R * max(sum(levers), 1.0) * theta_dot + faces * machine.real.q_L
+    assert d_load == pytest.approx(load - load_c, rel=1e-12, abs=1e-12 * scale)
+    assert d_Q == pytest.approx(Q_c - Q, rel=1e-12, abs=1e-15 * flow)
+    friction = machine.real.friction * flow**3
+    assert d_friction == pytest.approx(h_f * Q - h_f_c * Q_c, rel=1e-12, abs=1e-12 * friction)
 
 
 LEAKY_RUNS = {  # (design, samples per stroke, rtol): windows jumped, and where they are not

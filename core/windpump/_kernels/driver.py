@@ -20,6 +20,8 @@ from .dopri5 import dense_value, step_factor
 from .jit import inline_kernel, kernel
 from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
 from .real import (
+    C_PARTS,
+    M_PARTS,
     ROW,
     add_integrals,
     at_time,
@@ -31,6 +33,7 @@ from .real import (
     fill_row,
     fill_stages,
     friction_at,
+    friction_parts,
     friction_since,
     frozen_energy,
     frozen_record,
@@ -49,6 +52,9 @@ from .real import (
     leak_scale,
     less_frozen,
     next_leak_kink,
+    no_friction,
+    no_integrals,
+    not_known,
     open_windows,
     set_grid_inertia,
     split_sizes_by_parity,
@@ -82,6 +88,8 @@ from .wind import has_record, next_kink
 # Rows of the output array, one per sampled quantity; the work quadratures last (the real
 # machine's four from WORK on: shaft work, delivered volume, friction loss, leak loss).
 T, THETA, THETA_DOT, STROKES, FLOW_FACTOR, WORK = range(6)
+C1, C2, C3 = C_PARTS  # the rows' columns of the real machine's C
+M1, M2, M3 = M_PARTS  # and of its moment over a sub-step
 ROWS = 6  # the ideal machine's
 
 # The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's
@@ -128,24 +136,35 @@ def tabulate_segment(parity, m, machine, tables, rows, built):
     rows at the nodes (C since the segment began in their column 7)."""
     start = segment_start(parity, machine)
     h = (segment_start(parity + 1, machine) - start) / m
-    c_at = 0.0
+    c_at = no_friction(machine)
     for i in range(m):
         sub_rows = rows[parity, m, i]
         stage_values(
-            start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at, NOT_KNOWN
-        )
-        c_at = friction_at(sub_rows[6, 7], machine)
+            start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at,
+            not_known(machine), True,
+        )  # fmt: skip
+        c_at = friction_at(sub_rows[6, C1], sub_rows[6, C2], sub_rows[6, C3], machine)
     built[parity, m] = True
 
 
 @kernel
-def stage_values(theta, h, segment, machine, aux, rows, c_at, known):
+def stage_values(theta, h, segment, machine, aux, rows, c_at, known, exact=False):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
     at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
-    C from c_at = C(theta) in their column 7, or from ``known``: :func:`~.real.fill_friction`)."""
+    C from c_at = C(theta) in their C_PARTS columns, or from ``known``; ``exact`` for a table's:
+    :func:`~.real.fill_friction`)."""
     fill_stages(aux, rows, theta, h, segment, machine)
     aux[7] = conservative_torque(theta, segment, machine)
-    fill_friction(rows, theta, h, c_at, known, segment, without_wind(machine))
+    fill_friction(rows, theta, h, c_at, known, exact, segment, without_wind(machine))
+
+
+@inline_kernel
+def stage_work(aux):
+    """The conservative work at a sub-step's 7 stage nodes, ``aux[:7]``, as the 7 numbers
+    :func:`~.stepping.dp5_step` takes: the real machine's step is called, not inlined, and an
+    array handed to it costs an atomic reference pair every step (4,393 pairs in the seed
+    example's 600 s with every effect on); the ideal machine's, inlined, reads the same numbers."""
+    return aux[0], aux[1], aux[2], aux[3], aux[4], aux[5], aux[6]
 
 
 @kernel
@@ -580,9 +599,6 @@ def split_of(m, full, theta, width, n_per_stroke, sample_dt, segment, machine):
     return end, segment % 2, end_grid, m_seg, use_table, h
 
 
-NOT_KNOWN = (math.nan, 0.0)  # no tabled C to start from (:func:`~.real.fill_friction`)
-
-
 @inline_kernel
 def tabled_end(i, m_seg, first, h, end, C):
     """(Where tabled sub-step i of a split ends, the real machine's C there), for the pieces a
@@ -613,9 +629,9 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     from where the step's continuous extension puts the kink's time (the rest of the segment
     follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, NOT_KNOWN)
+    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, not_known(machine))
     ok, y, k7, err, dense = dp5_step(
-        ANGLE, theta_i, u_free, t, t, W, h_step, k1, scratch,
+        ANGLE, theta_i, u_free, t, t, W, h_step, k1, stage_work(scratch),
         step_rows(scratch_rows, e_ref, -1.0, (0.0, 0.0), machine), segment, machine,
     )  # fmt: skip
     return ok, y, k7, err, dense, h_step
@@ -673,11 +689,13 @@ def in_angle(
     calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
     m_other = m  # the real machine's sub-steps of a segment of the other parity
     # The real machine's C (the frozen friction's, :mod:`.real`) since the segment began
-    c_at = 0.0 if full else friction_since(segment_start(segment, calm), theta, 0.0, segment, calm)
+    c_at = no_friction(calm)
+    if not full:
+        c_at = friction_since(segment_start(segment, calm), theta, c_at, segment, calm)
     # A segment stepped past its leak hole's windows: its delivering faces (:mod:`.real`)
     faces = -1.0
     # and int (j - 1) since it began (the masses' frozen ripple in the time: :mod:`.real`)
-    j_at = (0.0, 0.0) if full else inertia_since(theta, segment, calm)
+    j_at = no_integrals(calm) if full else inertia_since(theta, segment, calm)
     windows_off = False  # the rest of this segment is stepped on its kinks (it ends past t_end)
     clear_of_window = math.inf  # past here the segment's start window is behind
     edges = window_edges(calm)  # what the windows take at a segment's edges, by parity
@@ -697,7 +715,8 @@ def in_angle(
         else:
             rows = scratch_rows
             fill_row(rows[0], theta, segment, machine)
-            rows[0, 7] = c_at  # (the real machine's C; the ideal machine's rows ignore it)
+            # (the real machine's C; the ideal machine's rows ignore it)
+            rows[0, C1], rows[0, C2], rows[0, C3] = friction_parts(c_at, calm)
         if full or windows_off:
             faces = -1.0
         tau = time_frozen(u, sample_dt is None and not has_record(machine.wind), calm)
@@ -741,9 +760,11 @@ def in_angle(
                 aux, rows = tables[parity, m_seg, i], row_tables[parity, m_seg, i]
             else:
                 aux, rows = scratch, scratch_rows
-                known = NOT_KNOWN
+                known = not_known(calm)
                 if use_table:  # (rows of a split into more sub-steps than the tables hold: none)
-                    known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
+                    tabled = row_tables[parity, m_seg, i, 6]
+                    C = friction_at(tabled[C1], tabled[C2], tabled[C3], calm)
+                    known = tabled_end(i, m_seg, first, h, end, C)
                 stage_values(theta_i, h_i, segment, machine, aux, rows, c_at, known)
             if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
@@ -751,14 +772,18 @@ def in_angle(
             h_step, at_kink = leak_cut(theta_i, h_i, leak[0])
             if at_kink:
                 aux, rows = scratch, scratch_rows
-                known = NOT_KNOWN
+                known = not_known(calm)
                 if use_table:  # (rows of a split into more sub-steps than the tables hold: none)
-                    known = tabled_end(i, m_seg, first, h, end, row_tables[parity, m_seg, i, 6, 7])
+                    tabled = row_tables[parity, m_seg, i, 6]
+                    C = friction_at(tabled[C1], tabled[C2], tabled[C3], calm)
+                    known = tabled_end(i, m_seg, first, h, end, C)
                 stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
-            c_end = friction_at(rows[6, 7], calm)  # C where the sub-step ends
-            j_step = inertia_at(rows[6, 8], rows[6, 9], rows[6, 0], calm)  # the time's ripple, j
+            c_end = friction_at(rows[6, C1], rows[6, C2], rows[6, C3], calm)  # C at its end
+            j_step = inertia_at(  # the time's ripple, j
+                rows[6, 8], rows[6, 9], rows[6, 0], rows[6, M1], rows[6, M2], rows[6, M3], calm
+            )
             ok, y, k7, err, dense = dp5_step(
-                ANGLE, theta_i, u_free, t, t, W, h_step, k1, aux,
+                ANGLE, theta_i, u_free, t, t, W, h_step, k1, stage_work(aux),
                 step_rows(rows, e_ref, faces, tau, calm),
                 segment, machine,
             )  # fmt: skip
@@ -771,13 +796,16 @@ def in_angle(
                 )  # fmt: skip
                 steps += 1
                 at_kink = True
-                c_end = friction_at(scratch_rows[6, 7], calm)
-                j_step = inertia_at(
-                    scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 0], calm
+                c_end = friction_at(
+                    scratch_rows[6, C1], scratch_rows[6, C2], scratch_rows[6, C3], calm
                 )
+                j_step = inertia_at(
+                    scratch_rows[6, 8], scratch_rows[6, 9], scratch_rows[6, 0],
+                    scratch_rows[6, M1], scratch_rows[6, M2], scratch_rows[6, M3], calm,
+                )  # fmt: skip
             scaled = scaled_error(err, y, t, u, rtol, width, calm)
             # the time's frozen ripple back
-            t_new = time_back(y[2], tau, j_step, calm)
+            t_new = time_back(y[2], tau, j_step, e_ref, c_at, h_step, calm)
             if t_new > t_end:
                 status, past_t_end = IN_TIME, True  # the sub-step would pass t_end: in time
                 break
@@ -790,7 +818,7 @@ def in_angle(
                 segment, calm,
             )  # fmt: skip
             u_new = y[0] + less_frozen(work, e_ref, c_end, calm)
-            W_new = frozen_work(y[3], e_ref, c_end - c_at, calm)
+            W_new = frozen_work(y[3], e_ref, c_end, c_at, calm)
             if last and faces > 0.0:  # a leak hole's window before the end (:mod:`.real`)
                 edge = edges[parity][1]
                 slope = energy_slope(k7[0], e_ref, edge, calm)
@@ -814,7 +842,7 @@ def in_angle(
                 )  # fmt: skip
             whole = not past_leak and (at_wind_kink or not at_kink)  # a leak's kink cut neither end
             wholes = wholes or whole
-            c_at, j_at = c_end, add_integrals(j_at, j_step, calm)
+            c_at, j_at = c_end, add_integrals(j_at, j_step, c_at, h_step, calm)
             u_free, t, W, theta, u, theta_dot, k1, worst, i, m, status = past_sub_step(
                 (y[0], y[1], t_new, W_new), theta_new, u_new, k7, scaled, worst, i, at_kink,
                 at_wind_kink, whole, m, width, h, j_step[2],
@@ -837,7 +865,7 @@ def in_angle(
         )
         if status == SPLIT_DONE:
             m, m_other = split_sizes_by_parity(m, m_other, calm)
-            c_at, j_at, windows_off = 0.0, (0.0, 0.0), False
+            c_at, j_at, windows_off = no_friction(calm), no_integrals(calm), False
         if status == IN_TIME or status == OUT_OF_STEPS or (status == SPLIT_DONE and t >= t_end):
             return (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full,
                     segment, leak, end, end_grid)  # fmt: skip

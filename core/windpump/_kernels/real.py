@@ -61,7 +61,7 @@ from .dopri5 import (
     NODES,
     dense_value,
 )  # fmt: skip
-from .jit import OPTIONS, kernel
+from .jit import OPTIONS, inline_kernel, kernel
 from .model import (
     NEITHER,
     Real,
@@ -84,8 +84,13 @@ delivered_flow = kernel(equations.delivered_flow)  # max(u - q_L, 0) [m^3/s]
 face_pressure = kernel(equations.face_pressure)  # [Pa]
 arm_squared_integral = kernel(equations.lever_arm_squared_integral)  # [rad]
 
-ROW = 10  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C,
-# and (at the last node) the integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`)
+ROW = 21  # a stage's row: the inertia ratio j, |lever arm| of each cylinder's delivering face, C
+# (C's first part; the other two in columns 16 and 17: :data:`C_PARTS`), (at the last node) the
+# integrals of j - 1 and Lambda over the sub-step (:func:`time_frozen`), and what the ANGLE
+# domain's rates take of j and the arms (:func:`_row_extras`, columns 10 to 15), and (at the
+# last node) the integral of C over the sub-step less C at its start times its length (18-20)
+C_PARTS = (7, 16, 17)  # the rows' columns of the frozen friction's C (:func:`_frozen_parts`)
+M_PARTS = (18, 19, 20)  # the last row's columns of C's moment over the sub-step
 WORKS = 4  # the real machine's quadratures: shaft work, leaked volume, friction, excess load
 
 
@@ -155,7 +160,7 @@ def _ideal(real) -> bool:
 def _entry(function):
     """Register ``function``'s overload: ``ideal(...)`` for a None ``real``, else ``actual``."""
 
-    def register(ideal, actual, on_machine=True):
+    def register(ideal, actual, on_machine=True, inline="never"):
         ideal, actual = (getattr(f, "py_func", f) for f in (ideal, actual))  # a kernel's source
 
         @functools.wraps(function)  # numba checks the typer's signature against the stub's
@@ -164,7 +169,7 @@ def _entry(function):
             real = machine.types[machine.fields.index("real")] if on_machine else machine
             return ideal if _ideal(real) else actual
 
-        overload(function, jit_options=JIT_OPTIONS)(typer)
+        overload(function, jit_options=JIT_OPTIONS, inline=inline)(typer)
 
     return register
 
@@ -188,6 +193,17 @@ def _sums(row, theta, segment, machine, slopes):
         row[1 + k] = abs(a) if delivering_face(segment, k, machine) != NEITHER else 0.0
     row[0] = 1.0 + real.mass_ratio * squares
     return sum_a, sum_slope
+
+
+@kernel
+def _row_extras(j, arms, held, machine):
+    """What the ANGLE domain's rates take of a node's j and delivering arms (sum |a|), kept in
+    its row's columns 10-15 (:func:`step_rows`): 2 / j, A R sum |a| (the faces' swept volume per
+    radian), the first part of the main's frozen friction torque (:func:`_frozen_parts`), j - 1,
+    and the other two parts. Worked out when the row is filled (a tabled row once per run), not
+    at every stage. ``held`` is what the segment's delivering faces' holes pass, faces q_L."""
+    first, second, third = _frozen_parts(arms, j, held, machine)
+    return 2.0 / j, machine.real.AR * arms, first, j - 1.0, second, third
 
 
 @kernel
@@ -218,36 +234,46 @@ def _continued_loads(theta_dot, row, faces, machine):
     wherever every delivering face sweeps more than q_L; smooth inside a segment, where a
     delivering segment's steps take it, the windows next to its dead centres being corrected
     apart (:func:`window_jump`)."""
-    real = machine.real
     arms = 0.0
     for k in range(machine.cylinders):
         arms += row[1 + k]
-    Q = real.AR * arms * theta_dot - faces * real.q_L
-    h_f = real.friction * Q * Q
-    return machine.load_torque * arms + real.rho_g * h_f * real.AR * arms, Q, h_f, arms
+    Q, h_f, friction = _continued_friction(
+        theta_dot, machine.real.AR * arms, faces * machine.real.q_L, machine
+    )
+    return machine.load_torque * arms + friction, Q, h_f, arms
+
+
+@kernel
+def _continued_friction(theta_dot, swept, held, machine):
+    """(Q [m^3/s], h_f [m], the main's friction torque rho_w g h_f A R sum |a| [N m]) of
+    :func:`_continued_loads`, from the delivering faces' swept volume per radian ``swept`` = A R
+    sum |a| [m^3/rad] and what their holes pass, ``held`` = faces q_L [m^3/s]."""
+    Q = swept * theta_dot - held
+    h_f = machine.real.friction * Q * Q
+    return Q, h_f, machine.real.rho_g * h_f * swept
 
 
 def _real_angle_rates(x0, t, aux, row, machine):
     real = machine.real
-    # x0 = e - Lambda + e_ref C (row[7] = e_ref C, row[8] = e_ref, row[9] the delivering faces
-    # of a segment whose hole's windows are corrected apart, or -1, row[10] tau, row[11]
-    # 1 / e_ref: :func:`step_rows`)
-    theta_dot = math.sqrt(2.0 * (x0 + aux - row[7]) / row[0])
+    # ``row`` is a stage's :func:`step_rows` tuple: everything that does not depend on the state
+    # is worked out there, before the step, so that only the speed's root and a few products
+    # lie between one stage and the next (the stages are sequential: their latency is the cost).
+    theta_dot = math.sqrt((x0 + (aux - row[7])) * row[0])  # x0 = e - Lambda + e_ref C
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
-    if row[9] >= 0.0:
-        load, Q, h_f, arms = _continued_loads(theta_dot, row, row[9], machine)
+    if row[9] >= 0.0:  # on the loads continued past the hole's windows (:func:`_continued_loads`)
+        Q, h_f, friction = _continued_friction(theta_dot, row[12], row[13], machine)
+        excess = friction - row[8]
     else:
         load, Q, h_f, arms = _face_loads(theta_dot, row, machine)
+        excess = load - machine.load_torque * arms - row[8]
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
     # relief) is integrated, and so is the water lifted and the friction; of the friction, less
-    # its frozen part (at e_ref: :func:`friction_density`), whose work e_ref C is tabulated.
-    frozen = _frozen_friction(arms, row[0], row[8], machine)
-    excess = load - machine.load_torque * arms - frozen
+    # its frozen part (at e_ref: :func:`friction_density`, row[8]), whose work e_ref C is tabulated.
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
-    leaked = real.AR * arms - Q * per_radian  # swept less delivered: small, so accurate
-    friction = real.rho_g * h_f * Q * per_radian - frozen
-    time = per_radian - row[10] * ((row[0] - 1.0) - aux * row[11])  # less its frozen ripple
+    leaked = row[12] - Q * per_radian  # swept less delivered: small, so accurate
+    friction = real.rho_g * h_f * Q * per_radian - row[8]
+    time = per_radian - (row[10] - (aux - row[7]) * row[11])  # less its frozen ripple
     return rate, per_radian, time, (drive, leaked, friction, excess)
 
 
@@ -365,6 +391,11 @@ def _no_row(row, theta, segment, machine):
 
 def _fill_row(row, theta, segment, machine):
     _sums(row, theta, segment, machine, False)
+    arms = 0.0
+    for k in range(machine.cylinders):
+        arms += row[1 + k]
+    extras = _row_extras(row[0], arms, _held(segment, machine), machine)
+    row[10], row[11], row[12], row[13], row[14], row[15] = extras
 
 
 _entry(fill_row)(_no_row, _fill_row)
@@ -393,6 +424,7 @@ def _real_stages(aux, rows, theta, h, segment, machine):
     real = machine.real
     L_over_R = machine.L_over_R
     start = segment_start(segment, machine)
+    held = _held(segment, machine)
     for stage in range(6):
         aux[stage] = rows[stage, 0] = rows[stage, 7] = 0.0
     for k in range(machine.cylinders):
@@ -413,8 +445,16 @@ def _real_stages(aux, rows, theta, h, segment, machine):
         weights = rows[stage, 7] * (real.weight_torque * machine.inv_I_eff)
         aux[stage] = work + (weights if real.weight_torque != 0.0 else 0.0)
         rows[stage, 0] = 1.0 + real.mass_ratio * rows[stage, 0]
+        arms = 0.0
+        for k in range(machine.cylinders):
+            arms += rows[stage, 1 + k]
+        extras = _row_extras(rows[stage, 0], arms, held, machine)
+        rows[stage, 10], rows[stage, 11], rows[stage, 12], rows[stage, 13] = extras[:4]
+        rows[stage, 14], rows[stage, 15] = extras[4], extras[5]
     aux[6] = aux[5]
     for column in range(1 + machine.cylinders):
+        rows[6, column] = rows[5, column]
+    for column in range(10, ROW):
         rows[6, column] = rows[5, column]
     # the sub-step's integrals of j - 1 and Lambda (:func:`time_frozen`)
     rows[6, 8] = _inertia_since(theta + h, segment, machine) - _inertia_since(
@@ -429,16 +469,16 @@ _entry(fill_stages)(_ideal_stages, _real_stages)
 # -- The time's ripple, frozen (docs/model.rst, "The real machine"). -----------------------------
 #
 # dt/dtheta = sqrt(j / (2 e)) ripples with j(theta) = 1 + mu sum a_c^2 (mu = m_r R^2 / I_eff) and
-# with e = x0 + Lambda(theta) - e_ref C: parts in 1e5 to 1e3 at the harmonics of theta, which
-# the time's error estimate sees (the seed example with m_r = 1 kg took 6,479 steps against
-# 4,087). Where a split begins at energy u, its first order there, tau ((j - 1) - Lambda / u)
-# with tau = 1 / (2 sqrt(2 u)), is taken out of the time's rate, and its integral added back at
-# each sub-step's end and at the grid angles: int (j - 1) in closed form
-# (:func:`~.equations.lever_arm_squared_integral`), int Lambda by Gauss-Legendre (tabulated
-# with the sub-steps). The step integrates only the rest. (The main's frozen friction's share,
-# -e_ref C, is left in it: C at a step's inner nodes is an interpolation, whose error the time
-# would take in full; with it the main alone took 3,392 steps, not 4,543, and was off by 3e-6
-# in speed after 600 s.)
+# with e = x0 + Lambda(theta) - F(theta), F the main's frozen friction's work (C at the weights
+# of e_ref): parts in 1e5 to 1e3 at the harmonics of theta, which the time's error estimate
+# sees (the seed example with m_r = 1 kg took 6,479 steps against 4,087). Where a split begins
+# at energy u, its first order there, tau ((j - 1) - (Lambda - F) / u) with tau = 1 / (2 sqrt(2
+# u)), is taken out of the time's rate, and its integral added back at each sub-step's end and
+# at the grid angles: int (j - 1) in closed form (:func:`~.equations.lever_arm_squared_integral`),
+# int Lambda by Gauss-Legendre and int C by its moment (tabulated with the sub-steps). The step
+# integrates only the rest. (With F's share left in the time's rate, the main alone took 4,543
+# steps, not 3,393. Taking it out needs C exact at a tabled sub-step's inner nodes: with the
+# polynomial through c there, the speed after 600 s was 3.3e-6 off, not 1.0e-6.)
 
 
 @kernel
@@ -504,16 +544,26 @@ def _lambda_since(theta, segment, machine):
 
 
 def inertia_since(theta, segment, machine):
-    """(int (j - 1), int Lambda) dtheta since the segment's start; zeros for the ideal
-    machine."""
+    """(int (j - 1), int Lambda, int C) dtheta since the segment's start (C in its three
+    parts); zeros for the ideal machine."""
 
 
-_entry(inertia_since)(
-    lambda theta, segment, machine: (0.0, 0.0),
-    lambda theta, segment, machine: (
-        _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine),
-    ),
-)  # fmt: skip
+def _real_inertia_since(theta, segment, machine):
+    start = segment_start(segment, machine)
+    K = (0.0, 0.0, 0.0)
+    if machine.real.friction != 0.0:
+        K = _friction_moment(start, theta, segment, machine)
+    return _inertia_since(theta, segment, machine), _lambda_since(theta, segment, machine), K
+
+
+_entry(inertia_since)(lambda theta, segment, machine: (0.0, 0.0), _real_inertia_since)
+
+
+def no_integrals(machine):
+    """:func:`inertia_since` where a segment begins: zeros."""
+
+
+_entry(no_integrals)(lambda machine: (0.0, 0.0), lambda machine: (0.0, 0.0, (0.0, 0.0, 0.0)))
 
 
 def time_frozen(u, allowed, machine):
@@ -530,46 +580,60 @@ _entry(time_frozen)(
 )
 
 
-def inertia_at(J, X, j, machine):
-    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]``, and J / I_eff
-    where it ends, ``rows[6, 0]`` (zeros and 1.0 for the ideal machine, whose rows hold nothing
-    there). Taken from the rows, not computed again at the sub-step's end (a ``sincos`` a step
-    with reciprocating masses)."""
+def inertia_at(J, X, j, M1, M2, M3, machine):
+    """(int (j - 1), int Lambda) over a sub-step from its rows' ``rows[6, 8:10]``, J / I_eff
+    where it ends, ``rows[6, 0]``, and C's moment over it, ``rows[6, M_PARTS]`` (zeros and 1.0
+    for the ideal machine, whose rows hold nothing there). Taken from the rows, not computed
+    again at the sub-step's end (a ``sincos`` a step with reciprocating masses)."""
 
 
-_entry(inertia_at)(lambda J, X, j, machine: (0.0, 0.0, 1.0), lambda J, X, j, machine: (J, X, j))
+_entry(inertia_at)(
+    lambda J, X, j, M1, M2, M3, machine: (0.0, 0.0, 1.0, 0.0),
+    lambda J, X, j, M1, M2, M3, machine: (J, X, j, (M1, M2, M3)),
+)
 
 
-def time_back(t, frozen_time, step, machine):
+def time_back(t, frozen_time, step, e_ref, c_at, h, machine):
     """A time off the step's quadrature, t, with the frozen ripple's integral over the sub-step
-    (:func:`inertia_at`'s ``step``) added back, tau (dJ - dX / u) (the ideal machine's t as it
-    is)."""
+    (:func:`inertia_at`'s ``step``, h long, C = c_at at its start, the frozen friction's weights
+    e_ref) added back, tau (dJ - (dX - e_ref . int C) / u) (the ideal machine's t as it is)."""
 
 
-def _time_back(t, frozen_time, step, machine):
+def _time_back(t, frozen_time, step, e_ref, c_at, h, machine):
     tau, inv_e = frozen_time
-    return t + tau * (step[0] - step[1] * inv_e)
+    M = step[3]
+    C = (c_at[0] * h + M[0], c_at[1] * h + M[1], c_at[2] * h + M[2])
+    return t + tau * (step[0] - (step[1] - _weighted(e_ref, C)) * inv_e)
 
 
-_entry(time_back)(lambda t, frozen_time, step, machine: t, _time_back)
+_entry(time_back)(lambda t, frozen_time, step, e_ref, c_at, h, machine: t, _time_back)
 
 
-def add_integrals(at, step, machine):
+def add_integrals(at, step, c_at, h, machine):
     """:func:`inertia_since`'s integrals where a sub-step began plus the sub-step's."""
 
 
-_entry(add_integrals)(
-    lambda at, step, machine: at,
-    lambda at, step, machine: (at[0] + step[0], at[1] + step[1]),
-)
+def _add_integrals(at, step, c_at, h, machine):
+    K, M = at[2], step[3]
+    return (
+        at[0] + step[0], at[1] + step[1],
+        (K[0] + c_at[0] * h + M[0], K[1] + c_at[1] * h + M[1], K[2] + c_at[2] * h + M[2]),
+    )  # fmt: skip
+
+
+_entry(add_integrals)(lambda at, step, c_at, h, machine: at, _add_integrals)
 
 
 # -- The rising main's friction, split at a frozen energy (docs/model.rst, "The real machine"). --
 #
-# Without a hole the friction torque is rho_w g K (A R arms)^3 theta_dot^2, and theta_dot^2 =
-# 2 e / j: it is c(theta) e I_eff with c a function of the angle alone. Frozen at e_ref (the
-# energy where a split of a segment begins) its work is e_ref C(theta), C = int c from the
-# segment's start, tabulated like Lambda; only c (e - e_ref) and a hole's share are integrated.
+# On the loads continued past a hole's windows the friction torque is rho_w g K q (q theta_dot
+# - faces q_L)^2 (q = A R arms), and theta_dot^2 = 2 e / j: at e = e_ref it is c(theta) .
+# (e_ref, sqrt(e_ref), 1) I_eff, c's three parts functions of the angle alone
+# (:func:`_frozen_parts`; the last two 0 without a hole). Frozen at e_ref (the energy where a
+# split of a segment begins) its work is C(theta) . (e_ref, sqrt(e_ref), 1), C = int c from the
+# segment's start, tabulated like Lambda; only the rest (e - e_ref, a hole's windows) is
+# integrated. (Without the hole's two parts a leaky pump with a main took 4,405 steps: its
+# energy's error estimate saw them.)
 
 
 def _gauss(points):
@@ -588,18 +652,42 @@ LONGEST_PIECE, LONGEST_FOUR = math.pi / 4, 0.15
 
 
 @kernel
-def _frozen_friction(arms, j, e_ref, machine):
+def _held(segment, machine):
+    """What the holes of a segment's delivering faces pass [m^3/s]: faces q_L."""
+    faces = 0.0
+    for k in range(machine.cylinders):
+        if delivering_face(segment, k, machine) != NEITHER:
+            faces += 1.0
+    return faces * machine.real.q_L
+
+
+@kernel
+def _frozen_parts(arms, j, held, machine):
     """The rising main's friction torque [N m] of delivering faces whose |lever arms| sum to
-    ``arms``, as without a hole, at the speed ``theta_dot^2 = 2 e_ref / j``: ``rho_w g K (A R
-    arms)^3 theta_dot^2`` (:func:`windpump.loads.faces_load`, its friction)."""
+    ``arms`` and whose holes pass ``held`` (faces q_L), at the speed theta_dot^2 = 2 e_ref / j,
+    as three parts of weights (e_ref, sqrt(e_ref), 1) (:func:`frozen_energy`): the continued
+    loads' friction ``rho_w g K A R arms (A R arms theta_dot - held)^2``
+    (:func:`_continued_friction`; without a hole :func:`windpump.loads.faces_load`'s)."""
     real = machine.real
     q = real.AR * arms
-    return real.rho_g * real.friction * q * q * q * (2.0 * e_ref / j)
+    k = real.rho_g * real.friction
+    return (
+        k * q * q * q * (2.0 / j),
+        -2.0 * k * q * q * held * math.sqrt(2.0 / j),
+        k * q * held * held,
+    )
+
+
+@kernel
+def _weighted(weights, parts):
+    """weights . parts: the frozen friction's (or its C's) value at the weights of an e_ref."""
+    return weights[0] * parts[0] + weights[1] * parts[1] + weights[2] * parts[2]
 
 
 @kernel
 def friction_density(theta, segment, machine):
-    """c(theta) [1/rad]: the frozen friction's torque per unit e_ref, over I_eff, at theta."""
+    """c(theta) [1/rad]: the frozen friction's torque over I_eff at theta, in its three parts
+    (:func:`_frozen_parts`)."""
     real = machine.real
     squares = arms = 0.0
     for k in range(machine.cylinders):
@@ -608,35 +696,50 @@ def friction_density(theta, segment, machine):
         if delivering_face(segment, k, machine) != NEITHER:
             arms += abs(a)
     j = 1.0 + real.mass_ratio * squares
-    return _frozen_friction(arms, j, 1.0, machine) * machine.inv_I_eff
+    first, second, third = _frozen_parts(arms, j, _held(segment, machine), machine)
+    return first * machine.inv_I_eff, second * machine.inv_I_eff, third * machine.inv_I_eff
 
 
 @kernel
 def friction_between(a, b, segment, machine):
     """int_a^b c(theta) dtheta [-] inside a segment (where c is smooth: no face starts or stops
-    inside), by Gauss-Legendre on equal pieces, as many as the rod's ratio asks."""
+    inside), by Gauss-Legendre on equal pieces, as many as the rod's ratio asks: C's three
+    parts (:func:`_frozen_parts`)."""
     reach = math.acosh(machine.L_over_R)  # how far off the real axis Eq. (1) is analytic
     pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
     length = (b - a) / pieces
-    total = 0.0
+    first = second = third = 0.0
     for p in range(pieces):
         start = a + p * length
         if length <= min(FOUR_POINTS * reach, LONGEST_FOUR):
             x, w = GAUSS4
             for q in range(4):
-                total += w[q] * friction_density(start + x[q] * length, segment, machine)
+                c = friction_density(start + x[q] * length, segment, machine)
+                first, second, third = (
+                    first + w[q] * c[0],
+                    second + w[q] * c[1],
+                    third + w[q] * c[2],
+                )
         else:
             x, w = GAUSS8
             for q in range(8):
-                total += w[q] * friction_density(start + x[q] * length, segment, machine)
-    return total * length
+                c = friction_density(start + x[q] * length, segment, machine)
+                first, second, third = (
+                    first + w[q] * c[0],
+                    second + w[q] * c[1],
+                    third + w[q] * c[2],
+                )
+    return first * length, second * length, third * length
 
 
-def fill_friction(rows, theta, h, c_at, known, segment, machine):
-    """Write C at a sub-step's 7 stage nodes into ``rows[:, 7]``, from ``c_at`` = C(theta), once
-    ``rows`` holds the nodes' rows (:func:`fill_row`); nothing for the ideal machine (zeros
-    without a rising main). ``known`` is (an angle at or past the sub-step's end, C there), from
-    the tables, or (NaN, 0.0)."""
+def fill_friction(rows, theta, h, c_at, known, exact, segment, machine):
+    """Write C at a sub-step's 7 stage nodes into the rows' :data:`C_PARTS` columns, from
+    ``c_at`` = C(theta), once ``rows`` holds the nodes' rows (:func:`fill_row`); nothing for the
+    ideal machine (zeros without a rising main). ``known`` is (an angle at or past the sub-step's
+    end, C there), from the tables, or (NaN, zeros): :func:`not_known`. ``exact``: the inner
+    nodes' C by Gauss-Legendre (a table's, built once a run), else by the polynomial through c
+    at the nodes; and C's moment over the sub-step (:func:`_friction_moment`) in the last row's
+    :data:`M_PARTS` columns."""
 
 
 def _interpolatory_weights():
@@ -656,40 +759,150 @@ def _interpolatory_weights():
 INTERPOLATORY = _interpolatory_weights()
 
 
+def _moment_weights():
+    """v[k]: int_0^1 (1 - x) p(x) dx for the polynomial p through a function's values at the
+    6 distinct nodes, per value: exact for degree 5 (:func:`_friction_moment`'s off the
+    tables)."""
+    nodes = NODES[:6]
+    powers = np.arange(6)
+    moments = 1.0 / (powers + 1) - 1.0 / (powers + 2)  # int_0^1 (1 - x) x^p dx
+    return tuple(float(v) for v in np.linalg.solve(np.vander(nodes, increasing=True).T, moments))
+
+
+MOMENT = _moment_weights()
+
+
+def _gauss8_inner_weights():
+    """W[s][k]: the integral from 0 to stage node s (1 to 4) of the polynomial through a
+    function's values at the 8 Gauss-Legendre points of [0, 1], per value: exact for degree 7
+    (:func:`_fill_exactly`)."""
+    points = np.array(GAUSS8[0])
+    powers = np.arange(1, 9)
+    vandermonde = np.vander(points, increasing=True)
+    return tuple(
+        tuple(float(v) for v in np.linalg.solve(vandermonde.T, target**powers / powers))
+        for target in NODES[1:5]
+    )
+
+
+GAUSS8_INNER = _gauss8_inner_weights()
+
+
 @kernel
-def _density_of_row(row, machine):
-    """c at a stage node from its row (j, then the delivering faces' |lever arms|)."""
-    arms = 0.0
-    for k in range(machine.cylinders):
-        arms += row[1 + k]
-    return _frozen_friction(arms, row[0], 1.0, machine) * machine.inv_I_eff
+def _density_at(rows, stage, machine):
+    """c's three parts at a stage node, from its row's (columns 12, 14, 15: :func:`_row_extras`)."""
+    scale = machine.inv_I_eff
+    return rows[stage, 12] * scale, rows[stage, 14] * scale, rows[stage, 15] * scale
 
 
-def _fill_friction(rows, theta, h, c_at, known, segment, machine):
+@kernel
+def _fill_part(rows, part, h, c_at, densities, end):
+    """Column ``C_PARTS[part]`` of a sub-step's rows: c_at at its start, the polynomial through
+    the densities at its inner nodes, ``end`` at its end."""
+    column = C_PARTS[part]
+    c0, c1, c2, c3, c4, c5 = densities
+    rows[0, column] = c_at
+    for stage in range(1, 5):
+        w = INTERPOLATORY[stage - 1]
+        rows[stage, column] = c_at + h * (
+            w[0] * c0 + w[1] * c1 + w[2] * c2 + w[3] * c3 + w[4] * c4 + w[5] * c5
+        )
+    rows[5, column] = rows[6, column] = end
+
+
+def _fill_friction(rows, theta, h, c_at, known, exact, segment, machine):
     # The end's C enters the state: Gauss-Legendre. The inner nodes' C only moves the stages'
     # speeds, whose rates depend on it weakly (~1e-4 of it per radian at the seed's speed):
     # the polynomial through c at the nodes (rows filled) is ample.
     if machine.real.friction == 0.0:
         for stage in range(7):
-            rows[stage, 7] = 0.0
+            for column in C_PARTS:
+                rows[stage, column] = 0.0
+        for column in M_PARTS:
+            rows[6, column] = 0.0
         return
-    c0, c1, c2 = (
-        _density_of_row(rows[0], machine),
-        _density_of_row(rows[1], machine),
-        _density_of_row(rows[2], machine),
-    )
-    c3, c4, c5 = (
-        _density_of_row(rows[3], machine),
-        _density_of_row(rows[4], machine),
-        _density_of_row(rows[5], machine),
-    )
-    rows[0, 7] = c_at
-    for stage in range(1, 5):
-        w = INTERPOLATORY[stage - 1]
-        rows[stage, 7] = c_at + h * (
-            w[0] * c0 + w[1] * c1 + w[2] * c2 + w[3] * c3 + w[4] * c4 + w[5] * c5
-        )
-    rows[5, 7] = rows[6, 7] = _friction_at_end(theta, h, c_at, known, segment, machine)
+    nodes = (
+        _density_at(rows, 0, machine), _density_at(rows, 1, machine),
+        _density_at(rows, 2, machine), _density_at(rows, 3, machine),
+        _density_at(rows, 4, machine), _density_at(rows, 5, machine),
+    )  # fmt: skip
+    end = _friction_at_end(theta, h, c_at, known, segment, machine)
+    if exact:  # a tabled sub-step's: once a run, and as the longest sub-steps need
+        _fill_exactly(rows, theta, h, c_at, end, segment, machine)
+        return
+    for part in range(3):
+        densities = (
+            nodes[0][part], nodes[1][part], nodes[2][part],
+            nodes[3][part], nodes[4][part], nodes[5][part],
+        )  # fmt: skip
+        _fill_part(rows, part, h, c_at[part], densities, end[part])
+        v = MOMENT
+        rows[6, M_PARTS[part]] = (h * h) * (
+            v[0] * densities[0] + v[1] * densities[1] + v[2] * densities[2]
+            + v[3] * densities[3] + v[4] * densities[4] + v[5] * densities[5]
+        )  # fmt: skip
+
+
+@kernel
+def _friction_moment(a, b, segment, machine):
+    """int_a^b C dtheta - C(a) (b - a) = int_a^b (b - s) c(s) ds [rad] inside a segment, in C's
+    three parts, by Gauss-Legendre (:func:`friction_between`'s pieces): what the time's frozen
+    ripple takes of the main's frozen friction (:func:`time_back`)."""
+    reach = math.acosh(machine.L_over_R)
+    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
+    length = (b - a) / pieces
+    first = second = third = 0.0
+    x, w = GAUSS8
+    for p in range(pieces):
+        start = a + p * length
+        for q in range(8):
+            s = start + x[q] * length
+            c = friction_density(s, segment, machine)
+            weight = w[q] * (b - s)
+            first, second, third = (
+                first + weight * c[0],
+                second + weight * c[1],
+                third + weight * c[2],
+            )
+    return first * length, second * length, third * length
+
+
+@kernel
+def _fill_exactly(rows, theta, h, c_at, end, segment, machine):
+    """C at a sub-step's inner nodes from c at the 8 Gauss-Legendre points of the sub-step (the
+    polynomial through them, integrated: :data:`GAUSS8_INNER`) and C's moment over it (their
+    quadrature), where one piece of :func:`friction_between` spans the sub-step; else by that
+    quadrature from its start to each node."""
+    reach = math.acosh(machine.L_over_R)
+    one_piece = h <= min(LONGEST_PIECE, EIGHT_POINTS * reach)
+    x, w = GAUSS8
+    densities = np.empty((8, 3))
+    if one_piece:
+        for k in range(8):
+            densities[k, 0], densities[k, 1], densities[k, 2] = friction_density(
+                theta + x[k] * h, segment, machine
+            )
+    for part in range(3):
+        column = C_PARTS[part]
+        rows[0, column] = c_at[part]
+        rows[5, column] = rows[6, column] = end[part]
+        if one_piece:
+            moment = 0.0
+            for k in range(8):
+                moment += w[k] * (1.0 - x[k]) * densities[k, part]
+            rows[6, M_PARTS[part]] = h * h * moment
+            for stage in range(1, 5):
+                inner = 0.0
+                for k in range(8):
+                    inner += GAUSS8_INNER[stage - 1][k] * densities[k, part]
+                rows[stage, column] = c_at[part] + h * inner
+    if not one_piece:
+        for stage in range(1, 5):
+            more = friction_between(theta, theta + NODES[stage] * h, segment, machine)
+            for part in range(3):
+                rows[stage, C_PARTS[part]] = c_at[part] + more[part]
+        moment = _friction_moment(theta, theta + h, segment, machine)
+        rows[6, M_PARTS[0]], rows[6, M_PARTS[1]], rows[6, M_PARTS[2]] = moment
 
 
 @kernel
@@ -702,87 +915,124 @@ def _friction_at_end(theta, h, c_at, known, segment, machine):
     if abs(anchor - end) <= 1e-12 * max(1.0, abs(anchor)):
         return c_anchor
     if end < anchor < end + h:
-        return c_anchor - friction_between(end, anchor, segment, machine)
-    return c_at + friction_between(theta, end, segment, machine)
+        back = friction_between(end, anchor, segment, machine)
+        return c_anchor[0] - back[0], c_anchor[1] - back[1], c_anchor[2] - back[2]
+    more = friction_between(theta, end, segment, machine)
+    return c_at[0] + more[0], c_at[1] + more[1], c_at[2] + more[2]
 
 
-_entry(fill_friction)(lambda rows, theta, h, c_at, known, segment, machine: None, _fill_friction)
+_entry(fill_friction)(
+    lambda rows, theta, h, c_at, known, exact, segment, machine: None, _fill_friction
+)
 
 
 def friction_since(theta_i, theta, c_at, segment, machine):
-    """C(theta) from C(theta_i) = c_at [-] (0.0 for the ideal machine, or without a main)."""
+    """C(theta) from C(theta_i) = c_at [-] (0.0 for the ideal machine; zeros without a main)."""
 
 
 def _friction_since(theta_i, theta, c_at, segment, machine):
     if machine.real.friction == 0.0:
-        return 0.0
-    return c_at + friction_between(theta_i, theta, segment, machine)
+        return 0.0, 0.0, 0.0
+    more = friction_between(theta_i, theta, segment, machine)
+    return c_at[0] + more[0], c_at[1] + more[1], c_at[2] + more[2]
 
 
 _entry(friction_since)(lambda theta_i, theta, c_at, segment, machine: 0.0, _friction_since)
 
 
+def no_friction(machine):
+    """C where a segment begins: 0.0 for the ideal machine, the real machine's three parts."""
+
+
+_entry(no_friction)(lambda machine: 0.0, lambda machine: (0.0, 0.0, 0.0))
+
+
+def not_known(machine):
+    """No tabled C to start from (:func:`fill_friction`): (NaN, :func:`no_friction`)."""
+
+
+_entry(not_known)(lambda machine: (math.nan, 0.0), lambda machine: (math.nan, (0.0, 0.0, 0.0)))
+
+
+def friction_parts(C, machine):
+    """C as the three numbers of a row's :data:`C_PARTS` columns (the ideal machine's C, 0.0,
+    and two zeros)."""
+
+
+_entry(friction_parts)(lambda C, machine: (C, 0.0, 0.0), lambda C, machine: C)
+
+
 def frozen_energy(u, machine):
-    """e_ref for a split that begins at energy u [J/(kg m^2)]: u with a rising main, else 0.0."""
+    """The weights of a split that begins at energy u [J/(kg m^2)] (:func:`_frozen_parts`): (u,
+    sqrt(u), 1) with a rising main, else zeros (the ideal machine's: 0.0)."""
 
 
 _entry(frozen_energy)(
-    lambda u, machine: 0.0, lambda u, machine: u if machine.real.friction != 0.0 else 0.0
+    lambda u, machine: 0.0,
+    lambda u, machine: (u, math.sqrt(u), 1.0) if machine.real.friction != 0.0 else (0.0, 0.0, 0.0),
 )
 
 
 def frozen_start(u, work, e_ref, c_at, machine):
     """x0 where a split begins at energy u, the conservative work there being ``work``:
-    ``u - work``, and for the real machine plus the frozen friction's work e_ref C (C = c_at)."""
+    ``u - work``, and for the real machine plus the frozen friction's work (C = c_at at the
+    weights e_ref: :func:`frozen_energy`)."""
 
 
 _entry(frozen_start)(
     lambda u, work, e_ref, c_at, machine: u - work,
-    lambda u, work, e_ref, c_at, machine: u - (work - e_ref * c_at),
+    lambda u, work, e_ref, c_at, machine: u - (work - _weighted(e_ref, c_at)),
 )
 
 
 def less_frozen(work, e_ref, C, machine):
-    """The aux at a node: the conservative work there, less e_ref C for the real machine."""
+    """The aux at a node: the conservative work there, less the frozen friction's work (C at
+    the weights e_ref) for the real machine."""
 
 
 _entry(less_frozen)(
-    lambda work, e_ref, C, machine: work, lambda work, e_ref, C, machine: work - e_ref * C
+    lambda work, e_ref, C, machine: work,
+    lambda work, e_ref, C, machine: work - _weighted(e_ref, C),
 )
 
 
-def friction_at(value, machine):
-    """C at a stage node, ``value`` being its row's column 7; 0.0 for the ideal machine (whose
-    rows hold no C). Given the number, not the rows: an array handed to a helper, even inlined,
+def friction_at(first, second, third, machine):
+    """C at a stage node, its row's :data:`C_PARTS` columns; 0.0 for the ideal machine (whose
+    rows hold no C). Given the numbers, not the rows: an array handed to a helper, even inlined,
     costs a reference-count pair per call."""
 
 
-_entry(friction_at)(lambda value, machine: 0.0, lambda value, machine: value)
+_entry(friction_at)(
+    lambda first, second, third, machine: 0.0,
+    lambda first, second, third, machine: (first, second, third),
+)
 
 
-def frozen_work(W, e_ref, dC, machine):
-    """The work quadratures with the frozen friction's work over a change dC of C added to the
-    friction and the excess load, ``e_ref I_eff dC`` [J]; the ideal machine's W as it is."""
+def frozen_work(W, e_ref, C, c_at, machine):
+    """The work quadratures with the frozen friction's work from C = c_at to C added to the
+    friction and the excess load, ``I_eff (weights . dC)`` [J]; the ideal machine's W as it
+    is."""
 
 
-def _frozen_work(W, e_ref, dC, machine):
-    work = e_ref * dC / machine.inv_I_eff
+def _frozen_work(W, e_ref, C, c_at, machine):
+    dC = (C[0] - c_at[0], C[1] - c_at[1], C[2] - c_at[2])
+    work = _weighted(e_ref, dC) / machine.inv_I_eff
     return W[0], W[1], W[2] + work, W[3] + work
 
 
-_entry(frozen_work)(lambda W, e_ref, dC, machine: W, _frozen_work)
+_entry(frozen_work)(lambda W, e_ref, C, c_at, machine: W, _frozen_work)
 
 
 def frozen_record(e_ref, c_at, W_new, frozen_time, j_at, machine):
     """What the recorders need of a sub-step's frozen friction and ripple: None for the ideal
-    machine, else (e_ref, e_ref I_eff, C where the sub-step began, the works where it ended,
-    (tau, 1 / u), (int (j - 1), int Lambda) where it began)."""
+    machine, else (the weights e_ref, I_eff, C where the sub-step began, the works where it
+    ended, (tau, 1 / u), (int (j - 1), int Lambda) where it began)."""
 
 
 _entry(frozen_record)(
     lambda e_ref, c_at, W_new, frozen_time, j_at, machine: None,
     lambda e_ref, c_at, W_new, frozen_time, j_at, machine: (
-        e_ref, e_ref / machine.inv_I_eff, c_at, W_new, frozen_time, j_at
+        e_ref, 1.0 / machine.inv_I_eff, c_at, W_new, frozen_time, j_at
     ),
 )  # fmt: skip
 
@@ -798,8 +1048,10 @@ def _grid_time(t, frozen, table, row):
         return lambda t, frozen, table, row: t
 
     def at(t, frozen, table, row):
-        (tau, inv_e), (J, X) = frozen[4], frozen[5]
-        return t + tau * ((table[2, row] - J) - (table[3, row] - X) * inv_e)
+        (tau, inv_e), (J, X, K) = frozen[4], frozen[5]
+        dK = (table[6, row] - K[0], table[7, row] - K[1], table[8, row] - K[2])
+        dX = (table[3, row] - X) - _weighted(frozen[0], dK)
+        return t + tau * ((table[2, row] - J) - dX * inv_e)
 
     return at
 
@@ -817,7 +1069,13 @@ def grid_aux(work, frozen, table, row):
 def _grid_aux(work, frozen, table, row):
     if _is_none(frozen):
         return lambda work, frozen, table, row: work
-    return lambda work, frozen, table, row: work - frozen[0] * table[1, row]
+    return lambda work, frozen, table, row: work - _weighted(frozen[0], _grid_c(table, row))
+
+
+@kernel
+def _grid_c(table, row):
+    """C's three parts at a grid angle (:func:`inertia_table`'s rows 1, 4 and 5)."""
+    return table[1, row], table[4, row], table[5, row]
 
 
 def grid_works(W, frozen, table, row):
@@ -831,7 +1089,8 @@ def _grid_works(W, frozen, table, row):
         return lambda W, frozen, table, row: W
 
     def works(W, frozen, table, row):
-        extra = frozen[1] * (table[1, row] - frozen[2])
+        C, c_at = _grid_c(table, row), frozen[2]
+        extra = frozen[1] * _weighted(frozen[0], (C[0] - c_at[0], C[1] - c_at[1], C[2] - c_at[2]))
         return W[0], W[1], W[2] + extra, W[3] + extra
 
     return works
@@ -848,10 +1107,10 @@ def _at_time(work, W, frozen, theta_i, theta, segment, machine):
         return lambda work, W, frozen, theta_i, theta, segment, machine: (work, W)
 
     def at(work, W, frozen, theta_i, theta, segment, machine):
-        e_ref, e_ref_I, c_at, _, _, _ = frozen
+        e_ref, I_eff, c_at, _, _, _ = frozen
         C = friction_since(theta_i, theta, c_at, segment, machine)
-        extra = e_ref_I * (C - c_at)
-        return work - e_ref * C, (W[0], W[1], W[2] + extra, W[3] + extra)
+        extra = I_eff * _weighted(e_ref, (C[0] - c_at[0], C[1] - c_at[1], C[2] - c_at[2]))
+        return work - _weighted(e_ref, C), (W[0], W[1], W[2] + extra, W[3] + extra)
 
     return at
 
@@ -868,28 +1127,28 @@ def _end_works(y, frozen):
 
 
 def grid_inertias(theta, segment, machine):
-    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C, int
-    (j - 1) and int Lambda since the segment began."""
+    """At a grid angle: J / I_eff (the ideal machine: 1.0), and for the real machine C's first
+    part, int (j - 1) and int Lambda since the segment began, and C's other two parts."""
 
 
 def _grid_inertias(theta, segment, machine):
+    C = friction_since(segment_start(segment, machine), theta, (0.0, 0.0, 0.0), segment, machine)
+    K = inertia_since(theta, segment, machine)[2]
     return (
-        inertia_ratio(theta, machine),
-        friction_since(segment_start(segment, machine), theta, 0.0, segment, machine),
-        _inertia_since(theta, segment, machine),
-        _lambda_since(theta, segment, machine),
-    )
+        inertia_ratio(theta, machine), C[0], _inertia_since(theta, segment, machine),
+        _lambda_since(theta, segment, machine), C[1], C[2], K[0], K[1], K[2],
+    )  # fmt: skip
 
 
 _entry(grid_inertias)(lambda theta, segment, machine: 1.0, _grid_inertias)
 
 
 def inertia_table(rows, machine):
-    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (4, rows)."""
+    """Room for :func:`grid_inertias` at ``rows`` grid angles: (rows,), or (9, rows)."""
 
 
 _entry(inertia_table)(
-    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((4, rows))
+    lambda rows, machine: np.empty(rows), lambda rows, machine: np.empty((9, rows))
 )
 
 
@@ -907,7 +1166,9 @@ def _set_grid_inertia(table, row, values):
         return set_one
 
     def set_two(table, row, values):
-        table[0, row], table[1, row], table[2, row], table[3, row] = values
+        table[0, row], table[1, row], table[2, row], table[3, row] = values[:4]
+        table[4, row], table[5, row] = values[4], values[5]
+        table[6, row], table[7, row], table[8, row] = values[6], values[7], values[8]
 
     return set_two
 
@@ -1181,36 +1442,44 @@ def leaky_flow_factors(theta, theta_dot, n_per_stroke, machine):
 
 
 def step_rows(rows, e_ref, faces, frozen_time, machine):
-    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each row's C
-    (column 7) times the frozen energy e_ref in its place, e_ref after it, ``faces``: the
-    delivering faces of a segment stepped on :func:`_continued_loads` (its hole's windows
-    corrected apart) or -1.0, and tau and 1 / e_ref (:func:`time_frozen`) last (the ideal
-    machine's: ``rows`` as they are). A stage's row taken
-    from the array is a view, whose reference is counted atomically as it is made and dropped:
-    14 atomic operations a step, a third of the time of the real machine's steps (eta_t
-    alone)."""
+    """The real machine's rows at a step's 7 stage nodes as a tuple of tuples, each what the
+    ANGLE domain's rates (:func:`angle_rates`) take at its node, worked out before the step so
+    that little but the speed's root lies between one stage and the next (the stages are
+    sequential: their latency is the step's cost): 2 / j, the delivering faces' |lever arms|
+    (6), e_ref C, the main's frozen friction torque at e_ref (:func:`_frozen_friction`),
+    ``faces`` (the delivering faces of a segment stepped on :func:`_continued_loads`, its hole's
+    windows corrected apart, or -1.0), tau (j - 1) and tau / u (:func:`time_frozen`), A R sum
+    |a| and faces q_L. The ideal machine's: ``rows`` as they are. A stage's row taken from the
+    array is a view, whose reference is counted atomically as it is made and dropped: 14 atomic
+    operations a step, a third of the time of the real machine's steps (eta_t alone)."""
 
 
 @kernel
-def _row(rows, stage, e_ref, faces, frozen_time):
+def _row(rows, stage, e_ref, faces, frozen_time, machine):
+    tau, per_u = frozen_time
     return (
-        rows[stage, 0], rows[stage, 1], rows[stage, 2], rows[stage, 3],
-        rows[stage, 4], rows[stage, 5], rows[stage, 6], e_ref * rows[stage, 7], e_ref, faces,
-        frozen_time[0], frozen_time[1],
+        rows[stage, 10], rows[stage, 1], rows[stage, 2], rows[stage, 3], rows[stage, 4],
+        rows[stage, 5], rows[stage, 6],
+        _weighted(e_ref, (rows[stage, 7], rows[stage, 16], rows[stage, 17])),
+        _weighted(e_ref, (rows[stage, 12], rows[stage, 14], rows[stage, 15])), faces,
+        tau * rows[stage, 13], tau * per_u, rows[stage, 11],
+        max(faces, 0.0) * machine.real.q_L,  # (faces is -1.0 where the windows are not jumped)
     )  # fmt: skip
 
 
 def _step_rows(rows, e_ref, faces, frozen_time, machine):
-    f = frozen_time
+    f, m = frozen_time, machine
     return (
-        _row(rows, 0, e_ref, faces, f), _row(rows, 1, e_ref, faces, f),
-        _row(rows, 2, e_ref, faces, f), _row(rows, 3, e_ref, faces, f),
-        _row(rows, 4, e_ref, faces, f), _row(rows, 5, e_ref, faces, f),
-        _row(rows, 6, e_ref, faces, f),
+        _row(rows, 0, e_ref, faces, f, m), _row(rows, 1, e_ref, faces, f, m),
+        _row(rows, 2, e_ref, faces, f, m), _row(rows, 3, e_ref, faces, f, m),
+        _row(rows, 4, e_ref, faces, f, m), _row(rows, 5, e_ref, faces, f, m),
+        _row(rows, 6, e_ref, faces, f, m),
     )  # fmt: skip
 
 
-_entry(step_rows)(lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows)
+_entry(step_rows)(
+    lambda rows, e_ref, faces, frozen_time, machine: rows, _step_rows, inline="always"
+)  # (spliced in: compiled apart, its 98 numbers came back through memory, 0.1 ms a run)
 
 
 def split_sizes_by_parity(m, m_other, machine):
@@ -1244,8 +1513,8 @@ _entry(work_rows)(lambda machine: 1, lambda machine: WORKS)
 
 WINDOW_TARGET = 0.05  # windows only while q_L / (A R theta_dot) (the arm at a kink) is below this
 WINDOW_DRIFT = 0.01  # ... and the energy changes by less than this share over twice their width
-WINDOW_NEWTON = 1  # Newton's iterations for a window's kink (from a first guess off by ~target^2:
-# a second moved no run of tests/real_reference.py's designs by a bit)
+WINDOW_NEWTON = 4  # at most Newton's iterations for a window's kink (:func:`_window_kink`: one
+# but for a short rod's bottom dead centre; its error moves a jump only to second order)
 WINDOW_NODES = 3  # Gauss-Legendre nodes between a window's kinks (4 moved the runs by < 1e-12;
 # 2 missed a 3 mm hole's jump at a slow crank, 0.09 rad windows, by 4e-4 of itself)
 GAUSS_WINDOW = _gauss(WINDOW_NODES)
@@ -1270,17 +1539,18 @@ def _open_windows(theta, u, slope, h, segment, delta, j, machine):
     real = machine.real
     if real.q_L == 0.0 or not u > 0.0:
         return -1.0
-    theta_dot = math.sqrt(2.0 * u / j)
-    target = real.q_L / (real.AR * theta_dot)
+    target = real.q_L / real.AR * math.sqrt(0.5 * j / u)  # q_L / (A R theta_dot)
     if not target <= WINDOW_TARGET:
         return -1.0
-    reach = 2.0 * target / (1.0 - 1.0 / machine.L_over_R)  # twice the widest window
+    ratio = machine.L_over_R
+    reach = 2.0 * target * ratio / (ratio - 1.0)  # twice the widest window
     if reach * abs(slope) > WINDOW_DRIFT * u or reach > h:
         return -1.0
     start, end = segment_start(segment, machine), segment_start(segment + 1, machine)
-    if math.floor((start + reach) / delta) * delta > start + 1e-9 * delta:
+    per_delta = 1.0 / delta
+    if math.floor((start + reach) * per_delta) * delta > start + 1e-9 * delta:
         return -1.0
-    if math.ceil((end - reach) / delta) * delta < end - 1e-9 * delta:
+    if math.ceil((end - reach) * per_delta) * delta < end - 1e-9 * delta:
         return -1.0
     faces = 0.0
     for k in range(machine.cylinders):
@@ -1304,7 +1574,8 @@ def window_edges(machine):
 @kernel
 def _edge(theta, segment, machine):
     """(conservative torque / I_eff, c, J / I_eff) at theta (:func:`window_edges`)."""
-    c = friction_density(theta, segment, machine) if machine.real.friction != 0.0 else 0.0
+    no_main = (0.0, 0.0, 0.0)
+    c = friction_density(theta, segment, machine) if machine.real.friction != 0.0 else no_main
     torque = conservative_torque(theta, segment, machine) * machine.inv_I_eff
     return torque, c, _inertia_ratio(theta, machine)
 
@@ -1325,7 +1596,7 @@ _entry(window_edges)(
 
 def energy_slope(rate, e_ref, edge, machine):
     """de/dtheta [J/(kg m^2) per rad] at a segment's edge (:func:`window_edges`' ``edge``)
-    where x0's rate is ``rate``: e = x0 + Lambda - e_ref C, for a leak hole's windows
+    where x0's rate is ``rate``: e = x0 + Lambda - (C at the weights e_ref), for a leak hole's windows
     (:func:`open_windows`, :func:`window_jump`); 0.0 without a hole (the ideal machine, a tight
     piston), which has no windows."""
 
@@ -1335,52 +1606,177 @@ def _energy_slope(rate, e_ref, edge, machine):
         return 0.0
     slope = rate + edge[0]
     if machine.real.friction != 0.0:
-        slope -= e_ref * edge[1]
+        slope -= _weighted(e_ref, edge[1])
     return slope
 
 
 _entry(energy_slope)(lambda rate, e_ref, edge, machine: 0.0, _energy_slope)
 
 
-@kernel
-def _window_widths(theta, e, slope, side, segment, j, machine):
+# A window's angles are counted from its dead centre, s (a few hundredths of a radian): each
+# node's sin s and cos s from their Taylor series, and each cylinder's arm there by the angle
+# addition from its phase at the segment's edge (a multiple of pi / n, worked out once a
+# window), with no sincos (a window's kink and 3 nodes took 4 of the real machine's 7 % in
+# it) and no round-off of the crank's angle (1e-12 rad after 600 s of a seed example's run).
+SMALL_ANGLE = 0.25  # |s| up to which a window's sin s and cos s are Taylor's (:func:`_sin_cos`)
+
+
+@inline_kernel
+def _sin_cos(s):
+    """(sin s, cos s) [-] of an angle s [rad] off a dead centre: for |s| <= SMALL_ANGLE (every
+    window but a very short rod's) their Taylor series to s^11 and s^12, whose next terms are
+    below 1e-17 of them there; math's beyond."""
+    if not abs(s) <= SMALL_ANGLE:
+        return math.sin(s), math.cos(s)
+    z = s * s
+    sin = s + s * z * (
+        -1.0 / 6.0 + z * (1.0 / 120.0 + z * (-1.0 / 5040.0 + z * (1.0 / 362880.0 - z / 39916800.0)))
+    )
+    cos = 1.0 + z * (
+        -0.5
+        + z * (
+            1.0 / 24.0
+            + z * (-1.0 / 720.0 + z * (1.0 / 40320.0 + z * (-1.0 / 3628800.0 + z / 479001600.0)))
+        )
+    )  # fmt: skip
+    return sin, cos
+
+
+@inline_kernel
+def _arm_of(sin, cos, L_over_R):
+    """Eq. (1)'s lever arm (:func:`~.equations.lever_arm`) [-] of the angle whose sine and
+    cosine are given, and its derivative (:func:`~.equations.lever_arm_slope`) [-]."""
+    inv_r = 1.0 / math.sqrt(L_over_R * L_over_R - sin * sin)
+    q = cos * inv_r
+    arm = sin * (1.0 + q)
+    slope = cos + (cos * cos - sin * sin) * inv_r + sin * sin * q * q * inv_r
+    return arm, slope
+
+
+@inline_kernel
+def _edge_phases(edge, segment, rows, machine):
+    """At the segment's edge ``edge`` pi / n, for each cylinder k: in ``rows[4, k]`` and
+    ``rows[5, k]`` the sine and cosine of its angle there, a multiple of pi / n (exact at a dead
+    centre); in ``rows[3, k]`` 1.0 if its face delivers in the segment, else 0.0; in
+    ``rows[2, k]`` 1.0 (-1.0) if that face has its top (bottom) dead centre there, else 0.0.
+    Returns how many delivering faces have their dead centre there."""
+    n = machine.cylinders
+    at_dead_centre = 0
+    for k in range(n):
+        p = (edge - 2 * k) % (2 * n)  # the angle p pi / n, in [0, 2 pi)
+        delivers = delivering_face(segment, k, machine) != NEITHER
+        rows[3, k] = 1.0 if delivers else 0.0
+        rows[2, k] = 0.0
+        if p == 0 or p == n:
+            rows[4, k], rows[5, k] = 0.0, 1.0 if p == 0 else -1.0
+            if delivers:
+                rows[2, k] = rows[5, k]
+                at_dead_centre += 1
+        else:
+            rows[4, k], rows[5, k] = math.sin(p * math.pi / n), math.cos(p * math.pi / n)
+    return at_dead_centre
+
+
+@inline_kernel
+def _window_kink(target, top, L_over_R, iterations):
+    """The distance s [rad] from a dead centre (the top one, phi = 0, or the bottom one) where
+    the lever arm's size |a| reaches ``target`` (< 1): from its Taylor series to s^5, |a| = c1 s
+    + c3 s^3 + c5 s^5 + ..., inverted, then at most ``iterations`` of Newton's method, each squaring the error,
+    until a step is below 1e-8 of s (from O(target^7), one is enough but next to a short rod's
+    bottom dead centre, whose arm grows as (1 - R/L) s)."""
+    k = 1.0 if top else -1.0  # |a| = sin s (1 + k cos s / r), r = sqrt((L/R)^2 - sin^2 s)
+    inv_L = 1.0 / L_over_R
+    c1 = 1.0 + k * inv_L
+    inv_c1 = 1.0 / c1
+    inv_L2 = inv_L * inv_L
+    c3 = -c1 / 6.0 + k * inv_L * (0.5 * inv_L2 - 0.5)
+    c5 = 1.0 / 120.0 + k * inv_L * (2.0 / 15.0 + inv_L2 * (-0.5 + 0.375 * inv_L2))
+    first = target * inv_c1
+    cube = first * first * first
+    s = first + cube * inv_c1 * (-c3 + (3.0 * c3 * c3 - c1 * c5) * first * first * inv_c1)
+    if not 0.0 < s < 0.5 * math.pi:
+        s = first if first < 0.5 * math.pi else target
+    for _ in range(iterations):
+        sin, cos = _sin_cos(s)
+        arm, slope = _arm_of(k * sin, k * cos, L_over_R)
+        arm, slope = k * arm, k * slope  # |a| and its slope in s
+        step = (arm - target) / slope if slope > 0.0 else 0.0
+        if not 0.0 < s - step < 0.5 * math.pi:
+            break
+        s -= step
+        if abs(step) <= 1e-8 * s:  # the next step would be below round-off
+            break
+    return s
+
+
+@inline_kernel
+def _window_widths(e, slope, side, j, rows, machine):
     """The widths [rad] of the windows of the faces whose dead centre is the segment's start
-    (side 1) or end (side -1), theta: (the narrowest, the next wider or inf), inf where there is
-    none (at most two faces share a dead centre: a cylinder's and the opposite one's). The kink
-    is where the face's swept flow reaches q_L at the speed there, e growing linearly from theta
-    (the speed taken at the kink's first guess, from the arm's slope at the dead centre; J / I_eff
-    = j there). Newton stops after WINDOW_NEWTON iterations: the kink is where the face's flow
-    reaches q_L at the speed of e taken linear across the window, itself an approximation."""
+    (side 1) or end (side -1), as :func:`_edge_phases` wrote them in ``rows``: (the narrowest,
+    the next wider or inf), inf where there is none (at most two faces share a dead centre: a
+    cylinder's and the opposite one's). The kink is where the face's swept flow reaches q_L at
+    the speed there, e growing linearly from the edge (the speed taken at the kink's first
+    guess, from the arm's slope at the dead centre; J / I_eff = j there). Newton stops after
+    WINDOW_NEWTON iterations (:func:`_window_kink`): the kink is where the face's flow reaches
+    q_L at the speed of e taken linear across the window, itself an approximation."""
     real = machine.real
-    width = math.pi / machine.cylinders
-    middle = segment_start(segment, machine) + 0.5 * width
+    q = real.q_L / real.AR  # the arm at a kink times the crank's speed [rad/s]
+    half_j = 0.5 * j
+    guess = q * math.sqrt(half_j / e)  # the arm at a kink, at the edge's speed
     first = second = math.inf
     for k in range(machine.cylinders):
-        if delivering_face(segment, k, machine) == NEITHER:
-            continue
-        lag = phase(k, machine)
-        half = math.floor(
-            (middle - lag) / math.pi
-        )  # the face's half turn (:func:`_next_leak_kink`)
-        edge = lag + (half if side > 0 else half + 1) * math.pi
-        if abs(edge - theta) > 1e-9 * width:
-            continue
-        dead_centre = math.pi * (half % 2)
-        sign = 1.0 if half % 2 == 0 else -1.0
-        at_top = (dead_centre == 0.0) == (side > 0)
-        arm_slope = 1.0 + 1.0 / machine.L_over_R if at_top else 1.0 - 1.0 / machine.L_over_R
-        guess = real.q_L / (real.AR * math.sqrt(2.0 * e / j))
-        guess /= arm_slope
-        theta_dot = math.sqrt(2.0 * (e + side * slope * guess) / j)
-        target = real.q_L / (real.AR * theta_dot)
-        psi = _leak_kink_near(dead_centre, side > 0, target, sign, machine.L_over_R, WINDOW_NEWTON)
-        if side < 0:
-            psi = math.pi - psi
+        if rows[2, k] == 0.0:
+            continue  # its dead centre is not the edge, or it does not deliver
+        top = rows[2, k] > 0.0
+        c1 = 1.0 + (1.0 if top else -1.0) * (1.0 / machine.L_over_R)  # the arm's slope there
+        target = q * math.sqrt(half_j / (e + side * slope * guess * (1.0 / c1)))
+        psi = _window_kink(target, top, machine.L_over_R, WINDOW_NEWTON)
         if psi < first:
             first, second = psi, first
         elif first < psi < second:
             second = psi
     return first, second
+
+
+@inline_kernel
+def _window_arms(row, sin_s, cos_s, rows, machine):
+    """:func:`_sums`' row at the angle s past the edge whose phases :func:`_edge_phases` wrote
+    into ``rows`` (sin s and cos s given): J / I_eff, and |lever arm| of each delivering face."""
+    squares = 0.0
+    for k in range(machine.cylinders):
+        sin = rows[4, k] * cos_s + rows[5, k] * sin_s
+        cos = rows[5, k] * cos_s - rows[4, k] * sin_s
+        a = _arm_of(sin, cos, machine.L_over_R)[0]
+        squares += a * a
+        row[1 + k] = abs(a) * rows[3, k]
+    row[0] = 1.0 + machine.real.mass_ratio * squares
+
+
+@inline_kernel
+def _window_loads(theta_dot, row, faces, machine):
+    """:func:`_face_loads` less :func:`_continued_loads` at crank speed theta_dot [rad/s] on the
+    faces whose arms ``row`` holds: (the load torque's [N m], the delivered flow's, continued
+    less true [m^3/s], and the friction's, h_f Q less h_f Q continued [m^4/s]). Their twin for
+    a window's nodes, with a hole (q_L > 0): :func:`~.equations.face_pressure`'s two branches
+    as a branch (its form without one, for numpy, cost a window 25 ns)."""
+    real = machine.real
+    Q = arms = 0.0
+    for k in range(machine.cylinders):
+        Q += max(real.AR * row[1 + k] * theta_dot - real.q_L, 0.0)  # :func:`delivered_flow`
+        arms += row[1 + k]
+    h_f = real.friction * Q * Q
+    Q_c = real.AR * arms * theta_dot - faces * real.q_L
+    h_f_c = real.friction * Q_c * Q_c
+    heads = 0.0  # sum over the faces of their head times their arm [m]
+    for k in range(machine.cylinders):
+        u = real.AR * row[1 + k] * theta_dot
+        if u > real.q_L:  # delivering: the head and the main's friction
+            heads += (real.h + h_f) * row[1 + k]
+        else:  # what drives u through the hole
+            heads += real.h * (u / real.q_L) * (u / real.q_L) * row[1 + k]
+    load = real.rho_g * real.AR * heads
+    load_c = (machine.load_torque + real.rho_g * h_f_c * real.AR) * arms
+    return load - load_c, Q_c - Q, h_f * Q - h_f_c * Q_c
 
 
 def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
@@ -1393,39 +1789,39 @@ def window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
     I_eff; the time's is int (1/theta_dot_true - 1/theta_dot) over the window, to first order in
     e's difference -side int s f_e / (2 e theta_dot) ds (s from the dead centre). Gauss-Legendre
     (WINDOW_NODES) between the kinks (the integrand is smooth between them). ``j`` is J / I_eff
-    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, the last
+    at theta (:func:`window_edges`). ``rows`` is scratch (7 rows of ROW numbers, rows 3 to 6
     written): one allocated per call cost the seed with a hole 0.1 us a window, and its last
     row handed as a view an atomic reference pair."""
 
 
 @kernel
 def _window_jump(theta, e, slope, side, segment, faces, j, rows, machine):
-    real = machine.real
     row = rows[6]
+    if _edge_phases(segment if side > 0 else segment + 1, segment, rows, machine) == 0:
+        return 0.0, 0.0, (0.0, 0.0, 0.0, 0.0)  # no delivering face's dead centre: no window
     x, w = GAUSS_WINDOW
-    jump = dt = leaked = friction = excess = 0.0
+    dt = leaked = friction = excess = 0.0
     low = 0.0
-    widths = _window_widths(theta, e, slope, side, segment, j, machine)
-    for high in widths:
+    for high in _window_widths(e, slope, side, j, rows, machine):
         if high == math.inf:
             break
         for q in range(WINDOW_NODES):
             s = low + x[q] * (high - low)
-            at = theta + side * s
             e_at = e + slope * s * side
-            _sums(row, at, segment, machine, False)
+            inv_2e = 0.5 / e_at
+            sin_s, cos_s = _sin_cos(side * s)
+            _window_arms(row, sin_s, cos_s, rows, machine)
             theta_dot = math.sqrt(2.0 * e_at / row[0])
-            load, Q, h_f, _ = _face_loads(theta_dot, row, machine)
-            load_c, Q_c, h_f_c, _ = _continued_loads(theta_dot, row, faces, machine)
+            load, Q, h_f_Q = _window_loads(theta_dot, row, faces, machine)
             weight = w[q] * (high - low)
-            excess += weight * (load - load_c)
-            leaked += weight * (Q_c - Q) / theta_dot
-            friction += weight * real.rho_g * (h_f * Q - h_f_c * Q_c) / theta_dot
-            rate = -(load - load_c) * machine.inv_I_eff
-            dt += side * weight * s * rate / (2.0 * e_at * theta_dot)
+            per_radian = weight * theta_dot * row[0] * inv_2e  # weight / theta_dot
+            excess += weight * load
+            leaked += per_radian * Q
+            friction += per_radian * h_f_Q
+            dt -= side * per_radian * s * load * inv_2e
         low = high
-    jump = -excess * machine.inv_I_eff
-    return jump, dt, (0.0, leaked, friction, excess)
+    inv_I_eff = machine.inv_I_eff
+    return -excess * inv_I_eff, dt * inv_I_eff, (0.0, leaked, friction * machine.real.rho_g, excess)
 
 
 _entry(window_jump)(

@@ -148,7 +148,7 @@ def tabulate_segment(parity, m, machine, tables, rows, built):
 
 
 @kernel
-def stage_values(theta, h, segment, machine, aux, rows, c_at, known, exact=False):
+def stage_values(theta, h, segment, machine, aux, rows, c_at, known, exact):
     """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
     at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
     C from c_at = C(theta) in their C_PARTS columns, or from ``known``; ``exact`` for a table's:
@@ -629,7 +629,9 @@ def step_to_kink(kink, theta_i, h_step, u_free, t, W, k1, y, k7, dense, scratch,
     from where the step's continuous extension puts the kink's time (the rest of the segment
     follows in smaller sub-steps). Returns (ok, y, k7, err, dense, its length)."""
     h_step *= time_of_sample(kink, t, y[2], k1[2], k7[2], dense[1], h_step)
-    stage_values(theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, not_known(machine))
+    stage_values(
+        theta_i, h_step, segment, machine, scratch, scratch_rows, c_at, not_known(machine), False
+    )
     ok, y, k7, err, dense = dp5_step(
         ANGLE, theta_i, u_free, t, t, W, h_step, k1, stage_work(scratch),
         step_rows(scratch_rows, e_ref, -1.0, (0.0, 0.0), machine), segment, machine,
@@ -765,7 +767,7 @@ def in_angle(
                     tabled = row_tables[parity, m_seg, i, 6]
                     C = friction_at(tabled[C1], tabled[C2], tabled[C3], calm)
                     known = tabled_end(i, m_seg, first, h, end, C)
-                stage_values(theta_i, h_i, segment, machine, aux, rows, c_at, known)
+                stage_values(theta_i, h_i, segment, machine, aux, rows, c_at, known, False)
             if near_rest(k1, aux[7], h, theta_i, g, grid.delta, sample_dt, u, calm):
                 status = IN_TIME
                 break
@@ -777,7 +779,7 @@ def in_angle(
                     tabled = row_tables[parity, m_seg, i, 6]
                     C = friction_at(tabled[C1], tabled[C2], tabled[C3], calm)
                     known = tabled_end(i, m_seg, first, h, end, C)
-                stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known)
+                stage_values(theta_i, h_step, segment, machine, aux, rows, c_at, known, False)
             c_end = friction_at(rows[6, C1], rows[6, C2], rows[6, C3], calm)  # C at its end
             j_step = inertia_at(  # the time's ripple, j
                 rows[6, 8], rows[6, 9], rows[6, 0], rows[6, M1], rows[6, M2], rows[6, M3], calm

@@ -133,7 +133,8 @@ def grid_tables(n_per_stroke, machine):
 def tabulate_segment(parity, m, machine, tables, rows, built):
     """For each of m equal sub-steps of a segment of this parity: the conservative work at its 7
     stage nodes and (column 7) the conservative torque at its start [N m]; and the real machine's
-    rows at the nodes (C since the segment began in their column 7)."""
+    rows at the nodes (C since the segment began in their C_PARTS columns, exact at the inner
+    nodes: :func:`~.real.fill_friction`)."""
     start = segment_start(parity, machine)
     h = (segment_start(parity + 1, machine) - start) / m
     c_at = no_friction(machine)

@@ -1446,7 +1446,8 @@ def step_rows(rows, e_ref, faces, frozen_time, machine):
     ANGLE domain's rates (:func:`angle_rates`) take at its node, worked out before the step so
     that little but the speed's root lies between one stage and the next (the stages are
     sequential: their latency is the step's cost): 2 / j, the delivering faces' |lever arms|
-    (6), e_ref C, the main's frozen friction torque at e_ref (:func:`_frozen_friction`),
+    (6), C and the main's frozen friction torque at e_ref (:func:`_frozen_parts` at the
+    weights ``e_ref``, :func:`frozen_energy`),
     ``faces`` (the delivering faces of a segment stepped on :func:`_continued_loads`, its hole's
     windows corrected apart, or -1.0), tau (j - 1) and tau / u (:func:`time_frozen`), A R sum
     |a| and faces q_L. The ideal machine's: ``rows`` as they are. A stage's row taken from the

@@ -258,7 +258,7 @@ def _real_angle_rates(x0, t, aux, row, machine):
     # ``row`` is a stage's :func:`step_rows` tuple: everything that does not depend on the state
     # is worked out there, before the step, so that only the speed's root and a few products
     # lie between one stage and the next (the stages are sequential: their latency is the cost).
-    theta_dot = math.sqrt((x0 + (aux - row[7])) * row[0])  # x0 = e - Lambda + e_ref C
+    theta_dot = math.sqrt((x0 + (aux - row[7])) * row[0])  # x0 = e - Lambda + F, F = row[7]
     per_radian = 1.0 / theta_dot
     drive = windmill_torque_on_crank(theta_dot, wind_scale(t, machine.wind), machine)
     if row[9] >= 0.0:  # on the loads continued past the hole's windows (:func:`_continued_loads`)
@@ -269,7 +269,7 @@ def _real_angle_rates(x0, t, aux, row, machine):
         excess = load - machine.load_torque * arms - row[8]
     # The static head's load is in Lambda: only the rest of the load (friction, and a hole's
     # relief) is integrated, and so is the water lifted and the friction; of the friction, less
-    # its frozen part (at e_ref: :func:`friction_density`, row[8]), whose work e_ref C is tabulated.
+    # its frozen part (at e_ref: :func:`friction_density`, row[8]), whose work F is tabulated.
     rate = (real.eta_t * drive - excess) * machine.inv_I_eff
     leaked = row[12] - Q * per_radian  # swept less delivered: small, so accurate
     friction = real.rho_g * h_f * Q * per_radian - row[8]

@@ -504,9 +504,7 @@ def _lambda_between(a, b, segment, machine):
     is :func:`conservative_work`'s sums, each piston's x/R there worked out once for the head
     and the weights, and at the segment's start once a call (a run's grid tables and sub-step
     tables take ~10,000 nodes: 4 sincos a node and cylinder, 1 now)."""
-    reach = math.acosh(machine.L_over_R)
-    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (b - a) / pieces
+    pieces, length = _pieces(a, b, machine)
     start = segment_start(segment, machine)
     x_start = np.empty(machine.cylinders)
     for k in range(machine.cylinders):
@@ -701,13 +699,25 @@ def friction_density(theta, segment, machine):
 
 
 @kernel
+def _longest_piece(machine):
+    """The longest piece [rad] that 8 Gauss-Legendre points take (:data:`EIGHT_POINTS`)."""
+    return min(LONGEST_PIECE, EIGHT_POINTS * math.acosh(machine.L_over_R))
+
+
+@kernel
+def _pieces(a, b, machine):
+    """(How many equal pieces, their length [rad]) a quadrature from a to b takes."""
+    pieces = max(1, int(math.ceil((b - a) / _longest_piece(machine))))
+    return pieces, (b - a) / pieces
+
+
+@kernel
 def friction_between(a, b, segment, machine):
     """int_a^b c(theta) dtheta [-] inside a segment (where c is smooth: no face starts or stops
     inside), by Gauss-Legendre on equal pieces, as many as the rod's ratio asks: C's three
     parts (:func:`_frozen_parts`)."""
     reach = math.acosh(machine.L_over_R)  # how far off the real axis Eq. (1) is analytic
-    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (b - a) / pieces
+    pieces, length = _pieces(a, b, machine)
     first = second = third = 0.0
     for p in range(pieces):
         start = a + p * length
@@ -848,9 +858,7 @@ def _friction_moment(a, b, segment, machine):
     """int_a^b C dtheta - C(a) (b - a) = int_a^b (b - s) c(s) ds [rad] inside a segment, in C's
     three parts, by Gauss-Legendre (:func:`friction_between`'s pieces): what the time's frozen
     ripple takes of the main's frozen friction (:func:`time_back`)."""
-    reach = math.acosh(machine.L_over_R)
-    pieces = max(1, int(math.ceil((b - a) / min(LONGEST_PIECE, EIGHT_POINTS * reach))))
-    length = (b - a) / pieces
+    pieces, length = _pieces(a, b, machine)
     first = second = third = 0.0
     x, w = GAUSS8
     for p in range(pieces):
@@ -873,8 +881,7 @@ def _fill_exactly(rows, theta, h, c_at, end, segment, machine):
     polynomial through them, integrated: :data:`GAUSS8_INNER`) and C's moment over it (their
     quadrature), where one piece of :func:`friction_between` spans the sub-step; else by that
     quadrature from its start to each node."""
-    reach = math.acosh(machine.L_over_R)
-    one_piece = h <= min(LONGEST_PIECE, EIGHT_POINTS * reach)
+    one_piece = h <= _longest_piece(machine)
     x, w = GAUSS8
     densities = np.empty((8, 3))
     if one_piece:

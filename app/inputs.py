@@ -14,6 +14,8 @@ import param
 import windpump
 from windpump.units import MM_PER_M
 
+from .escape import as_text
+
 SEED = windpump.Design.seed_example()
 SEED_MARGIN = windpump.stall_margin(SEED)
 
@@ -256,8 +258,9 @@ def link_text(name: str, value: float | bool) -> str:
 
 
 def clipped(text: str, limit: int = 40) -> str:
-    """A key or value echoed in a notice, cut to ``limit`` characters (a link may be long)."""
-    return text if len(text) <= limit else text[: limit - 1] + "…"
+    """A key or value echoed in a notice (from a link or a file), cut to ``limit`` characters (a
+    link may be long) and shown as text, never as markup (``escape.as_text``)."""
+    return as_text(text if len(text) <= limit else text[: limit - 1] + "…")
 
 
 def _decoded(raw) -> str:

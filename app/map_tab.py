@@ -32,6 +32,7 @@ from bokeh.plotting.contour import contour_data
 import windpump
 from windpump.units import SECONDS_PER_DAY
 
+from .escape import as_text
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
 from .page import pane_height_css
@@ -509,10 +510,10 @@ class MapTab(Tab):
         """Draw the map and mark ``outcome`` of ``design`` (the newest asked for); one that
         cannot be mapped says why."""
         if isinstance(outcome, Exception):
-            said = str(outcome)
+            said = as_text(outcome)
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
                 log.error("mapping the design failed", exc_info=outcome)
-                said = f"Something went wrong ({type(outcome).__name__}: {outcome})."
+                said = f"Something went wrong ({type(outcome).__name__}: {as_text(outcome)})."
             self.failed(said)
             return
         mapped, marks = outcome

@@ -14,6 +14,7 @@ import param
 import windpump
 
 from . import serving
+from .escape import as_text
 from .inputs import FORMATS, SEED, PumpInputs, link_text
 from .styles import TEXT
 
@@ -231,12 +232,13 @@ CORE_TO_INPUT = {"L": "L_over_R", "R1": "R_dagger", "D_main": "D_main_mm", "d_le
 def sentence(error: Exception) -> str:
     """The error's message as a sentence, in the page's symbols (``page_symbols``): capitalised,
     unless it starts with a parameter's name (``d_leak = ...`` stays as the core spells it), and
-    ending in a full stop."""
+    ending in a full stop; shown as text (``escape.as_text``: a message may echo a link's value
+    or a file's line)."""
     text = str(error)
     name = getattr(error, "name", None)
     if not (name and text.startswith(f"{name} ")):
         text = text[0].upper() + text[1:]
-    return page_symbols(text + ("" if text.endswith(".") else "."))
+    return as_text(page_symbols(text + ("" if text.endswith(".") else ".")))
 
 
 # The core's plain-text names of the quantities the page writes with its symbols (its labels: "Torque

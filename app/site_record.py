@@ -14,6 +14,7 @@ import panel as pn
 import windpump
 from windpump.labdata import check_file_size
 
+from .escape import as_text
 from .inputs import clipped
 from .serving import in_a_process
 from .site_inputs import SITES, UPLOADED
@@ -103,10 +104,10 @@ class SiteRecords:
         explained in the message and nothing changes (False)."""
         self.message.alert_type = "danger"
         if isinstance(record, Exception):
-            said = str(record)
+            said = as_text(record)
             if not isinstance(record, ValueError):  # a bug: say so, log it, keep the page alive
                 log.error("reading a weather file failed", exc_info=record)
-                said = f"{type(record).__name__}: {record}"
+                said = f"{type(record).__name__}: {as_text(record)}"
             self.message.object = f"This weather file cannot be used: {said}"
             self.message.visible = True
             return False
@@ -130,8 +131,8 @@ class SiteRecords:
     def describe(self, site: str, hub: float) -> str:
         """A line on the record: where, the station, the hub's height."""
         record = sample(site) if site != UPLOADED else self.uploaded
-        where = SITES.get(site, f"the uploaded file *{self.uploaded_name}*")
-        name = f" ({record.name})" if record is not None and record.name else ""
+        where = SITES.get(site, f"the uploaded file *{as_text(self.uploaded_name)}*")
+        name = f" ({as_text(record.name)})" if record is not None and record.name else ""
         return f"**{where}**{name}, the hub at {hub:g} m."
 
 

@@ -17,6 +17,7 @@ from bokeh.models import ColumnDataSource
 
 import windpump
 
+from .escape import as_text
 from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
@@ -174,7 +175,7 @@ class SiteTab(Tab):
         that cannot be run says why, the one drawn stays."""
         self.computing.visible = False
         if isinstance(outcome, ValueError):
-            self.failed(f"The year cannot be run: {outcome}")
+            self.failed(f"The year cannot be run: {as_text(outcome)}")
             return
         try:
             if isinstance(outcome, Exception):
@@ -183,7 +184,7 @@ class SiteTab(Tab):
                 self._draw_year(asked, outcome)
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("Site update failed")
-            self.failed(f"Something went wrong ({type(error).__name__}: {error}).")
+            self.failed(f"Something went wrong ({type(error).__name__}: {as_text(error)}).")
 
     def _draw_year(self, asked: Asked, year: Year) -> None:
         if year.lolp is not None:

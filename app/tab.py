@@ -11,6 +11,7 @@ import panel as pn
 
 import windpump
 
+from .escape import as_text
 from .keyboard import TAB_FOCUS_CSS
 from .styles import TEXT, px
 
@@ -78,7 +79,7 @@ class Tab(pn.viewable.Viewer):
                 self.draw(self.seen)
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("%s update failed", self.title)
-            self.failed(f"Something went wrong ({type(error).__name__}: {error}).")
+            self.failed(f"Something went wrong ({type(error).__name__}: {as_text(error)}).")
 
     def build(self) -> None:
         raise NotImplementedError

@@ -25,6 +25,7 @@ from windpump.wind import gusty, read_csv
 
 from .buttons import ActionButton
 from .envelope import band
+from .escape import as_text
 from .figures import palette
 from .inputs import clipped
 from .readouts import PAIR, Readout
@@ -116,7 +117,7 @@ def read_record(data: bytes | Encoded) -> windpump.wind.WindRecord | str:
         check_file_size(len(data), WIND_MAX_BYTES, what="a year of wind at one sample a minute")
         record = in_a_process(read_csv, data)
     except LabDataError as error:
-        return f"This wind file cannot be used: {error}"
+        return f"This wind file cannot be used: {as_text(error)}"
     if record.t[-1] > 400 * SECONDS_PER_DAY:
         return "This wind file is longer than 400 days; cut it shorter."
     return record
@@ -230,7 +231,7 @@ class WindTab(Tab):
             self._update_curve(design, self.inputs)
             self._update_day(design, self.inputs)
         except ValueError as error:
-            self.failed(f"The wind cannot be run: {error}")
+            self.failed(f"The wind cannot be run: {as_text(error)}")
 
     def failed(self, message: str) -> None:
         self.error.object = message
@@ -259,7 +260,7 @@ class WindTab(Tab):
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
                 log.error("the steady wind failed", exc_info=outcome)
                 said = f"{type(outcome).__name__}: {outcome}"
-            self.failed(f"The wind cannot be run: {said}")
+            self.failed(f"The wind cannot be run: {as_text(said)}")
             return
         self._drawn_curve = asked
         steady, V = outcome, asked[3]
@@ -299,7 +300,7 @@ class WindTab(Tab):
         if self.last_run is not None and _same_day(run_of, self._drawn_day):
             return  # the steady wind V moved: the day, run at V_ref in its record, is as drawn
         source = (
-            f"the measured record *{self.measured_name}*"
+            f"the measured record *{as_text(self.measured_name)}*"
             if self.measured is not None
             else f"a gusty day (seed {int(round(inputs.seed))})"
         )
@@ -333,12 +334,12 @@ class WindTab(Tab):
         """Draw the day ``outcome`` = (day, low, high) of ``run_of`` (the newest asked for); a
         refused day says why."""
         if isinstance(outcome, ValueError):
-            self.error.object = f"The day cannot be run: {outcome}"
+            self.error.object = f"The day cannot be run: {as_text(outcome)}"
             self.error.visible = True
             return
         if isinstance(outcome, Exception):  # a bug: say so, log it, keep the session alive
             log.error("running a day of wind failed", exc_info=outcome)
-            self.failed(f"The day cannot be run: {type(outcome).__name__}: {outcome}")
+            self.failed(f"The day cannot be run: {type(outcome).__name__}: {as_text(outcome)}")
             return
         day, low, high = outcome
         self.error.visible = False

@@ -21,6 +21,8 @@ from windpump_app.inputs import PRESETS, PumpInputs
 from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
+from panes import shown
+
 SEED = windpump.Design.seed_example()
 
 
@@ -322,7 +324,7 @@ def _query_pairs(query: str):
 )
 def test_a_tampered_link_is_ignored_with_a_notice(key, raw, words):
     app = Explorer(query={key: [raw], "h": [b"4"]} if key != "h" else {key: [raw]})
-    assert app.notices.visible and words in app.notices.object
+    assert app.notices.visible and words in shown(app.notices)
     assert not app.error.visible and "Running" in app.readouts.status.object
     if key != "h":
         assert app.inputs.h == 4.0  # the valid values in the same link still apply
@@ -655,7 +657,7 @@ def test_the_dark_theme_comes_from_the_link():
 )
 def test_a_link_value_the_core_refuses_is_named_and_the_page_runs_without_it(query, words, runs):
     app = Explorer(query=query)
-    assert app.notices.visible and words in app.notices.object
+    assert app.notices.visible and words in shown(app.notices)
     assert not app.error.visible and not app.stale and app.pump.results.styles["opacity"] == "1"
     assert app.inputs.design() == runs
     assert max(app.sources["speed"].data["upper"]) == pytest.approx(

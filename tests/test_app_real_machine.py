@@ -13,6 +13,8 @@ import windpump
 from windpump_app.explorer import Explorer
 from windpump_app.inputs import PRESETS, PumpInputs
 
+from panes import shown
+
 SEED = windpump.Design.seed_example()
 
 # slider -> (a value on its grid, the Design field it sets, that value in the core's SI units)
@@ -139,7 +141,7 @@ def test_the_real_machine_travels_in_the_link_and_its_defaults_stay_out():
 )
 def test_a_bad_real_machine_value_in_the_link_is_named_and_left_out(query, words):
     app = Explorer(query=query)
-    assert app.notices.visible and words in app.notices.object
+    assert app.notices.visible and words in shown(app.notices)
     assert not app.error.visible and app.inputs.design() == SEED.replace(h=5.0)
 
 

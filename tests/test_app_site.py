@@ -20,6 +20,8 @@ from windpump_app.serving import SUPERSEDED
 from windpump_app.site_inputs import RESTARTS
 from windpump_app.site_record import read_upload
 
+from panes import shown
+
 SEED = windpump.Design.seed_example()
 SITE_TAB = 4  # Wind pump, Mechanisms, Wind, Design map, Site
 
@@ -237,8 +239,8 @@ def test_an_empty_weather_file_is_refused_with_what_it_needs(app):
     app.site.upload.param.update(value=b"", filename="empty.csv")
     message = app.site.upload_message
     assert message.visible and message.object.startswith("This weather file cannot be used: ")
-    assert "TMY3 or EPW" in message.object and "wind speed [m/s]" in message.object
-    assert "time [s] or an ISO timestamp" in message.object
+    assert "TMY3 or EPW" in shown(message) and "wind speed [m/s]" in shown(message)
+    assert "time [s] or an ISO timestamp" in shown(message)
 
 
 def test_a_csv_of_timestamps_is_a_site_too(app):
@@ -384,7 +386,7 @@ def test_served_an_upload_is_read_off_the_loop_and_the_newest_file_wins(held):
     finish(held.pop())  # Greensboro's year
     app.site.upload.param.update(value=hourly_csv(3), filename="three.csv")
     message = app.site.upload_message
-    assert message.visible and message.alert_type == "info" and "three.csv" in message.object
+    assert message.visible and message.alert_type == "info" and "three.csv" in shown(message)
     app.site.upload.param.update(value=hourly_csv(5), filename="five.csv")
     assert len(held) == 2 and app.site_inputs.site == "greensboro"  # nothing read yet
     finish(held[1])  # five days

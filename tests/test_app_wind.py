@@ -15,6 +15,8 @@ from windpump.wind import gusty, read_csv
 from windpump_app.explorer import Explorer
 from windpump_app.views import BINS
 
+from panes import shown
+
 SEED = windpump.Design.seed_example()
 
 
@@ -102,7 +104,7 @@ def test_a_measured_wind_file_replaces_the_day_and_a_bad_one_is_refused(app):
     app.wind.upload.filename = "mast.csv"
     app.load_wind_data(("t [s],V [m/s]\n" + rows + "\n").encode())
     run = app.wind.last_run
-    assert run.t[-1] == 7200.0 and "mast.csv" in app.wind.day_note.object
+    assert run.t[-1] == 7200.0 and "mast.csv" in shown(app.wind.day_note)
     day = value(app, "day_litres")
     lifted = 1e3 * run.volume[-1]
     assert day == f"{litres(lifted)} L ({litres(lifted * DAY / 7200.0)} L/day at this rate)"
@@ -124,7 +126,7 @@ def test_an_empty_wind_file_is_explained_and_the_day_stays(app):
 def test_every_wind_upload_outcome_is_scrolled_into_view(app):
     rows = "\n".join(f"{60 * i},{5 + 2 * math.sin(i / 5):.3f}" for i in range(121))
     app.wind.upload.param.update(value=rows.encode(), filename="mast.csv")
-    assert "mast.csv" in app.wind.day_note.object
+    assert "mast.csv" in shown(app.wind.day_note)
     assert app.sidebar.reveal.value.split("\t")[0] in app.wind.day_note.css_classes
     app.wind.upload.param.update(value=b"0,5x\n10,6\n", filename="typo.csv")
     assert "line 1, column 2" in app.wind.upload_message.object
@@ -300,7 +302,7 @@ def test_served_nothing_of_a_day_is_computed_on_the_loop_neither_the_gusty_wind_
     explorer.wind.upload.filename = "mast.csv"
     explorer.load_wind_data(("t [s],V [m/s]\n" + rows + "\n").encode())
     run_held()
-    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in explorer.wind.day_note.object
+    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in shown(explorer.wind.day_note)
     assert calls and all(inside for _name, inside in calls)
 
 
@@ -323,7 +325,7 @@ def test_a_files_content_stays_as_the_browser_sent_it_until_the_work_reads_it(mo
     assert isinstance(explorer.wind.upload.value, Encoded) and explorer.wind.upload.value == sent
     for work, then in held:
         then(work())
-    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in explorer.wind.day_note.object
+    assert explorer.wind.last_run.t[-1] == 7200.0 and "mast.csv" in shown(explorer.wind.day_note)
     assert explorer.wind.measured.V.tolist() == read_csv(content).V.tolist()
 
 

@@ -22,6 +22,24 @@ def readable(query: dict) -> tuple[dict, list[str]]:
     ]
 
 
+def utf8_keys(query: dict) -> dict:
+    """Tornado's query arguments (``pn.state.session_args``) with their keys read as UTF-8:
+    Tornado decodes a key's bytes as Latin-1 (its values stay bytes), so ``?café=1`` came as
+    ``cafÃ©``. A key that is not UTF-8 stays as Tornado gave it.
+
+    >>> utf8_keys({"cafÃ©": [b"1"], "h": [b"3"]})
+    {'café': [b'1'], 'h': [b'3']}
+    """
+    return {_utf8(key): raw for key, raw in query.items()}
+
+
+def _utf8(key: str) -> str:
+    try:
+        return key.encode("latin-1").decode("utf-8")
+    except UnicodeError:
+        return key
+
+
 def _listed(raw) -> list:
     return list(raw) if isinstance(raw, list | tuple) else [raw]
 

@@ -13,6 +13,8 @@ from .defaults import lighter_properties
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
 from .lighter import lighter_components
+from .link import utf8_keys
+from .link_values import link_values_read_safely
 from .pump import ORDER
 from .serving import (
     READOUTS_FIRST,
@@ -35,6 +37,7 @@ from .viewport import report_views_seen
 
 pn.extension(notifications=False)
 document = pn.state.curdoc
+link_values_read_safely()  # before pn.state.location reads the link
 without_mathjax()
 without_webgl()
 lighter_patches()
@@ -51,7 +54,7 @@ reopen_when_reconnected(document)
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(session_closed)
-query = pn.state.session_args
+query = utf8_keys(pn.state.session_args)  # ?café=1 named as typed
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"
 # The first start after an install compiles the solver in the background: this page opens at

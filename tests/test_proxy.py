@@ -205,3 +205,25 @@ def test_a_page_that_loses_its_server_says_so_and_reopens_from_its_link(tmp_path
             browser.close()
     finally:
         proxy.stop(server)
+
+
+async def a_page_with_a_long_link(url: str) -> tuple[int, bool]:
+    student = bench_hall.Student(url, random.Random(0))
+    await asyncio.wait_for(student.open(), 300)
+    said = shown_text(student, "The link was too long")
+    student.close()
+    return len(url), said
+
+
+@pytest.mark.timeout(600)
+def test_behind_the_proxy_a_link_too_long_gets_the_pages_notice_not_nginxs_414():
+    """A 100 KB link reaches the app, which opens the page and says it ignored the link."""
+    from served import require_nginx
+
+    require_nginx()
+    port = proxy.free_port()
+    origin = f"127.0.0.1:{port}"
+    with proxy.hall(1, origin, [origin]):
+        long_link = f"http://{origin}/app?h=3&note={'x' * 100_000}"
+        length, said = asyncio.run(a_page_with_a_long_link(long_link))
+    assert length > 100_000 and said

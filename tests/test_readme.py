@@ -6,6 +6,7 @@ runs the pages' examples and checks that they still say what a user needs.
 
 from __future__ import annotations
 
+import ast
 import re
 from pathlib import Path
 
@@ -61,3 +62,48 @@ def test_every_local_link_and_picture_exists():
     assert [target for target in local if not (ROOT / target).is_file()] == []
     for page in ("instructors", "designers", "model", "measured", "known-issues", "architecture"):
         assert f"docs/{page}.rst" in local
+
+
+def test_ci_runs_the_test_command_in_a_fresh_environment_of_its_own():
+    """A dependency no extra of the README's install declares fails CI (mpmath did not)."""
+    lines = CI.rstrip().splitlines()
+    assert lines[-3:-1] == ['python -m venv "$ENVS/test"', 'source "$ENVS/test/bin/activate"']
+    between = CI[CI.index('python -m venv "$ENVS/test"') :]
+    assert "pip install" not in between.replace(TEST_COMMAND, "")  # nothing installed first
+
+
+def test_every_package_the_tests_import_is_declared_by_the_test_command():
+    """The tests' and benchmarks' third-party imports, each in a dependency of the README's
+    install (by import name; a few differ from their distribution's)."""
+    import sys
+
+    tomllib = pytest.importorskip("tomllib")  # Python 3.11 on
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    extras = project["optional-dependencies"]
+    declared = project["dependencies"] + extras["app"] + extras["test"] + extras["browser"]
+    names = {re.split(r"[\[<>=!~ ]", d)[0].lower().replace("-", "_") for d in declared}
+    imported_as = {"pil": "pillow", "distributed": "dask", "yaml": "pyyaml"}
+    # installed with the declared ones (panel brings param, bokeh brings tornado)
+    brought = {"param", "tornado", "jinja2"}
+    ours = {
+        "windpump",
+        "windpump_app",
+        "conftest",
+        "panes",
+        "reference",
+        "served",
+        "real_reference",
+    }
+    found = set()
+    for path in [*(ROOT / "tests").glob("*.py"), *(ROOT / "benchmarks").glob("*.py")]:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found |= {alias.name.split(".")[0].lower() for alias in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                found.add(node.module.split(".")[0].lower())
+    local = {p.stem.lower() for p in (ROOT / "tests").glob("*.py")}
+    local |= {p.stem.lower() for p in (ROOT / "benchmarks").glob("*.py")}
+    third_party = found - set(sys.stdlib_module_names) - ours - local - {"__future__"}
+    missing = {m for m in third_party if imported_as.get(m, m) not in names | brought}
+    assert missing == set()

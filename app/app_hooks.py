@@ -17,6 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
+from .policy import protect_pages
 from .serving import (
     FILE_READERS,
     MOVE_RUNS,
@@ -67,6 +68,7 @@ def on_server_loaded(_server_context) -> None:
     if not servers:
         log.warning("no Bokeh server found: responses uncompressed, Bokeh's session lifetime")
     for server in servers:
+        protect_pages(server)  # a Content-Security-Policy with a nonce for the page's scripts
         compress_responses(server)
         keep_sessions_until_connected(server)
     accept_long_links(http_servers())

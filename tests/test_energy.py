@@ -147,3 +147,36 @@ def test_the_budget_takes_the_runs_own_design():
     np.testing.assert_allclose(budget.hydraulic_power, expected, rtol=1e-12)
     with pytest.raises(TypeError, match="SimulationResult"):
         power_budget("a run")
+
+
+# -- the overall efficiency: what the water was given, never more than the work ------------------
+
+
+@given(
+    h=st.floats(0.5, 30.0),
+    eta_t=st.floats(0.5, 1.0),
+    theta_dot0=st.sampled_from([0.0, 1.0, 3.0, 12.0, 40.0]),
+    m_r=st.sampled_from([0.0, 2.0]),
+    L_main=st.sampled_from([0.0, 20.0]),
+    d_leak=st.sampled_from([0.0, 0.002]),
+    t_end=st.floats(5.0, 300.0),
+)
+def test_the_overall_efficiency_is_the_waters_share_of_what_it_was_given(
+    h, eta_t, theta_dot0, m_r, L_main, d_leak, t_end
+):
+    """At most 1 on every run, stalled or spinning up (rho_w g h V / W was 456 % on a stalled
+    run: its kick's kinetic energy lifted water); and, by the power budget's balance, the water's
+    share of the work less the kinetic and potential energy gained."""
+    design = SEED.replace(h=h, eta_t=eta_t, m_r=m_r, L_main=L_main, d_leak=d_leak)
+    run = windpump.simulate(design, t_end, theta_dot0=theta_dot0)
+    overall = run.overall_efficiency
+    totals = power_budget(run).totals()
+    given_to_water = totals.shaft - totals.kinetic - totals.potential
+    if totals.water == 0.0 and given_to_water <= 1e-9 * max(totals.shaft, 1.0):
+        return  # nothing lifted nor lost: NaN, or 0 once a loss is counted
+    assert 0.0 <= overall <= 1.0
+    if totals.transmission >= 0.0:  # the windmill drove the crank (kicked past its runaway it
+        # brakes, and the chain's loss is counted as a loss all the same)
+        assert overall == pytest.approx(max(totals.water, 0.0) / given_to_water, rel=1e-5, abs=1e-8)
+    if eta_t == 1.0 and L_main == 0.0 and d_leak == 0.0:
+        assert overall == pytest.approx(1.0, abs=1e-12) or totals.water == 0.0

@@ -194,11 +194,36 @@ class SimulationResult:
 
     @property
     def overall_efficiency(self) -> float:
-        """Water's potential energy over the windmill's work over the run, rho_w g h V / W [-]:
-        what the machine turned into lifted water (the rest spun it up, or was lost); NaN
-        before the windmill has done work."""
+        """The share of the work spent on the water that lifted it, over the run [-]:
+        ``rho_w g h V / (rho_w g h V + (1 - eta_t) W + int rho_w g h_f Q dt + leak loss)``.
+
+        By the energy balance (:func:`windpump.power_budget`) the denominator is the windmill's
+        work W less the kinetic energy and the weights' potential energy gained: a pump that
+        spins up stores work it has not yet spent, and one that stalls spends the kinetic
+        energy of its kick, which the windmill never did (rho_w g h V / W was 456 % so). So it
+        is at most 1, and 1 for the ideal machine with eta_t = 1 (it loses nothing); NaN before
+        anything was lifted or lost. (Kicked above its runaway, the windmill brakes: its work
+        is then negative, and the chain's loss counted as ``(1 - eta_t) |W|``.)
+
+        Examples
+        --------
+        >>> from windpump import Design, simulate
+        >>> seed = Design.seed_example()
+        >>> simulate(seed, 600.0).overall_efficiency  # the ideal machine loses nothing
+        1.0
+        >>> stalled = simulate(seed.replace(h=21.0, eta_t=0.95), 600.0)
+        >>> stalled.stalled, round(stalled.overall_efficiency, 2)  # its kick lifted water
+        (True, 0.99)
+        """
+        lift = max(float(self.lift_work[-1]), 0.0)  # a leaky run's round-off below 0
         work = float(self.shaft_work[-1])
-        return float(self.lift_work[-1]) / work if work > 0.0 else math.nan
+        friction = float(self.friction_loss[-1]) if len(self.friction_loss) else 0.0
+        leak = float(self.leak_loss[-1]) if len(self.leak_loss) else 0.0
+        # the chain's loss as a loss whichever way the power went: above the runaway the
+        # windmill brakes the crank, and the model's eta_t T then counts (1 - eta_t) W < 0
+        chain = (1.0 - self.design.eta_t) * abs(work)
+        spent = lift + chain + max(friction, 0.0) + max(leak, 0.0)
+        return lift / spent if spent > 0.0 else math.nan
 
     @property
     def lift_work(self) -> np.ndarray:

@@ -90,8 +90,11 @@ def free_port() -> int:
 
 
 @contextlib.contextmanager
-def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, subprocess.Popen]]:
-    """Start `panel serve app/` on 127.0.0.1; yield (page URL, process); stop it afterwards.
+def served_app(
+    *extra_args: str, timeout: float = 180.0, python: str = sys.executable
+) -> Iterator[tuple[str, subprocess.Popen]]:
+    """Start `panel serve app/` on 127.0.0.1 (with the interpreter ``python``: another
+    environment's); yield (page URL, process); stop it afterwards.
 
     The server's output goes to a temporary file, never a pipe: a pipe nobody reads fills up and
     stops a chatty server (``server_log(process)`` reads it). Waiting for it is bounded by
@@ -99,7 +102,7 @@ def served_app(*extra_args: str, timeout: float = 180.0) -> Iterator[tuple[str, 
     """
     port = free_port()
     command = [
-        sys.executable,
+        python,
         "-m",
         "panel",
         "serve",

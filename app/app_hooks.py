@@ -25,6 +25,7 @@ from .serving import (
     TIDY,
     every_thread_started,
     large_blocks_mapped,
+    log_request,
     watch_the_loop,
 )
 from .upload_route import serve_uploads
@@ -55,7 +56,8 @@ QUERY_FIELDS_LIMIT = 20_000
 def on_server_loaded(_server_context) -> None:
     """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
     scripts shrink about four times); keep a served page's session until its browser connects,
-    however busy the server; accept long links; and load the solver from numba's cache before
+    however busy the server; log requests without their query (a page's link, an upload's
+    name); accept long links; and load the solver from numba's cache before
     the server answers, or, on a first start after an install, compile it in the background
     while pages open (they run their first design once it is ready), and then run a first Wind
     tab's day in the background (``warm_the_wind_tab``); read uploads in a process of their own
@@ -69,6 +71,7 @@ def on_server_loaded(_server_context) -> None:
     for server in servers:
         compress_responses(server)
         keep_sessions_until_connected(server)
+        server.settings["log_function"] = log_request  # no query in the access log (serving.py)
     accept_long_links(http_servers())
     serve_uploads(_server_context, servers)  # a wind or site file posted by HTTP (upload_route)
     FILE_READERS.start()  # an upload is read in a process of its own

@@ -22,7 +22,7 @@ from windpump_app.explorer import Explorer
 from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
 from windpump_app.uploads import SESSION_HEADER, WIND_MAX_BYTES
 
-from served import served_app
+from served import served_app, server_log
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_hall  # noqa: E402
@@ -511,6 +511,32 @@ def test_served_a_pages_files_are_gone_once_its_page_closes(served):
     said = asyncio.run(closing())
     assert any("did not reach the page" in s for s in said), said[-3:]
     assert not any("Integrated in full" in s for s in said)  # never read
+
+
+@pytest.mark.timeout(600)
+def test_served_no_session_id_goes_in_the_servers_log(served):
+    """A page loaded, a file posted and taken, posts refused (Tornado logs those): the
+    server's output names none of the sessions (a session's id is the upload's credential)."""
+    url, process = served
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+
+    async def a_visit() -> list[str]:
+        bare = a_session(url)
+        student = await connected_page(url, 9)
+        try:
+            await the_day_of(student, rows())
+            session = session_of(student)
+            assert (await post_async(url, session, "wind", "empty.csv", b""))[0] == 400
+            assert (await post_async(url, bare, "wind", "a.csv", rows()))[0] == 403
+        finally:
+            student.close()
+        return [bare, session, student.token]
+
+    secrets = asyncio.run(a_visit())
+    written = server_log(process)
+    assert "POST /app/upload" in written  # the refusals' lines: the log was read
+    for secret in secrets:
+        assert secret not in written
 
 
 @pytest.mark.timeout(600)

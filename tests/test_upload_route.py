@@ -9,7 +9,6 @@ import json
 import math
 import random
 import sys
-import urllib.error
 import urllib.parse
 import urllib.request
 from pathlib import Path

@@ -34,6 +34,7 @@ from functools import partial
 
 from tornado import web
 
+from .inputs import clipped
 from .serving import mark
 from .uploads import KINDS, SESSION_HEADER, WIND_MAX_BYTES, refused_size
 
@@ -353,12 +354,12 @@ def deliver(channel, tab, session_id: str) -> bool:
             return False  # a later file's reference follows
         if posted == "crowded":
             tab.say(
-                f"The server was receiving many files: {name or 'the file'} was dropped before "
-                "this page could take it. Choose it again."
+                f"The server was receiving many files: {clipped(name) or 'the file'} was dropped "
+                "before this page could take it. Choose it again."
             )
             return True
         tab.say(
-            f"{name or 'The file'} did not reach the page in time: it was dropped after "
+            f"{clipped(name) or 'The file'} did not reach the page in time: it was dropped after "
             f"{LIFETIME:.0f} s on the server. Choose it again."
         )
         return True

@@ -9,7 +9,7 @@ import logging
 import threading
 import time
 
-from bokeh.server.tornado import DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
+from bokeh.server.tornado import DEFAULT_CHECK_UNUSED_MS, DEFAULT_UNUSED_LIFETIME_MS, BokehTornado
 from tornado import httputil
 from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
@@ -26,6 +26,7 @@ from .serving import (
     TIDY,
     every_thread_started,
     large_blocks_mapped,
+    log_request,
     watch_the_loop,
 )
 from .upload_route import serve_uploads
@@ -38,11 +39,15 @@ log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show 
 FIRST_COMPILE_SECONDS = 8
 
 
-# A page's session is built when its HTML is served; if its websocket has not connected within
-# Bokeh's default 15 s (a class of 30 opening at once on two cores takes minutes), Bokeh drops it
-# and builds the page a second time on connection: measured with 12 pages at once, 8 were built
-# twice and the burst took 91 s instead of 63 s. A session whose page was closed lingers as long.
-UNCONNECTED_SESSION_LIFETIME = 600_000  # [ms]
+# A page's session is built when its HTML is served and lives while its websocket is open. One
+# whose page never connects (a bare GET: a link checker, or a script) held a page's memory for as
+# long as this: 600 s, and 100 bare GETs held +480 MB for those 10 minutes. Dropped too soon, a
+# page whose browser connects late is built a second time when it does (Bokeh's 15 s: 12 pages
+# opened at once by 12 browsers on the server's own two cores, 8 were built twice and the burst
+# took 91 s instead of 63 s): twice Bokeh's default, checked every CHECK_UNUSED_SESSIONS. A
+# session whose page was closed lingers as long; its uploads go at once (upload_route).
+UNCONNECTED_SESSION_LIFETIME = 30_000  # [ms]
+CHECK_UNUSED_SESSIONS = 5_000  # [ms] so a bare session lives 30-35 s
 
 # Tornado closes a connection whose request line and headers pass 64 KB, with no answer at all (the
 # browser shows ERR_EMPTY_RESPONSE), and answers 400 to a query of more than 1000 fields; a page's
@@ -55,13 +60,14 @@ QUERY_FIELDS_LIMIT = 20_000
 
 def on_server_loaded(_server_context) -> None:
     """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
-    scripts shrink about four times); keep a served page's session until its browser connects,
-    however busy the server; accept long links; and load the solver from numba's cache before
-    the server answers, or, on a first start after an install, compile it in the background
-    while pages open (they run their first design once it is ready), and then run a first Wind
-    tab's day in the background (``warm_the_wind_tab``); read uploads in a process of their own
-    (``serving.FILE_READERS``); map each large block on its own (``large_blocks_mapped``); and
-    start now what a class would start for good among its pages (``ready_for_a_class``)."""
+    scripts shrink about four times); drop a served page's session its browser never connects
+    within 30 s; log requests without their query (a page's link, an upload's name); accept long
+    links; and load the solver from numba's cache before the server answers, or, on a first
+    start after an install, compile it in the background while pages open (they run their first
+    design once it is ready), and then run a first Wind tab's day in the background
+    (``warm_the_wind_tab``); read uploads in a process of their own (``serving.FILE_READERS``);
+    map each large block on its own (``large_blocks_mapped``); and start now what a class would
+    start for good among its pages (``ready_for_a_class``)."""
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
     large_blocks_mapped()  # a freed upload leaves no heap of freed blocks behind (serving.py)
     servers = bokeh_servers()
@@ -70,7 +76,8 @@ def on_server_loaded(_server_context) -> None:
     for server in servers:
         protect_pages(server)  # a Content-Security-Policy with a nonce for the page's scripts
         compress_responses(server)
-        keep_sessions_until_connected(server)
+        drop_unconnected_sessions(server)
+        server.settings["log_function"] = log_request  # no query in the access log (serving.py)
     accept_long_links(http_servers())
     serve_uploads(_server_context, servers)  # a wind or site file posted by HTTP (upload_route)
     FILE_READERS.start()  # an upload is read in a process of its own
@@ -193,8 +200,17 @@ def compress_responses(server: BokehTornado) -> None:
         server.transforms.append(GZipContentEncoding)
 
 
-def keep_sessions_until_connected(server: BokehTornado) -> None:
-    """Raise Bokeh's unused-session lifetime to UNCONNECTED_SESSION_LIFETIME, unless it was set
-    on the command line (``--unused-session-lifetime``, which then wins)."""
+def drop_unconnected_sessions(server: BokehTornado) -> None:
+    """Set Bokeh's unused-session lifetime to UNCONNECTED_SESSION_LIFETIME and its check to
+    every CHECK_UNUSED_SESSIONS, each unless set on the command line
+    (``--unused-session-lifetime``, ``--check-unused-sessions``, which then win). The check is
+    already scheduled: restarted at the new period."""
     if server._unused_session_lifetime_milliseconds == DEFAULT_UNUSED_LIFETIME_MS:
         server._unused_session_lifetime_milliseconds = UNCONNECTED_SESSION_LIFETIME
+    check = server._cleanup_job
+    if check.callback_time == DEFAULT_CHECK_UNUSED_MS:
+        running = check.is_running()
+        check.stop()
+        check.callback_time = CHECK_UNUSED_SESSIONS
+        if running:
+            check.start()

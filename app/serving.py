@@ -40,6 +40,20 @@ def session_closed(session_context) -> None:  # Bokeh requires exactly this sign
     TIDY.closed()
 
 
+def log_request(handler) -> None:
+    """Tornado's line in its access log for a request answered (``log_function``), with the
+    request's path and not its query: a page's query is its link (up to megabytes), and an
+    upload's names its file; no session's id goes in a URL (``upload_route.SESSION_HEADER``)."""
+    from tornado.log import access_log
+
+    status, request = handler.get_status(), handler.request
+    say = access_log.info  # Tornado's levels: refusals are warnings, failures errors
+    if status >= 400:
+        say = access_log.warning if status < 500 else access_log.error
+    elapsed = 1000.0 * request.request_time()
+    say("%d %s %s (%s) %.2fms", status, request.method, request.path, request.remote_ip, elapsed)
+
+
 class Tidy:
     """When the server collects its garbage: never a walk of every open page on the event loop
     while students move, and what closed sessions held handed back to the operating system.

@@ -9,11 +9,16 @@ websocket, through the page's upload channel (``uploads.UploadChannel``); the se
 bytes (``UPLOADS.take``) and reads them as it read a FileInput's value (off the loop, in the
 file-reading process).
 
-The store is small and bounded (``Uploads``): bytes only for a session of this server that is
-open, the newest file of each of its uploads (a later one replaces one not yet taken), gone once
-taken, after ``LIFETIME`` s, or when the session closes. ``serve_uploads`` adds the route when
-``panel serve app/`` starts (``app_hooks.on_server_loaded``); a server without it (``panel serve
-app/main.py``, a notebook) leaves the page on Bokeh's websocket path.
+The store is small and bounded (``Uploads``), and shared fairly: bytes only for a session of
+this server whose page is connected (its websocket open: a bare GET of the page builds a session
+too, and posts nothing), each session's share its newest file of each upload (a later one
+replaces one not yet taken), gone once taken, after ``LIFETIME`` s, or when the page's websocket
+closes. The store's own bounds are a last resort: a file within a connected page's share is
+always taken, the oldest file other pages left untaken dropped for it. The session's id, the
+post's credential, goes in a header (``SESSION_HEADER``), not in the URL a log would keep.
+``serve_uploads`` adds the route when ``panel serve app/`` starts (``app_hooks.on_server_loaded``);
+a server without it (``panel serve app/main.py``, a notebook) leaves the page on Bokeh's
+websocket path.
 """
 
 from __future__ import annotations
@@ -25,17 +30,21 @@ import secrets
 import threading
 import time
 from collections.abc import Callable
+from functools import partial
 
 from tornado import web
 
+from .inputs import clipped
 from .serving import mark
-from .uploads import KINDS, WIND_MAX_BYTES, refused_size
+from .uploads import KINDS, SESSION_HEADER, WIND_MAX_BYTES, refused_size
 
 log = logging.getLogger("windpump.app")
 
 ROUTE = "/upload"  # after the app's own path: <prefix>/app/upload
 LIFETIME = 120.0  # [s] bytes not taken by then are dropped (the page's reference comes in ms)
-MAX_ITEMS = 8  # files held at once, for every session of the server
+# A session's share: the newest file of each upload (KINDS), each within WIND_MAX_BYTES. The
+# store's bounds, for every session of the server, hold at least one share.
+MAX_ITEMS = 8  # files held at once
 MAX_HELD = 4 * WIND_MAX_BYTES  # [bytes] held at once
 
 # Why a post is refused: (HTTP status, what the page is told).
@@ -43,8 +52,8 @@ REFUSALS = {
     "kind": 400,  # not a wind or site upload
     "empty": 400,
     "size": 413,
-    "session": 403,  # no open session of this server has this id
-    "busy": 503,  # the store is full: choose the file again in a moment
+    "session": 403,  # no session of this server with a connected page has this id
+    "busy": 503,  # the store is full (bounds below one share only): choose the file again
 }
 
 
@@ -87,7 +96,9 @@ def refusal_text(reason: str, kind: str, size: int) -> str:
 
 
 class Uploads:
-    """The files posted and not yet taken, for the sessions of this server that are open."""
+    """The files posted and not yet taken, for the sessions of this server whose page is
+    connected: ``connected(session_id)``, served, whether the session's websocket is open
+    (``serve_uploads``); until then, every session opened here."""
 
     def __init__(
         self,
@@ -95,6 +106,7 @@ class Uploads:
         max_held: int = MAX_HELD,
         lifetime: float = LIFETIME,
         clock: Callable[[], float] = time.monotonic,
+        connected: Callable[[str], bool] = lambda session_id: True,
     ):
         self.max_items, self.max_held, self.lifetime, self.clock = (
             max_items,
@@ -102,26 +114,35 @@ class Uploads:
             lifetime,
             clock,
         )
+        self.connected = connected
         self.url = ""  # the route's path, once served (``serve_uploads``); "": none
         self._lock = threading.Lock()
         self._sessions: set[str] = set()
         self._items: dict[str, Posted] = {}
-        self._replaced: dict[str, None] = {}  # ids of files a later one replaced (the newest)
+        # ids of files dropped before they were taken, and why ("replaced", "crowded"): the newest
+        self._dropped: dict[str, str] = {}
 
     def opened(self, session_id: str) -> None:
         with self._lock:
             self._sessions.add(session_id)
 
+    def lost(self, session_id: str) -> None:
+        """A session's page lost its websocket: what it posted is dropped (it posts no more
+        unless it connects again)."""
+        with self._lock:
+            self._drop(lambda item: item.session_id == session_id)
+
     def closed(self, session_id: str) -> None:
         """A session closed: it posts no more, and what it posted is dropped."""
         with self._lock:
             self._sessions.discard(session_id)
-            for key in [k for k, item in self._items.items() if item.session_id == session_id]:
-                del self._items[key]
+            self._drop(lambda item: item.session_id == session_id)
 
     def is_open(self, session_id: str) -> bool:
+        """Whether the session may post: opened here, and its page connected."""
         with self._lock:
-            return session_id in self._sessions
+            opened = session_id in self._sessions
+        return opened and self.connected(session_id)
 
     def put(self, session_id: str, kind: str, name: str, data: bytes) -> str:
         """Keep ``data`` for the session; its id. Raises ``Refused``."""
@@ -131,33 +152,60 @@ class Uploads:
             raise Refused("empty", refusal_text("empty", kind, 0))
         if len(data) > WIND_MAX_BYTES:
             raise Refused("size", refusal_text("size", kind, len(data)))
+        if not self.is_open(session_id):
+            raise Refused("session", refusal_text("session", kind, len(data)))
         with self._lock:
-            if session_id not in self._sessions:
-                raise Refused("session", refusal_text("session", kind, len(data)))
             now = self.clock()
-            for key, item in list(self._items.items()):
-                later = item.session_id == session_id and item.kind == kind  # a later file wins
-                if later or now - item.at > self.lifetime:
-                    del self._items[key]
-                if later:
-                    self._replaced[key] = None
-                    while len(self._replaced) > 4 * self.max_items:
-                        del self._replaced[next(iter(self._replaced))]
-            held = sum(len(item.data) for item in self._items.values())
-            if len(self._items) >= self.max_items or held + len(data) > self.max_held:
+            self._drop(lambda item: now - item.at > self.lifetime)
+            self._drop(lambda item: item.session_id == session_id and item.kind == kind, "replaced")
+            if not self._room_for(session_id, len(data)):
                 raise Refused("busy", refusal_text("busy", kind, len(data)))
             upload_id = secrets.token_urlsafe(12)
             self._items[upload_id] = Posted(session_id, kind, name, data, now)
         return upload_id
 
+    def _room_for(self, session_id: str, size: int) -> bool:
+        """Make room for a file of ``size`` bytes of the session, within the store's bounds:
+        the oldest files of other sessions are dropped ("crowded"), those their pages did not
+        take (a page takes its file within ms of posting it); False if there is no room even
+        so (bounds smaller than a share). Under the lock."""
+
+        def full() -> bool:
+            held = sum(len(item.data) for item in self._items.values())
+            return len(self._items) >= self.max_items or held + size > self.max_held
+
+        others = [k for k, item in self._items.items() if item.session_id != session_id]
+        while full() and others:  # the dict keeps the order they came in: oldest first
+            key = others.pop(0)
+            log.info(
+                "the upload store was full: a file not taken after %.0f s dropped",
+                self.clock() - self._items[key].at,
+            )
+            self._forget(key, "crowded")
+        return not full()
+
+    def _drop(self, which: Callable[[Posted], bool], why: str = "") -> None:
+        """Drop the files ``which`` picks; remember their ids with ``why``, if given. Under
+        the lock."""
+        for key in [k for k, item in self._items.items() if which(item)]:
+            self._forget(key, why)
+
+    def _forget(self, key: str, why: str) -> None:
+        del self._items[key]
+        if why:
+            self._dropped[key] = why
+            while len(self._dropped) > 4 * self.max_items:
+                del self._dropped[next(iter(self._dropped))]
+
     def take(self, session_id: str, upload_id: str) -> Posted | str:
         """The file ``upload_id`` of the session, removed from the store; if it is not there,
         why: "replaced" (a later file of the same upload replaced it: that one's reference
-        follows) or "gone" (expired, the session's store emptied, another session's)."""
+        follows), "crowded" (dropped for another page's file in a full store) or "gone"
+        (expired, the session's store emptied, another session's)."""
         with self._lock:
             item = self._items.get(upload_id)
             if item is None or item.session_id != session_id:
-                return "replaced" if upload_id in self._replaced else "gone"
+                return self._dropped.get(upload_id, "gone")
             del self._items[upload_id]
         return item if self.clock() - item.at <= self.lifetime else "gone"
 
@@ -171,13 +219,15 @@ UPLOADS = Uploads()
 
 
 def page_opened(document) -> dict[str, str]:
-    """A served page's session may post files (until it is destroyed): what its page needs to
-    (``url``, ``session``); both "" when the route is not served, or the page not served."""
+    """A served page's session may post files while its page is connected (until it is
+    destroyed): what its page needs to (``url``, ``session``); both "" when the route is not
+    served, or the page not served. What it posted goes when its websocket closes."""
     context = getattr(document, "session_context", None)
     if not UPLOADS.url or context is None:
         return {"url": "", "session": ""}
     UPLOADS.opened(context.id)
     document.on_session_destroyed(session_destroyed)
+    document.on_event("connection_lost", partial(connection_lost, context.id))
     return {"url": UPLOADS.url, "session": context.id}
 
 
@@ -185,10 +235,16 @@ def session_destroyed(session_context) -> None:  # Bokeh requires exactly this s
     UPLOADS.closed(session_context.id)
 
 
+def connection_lost(session_id: str, _event) -> None:
+    """The page's websocket closed (Bokeh's ``ConnectionLost``, on the server)."""
+    UPLOADS.lost(session_id)
+
+
 @web.stream_request_body
 class UploadHandler(web.RequestHandler):
-    """``POST <app>/upload?session=ID&kind=wind|site&name=NAME`` with the file's bytes as the
-    body: 200 ``{"id", "size"}``, or a refusal (REFUSALS) ``{"refused", "message"}``.
+    """``POST <app>/upload?kind=wind|site&name=NAME`` with the file's bytes as the body and the
+    page's session id in the ``SESSION_HEADER`` header: 200 ``{"id", "size"}``, or a refusal
+    (REFUSALS) ``{"refused", "message"}``.
 
     Streamed (``stream_request_body``): the body is checked as it comes, and a refused one is
     read and dropped (up to twice the limit; beyond that Tornado closes the connection), so the
@@ -201,10 +257,11 @@ class UploadHandler(web.RequestHandler):
         self.refusal = ""
 
     def check_xsrf_cookie(self) -> None:
-        """The page's session id is the credential (it is what opens the session's websocket)."""
+        """The page's session id is the credential (it is what opens the session's websocket),
+        and only a connected page's counts."""
 
     def prepare(self) -> None:
-        self.session_id = self.get_query_argument("session", "")
+        self.session_id = self.request.headers.get(SESSION_HEADER, "")
         self.kind = self.get_query_argument("kind", "")
         self.name = self.get_query_argument("name", "")[:300]
         self.request.connection.set_max_body_size(2 * WIND_MAX_BYTES)
@@ -250,12 +307,25 @@ def serve_uploads(server_context, servers: list) -> str:
     when there is no server to add it to."""
     application = getattr(server_context, "application_context", None)
     app_url = getattr(application, "url", None) or "/app"
+    if application is not None:
+        UPLOADS.connected = partial(page_connected, application)
     for server in servers:
         url = f"{getattr(server, '_prefix', '')}{app_url}{ROUTE}"
         server.add_handlers(r".*", [(re.escape(url), UploadHandler, {"uploads": UPLOADS})])
         UPLOADS.url = url
         log.info("files are uploaded by HTTP at %s", url)
     return UPLOADS.url
+
+
+def page_connected(application, session_id: str) -> bool:
+    """Whether the session ``session_id`` of Bokeh's ``application`` (its ApplicationContext)
+    has its page's websocket open: a page's GET builds its session, and only its browser, once
+    it has loaded the page, connects it."""
+    try:
+        session = application.get_session(session_id)
+    except Exception:  # Bokeh's ProtocolError: no such session (never built, or destroyed)
+        return False
+    return not session.destroyed and session.connection_count > 0
 
 
 def deliver(channel, tab, session_id: str) -> bool:
@@ -282,8 +352,14 @@ def deliver(channel, tab, session_id: str) -> bool:
             return False
         if posted == "replaced":
             return False  # a later file's reference follows
+        if posted == "crowded":
+            tab.say(
+                f"The server was receiving many files: {clipped(name) or 'the file'} was dropped "
+                "before this page could take it. Choose it again."
+            )
+            return True
         tab.say(
-            f"{name or 'The file'} did not reach the page in time: it was dropped after "
+            f"{clipped(name) or 'The file'} did not reach the page in time: it was dropped after "
             f"{LIFETIME:.0f} s on the server. Choose it again."
         )
         return True

@@ -5,6 +5,8 @@
 // is posted by HTTP to `upload_url` instead of going over the websocket as one ~13 MB message
 // (app/upload_route.py), and the same input carries its reference: "sending", then "posted <id>"
 // once the server holds it, or "failed <reason>"; an empty file is "empty" (nothing to send).
+// The server takes a file only from a page whose websocket is open, this page's session id in
+// the header `session_header`.
 // Without `upload_url` (a server without the route), or when the route answers 404, the file
 // goes Bokeh's way. Runs once a page, on Bokeh's document_ready.
 if (!window.__windpumpUploads) {
@@ -32,11 +34,12 @@ if (!window.__windpumpUploads) {
     const controller = new AbortController()
     posting[kind] = controller
     tell(file, kind, "sending")
-    const query = new URLSearchParams({session: session_id, kind: kind, name: file.name})
+    const query = new URLSearchParams({kind: kind, name: file.name})
     fetch(`${upload_url}?${query}`, {
       method: "POST",
       body: file,
-      headers: {"Content-Type": "application/octet-stream"},
+      // The session's id is the post's credential: in a header, not in a URL a log keeps.
+      headers: {"Content-Type": "application/octet-stream", [session_header]: session_id},
       signal: controller.signal,
     })
       .then(async (response) => {

@@ -34,6 +34,7 @@ WIND_SIZE = "a day at one sample a second is about 1.5 MB"  # the page's refusal
 SITE_SIZE = "a year of hourly weather, a TMY3 or EPW file, is about 1.5 MB"
 # The uploads sent by HTTP (upload_route), by the kind the page names: (the file, its refusal's words)
 KINDS = {"wind": ("wind", WIND_SIZE), "site": ("weather", SITE_SIZE)}
+SESSION_HEADER = "X-Windpump-Session"  # the page's session id: in a header, never in the URL
 
 UPLOADS_JS = (Path(__file__).parent / "uploads.js").read_text(encoding="utf-8")
 CHANNEL_CLASS = "upload-refused"
@@ -123,6 +124,7 @@ def guard_uploads(
                 channel_class=CHANNEL_CLASS,
                 upload_url=route["url"],
                 session_id=route["session"],
+                session_header=SESSION_HEADER,
             ),
             code=UPLOADS_JS,
         ),

@@ -58,6 +58,7 @@ from tornado.websocket import websocket_connect
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from windpump_app.inputs import PumpInputs  # noqa: E402
+from windpump_app.uploads import SESSION_HEADER  # noqa: E402
 
 from served import cpu_seconds, resident_memory, served_app  # noqa: E402
 
@@ -613,9 +614,9 @@ async def wind_tab(student: Student) -> str:
 
 async def post_upload(student: Student, data: bytes) -> int:
     """Send ``data`` as the page sends a wind file: "sending" on its upload channel, the bytes
-    by HTTP POST (the session's id from its token, the student's cookies: a proxy's stickiness),
-    then "posted <id>" (or why not). The POST's HTTP status: 404 or 405, the server has no
-    upload route (nothing more is sent)."""
+    by HTTP POST (the session's id from its token in the page's header, the student's cookies:
+    a proxy's stickiness), then "posted <id>" (or why not). The POST's HTTP status: 404 or 405,
+    the server has no upload route (nothing more is sent)."""
     from urllib.parse import urlencode
 
     from bokeh.util.token import get_session_id
@@ -627,15 +628,17 @@ async def post_upload(student: Student, data: bytes) -> int:
         await student.patch([changed(channel, "value", value)], wait=False)
 
     parsed = urlparse(student.url)
-    query = urlencode(
-        {"session": get_session_id(student.token), "kind": "wind", "name": UPLOAD_NAME}
-    )
+    query = urlencode({"kind": "wind", "name": UPLOAD_NAME})
     await tell("sending")
     request = HTTPRequest(
         f"http://{parsed.netloc}{parsed.path}/upload?{query}",
         method="POST",
         body=data,
-        headers={"Content-Type": "application/octet-stream", **student.cookie_header()},
+        headers={
+            "Content-Type": "application/octet-stream",
+            SESSION_HEADER: get_session_id(student.token),
+            **student.cookie_header(),
+        },
         request_timeout=WAIT,
     )
     response = await AsyncHTTPClient().fetch(request, raise_error=False)

@@ -91,10 +91,14 @@ def free_port() -> int:
 
 @contextlib.contextmanager
 def served_app(
-    *extra_args: str, timeout: float = 180.0, python: str = sys.executable
+    *extra_args: str,
+    timeout: float = 180.0,
+    python: str = sys.executable,
+    env: dict[str, str] | None = None,
 ) -> Iterator[tuple[str, subprocess.Popen]]:
     """Start `panel serve app/` on 127.0.0.1 (with the interpreter ``python``: another
-    environment's); yield (page URL, process); stop it afterwards.
+    environment's; ``env``: its environment, else this one's); yield (page URL, process); stop
+    it afterwards.
 
     The server's output goes to a temporary file, never a pipe: a pipe nobody reads fills up and
     stops a chatty server (``server_log(process)`` reads it). Waiting for it is bounded by
@@ -117,7 +121,9 @@ def served_app(
     ]
     url = f"http://127.0.0.1:{port}/app"
     with tempfile.TemporaryFile("w+") as log:
-        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, text=True)
+        process = subprocess.Popen(
+            command, stdout=log, stderr=subprocess.STDOUT, text=True, env=env
+        )
         process.log = log  # type: ignore[attr-defined]
         try:
             # A static file, not the page: asking for the page would open the server's first session

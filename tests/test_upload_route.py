@@ -9,7 +9,7 @@ import json
 import math
 import random
 import sys
-import urllib.error
+import urllib.parse
 import urllib.request
 from pathlib import Path
 
@@ -19,9 +19,9 @@ from hypothesis import strategies as st
 
 from windpump_app.explorer import Explorer
 from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
-from windpump_app.uploads import WIND_MAX_BYTES
+from windpump_app.uploads import SESSION_HEADER, WIND_MAX_BYTES
 
-from served import served_app
+from served import served_app, server_log
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_hall  # noqa: E402
@@ -117,23 +117,48 @@ def test_a_file_expires_and_a_closed_session_leaves_nothing():
         store.put("s2", "wind", "b.csv", b"0,6\n")  # closed: it posts no more
 
 
-def test_a_full_store_refuses_until_something_is_taken_or_expires():
+def test_a_full_store_makes_room_for_a_page_within_its_share_from_others_untaken_files():
     clock = Clock()
-    store = Uploads(max_items=2, max_held=100, lifetime=10.0, clock=clock)
+    store = Uploads(max_items=3, max_held=100, lifetime=10.0, clock=clock)
     for session in ("a", "b", "c", "d"):
         store.opened(session)
     first = store.put("a", "wind", "a.csv", b"1" * 10)
-    store.put("b", "wind", "b.csv", b"1" * 10)
-    with pytest.raises(Refused) as refused:
-        store.put("c", "wind", "c.csv", b"1" * 10)
-    assert refused.value.reason == "busy" and refused.value.status == 503
-    store.take("a", first)
+    clock.now = 1.0
+    second = store.put("b", "wind", "b.csv", b"1" * 10)
+    clock.now = 2.0
     store.put("c", "wind", "c.csv", b"1" * 10)
-    with pytest.raises(Refused):
-        store.put("d", "wind", "d.csv", b"1" * 90)  # over max_held
-    clock.now = 11.0  # both expired: dropped as the next arrives
-    store.put("d", "wind", "d.csv", b"1" * 90)
+    store.put("d", "wind", "d.csv", b"1" * 10)  # three held: the oldest other's goes
+    assert store.take("a", first) == "crowded" and store.held() == 3
+    store.put("d", "site", "d.epw", b"1" * 75)  # 10 + 10 + 10 + 75 > 100: b's goes
+    assert store.take("b", second) == "crowded"
+    assert {item.session_id for item in store._items.values()} == {"c", "d"}
+    clock.now = 13.0  # c's and d's expired: dropped as the next arrives
+    store.put("a", "wind", "a.csv", b"1" * 90)
     assert store.held() == 1
+
+
+def test_a_store_smaller_than_a_share_refuses_what_does_not_fit_in_words():
+    store = Uploads(max_items=2, max_held=100)
+    store.opened("a")
+    store.put("a", "wind", "a.csv", b"1" * 60)
+    with pytest.raises(Refused) as refused:
+        store.put("a", "site", "a.epw", b"1" * 60)  # its own wind file is its share, not others'
+    assert refused.value.reason == "busy" and refused.value.status == 503
+
+
+def test_only_a_session_whose_page_is_connected_may_post_and_its_files_go_when_it_is_lost():
+    connected: set[str] = set()
+    store = Uploads(connected=connected.__contains__)
+    for session in ("bare", "page"):
+        store.opened(session)
+    with pytest.raises(Refused) as refused:
+        store.put("bare", "wind", "a.csv", b"0,5\n")  # built by a GET, never connected
+    assert refused.value.reason == "session" and not store.is_open("bare")
+    connected.add("page")
+    kept = store.put("page", "wind", "a.csv", b"0,5\n")
+    store.put("page", "site", "a.epw", b"0,5\n")
+    store.lost("page")  # its websocket closed
+    assert store.held() == 0 and store.take("page", kept) == "gone"
 
 
 @settings(max_examples=60, deadline=None)
@@ -174,7 +199,8 @@ def test_the_store_never_holds_more_than_its_bounds_nor_a_closed_sessions_file(s
 
 def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
     """Without the route (``panel serve app/main.py``, a notebook) the page sends the file
-    Bokeh's way; with it, a served page's session may post and its page is told where."""
+    Bokeh's way; with it, a served page's session may post and its page is told where; what
+    it posted goes when its websocket closes, and it posts no more once destroyed."""
 
     class Context:
         id = "a-session"
@@ -182,9 +208,13 @@ def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
     class Document:
         session_context = Context()
         destroyed: list = []
+        events: dict = {}
 
         def on_session_destroyed(self, callback):
             self.destroyed.append(callback)
+
+        def on_event(self, event, callback):
+            self.events[event] = callback
 
     store = Uploads()
     monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
@@ -193,6 +223,9 @@ def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
     page = Document()
     assert page_opened(page) == {"url": "/app/upload", "session": "a-session"}
     assert store.is_open("a-session")
+    store.put("a-session", "wind", "a.csv", b"0,5\n")
+    page.events["connection_lost"](object())  # Bokeh's ConnectionLost, on the server
+    assert store.held() == 0
     page.destroyed[0](Context())  # Bokeh destroys the session
     assert not store.is_open("a-session")
 
@@ -252,6 +285,20 @@ def test_what_could_not_be_sent_is_said_and_the_day_stays(app):
         assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
 
 
+def test_a_file_dropped_for_another_pages_in_a_full_store_is_said(app, monkeypatch):
+    store = Uploads(max_items=1)
+    monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
+    store.opened("")
+    store.opened("another page")
+    upload_id = store.put("", "wind", "mast.csv", rows())
+    store.put("another page", "wind", "theirs.csv", rows())
+    day = app.wind.last_run
+    tell(app, len(rows()), "wind", "mast.csv", f"posted {upload_id}")
+    message = app.wind.upload_message
+    assert message.visible and "was dropped before this page could take it" in message.object
+    assert "Choose it again" in message.object and app.wind.last_run is day
+
+
 def test_a_file_replaced_by_a_later_one_says_nothing_of_itself(app):
     first = UPLOADS.put("", "wind", "first.csv", rows())
     second = UPLOADS.put("", "wind", "second.csv", rows(61))
@@ -289,15 +336,6 @@ def test_served_of_two_wind_files_the_later_wins_though_the_earlier_is_read_last
 # -- the route of a real server ---------------------------------------------------------------
 
 
-def post(url: str, data: bytes, headers: dict | None = None) -> tuple[int, dict]:
-    request = urllib.request.Request(url, data=data, method="POST", headers=headers or {})
-    try:
-        with urllib.request.urlopen(request, timeout=120) as response:
-            return response.status, json.loads(response.read())
-    except urllib.error.HTTPError as error:
-        return error.code, json.loads(error.read())
-
-
 @pytest.fixture(scope="module")
 def served():
     with served_app() as (url, process):
@@ -313,24 +351,191 @@ def a_session(url: str) -> str:
     return get_session_id(token)
 
 
+async def post_async(url: str, session: str, kind: str, name: str, data: bytes) -> tuple[int, dict]:
+    """POST ``data`` to the upload route as a page does (its session's id in the header)."""
+    query = urllib.parse.urlencode({"kind": kind, "name": name})
+    request = bench_hall.HTTPRequest(
+        f"{url}/upload?{query}",
+        method="POST",
+        body=data,
+        headers={"Content-Type": "application/octet-stream", SESSION_HEADER: session},
+        request_timeout=300,
+    )
+    response = await bench_hall.AsyncHTTPClient().fetch(request, raise_error=False)
+    return response.code, json.loads(response.body or b"{}")
+
+
+def session_of(student: bench_hall.Student) -> str:
+    from bokeh.util.token import get_session_id
+
+    return get_session_id(student.token)
+
+
+async def connected_page(url: str, seed: int) -> bench_hall.Student:
+    """A student's page, its websocket connected, on its Wind tab."""
+    student = bench_hall.Student(url, random.Random(seed))
+    await student.open()
+    await bench_hall.wind_tab(student)
+    return student
+
+
+async def the_day_of(student: bench_hall.Student, record: bytes) -> str:
+    """Post ``record`` as the student's page does; the day's note its Wind tab then shows."""
+    said: list[str] = []
+    watcher = lambda e: said.append(str(e.get("new")))  # noqa: E731
+    student.watchers.append(watcher)
+    try:
+        assert await bench_hall.post_upload(student, record) == 200
+        drawn = lambda s: "Integrated in full" in s and bench_hall.UPLOAD_NAME in s  # noqa: E731
+        deadline = asyncio.get_running_loop().time() + 300
+        while not any(drawn(s) for s in said):  # read in its process, its day run
+            assert asyncio.get_running_loop().time() < deadline, said[-3:]
+            await asyncio.sleep(0.2)
+        return next(s for s in said if drawn(s))
+    finally:
+        student.watchers.remove(watcher)
+
+
 @pytest.mark.timeout(600)
-def test_served_bad_posts_are_refused_in_words_and_a_good_one_kept(served):
+def test_served_bad_posts_are_refused_in_words_and_a_connected_pages_good_one_kept(served):
     url, _process = served
-    route = f"{url}/upload"
-    status, answer = post(f"{route}?session=made-up&kind=wind&name=a.csv", b"0,5\n")
-    assert status == 403 and answer["refused"] == "session" and "Reload" in answer["message"]
-    session = a_session(url)
-    status, answer = post(f"{route}?session={session}&kind=wind&name=a.csv", b"")
-    assert status == 400 and answer["refused"] == "empty"
-    assert answer["message"] == "This wind file cannot be used: the file is empty"
-    status, answer = post(f"{route}?session={session}&kind=lab&name=a.csv", b"1,2\n")
-    assert status == 400 and answer["refused"] == "kind"
-    big = b"0" * (LIMIT + 1)
-    status, answer = post(f"{route}?session={session}&kind=wind&name=big.csv", big)
-    assert status == 413 and answer["refused"] == "size"
-    assert "it has 10,000,001 bytes; at most 10,000,000 are read" in answer["message"]
-    status, answer = post(f"{route}?session={session}&kind=wind&name=a.csv", b"0,5\n10,6\n")
-    assert status == 200 and answer["size"] == len(b"0,5\n10,6\n") and answer["id"]
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+
+    async def posts() -> None:
+        status, answer = await post_async(url, "made-up", "wind", "a.csv", b"0,5\n")
+        assert status == 403 and answer["refused"] == "session" and "Reload" in answer["message"]
+        student = await connected_page(url, 5)
+        try:
+            session = session_of(student)
+            status, answer = await post_async(url, session, "wind", "a.csv", b"")
+            assert status == 400 and answer["refused"] == "empty"
+            assert answer["message"] == "This wind file cannot be used: the file is empty"
+            status, answer = await post_async(url, session, "lab", "a.csv", b"1,2\n")
+            assert status == 400 and answer["refused"] == "kind"
+            big = b"0" * (LIMIT + 1)
+            status, answer = await post_async(url, session, "wind", "big.csv", big)
+            assert status == 413 and answer["refused"] == "size"
+            assert "it has 10,000,001 bytes; at most 10,000,000 are read" in answer["message"]
+            status, answer = await post_async(url, session, "wind", "a.csv", b"0,5\n10,6\n")
+            assert status == 200 and answer["size"] == len(b"0,5\n10,6\n") and answer["id"]
+        finally:
+            student.close()
+
+    asyncio.run(posts())
+
+
+@pytest.mark.timeout(900)
+def test_served_bare_visits_post_nothing_and_a_connected_pages_upload_gets_the_same_day(served):
+    """Three visitors GET the page and never connect its websocket (a script, not a browser),
+    each posting 10 MB with its session's id: all are refused, and a connected page's wind
+    record gets the same day as one uploaded before them."""
+    url, _process = served
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+    record = bench_hall.wind_record(300_000)  # ~7 h at a sample a second
+
+    async def visits() -> tuple[str, str]:
+        before = await connected_page(url, 6)
+        try:
+            day_before = await the_day_of(before, record)
+        finally:
+            before.close()
+        bare = [a_session(url) for _ in range(3)]
+        ten_mb = bench_hall.wind_record(LIMIT)
+        answers = [await post_async(url, s, "wind", "x.csv", ten_mb) for s in bare]
+        assert [(status, a["refused"]) for status, a in answers] == [(403, "session")] * 3
+        after = await connected_page(url, 7)
+        try:
+            return day_before, await the_day_of(after, record)
+        finally:
+            after.close()
+
+    day_before, day_after = asyncio.run(visits())
+    assert day_after == day_before
+
+
+async def reconnected(student: bench_hall.Student) -> bench_hall.Student:
+    """A second websocket to the student's session (its token, as Bokeh's client reconnects),
+    its document read again: the same page, its store as the server kept it."""
+    again = bench_hall.Student(student.url, random.Random(0), token=student.token)
+    parsed = urllib.parse.urlparse(student.url)
+    again.ws = await bench_hall.websocket_connect(
+        bench_hall.HTTPRequest(
+            f"ws://{parsed.netloc}{parsed.path}/ws",
+            request_timeout=300,
+            headers={"Origin": f"http://{parsed.netloc}"},
+        ),
+        subprotocols=["bokeh", student.token],
+        max_message_size=64 * 1024 * 1024,
+    )
+    again.listening = asyncio.ensure_future(again.listen())
+    await asyncio.wait_for(again.acknowledged.wait(), 300)
+    again.read_document((await again.request("PULL-DOC-REQ", {}))["doc"])
+    return again
+
+
+@pytest.mark.timeout(600)
+def test_served_a_pages_files_are_gone_once_its_page_closes(served):
+    """A file posted and not yet taken is dropped when the page's websocket closes: the same
+    session connected again is told it did not reach the page."""
+    url, _process = served
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+
+    async def closing() -> list[str]:
+        student = await connected_page(url, 8)
+        status, answer = await post_async(url, session_of(student), "wind", "a.csv", rows())
+        assert status == 200
+        student.close()
+        deadline = asyncio.get_running_loop().time() + 300
+        # A site file as the probe: a wind file would replace the one posted, not drop it
+        while (await post_async(url, session_of(student), "site", "b.csv", rows()))[0] != 403:
+            assert asyncio.get_running_loop().time() < deadline, "the server kept the page open"
+            await asyncio.sleep(0.2)
+        again = await reconnected(student)
+        said: list[str] = []
+        again.watchers.append(lambda e: said.append(str(e.get("new"))))
+        channel = next(
+            i for i, m in again.models.items() if bench_hall.CHANNEL in m.get("css_classes", [])
+        )
+        value = f"{len(rows())}\t{random.random()}\twind\ta.csv\tposted {answer['id']}"
+        await again.patch([bench_hall.changed(channel, "value", value)])
+        read = lambda s: "Integrated in full" in s  # noqa: E731
+        dropped = lambda s: "did not reach the page" in s  # noqa: E731
+        deadline = asyncio.get_running_loop().time() + 300
+        while not any(read(s) or dropped(s) for s in said):
+            assert asyncio.get_running_loop().time() < deadline, said[-3:]
+            await asyncio.sleep(0.2)
+        again.close()
+        return said
+
+    said = asyncio.run(closing())
+    assert any("did not reach the page" in s for s in said), said[-3:]
+    assert not any("Integrated in full" in s for s in said)  # never read
+
+
+@pytest.mark.timeout(600)
+def test_served_no_session_id_goes_in_the_servers_log(served):
+    """A page loaded, a file posted and taken, posts refused (Tornado logs those): the
+    server's output names none of the sessions (a session's id is the upload's credential)."""
+    url, process = served
+    bench_hall.AsyncHTTPClient.configure(None, max_clients=10)
+
+    async def a_visit() -> list[str]:
+        bare = a_session(url)
+        student = await connected_page(url, 9)
+        try:
+            await the_day_of(student, rows())
+            session = session_of(student)
+            assert (await post_async(url, session, "wind", "empty.csv", b""))[0] == 400
+            assert (await post_async(url, bare, "wind", "a.csv", rows()))[0] == 403
+        finally:
+            student.close()
+        return [bare, session, student.token]
+
+    secrets = asyncio.run(a_visit())
+    written = server_log(process)
+    assert "POST /app/upload" in written  # the refusals' lines: the log was read
+    for secret in secrets:
+        assert secret not in written
 
 
 @pytest.mark.timeout(600)

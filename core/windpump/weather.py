@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import ParameterError
-from .labdata import LabDataError
+from . import files
+from .errors import LabDataError, ParameterError
 from .units import SECONDS_PER_HOUR
 from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
 
@@ -95,13 +95,17 @@ def read_weather(
     (a first line ``LOCATION,...``, or a name ending in ``.epw``) by ``pvlib.iotools.read_epw``;
     their speeds are at 10 m and every hour keeps its calendar month. Anything else is the
     Wind tab's CSV (:func:`windpump.wind.read_csv`: time in seconds or ISO timestamps, then
-    speed), whose months are those of its timestamps (none for seconds). The file is read here
-    (at most ``MAX_CSV_BYTES``) and handed to pvlib as text, never as a name it could fetch.
+    speed), whose months are those of its timestamps (none for seconds). The file is read here,
+    through the guard every reader goes through (:func:`windpump.files.read_bytes`: a regular
+    file only, never waiting on a pipe, at most ``MAX_CSV_BYTES``), and handed to pvlib as text,
+    never as a name it could fetch.
 
     Parameters
     ----------
     source : str, PathLike or bytes
-        The file, or its contents (an upload).
+        The file's path, or its contents as bytes (an upload). A ``str`` is a path: one that
+        cannot be (a line break: contents; a NUL byte; over ``files.MAX_PATH`` characters) is
+        refused.
     height : float, optional
         The anemometer's height [m], > 0: the CSV's (10 m by default); a weather file's own is
         10 m, which this replaces.
@@ -117,8 +121,12 @@ def read_weather(
     ------
     LabDataError
         (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
-        included), an hour that repeats or is skipped (a gap); or a file that cannot be read,
+        included), an hour that repeats or is skipped (a gap); or a file that is missing, not a
+        regular file (a pipe, a folder, a device), cannot be read or is over ``MAX_CSV_BYTES``,
         or an empty one (saying what it needs: ``NEEDED``).
+    ParameterError
+        (a ValueError) naming ``source``: neither bytes nor a path, or a ``str`` that cannot be
+        a path (a file's contents, a NUL byte, over ``files.MAX_PATH`` characters).
     ModuleNotFoundError
         For TMY3 or EPW without pvlib (``pip install 'windpump[site]'``).
 
@@ -160,20 +168,13 @@ def read_weather(
 
 
 def _contents(source) -> tuple[bytes, str, str]:
-    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``), its stem and suffix ("" for bytes)."""
-    if isinstance(source, bytes | bytearray):
-        data, stem, suffix = bytes(source), "", ""
-    else:
-        path = Path(source)
-        try:
-            with open(path, "rb") as file:
-                data = file.read(MAX_CSV_BYTES + 1)
-        except OSError as error:
-            raise LabDataError(f"cannot read {path}: {error.strerror or error}") from None
-        stem, suffix = path.stem, path.suffix.lower()
-    if len(data) > MAX_CSV_BYTES:
-        raise LabDataError(f"the file is over {MAX_CSV_BYTES:,} bytes")
-    return data, stem, suffix
+    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``, through the guard), its stem and
+    suffix ("" for bytes)."""
+    data = files.read_bytes(source, MAX_CSV_BYTES)
+    if isinstance(source, bytes | bytearray | memoryview):
+        return data, "", ""
+    path = Path(os.fsdecode(os.fspath(source)))
+    return data, path.stem, path.suffix.lower()
 
 
 def _height(height: object) -> float:

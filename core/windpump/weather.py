@@ -11,6 +11,7 @@ the hour's start: its label less one hour).
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,7 @@ import numpy as np
 from . import files
 from .errors import LabDataError, ParameterError
 from .units import SECONDS_PER_HOUR
-from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
+from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_samples
 
 # What a weather file must hold, said when it holds nothing.
 NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
@@ -139,25 +140,27 @@ def read_weather(
     if height is not None:
         height = _height(height)
     data, stem, suffix = _contents(source)
-    text = data.decode("utf-8", errors="replace")
-    if not text.strip():
+    if _blank(data):
         raise LabDataError(f"the file is empty; it needs {NEEDED}")
-    kind = _kind(text, suffix)
+    kind = _kind(_first_line(data), suffix)
     if kind == "csv":
-        record = read_csv(data)
-        months, lines = _csv_rows(data)
-        steps = np.diff(record.t)
+        samples = read_samples(data, MAX_CSV_BYTES, lines=True)
+        del data  # (a record near the limit: its bytes are no longer needed)
+        steps = np.diff(samples.t)
         for i in np.flatnonzero(steps > SECONDS_PER_HOUR)[:1]:
             raise LabDataError(
                 f"a gap of {steps[i] / SECONDS_PER_HOUR:.4g} h after the line before "
                 "(a site's year needs a sample in every hour)",
-                lines[i + 1],
+                None if samples.line is None else int(samples.line[i + 1]),
             )
-        record = WindRecord(record.t, record.V, ANEMOMETER, stem, months)
+        for array in (samples.t, samples.V, samples.month):
+            if array is not None:
+                array.flags.writeable = False  # (frozen where they are: a year is 10^7 samples)
+        record = WindRecord(samples.t, samples.V, ANEMOMETER, stem, samples.month)
     else:
         iotools = pvlib_iotools()
         reader = _tmy3 if kind == "tmy3" else _epw
-        record = reader(iotools, text, stem or kind.upper())
+        record = reader(iotools, data.decode("utf-8", errors="replace"), stem or kind.upper())
     return WindRecord(
         record.t,
         record.V,
@@ -177,6 +180,27 @@ def _contents(source) -> tuple[bytes, str, str]:
     return data, path.stem, path.suffix.lower()
 
 
+_NOT_SPACE = re.compile(rb"[^ \t\n\r\x0b\x0c\x1c-\x1f]")
+"""A byte that is not ASCII white space (as ``str.isspace`` has it)."""
+
+
+def _blank(data: bytes) -> bool:
+    """Whether the file's text is white space only (as its decoded text's ``strip`` says),
+    without decoding a large file to find out."""
+    found = _NOT_SPACE.search(data)
+    if found is None:
+        return True
+    if data[found.start()] < 0x80:
+        return False
+    return not data.decode("utf-8", errors="replace").strip()  # (U+00A0, U+3000 ...)
+
+
+def _first_line(data: bytes) -> str:
+    """The file's first line (to its first ``\\n``), as text."""
+    end = data.find(b"\n")
+    return data[: len(data) if end < 0 else end].decode("utf-8", errors="replace")
+
+
 def _height(height: object) -> float:
     from .validation import real
 
@@ -186,9 +210,8 @@ def _height(height: object) -> float:
     return value
 
 
-def _kind(text: str, suffix: str) -> str:
+def _kind(first: str, suffix: str) -> str:
     """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name)."""
-    first = text.split("\n", 1)[0]
     if first.upper().startswith("LOCATION,") or suffix == ".epw":
         return "epw"
     fields = first.strip().split(",")
@@ -258,24 +281,6 @@ def _when(text: str, line: int, tmy3: bool) -> str:
     ``MM/DD/YYYY,HH:MM``, an EPW's ``year,month,day,hour,minute``."""
     fields = text.splitlines()[line - 1].split(",")
     return "“" + ",".join(field.strip() for field in fields[: 2 if tmy3 else 5]) + "”"
-
-
-def _csv_rows(data: bytes) -> tuple[np.ndarray | None, list[int]]:
-    """The months of a CSV's ISO timestamps (None for times in seconds) and each sample's line:
-    re-read from its first column, which :func:`windpump.wind.read_csv` has checked."""
-    import datetime
-
-    from .labdata import read_rows, split_header
-    from .wind import COLUMNS, _time
-
-    rows = read_rows(data, MAX_CSV_BYTES, COLUMNS)
-    _header, rows = split_header(rows, lambda cell: _time(cell) is not None, COLUMNS)
-    moments = [_time(cells[0]) for _number, cells in rows]
-    lines = [number for number, _cells in rows]
-    if not moments or not isinstance(moments[0], datetime.datetime):
-        return None, lines
-    months = [moment.month for moment in moments]  # type: ignore[union-attr]
-    return _frozen(months, np.int8), lines
 
 
 def _frozen(values, dtype=float) -> np.ndarray:

@@ -18,8 +18,9 @@ import numpy as np
 
 from . import files
 from .errors import LabDataError, ParameterError
+from .labdata import decoded
 from .units import SECONDS_PER_HOUR
-from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_samples
+from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
 
 # What a weather file must hold, said when it holds nothing.
 NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
@@ -144,8 +145,9 @@ def read_weather(
         raise LabDataError(f"the file is empty; it needs {NEEDED}")
     kind = _kind(_first_line(data), suffix)
     if kind == "csv":
-        samples = read_samples(data, MAX_CSV_BYTES, lines=True)
-        del data  # (a record near the limit: its bytes are no longer needed)
+        text = decoded(data)
+        del data  # (a record near the limit: its bytes are let go before it is parsed)
+        samples = parse_samples(text, lines=True)
         steps = np.diff(samples.t)
         for i in np.flatnonzero(steps > SECONDS_PER_HOUR)[:1]:
             raise LabDataError(

@@ -403,7 +403,11 @@ def read_samples(
     >>> samples.t.tolist(), samples.line.tolist(), samples.month.tolist()
     ([0.0, 3600.0], [3, 4], [1, 2])
     """
-    text = decoded(contents(source, max_bytes, what=None))
+    return parse_samples(decoded(contents(source, max_bytes, what=None)), lines)
+
+
+def parse_samples(text: str, lines: bool = False) -> Samples:
+    """:func:`read_samples` of a file's text, once read and decoded (``labdata.decoded``)."""
     first = next((row for piece in _pieces(text) for row in zip(*_kept(*piece), strict=True)), None)
     if first is None:
         raise LabDataError(f"the file is empty; it needs {COLUMNS}")
@@ -497,8 +501,9 @@ class _Reader:
         self.pieces["V"].append(V)
         if month is not None and self.kind != "seconds":
             self.pieces["month"].append(month)
-        if self.lines:
-            self.pieces["line"].append(numbers)
+        if self.lines:  # (in 4 bytes a line while they fit)
+            small = numbers[-1] < np.iinfo(np.int32).max
+            self.pieces["line"].append(numbers.astype(np.int32) if small else numbers)
 
     def samples(self) -> Samples:
         """The samples of every piece read, each array joined once (its pieces then let go)."""

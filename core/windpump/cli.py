@@ -221,7 +221,7 @@ def typed(name: str, value: str) -> float | int | bool:
     return number
 
 
-def read_text(path: str, option: str) -> str:
+def read_text(path: str, option: str = "--design") -> str:
     """The text of the file a command line names (``--design FILE``, ``sweep FILE``), read
     through the one guard (:func:`windpump.files.read_bytes`): a regular file only, never waiting
     on a pipe, at most ``MAX_FILE_BYTES``; a path that cannot be one (a NUL byte, over

@@ -131,7 +131,7 @@ def test_supply_says_why_a_pump_never_runs():
             "--csv /no/such/dir/h.csv",
         ),
         (["tank", "--site", "greensboro", "--demand", "1", "--lolp", "1"], "lolp"),
-        (["tank", "--weather", "/no/such/file.csv", "--demand", "1"], "cannot read"),
+        (["tank", "--weather", "/no/such/file.csv", "--demand", "1"], "there is no file"),
         (["supply", "--site", "greensboro", "--demand", "1", "--profile", "1,2"], "profile"),
     ],
 )

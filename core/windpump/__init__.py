@@ -16,7 +16,18 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 (78.6, False)
 """
 
-from . import energy, labdata, linkage, playback, reciprocating, theory, units, weather, wind
+from . import (
+    energy,
+    files,
+    labdata,
+    linkage,
+    playback,
+    reciprocating,
+    theory,
+    units,
+    weather,
+    wind,
+)
 from .averaged import (
     averaged_stall_time,
     mean_lever_arm,
@@ -29,7 +40,7 @@ from .averaged import (
 from .design import Design
 from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
 from .energy import EnergyTotals, PowerBudget, StartupPower, power_budget, startup_power
-from .errors import DesignFileError, NoClosure, ParameterError, StallError
+from .errors import DesignFileError, LabDataError, NoClosure, ParameterError, StallError
 from .exploration import Exploration, NotStarted, Status, explore
 from .kinematics import (
     delivering_faces,
@@ -40,7 +51,7 @@ from .kinematics import (
     rod_angle,
     swept_strokes,
 )
-from .labdata import LabDataError, TorqueTable, read_torque_csv
+from .labdata import TorqueTable, read_torque_csv
 from .loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
 from .maps import DesignMap, design_map
 from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
@@ -96,5 +107,6 @@ __all__ = [
     "playback_frames",
     "Playback", "piston_table", "crank_table", "CrankTable",
     # modules of their own
-    "energy", "labdata", "linkage", "playback", "reciprocating", "theory", "units", "weather", "wind",
+    "energy", "files", "labdata", "linkage", "playback", "reciprocating", "theory", "units",
+    "weather", "wind",
 ]  # fmt: skip

@@ -25,10 +25,10 @@ from typing import Any
 
 import numpy as np
 
+from . import files
 from .averaged import stall_margin, steady_speeds, time_constant
 from .design import UNITS, Design, read_json
-from .errors import StallError, cut, shown
-from .labdata import read_file
+from .errors import LabDataError, StallError, cut, shown
 from .maps import MAX_POINTS, DesignMap, design_map
 from .progress import Progress, reporter
 from .studies import FIGURES, INPUTS, sweep
@@ -168,7 +168,7 @@ def chosen_design(args: argparse.Namespace) -> Design:
     """The design of --design and --set."""
     design = Design.seed_example()
     if args.design:
-        text = read_text(args.design)
+        text = read_text(args.design, "--design")
         try:
             design = Design.from_json(text)
         except ValueError as error:  # which file, as sweep says it
@@ -221,9 +221,23 @@ def typed(name: str, value: str) -> float | int | bool:
     return number
 
 
-def read_text(path: str) -> str:
-    """A file's text, refusing one too large to be a design or a table of them."""
-    data = read_file(path, MAX_FILE_BYTES)  # a regular file only, at most the limit + 1 bytes
+def read_text(path: str, option: str = "--design") -> str:
+    """The text of the file a command line names (``--design FILE``, ``sweep FILE``), read
+    through the one guard (:func:`windpump.files.read_bytes`): a regular file only, never waiting
+    on a pipe, at most ``MAX_FILE_BYTES``; a path that cannot be one (a NUL byte, over
+    ``files.MAX_PATH`` characters) refused naming ``option``.
+
+    Examples
+    --------
+    >>> read_text("lab\\x00.json", "--design")
+    Traceback (most recent call last):
+    ...
+    windpump.errors.ParameterError: --design = 'lab\\x00.json' is not allowed: --design must be a file's path, without a NUL byte
+    """
+    try:
+        data = files.read_bytes(path, MAX_FILE_BYTES, name=option)
+    except LabDataError as error:  # which option named the file
+        raise LabDataError(f"{option}: {error}") from None
     try:
         return data.decode("utf-8-sig")  # a spreadsheet's byte-order mark is not a column name
     except UnicodeDecodeError as error:
@@ -448,7 +462,7 @@ def read_json_designs(path: str, text: str) -> list[Design]:
 def read_designs(path: str, base: Design) -> tuple[list[Design], dict[str, list[float]]]:
     """Designs from a CSV (a row each: field columns, optional t_end/theta0/theta_dot0; a header
     like ``h [m]`` is read as ``h``) or a JSON list of design documents; and per-run inputs."""
-    text = read_text(path)
+    text = read_text(path, "FILE")
     if path.endswith(".json"):
         return read_json_designs(path, text), {}
     rows = csv_rows(text)

@@ -91,6 +91,23 @@ class DesignFileError(ValueError):
     """A design file (:meth:`windpump.Design.from_json`) is not one this version can read."""
 
 
+class LabDataError(ValueError):
+    """A file that cannot be used (a lab torque file, a wind record, a weather file, or one
+    :func:`windpump.files.read_bytes` refuses), with where: ``line`` and ``column`` (1-based) or
+    None.
+
+    Examples
+    --------
+    >>> str(LabDataError("'x' is not a number", 3, 2))
+    "line 3, column 2: 'x' is not a number"
+    """
+
+    def __init__(self, message: str, line: int | None = None, column: int | None = None):
+        self.line, self.column = line, column
+        where = f"line {line}" + (f", column {column}" if column else "") if line else ""
+        super().__init__(f"{where}: {message}" if where else message)
+
+
 class StallError(ValueError):
     """The windmill cannot carry the load: the margin of Eq. (22) is 1 or less."""
 

@@ -11,25 +11,16 @@ import dataclasses
 import math
 import os
 import re
-import stat
 
 import numpy as np
 
-from .errors import cut, shown
+from . import files
+from .errors import LabDataError, cut
 
 MAX_BYTES = 1_000_000
 """Largest lab file read [bytes]; a larger one is refused before it is parsed."""
 
 COLUMNS = "two columns: windmill speed [rad/s], then torque [N·m]"
-
-
-class LabDataError(ValueError):
-    """A lab file that cannot be used, with where: ``line`` and ``column`` (1-based) or None."""
-
-    def __init__(self, message: str, line: int | None = None, column: int | None = None):
-        self.line, self.column = line, column
-        where = f"line {line}" + (f", column {column}" if column else "") if line else ""
-        super().__init__(f"{where}: {message}" if where else message)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -63,18 +54,23 @@ def read_torque_csv(source: bytes | str | os.PathLike, max_bytes: int = MAX_BYTE
     ----------
     source : bytes, str or path
         The file's content (bytes, or text with a line break) or its path (a ``str`` without a
-        line break, or a path object); only a regular file is read, at most ``max_bytes`` + 1
-        bytes of it.
+        line break, or a path object), read by the guard every reader goes through
+        (:func:`windpump.files.read_bytes`): only a regular file, at most ``max_bytes`` + 1 bytes
+        of it.
     max_bytes : int, default MAX_BYTES
-        A longer file is refused before it is parsed.
+        A longer file is refused before it is parsed [bytes].
 
     Raises
     ------
     LabDataError
-        (a ValueError) saying what is wrong and where: an empty or over-long file, text that is
-        not UTF-8 or holds a NUL byte, a line with other than two columns, a cell that is not a
-        finite number (``0.216x`` in the first row too), a negative speed, a header that names
-        torque before speed, fewer than three measurements.
+        (a ValueError) saying what is wrong and where: no such file, not a regular file (a pipe,
+        a folder, a device), an empty or over-long file, text that is not UTF-8 or holds a NUL
+        byte, a line with other than two columns, a cell that is not a finite number (``0.216x``
+        in the first row too), a negative speed, a header that names torque before speed, fewer
+        than three measurements.
+    ParameterError
+        (a ValueError) for a path that cannot be one: a NUL byte, over ``files.MAX_PATH``
+        characters.
 
     Examples
     --------
@@ -104,16 +100,7 @@ def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]
     LabDataError
         For a file over ``max_bytes``, not UTF-8 text, holding a NUL byte, or empty.
     """
-    data = _read_bytes(source, max_bytes)
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as error:
-        raise LabDataError(
-            f"the file is not text (byte {error.start + 1} is not UTF-8); save it as CSV"
-        ) from None
-    if "\x00" in text:  # UTF-16, or a spreadsheet's binary format
-        line = text.count("\n", 0, text.index("\x00")) + 1
-        raise LabDataError("the file is not text (it holds a NUL byte); save it as CSV", line)
+    text = decoded(contents(source, max_bytes))
     lines = [
         (number, line.strip())
         for number, line in enumerate(text.splitlines(), start=1)
@@ -123,6 +110,27 @@ def read_rows(source, max_bytes: int, columns: str) -> list[tuple[int, list[str]
         raise LabDataError(f"the file is empty; it needs {columns}")
     separator = _separator(line for _, line in lines)
     return [(number, _cells(line, separator)) for number, line in lines]
+
+
+def decoded(data: bytes) -> str:
+    """A CSV's bytes as text: UTF-8 (a byte-order mark dropped) without a NUL byte.
+
+    Raises
+    ------
+    LabDataError
+        For bytes that are not UTF-8 (naming the first that is not) or hold a NUL byte (naming
+        its line): a spreadsheet's own format or UTF-16, not CSV.
+    """
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as error:
+        raise LabDataError(
+            f"the file is not text (byte {error.start + 1} is not UTF-8); save it as CSV"
+        ) from None
+    if "\x00" in text:  # UTF-16, or a spreadsheet's binary format
+        line = text.count("\n", 0, text.index("\x00")) + 1
+        raise LabDataError("the file is not text (it holds a NUL byte); save it as CSV", line)
+    return text
 
 
 def split_header(
@@ -191,57 +199,25 @@ def check_file_size(size: int, max_bytes: int = MAX_BYTES, what: str = "a torque
     >>> check_file_size(52_428_800)
     Traceback (most recent call last):
     ...
-    windpump.labdata.LabDataError: the file has 52,428,800 bytes; at most 1,000,000 are read (a torque curve needs far fewer)
+    windpump.errors.LabDataError: the file has 52,428,800 bytes; at most 1,000,000 are read (a torque curve needs far fewer)
     """
-    if size > max_bytes:
-        raise LabDataError(
-            f"the file has {size:,} bytes; at most {max_bytes:,} are read ({what} needs far fewer)"
-        )
+    files.check_size(size, max_bytes, what)
 
 
-def _read_bytes(source, max_bytes: int) -> bytes:
-    if isinstance(source, bytes | bytearray):
-        data = bytes(source)
-    elif isinstance(source, str) and "\n" in source:
-        data = source.encode("utf-8")
-    elif isinstance(source, str | os.PathLike):
-        data = read_file(source, max_bytes)
-    else:
-        raise LabDataError(
-            f"source = {shown(source)}: the file's content (bytes or text) or its path is needed"
-        )
-    check_file_size(len(data), max_bytes)
-    return data
+def contents(
+    source: bytes | str | os.PathLike, max_bytes: int, what: str | None = "a torque curve"
+) -> bytes:
+    """The bytes of a CSV reader's ``source``: text holding a line break is the file's contents
+    (as the lab and wind readers have always taken it), anything else goes through the one guard,
+    :func:`windpump.files.read_bytes` (bytes, or the path of a regular file of at most
+    ``max_bytes``)."""
+    if isinstance(source, str) and ("\n" in source or "\r" in source):
+        source = source.encode("utf-8")
+    return files.read_bytes(source, max_bytes, what=what)
 
 
-def read_file(path: str | os.PathLike, max_bytes: int) -> bytes:
-    """The bytes of the regular file at ``path``, reading at most ``max_bytes`` + 1 of them.
-
-    A device, a pipe or a folder is refused before it is read (``/dev/zero`` never ends, and its
-    size reads as 0), and so is a file longer than ``max_bytes``, whatever its size claims.
-
-    Raises
-    ------
-    LabDataError
-        (a ValueError) for a path that does not exist, is not a regular file, cannot be read,
-        or holds more than ``max_bytes`` bytes; naming the path (cut to a bounded length).
-    """
-    name = f"'{cut(os.fsdecode(path))}'"
-    try:  # not blocking: opening a pipe would wait for a writer
-        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-        with open(descriptor, "rb") as file:
-            status = os.fstat(descriptor)
-            if not stat.S_ISREG(status.st_mode):
-                raise LabDataError(f"{name} is not a regular file (a device, pipe or folder)")
-            check_file_size(status.st_size, max_bytes)
-            data = file.read(max_bytes + 1)  # and no more, should it grow meanwhile
-    except FileNotFoundError:
-        raise LabDataError(f"there is no file {name}") from None
-    except OSError as error:  # a folder, no permission...
-        raise LabDataError(f"{name} cannot be read: {error.strerror or error}") from None
-    if len(data) > max_bytes:
-        raise LabDataError(f"{name} has more than {max_bytes:,} bytes; at most that many are read")
-    return data
+read_file = files.read_bytes
+"""The guard, by the name it had here before it was :func:`windpump.files.read_bytes`."""
 
 
 def _separator(lines) -> str:

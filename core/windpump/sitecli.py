@@ -14,7 +14,7 @@ import math
 import os
 from pathlib import Path
 
-from .errors import ParameterError
+from .errors import ParameterError, cut
 from .labdata import LabDataError
 from .units import LITRES_PER_M3
 from .wind import WindRecord
@@ -79,7 +79,11 @@ def site_record(args: argparse.Namespace) -> WindRecord:
         try:
             record = read_weather(args.weather, height=args.height)
         except LabDataError as error:  # the line at fault, in the file named
-            raise LabDataError(f"--weather {args.weather}: {error}") from None
+            raise LabDataError(f"--weather {cut(args.weather)}: {error}") from None
+        except ParameterError as error:  # a path that cannot be one: named as the option
+            if error.name != "source":
+                raise
+            raise ParameterError("--weather", error.value, error.allowed, why=error.why) from None
     if args.hub_height is not None or args.shear != 1 / 7:
         hub = record.height if args.hub_height is None else args.hub_height
         try:

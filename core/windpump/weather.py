@@ -11,14 +11,16 @@ the hour's start: its label less one hour).
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
 
-from .errors import ParameterError
-from .labdata import LabDataError
+from . import files
+from .errors import LabDataError, ParameterError
+from .labdata import decoded
 from .units import SECONDS_PER_HOUR
-from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, read_csv
+from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
 
 # What a weather file must hold, said when it holds nothing.
 NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
@@ -95,13 +97,17 @@ def read_weather(
     (a first line ``LOCATION,...``, or a name ending in ``.epw``) by ``pvlib.iotools.read_epw``;
     their speeds are at 10 m and every hour keeps its calendar month. Anything else is the
     Wind tab's CSV (:func:`windpump.wind.read_csv`: time in seconds or ISO timestamps, then
-    speed), whose months are those of its timestamps (none for seconds). The file is read here
-    (at most ``MAX_CSV_BYTES``) and handed to pvlib as text, never as a name it could fetch.
+    speed), whose months are those of its timestamps (none for seconds). The file is read here,
+    through the guard every reader goes through (:func:`windpump.files.read_bytes`: a regular
+    file only, never waiting on a pipe, at most ``MAX_CSV_BYTES``), and handed to pvlib as text,
+    never as a name it could fetch.
 
     Parameters
     ----------
     source : str, PathLike or bytes
-        The file, or its contents (an upload).
+        The file's path, or its contents as bytes (an upload). A ``str`` is a path: one that
+        cannot be (a line break: contents; a NUL byte; over ``files.MAX_PATH`` characters) is
+        refused.
     height : float, optional
         The anemometer's height [m], > 0: the CSV's (10 m by default); a weather file's own is
         10 m, which this replaces.
@@ -117,8 +123,12 @@ def read_weather(
     ------
     LabDataError
         (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
-        included), an hour that repeats or is skipped (a gap); or a file that cannot be read,
+        included), an hour that repeats or is skipped (a gap); or a file that is missing, not a
+        regular file (a pipe, a folder, a device), cannot be read or is over ``MAX_CSV_BYTES``,
         or an empty one (saying what it needs: ``NEEDED``).
+    ParameterError
+        (a ValueError) naming ``source``: neither bytes nor a path, or a ``str`` that cannot be
+        a path (a file's contents, a NUL byte, over ``files.MAX_PATH`` characters).
     ModuleNotFoundError
         For TMY3 or EPW without pvlib (``pip install 'windpump[site]'``).
 
@@ -131,25 +141,28 @@ def read_weather(
     if height is not None:
         height = _height(height)
     data, stem, suffix = _contents(source)
-    text = data.decode("utf-8", errors="replace")
-    if not text.strip():
+    if _blank(data):
         raise LabDataError(f"the file is empty; it needs {NEEDED}")
-    kind = _kind(text, suffix)
+    kind = _kind(_first_line(data), suffix)
     if kind == "csv":
-        record = read_csv(data)
-        months, lines = _csv_rows(data)
-        steps = np.diff(record.t)
+        text = decoded(data)
+        del data  # (a record near the limit: its bytes are let go before it is parsed)
+        samples = parse_samples(text, lines=True)
+        steps = np.diff(samples.t)
         for i in np.flatnonzero(steps > SECONDS_PER_HOUR)[:1]:
             raise LabDataError(
                 f"a gap of {steps[i] / SECONDS_PER_HOUR:.4g} h after the line before "
                 "(a site's year needs a sample in every hour)",
-                lines[i + 1],
+                None if samples.line is None else int(samples.line[i + 1]),
             )
-        record = WindRecord(record.t, record.V, ANEMOMETER, stem, months)
+        for array in (samples.t, samples.V, samples.month):
+            if array is not None:
+                array.flags.writeable = False  # (frozen where they are: a year is 10^7 samples)
+        record = WindRecord(samples.t, samples.V, ANEMOMETER, stem, samples.month)
     else:
         iotools = pvlib_iotools()
         reader = _tmy3 if kind == "tmy3" else _epw
-        record = reader(iotools, text, stem or kind.upper())
+        record = reader(iotools, data.decode("utf-8", errors="replace"), stem or kind.upper())
     return WindRecord(
         record.t,
         record.V,
@@ -160,20 +173,34 @@ def read_weather(
 
 
 def _contents(source) -> tuple[bytes, str, str]:
-    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``), its stem and suffix ("" for bytes)."""
-    if isinstance(source, bytes | bytearray):
-        data, stem, suffix = bytes(source), "", ""
-    else:
-        path = Path(source)
-        try:
-            with open(path, "rb") as file:
-                data = file.read(MAX_CSV_BYTES + 1)
-        except OSError as error:
-            raise LabDataError(f"cannot read {path}: {error.strerror or error}") from None
-        stem, suffix = path.stem, path.suffix.lower()
-    if len(data) > MAX_CSV_BYTES:
-        raise LabDataError(f"the file is over {MAX_CSV_BYTES:,} bytes")
-    return data, stem, suffix
+    """The bytes of ``source`` (at most ``MAX_CSV_BYTES``, through the guard), its stem and
+    suffix ("" for bytes)."""
+    data = files.read_bytes(source, MAX_CSV_BYTES)
+    if isinstance(source, bytes | bytearray | memoryview):
+        return data, "", ""
+    path = Path(os.fsdecode(os.fspath(source)))
+    return data, path.stem, path.suffix.lower()
+
+
+_NOT_SPACE = re.compile(rb"[^ \t\n\r\x0b\x0c\x1c-\x1f]")
+"""A byte that is not ASCII white space (as ``str.isspace`` has it)."""
+
+
+def _blank(data: bytes) -> bool:
+    """Whether the file's text is white space only (as its decoded text's ``strip`` says),
+    without decoding a large file to find out."""
+    found = _NOT_SPACE.search(data)
+    if found is None:
+        return True
+    if data[found.start()] < 0x80:
+        return False
+    return not data.decode("utf-8", errors="replace").strip()  # (U+00A0, U+3000 ...)
+
+
+def _first_line(data: bytes) -> str:
+    """The file's first line (to its first ``\\n``), as text."""
+    end = data.find(b"\n")
+    return data[: len(data) if end < 0 else end].decode("utf-8", errors="replace")
 
 
 def _height(height: object) -> float:
@@ -185,9 +212,8 @@ def _height(height: object) -> float:
     return value
 
 
-def _kind(text: str, suffix: str) -> str:
+def _kind(first: str, suffix: str) -> str:
     """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name)."""
-    first = text.split("\n", 1)[0]
     if first.upper().startswith("LOCATION,") or suffix == ".epw":
         return "epw"
     fields = first.strip().split(",")
@@ -257,24 +283,6 @@ def _when(text: str, line: int, tmy3: bool) -> str:
     ``MM/DD/YYYY,HH:MM``, an EPW's ``year,month,day,hour,minute``."""
     fields = text.splitlines()[line - 1].split(",")
     return "“" + ",".join(field.strip() for field in fields[: 2 if tmy3 else 5]) + "”"
-
-
-def _csv_rows(data: bytes) -> tuple[np.ndarray | None, list[int]]:
-    """The months of a CSV's ISO timestamps (None for times in seconds) and each sample's line:
-    re-read from its first column, which :func:`windpump.wind.read_csv` has checked."""
-    import datetime
-
-    from .labdata import read_rows, split_header
-    from .wind import COLUMNS, _time
-
-    rows = read_rows(data, MAX_CSV_BYTES, COLUMNS)
-    _header, rows = split_header(rows, lambda cell: _time(cell) is not None, COLUMNS)
-    moments = [_time(cells[0]) for _number, cells in rows]
-    lines = [number for number, _cells in rows]
-    if not moments or not isinstance(moments[0], datetime.datetime):
-        return None, lines
-    months = [moment.month for moment in moments]  # type: ignore[union-attr]
-    return _frozen(months, np.int8), lines
 
 
 def _frozen(values, dtype=float) -> np.ndarray:

@@ -21,6 +21,7 @@ from windpump_app.explorer import Explorer
 from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
 from windpump_app.uploads import SESSION_HEADER, WIND_MAX_BYTES
 
+from panes import shown
 from served import served_app, server_log
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
@@ -250,10 +251,10 @@ def test_a_posted_wind_file_is_taken_and_read_as_a_chosen_one_is(app):
     data = rows()
     tell(app, len(data), "wind", "mast.csv", "sending")
     message = app.wind.upload_message
-    assert message.visible and message.alert_type == "info" and "Sending mast.csv" in message.object
+    assert message.visible and message.alert_type == "info" and "Sending mast.csv" in shown(message)
     upload_id = UPLOADS.put("", "wind", "mast.csv", data)
     tell(app, len(data), "wind", "mast.csv", f"posted {upload_id}")
-    assert app.wind.last_run.t[-1] == 7200.0 and "mast.csv" in app.wind.day_note.object
+    assert app.wind.last_run.t[-1] == 7200.0 and "mast.csv" in shown(app.wind.day_note)
     assert not message.visible and UPLOADS.take("", upload_id) == "gone"  # taken
 
 
@@ -280,7 +281,7 @@ def test_what_could_not_be_sent_is_said_and_the_day_stays(app):
         ("empty", "This wind file cannot be used: the file is empty"),
     ]:
         tell(app, 12_000_000 if "size" in state else 0, "wind", "year.csv", state)
-        assert message.visible and said in message.object, (state, message.object)
+        assert message.visible and said in shown(message), (state, message.object)
         assert message.alert_type == "danger" and app.wind.last_run is day
         assert app.sidebar.reveal.value.split("\t")[0] in message.css_classes
 
@@ -295,8 +296,8 @@ def test_a_file_dropped_for_another_pages_in_a_full_store_is_said(app, monkeypat
     day = app.wind.last_run
     tell(app, len(rows()), "wind", "mast.csv", f"posted {upload_id}")
     message = app.wind.upload_message
-    assert message.visible and "was dropped before this page could take it" in message.object
-    assert "Choose it again" in message.object and app.wind.last_run is day
+    assert message.visible and "was dropped before this page could take it" in shown(message)
+    assert "Choose it again" in shown(message) and app.wind.last_run is day
 
 
 def test_a_file_replaced_by_a_later_one_says_nothing_of_itself(app):
@@ -304,9 +305,9 @@ def test_a_file_replaced_by_a_later_one_says_nothing_of_itself(app):
     second = UPLOADS.put("", "wind", "second.csv", rows(61))
     tell(app, 1, "wind", "second.csv", "sending")
     tell(app, 1, "wind", "first.csv", f"posted {first}")  # came late
-    assert "Sending second.csv" in app.wind.upload_message.object
+    assert "Sending second.csv" in shown(app.wind.upload_message)
     tell(app, 1, "wind", "second.csv", f"posted {second}")
-    assert app.wind.last_run.t[-1] == 3600.0 and "second.csv" in app.wind.day_note.object
+    assert app.wind.last_run.t[-1] == 3600.0 and "second.csv" in shown(app.wind.day_note)
 
 
 def test_served_of_two_wind_files_the_later_wins_though_the_earlier_is_read_last(monkeypatch):
@@ -329,7 +330,7 @@ def test_served_of_two_wind_files_the_later_wins_though_the_earlier_is_read_last
         work, then = held.pop(0)
         then(work())
     early[1](early[0]())  # the earlier file, read last: not shown
-    assert "late.csv" in explorer.wind.day_note.object
+    assert "late.csv" in shown(explorer.wind.day_note)
     assert explorer.wind.last_run.t[-1] == 3600.0
 
 

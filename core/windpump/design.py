@@ -12,7 +12,7 @@ from ._kernels import equations
 from .errors import DesignFileError, ParameterError, shown
 from .validation import LARGEST as LARGEST
 from .validation import SMALLEST as SMALLEST
-from .validation import flag, fraction, magnitude, positive, rod_ratio, whole
+from .validation import flag, magnitude, positive, rod_ratio, whole
 from .wind import MAX_WIND
 
 # Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
@@ -55,6 +55,18 @@ SCHEMA_VERSION = 2
 """What a design file says it is, and the version of its layout (:meth:`Design.to_json`).
 Version 2 added the real machine's fields (``REAL_MACHINE``); a version 1 file is still read (its
 design is the ideal machine)."""
+
+NARROWER = {
+    "rho_w": (1.0, 2e4),
+    "eta_t": (0.1, 1.0),
+    "Cd_leak": (0.05, 1.0),
+}
+"""Fields whose range is narrower than ``SMALLEST`` to ``LARGEST`` [their SI units]: a liquid's
+density from 1 kg/m^3 (below any liquid's, ~70 for liquid hydrogen) to 2e4 (past mercury's
+13,600); a chain drive's efficiency from 0.1 (below it the drive is broken, not lossy) to 1; a
+hole's discharge coefficient from 0.05 (a long, rough bore) to 1. Past them no machine exists,
+and the model's figures were wrong there (issue 36: a leaky pump's speeds NaN at rho_w = 1e12;
+the windmill's torque on the crank underflowed to 0 at eta_t = 5e-324, a ZeroDivisionError)."""
 
 WIDEST_RATIO = 1e50
 """Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
@@ -178,8 +190,9 @@ class Design:
                 value = flag(name, value)
             elif name in ("h", "T_0", "m_r", "L_main", "d_leak"):  # 0 too (see below)
                 value = magnitude(name, value, UNITS[name], zero=True)
-            elif name in ("eta_t", "Cd_leak"):  # a fraction
-                value = fraction(name, value)
+            elif name in NARROWER:
+                value = magnitude(name, value, UNITS[name], lowest=NARROWER[name][0],
+                                  highest=NARROWER[name][1])  # fmt: skip
             elif name == "f_main":
                 value = magnitude(name, value, zero=True, highest=MAX_FRICTION_FACTOR)
             elif name == "V_ref":  # a wind speed, as a record's

@@ -197,6 +197,10 @@ def friction_load(design) -> float:
 SCAN_POINTS = 48
 """Crank speeds from rest to the runaway speed where F is sampled to bracket its roots."""
 
+CRAWL_STEP, CRAWL_DECADES = 1e-3, 110
+"""Below the scan, speeds CRAWL_STEP apart are tried (at most CRAWL_DECADES of them, down past
+the smallest double) for a crawl's largest root."""
+
 ROOT_ITERATIONS = 100
 """At most this many Illinois steps refine a root (a dozen usually bring it to round-off)."""
 
@@ -282,7 +286,25 @@ def largest_roots(points: Points, upper, crawl: bool = False):
     roots = _root(
         points, alpha[every, start], alpha[every, start + 1], np.concatenate(actives), every
     )
-    return tuple(roots[i * rows.size : (i + 1) * rows.size] for i in range(len(starts)))
+    found_roots = tuple(roots[i * rows.size : (i + 1) * rows.size] for i in range(len(starts)))
+    if np.all(last >= 0):
+        return found_roots
+    # F <= 0 at every scanned speed, from 1e-9 of the runaway speed up: a crawl below the scan
+    # (a load through the hole many decades above the windmill's torque; NaN before, issue 36).
+    # F > 0 just above rest, so its largest root lies below the scan's first speed: found on
+    # speeds a thousandth apart down from there, then refined as the others.
+    below = np.flatnonzero(last < 0)
+    hi = np.asarray(upper, dtype=float)[below] * grid[0]
+    lo = hi * CRAWL_STEP
+    for _ in range(CRAWL_DECADES):
+        falling = ~(points.net_torque(lo, below) > 0.0) & (lo > 0.0)
+        if not falling.any():
+            break
+        hi = np.where(falling, lo, hi)
+        lo = np.where(falling, lo * CRAWL_STEP, lo)
+    crawling = _root(points, lo, hi, points.net_torque(lo, below) > 0.0, below)
+    found_roots[0][below] = crawling
+    return found_roots
 
 
 def _root(points: Points, lo, hi, active, of):

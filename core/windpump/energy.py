@@ -15,10 +15,10 @@ import numpy as np
 
 from .dynamics import SimulationResult, revolution_marks
 from .errors import ParameterError
-from .loads import load_torque_on_crank, weight_torque
+from .loads import load_at_speed, weight_torque
 from .reciprocating import weight_potential
 from .validation import non_negative, positive, real
-from .windmill import windmill_power
+from .windmill import shaft_power as _shaft_power
 
 
 class StartupPower(typing.NamedTuple):
@@ -258,7 +258,7 @@ def power_budget(result: SimulationResult) -> PowerBudget:
     if not isinstance(result, SimulationResult):
         raise TypeError(f"result must be a windpump.SimulationResult, not {type(result).__name__}")
     design = result.design
-    shaft_power = windmill_power(design, result.omega)
+    shaft_power = _shaft_power(design, result.omega)
     lift = design.rho_w * design.g
     hydraulic_power = lift * design.h * result.flow
     friction_power = lift * design.friction_coefficient * result.flow**3
@@ -266,7 +266,7 @@ def power_budget(result: SimulationResult) -> PowerBudget:
         faces_power, leak_power = hydraulic_power, np.zeros_like(result.t)
     else:
         theta, theta_dot = result.theta, result.theta_dot
-        faces_power = load_torque_on_crank(design, theta, theta_dot) * theta_dot
+        faces_power = load_at_speed(design, theta, theta_dot) * theta_dot
         leak_power = faces_power - hydraulic_power - friction_power
     weight_power = -weight_torque(design, result.theta) * result.theta_dot
     transmission_power = (1.0 - design.eta_t) * shaft_power

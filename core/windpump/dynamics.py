@@ -612,6 +612,19 @@ def _refuse_too_many_samples(t_end: float, bound: float) -> None:
         )
 
 
+def _settled(volume: np.ndarray) -> None:
+    """Make a leaky run's delivered volume [m^3] (swept less leaked) never fall and never dip
+    below 0, in place: each sample becomes the least of it and every later one, and 0 at most.
+
+    Delivered water never flows back, but a hole's window leaks as a jump at the window's end
+    (docs/model.rst, "A leak hole's windows, jumped"): a sample inside a window still counts its
+    swept water and not yet its leak, up to the window's leak too high (3e-11 m^3 in the app's
+    preset, -7.6e-12 m^3 below 0 with a hole near the bore; issue 36). The next settled sample
+    is the right level there; the last sample is unchanged."""
+    np.maximum(volume, 0.0, out=volume)
+    volume[:] = np.minimum.accumulate(volume[::-1])[::-1]
+
+
 def _simulation_result(design: Design, run, record: WindRecord | None) -> SimulationResult:
     """The kernels' run (a ``_kernels.KernelRun``) as a :class:`SimulationResult`: volume and flow
     (Eq. 16, every face) from the strokes and flow factor, every array read-only; a leak hole's
@@ -627,6 +640,7 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     else:  # the real machine
         if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
             volume = np.subtract(swept, run.leaked, out=run.leaked)  # (the kernel's own copy)
+            _settled(volume)
         friction = run.friction_loss
         leak = functools.partial(_leak_loss, design, swept, volume, run.leak_loss, friction)
     arrays = (

@@ -82,7 +82,8 @@ class Design:
     Every field is checked on construction: numbers from ``SMALLEST`` = 1e-12 to ``LARGEST`` =
     1e12 in SI units (h and T_0 from 0; V_ref is at most 150 m/s, the fastest wind a
     record holds), far past any machine and the range where every figure of the model stays
-    finite. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
+    finite; rho_w, eta_t and Cd_leak in the narrower ranges of ``NARROWER`` (a liquid's
+    density, a working chain drive, an orifice), past which the model's answers were wrong. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
     field, its value (cut to a bounded length) and the allowed range.
 
     Parameters
@@ -108,7 +109,7 @@ class Design:
     h : float
         Head: height the water is lifted above the tank's waterline [m]; 0 means no load.
     rho_w : float, default 1000.0
-        Water density [kg/m^3].
+        Water density [kg/m^3], 1 to 2e4 (any liquid's).
     g : float, default 9.81
         Gravity [m/s^2].
     cylinders : int, default 1
@@ -130,8 +131,8 @@ class Design:
         vertical: the mass adds ``m_r sum x_c'^2`` to the inertia on the crank and its weight
         ``m_r g sum x_c'`` to the torque (docs/model.rst, "The real machine").
     eta_t : float, default 1.0
-        Transmission efficiency of the chain and sprockets [-], 0 < eta_t <= 1: the crank gets
-        ``eta_t R+ T``.
+        Transmission efficiency of the chain and sprockets [-], 0.1 <= eta_t <= 1: the crank
+        gets ``eta_t R+ T``.
     L_main : float, default 0.0
         Length of the rising main [m], >= 0; 0: no pipe friction.
     D_main : float, default 0.05
@@ -144,7 +145,7 @@ class Design:
         bore: it passes up to ``q_L = Cd_leak (pi d_leak^2 / 4) sqrt(2 g h)``, so a slow piston
         delivers nothing and loads the crank little (the pump can start).
     Cd_leak : float, default 0.6
-        The leak hole's discharge coefficient [-], 0 < Cd_leak <= 1.
+        The leak hole's discharge coefficient [-], 0.05 <= Cd_leak <= 1.
 
     Examples
     --------

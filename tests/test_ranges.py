@@ -366,3 +366,16 @@ def test_a_rotor_too_light_to_integrate_is_refused_before_any_work_with_the_righ
         SEED.replace(L_main=1e6, D_main=1e-3)
     )
     assert advice
+
+
+@pytest.mark.parametrize("L_main, D_main", [(1e3, 1e-6), (1e12, 1e-12), (1e6, 1e-9)])
+@pytest.mark.parametrize("h", [0.0, 1e-12, 1e-6])
+@pytest.mark.parametrize("T_m", [0.6, 0.7, 3.3])
+def test_a_site_with_a_main_that_dwarfs_the_windmill_is_answered(L_main, D_main, h, T_m):
+    # delta^2's wind slope was round-off there: ZeroDivisionError or a math domain error
+    design = SEED.replace(L_main=L_main, D_main=D_main, h=h, T_m=T_m, f_main=0.2)
+    low, high = windpump.water_per_day(design, 5.0)
+    V_stop, _ = windpump.wind_thresholds(design)
+    assert 0.0 <= low <= high and math.isfinite(high) and V_stop >= 0.0
+    if h == 0.0:  # no load: it runs in any wind, and lifts nothing
+        assert V_stop == 0.0

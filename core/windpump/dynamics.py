@@ -678,10 +678,10 @@ def _settled(volume: np.ndarray) -> None:
     below 0, in place: each sample becomes the least of it and every later one, and 0 at most.
 
     Delivered water never flows back, but a hole's window leaks as a jump at the window's end
-    (docs/model.rst, "A leak hole's windows, jumped"): a sample inside a window still counts its
-    swept water and not yet its leak, up to the window's leak too high (3e-11 m^3 in the app's
-    preset, -7.6e-12 m^3 below 0 with a hole near the bore; issue 36). The next settled sample
-    is the right level there; the last sample is unchanged."""
+    (docs/model.rst, "The real machine": a leak hole's windows, jumped): a sample inside a
+    window still counts its swept water and not yet its leak, up to the window's leak too high
+    (3e-11 m^3 in the app's preset, -7.6e-12 m^3 below 0 with a hole near the bore; issue 36).
+    The next settled sample is the right level there; the last sample is unchanged."""
     np.maximum(volume, 0.0, out=volume)
     volume[:] = np.minimum.accumulate(volume[::-1])[::-1]
 

@@ -457,7 +457,7 @@ def stiffness(design: Design) -> tuple[float, float, float, float]:
     from .revolution import friction_load, reciprocating_inertia
 
     inertia = design.I_eff
-    windmill = 2.0 * design.eta_t * design.R_dagger**2 * (design.T_m - design.T_0) / design.omega_m
+    windmill = _windmill_slope(design)
     pipe = 2.0 * friction_load(design) * design.omega_m / design.R_dagger
     q_L = design.leak_capacity
     hole = 2.0 * design.load_torque * design.A * design.R / q_L if q_L > 0.0 else 0.0
@@ -467,6 +467,12 @@ def stiffness(design: Design) -> tuple[float, float, float, float]:
         hole / inertia,
         reciprocating_inertia(design) / inertia,
     )
+
+
+def _windmill_slope(design: Design) -> float:
+    """a1 = 2 eta_t R+^2 (T_m - T_0) / omega_m [N m s]: how fast the windmill's torque on the
+    crank falls with the crank's speed, at rest (Eq. 11 through the chain)."""
+    return 2.0 * design.eta_t * design.R_dagger**2 * (design.T_m - design.T_0) / design.omega_m
 
 
 def _stiff_advice(design: Design) -> str:
@@ -491,7 +497,7 @@ def check_work(design: Design, t_end: float, record: WindRecord | None = None) -
     would stop there, after minutes and gigabytes, as if the design were too stiff. And a rotor
     so light that a run could not be done in ``MAX_STEPS``: a running crank takes at least
     ``STIFF_STEPS t_end a1 / I_eff`` steps (:func:`stiffness`), found after a minute before."""
-    windmill = stiffness(design)[0]
+    windmill = _windmill_slope(design) / design.I_eff  # (stiffness's first: no quadrature)
     if record is None and STIFF_STEPS * windmill * t_end > MAX_STEPS and _moves(design):
         raise ParameterError(
             "design",

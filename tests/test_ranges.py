@@ -379,3 +379,29 @@ def test_a_site_with_a_main_that_dwarfs_the_windmill_is_answered(L_main, D_main,
     assert 0.0 <= low <= high and math.isfinite(high) and V_stop >= 0.0
     if h == 0.0:  # no load: it runs in any wind, and lifts nothing
         assert V_stop == 0.0
+
+
+def test_a_spinup_with_torque_at_rest_beating_the_load_follows_the_riccati_equation():
+    # a- < 0 (R+ T_0 beats the mean load): the roots' weighted form cancelled to round-off of
+    # |a-| (-4.4e-16 rad/s at rest in the app's preset; -6.7e7 rad/s between roots 1e36 apart)
+    from scipy.integrate import solve_ivp
+
+    design = SEED.replace(cylinders=2, T_0=0.4)
+    R, M = design.R_dagger, design.mean_load_torque
+    k = R**3 * (design.T_m - design.T_0) / (design.I_eff * design.omega_m**2)
+    p = design.omega_m / R
+    delta2 = p * p * (R * design.T_m - M) / (R * (design.T_m - design.T_0))
+    t = np.array([0.0, 10.0, 79.0, 300.0, 600.0])
+    for kick in (0.0, 3.0):
+        reference = solve_ivp(
+            lambda _, a: -k * ((a - p) ** 2 - delta2), (0.0, 600.0), [kick],
+            t_eval=t, rtol=1e-12, atol=1e-12, method="DOP853",
+        ).y[0]  # fmt: skip
+        speeds = windpump.spinup(design, t, kick)
+        assert speeds[0] == kick
+        np.testing.assert_allclose(speeds, reference, rtol=1e-9, atol=1e-12)
+    extreme = Design(R0=1e12, R1=1.0, R=1e-12, L=1.5e-12, A=1e-12, I0=1e-12, I1=1e-12,
+                     T_m=1e-12, omega_m=1e12, h=0.0, g=1e-12, T_0=5e-13, V_ref=1e-12)  # fmt: skip
+    tau = windpump.time_constant(extreme)
+    speeds = windpump.spinup(extreme, [0.0, 1.0, 1e6, tau, 10 * tau], 3.0)
+    assert speeds[0] == 3.0 and np.all(np.diff(speeds) > 0.0), speeds

@@ -483,8 +483,8 @@ def _stiff_advice(design: Design) -> str:
                 "(a lighter m_r or a heavier rotor)")  # fmt: skip
     largest = max(windmill, pipe, hole)
     if largest == windmill:
-        return (f"a rotor too light for its windmill: the crank's speed settles in "
-                f"{1 / windmill:.3g} s (increase I0 or I1)")  # fmt: skip
+        return (f"a rotor too light for its windmill at this gear ratio: the crank's speed "
+                f"settles in {1 / windmill:.3g} s (increase I0 or I1, or a smaller R1/R0)")  # fmt: skip
     if largest == pipe:
         return (f"a rising main whose friction settles the crank's speed in {1 / pipe:.3g} s "
                 "(a shorter or wider main, or a heavier rotor)")  # fmt: skip

@@ -64,12 +64,12 @@ def real_machines(draw):
     design = draw(designs())
     return design.replace(
         m_r=draw(st.floats(0.0, 1e3)),
-        eta_t=draw(st.floats(1e-6, 1.0)),
+        eta_t=draw(st.floats(0.1, 1.0)),
         L_main=draw(st.floats(0.0, 1e4)),
         D_main=draw(st.floats(1e-4, 1.0)),
         f_main=draw(st.floats(0.0, 0.2)),
         d_leak=design.bore * draw(st.floats(0.0, 0.999)),
-        Cd_leak=draw(st.floats(1e-6, 1.0)),
+        Cd_leak=draw(st.floats(0.05, 1.0)),
     )
 
 
@@ -157,9 +157,10 @@ def test_a_version_1_file_with_a_real_machine_field_is_refused(name):
 BAD_REAL_MACHINE = [
     ("m_r", -0.5, "from 0 to"),
     ("m_r", -1e-9, "from 0 to"),
-    ("eta_t", 0.0, "above 0 and at most 1"),
-    ("eta_t", -0.2, "above 0 and at most 1"),
-    ("eta_t", 1.01, "above 0 and at most 1"),
+    ("eta_t", 0.0, "from 0.1 to 1"),
+    ("eta_t", 0.09, "from 0.1 to 1"),
+    ("eta_t", -0.2, "from 0.1 to 1"),
+    ("eta_t", 1.01, "from 0.1 to 1"),
     ("L_main", -1.0, "from 0 to"),
     ("D_main", 0.0, "from 1e-12 to"),
     ("D_main", -0.05, "from 1e-12 to"),
@@ -168,8 +169,9 @@ BAD_REAL_MACHINE = [
     ("d_leak", SEED.bore, f"below the bore = {SEED.bore!r} m"),
     ("d_leak", 0.05, f"below the bore = {SEED.bore!r} m"),
     ("d_leak", -0.001, "from 0"),
-    ("Cd_leak", 0.0, "above 0 and at most 1"),
-    ("Cd_leak", 1.5, "above 0 and at most 1"),
+    ("Cd_leak", 0.0, "from 0.05 to 1"),
+    ("Cd_leak", 0.04, "from 0.05 to 1"),
+    ("Cd_leak", 1.5, "from 0.05 to 1"),
 ]
 
 

@@ -72,8 +72,9 @@ def in_field_range(name: str, value) -> bool:
         return is_number(value) and 1 <= value <= MAX_CYLINDERS and value == int(value)
     if not is_number(value) or isinstance(value, float) and not math.isfinite(value):
         return False
-    if name in ("eta_t", "Cd_leak"):  # fractions
-        return 0.0 < value <= 1.0
+    narrower = {"rho_w": (1.0, 2e4), "eta_t": (0.1, 1.0), "Cd_leak": (0.05, 1.0)}
+    if name in narrower:  # a liquid's density, a working drive's efficiency, an orifice's Cd
+        return narrower[name][0] <= value <= narrower[name][1]
     if name == "d_leak":  # through the piston: narrower than its bore
         return 0.0 <= value < math.sqrt(4.0 * SEED.A / math.pi)
     lowest = 0.0 if name in ("h", "T_0", "m_r", "L_main", "f_main") else 1e-12

@@ -187,7 +187,7 @@ def test_a_large_but_bounded_frame_count_still_works():
 
 
 def test_winds_beyond_any_record_are_refused_not_answered_with_nan_or_inf():
-    with pytest.raises(ParameterError, match="^mean_wind = 1e\\+300 m/s .* <= 150"):
+    with pytest.raises(ParameterError, match="^mean_wind = 1e\\+300 m/s .* from 0.001 to 150"):
         windpump.water_per_day(SEED, 1e300)
     with pytest.raises(ParameterError, match="^V = 1e\\+200 m/s .* from 0 to 150"):
         windpump.steady_flow(SEED, [5.0, 1e200])
@@ -236,6 +236,7 @@ def field_values():
 )
 def test_every_figure_is_finite_anywhere_in_the_range(fields, rod, at_rest, cylinders, double):
     fields["V_ref"] = min(fields["V_ref"], 150.0)
+    fields["rho_w"] = min(max(fields["rho_w"], 1.0), 2e4)  # a liquid's density
     fields["L"] = min(fields["R"] * rod, 1e12)
     fields["T_0"] = fields["T_m"] * at_rest
     try:
@@ -372,7 +373,8 @@ def test_spinup_between_roots_many_decades_apart(scale, theta_dot0):
     # alpha- ~ 1e-45 and alpha+ ~ 1e20 rad/s (or 1e-109 and 2e-36): p + (z0 + d^2 g) / (1 + z0 g)
     # gave -16384 and NaN (hypothesis found it); the curve must go monotonically from the kick
     # to alpha+ and stay finite and positive.
-    fields = dict.fromkeys(["R", "A", "I0", "I1", "h", "rho_w", "g", "V_ref"], 1e-12)
+    fields = dict.fromkeys(["R", "A", "I0", "I1", "h", "g", "V_ref"], 1e-12)
+    fields["rho_w"] = 1.0  # the lightest liquid; h, A, R, g at 1e-12 keep the load as light
     design = Design(
         **fields, R0=scale, R1=1e4 if scale > 1 else 1e12, T_m=scale, omega_m=scale, L=1.5e-12
     )

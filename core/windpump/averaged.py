@@ -292,6 +292,12 @@ def _between_roots(t, k: float, theta_dot0: float, a_plus: float, a_minus: float
         return np.full(t.shape, a_minus)
     # Exponents kept finite: past exp(690) alpha is its limit to the last digit anyway.
     rate = np.minimum(k * span * t, 690.0)
+    if ratio > 0.0 and a_minus < 0.0:  # between the roots, a- below rest: from the kick, as
+        # theta_dot0 + (theta_dot0 - a-) expm1(rate) / (1 + x): the weighted roots' form has
+        # terms of opposite signs there, cancelling to round-off of |a-| (a crank at 3 rad/s
+        # between roots 1e36 apart started at -6.7e7 rad/s; issue 36)
+        x = np.exp(np.minimum(math.log(ratio) + k * span * t, 690.0))
+        return theta_dot0 + (theta_dot0 - a_minus) * (np.expm1(rate) / (1.0 + x))
     if ratio > 0.0:  # between the roots: rises (or falls) to a+
         x = np.exp(np.minimum(math.log(ratio) + k * span * t, 690.0))
         return a_minus / (1.0 + x) + a_plus * (x / (1.0 + x))

@@ -12,7 +12,7 @@ from ._kernels import equations
 from .errors import DesignFileError, ParameterError, shown
 from .validation import LARGEST as LARGEST
 from .validation import SMALLEST as SMALLEST
-from .validation import flag, fraction, magnitude, positive, rod_ratio, whole
+from .validation import flag, magnitude, positive, rod_ratio, whole
 from .wind import MAX_WIND
 
 # Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
@@ -56,6 +56,18 @@ SCHEMA_VERSION = 2
 Version 2 added the real machine's fields (``REAL_MACHINE``); a version 1 file is still read (its
 design is the ideal machine)."""
 
+NARROWER = {
+    "rho_w": (1.0, 2e4),
+    "eta_t": (0.1, 1.0),
+    "Cd_leak": (0.05, 1.0),
+}
+"""Fields whose range is narrower than ``SMALLEST`` to ``LARGEST`` [their SI units]: a liquid's
+density from 1 kg/m^3 (below any liquid's, ~70 for liquid hydrogen) to 2e4 (past mercury's
+13,600); a chain drive's efficiency from 0.1 (below it the drive is broken, not lossy) to 1; a
+hole's discharge coefficient from 0.05 (a long, rough bore) to 1. Past them no machine exists,
+and the model's figures were wrong there (issue 36: a leaky pump's speeds NaN at rho_w = 1e12;
+the windmill's torque on the crank underflowed to 0 at eta_t = 5e-324, a ZeroDivisionError)."""
+
 WIDEST_RATIO = 1e50
 """Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
 
@@ -70,7 +82,8 @@ class Design:
     Every field is checked on construction: numbers from ``SMALLEST`` = 1e-12 to ``LARGEST`` =
     1e12 in SI units (h and T_0 from 0; V_ref is at most 150 m/s, the fastest wind a
     record holds), far past any machine and the range where every figure of the model stays
-    finite. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
+    finite; rho_w, eta_t and Cd_leak in the narrower ranges of ``NARROWER`` (a liquid's
+    density, a working chain drive, an orifice), past which the model's answers were wrong. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
     field, its value (cut to a bounded length) and the allowed range.
 
     Parameters
@@ -96,7 +109,7 @@ class Design:
     h : float
         Head: height the water is lifted above the tank's waterline [m]; 0 means no load.
     rho_w : float, default 1000.0
-        Water density [kg/m^3].
+        Water density [kg/m^3], 1 to 2e4 (any liquid's).
     g : float, default 9.81
         Gravity [m/s^2].
     cylinders : int, default 1
@@ -118,8 +131,8 @@ class Design:
         vertical: the mass adds ``m_r sum x_c'^2`` to the inertia on the crank and its weight
         ``m_r g sum x_c'`` to the torque (docs/model.rst, "The real machine").
     eta_t : float, default 1.0
-        Transmission efficiency of the chain and sprockets [-], 0 < eta_t <= 1: the crank gets
-        ``eta_t R+ T``.
+        Transmission efficiency of the chain and sprockets [-], 0.1 <= eta_t <= 1: the crank
+        gets ``eta_t R+ T``.
     L_main : float, default 0.0
         Length of the rising main [m], >= 0; 0: no pipe friction.
     D_main : float, default 0.05
@@ -132,7 +145,7 @@ class Design:
         bore: it passes up to ``q_L = Cd_leak (pi d_leak^2 / 4) sqrt(2 g h)``, so a slow piston
         delivers nothing and loads the crank little (the pump can start).
     Cd_leak : float, default 0.6
-        The leak hole's discharge coefficient [-], 0 < Cd_leak <= 1.
+        The leak hole's discharge coefficient [-], 0.05 <= Cd_leak <= 1.
 
     Examples
     --------
@@ -178,8 +191,9 @@ class Design:
                 value = flag(name, value)
             elif name in ("h", "T_0", "m_r", "L_main", "d_leak"):  # 0 too (see below)
                 value = magnitude(name, value, UNITS[name], zero=True)
-            elif name in ("eta_t", "Cd_leak"):  # a fraction
-                value = fraction(name, value)
+            elif name in NARROWER:
+                value = magnitude(name, value, UNITS[name], lowest=NARROWER[name][0],
+                                  highest=NARROWER[name][1])  # fmt: skip
             elif name == "f_main":
                 value = magnitude(name, value, zero=True, highest=MAX_FRICTION_FACTOR)
             elif name == "V_ref":  # a wind speed, as a record's

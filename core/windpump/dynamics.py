@@ -468,9 +468,68 @@ def ideal_of(design: Design) -> Design:
     return design.replace(**{name: DEFAULTS[name] for name in REAL_MACHINE})
 
 
+STIFF_STEPS = 1.0
+"""Integration steps per unit of ``t_end a1 / I_eff`` a light rotor takes at the least (measured
+1.4 to 2.2 on the seed example's pump with I0 = I1 from 1e-7 to 1e-6 kg m^2)."""
+
+
+def stiffness(design: Design) -> tuple[float, float, float, float]:
+    """How fast the crank's speed relaxes [1/s], by cause: (the windmill's torque slope at rest
+    ``a1 = 2 eta_t R+^2 (T_m - T_0) / omega_m``, the rising main's ``2 c p`` at the speed of peak
+    torque p = omega_m / R+, the leak hole's ``2 rho_w g h (A R)^2 / q_L`` where a face starts to
+    deliver, and the reciprocating masses' share of the inertia ``m_r sum <x_c'^2> / I_eff``
+    [-]), each slope over I_eff. An explicit step must be shorter than about their inverse."""
+    from .revolution import friction_load, reciprocating_inertia
+
+    inertia = design.I_eff
+    windmill = _windmill_slope(design)
+    pipe = 2.0 * friction_load(design) * design.omega_m / design.R_dagger
+    q_L = design.leak_capacity
+    hole = 2.0 * design.load_torque * design.A * design.R / q_L if q_L > 0.0 else 0.0
+    return (
+        windmill / inertia,
+        pipe / inertia,
+        hole / inertia,
+        reciprocating_inertia(design) / inertia,
+    )
+
+
+def _windmill_slope(design: Design) -> float:
+    """a1 = 2 eta_t R+^2 (T_m - T_0) / omega_m [N m s]: how fast the windmill's torque on the
+    crank falls with the crank's speed, at rest (Eq. 11 through the chain)."""
+    return 2.0 * design.eta_t * design.R_dagger**2 * (design.T_m - design.T_0) / design.omega_m
+
+
+def _stiff_advice(design: Design) -> str:
+    """What makes ``design`` stiff, in words, from the largest cause of :func:`stiffness`."""
+    windmill, pipe, hole, masses = stiffness(design)
+    if masses > 1e3:
+        return (f"reciprocating masses of {masses:.3g} times the rotor's inertia on the crank "
+                "(a lighter m_r or a heavier rotor)")  # fmt: skip
+    largest = max(windmill, pipe, hole)
+    if largest == windmill:
+        return (f"a rotor too light for its windmill at this gear ratio: the crank's speed "
+                f"settles in {1 / windmill:.3g} s (increase I0 or I1, or a smaller R1/R0)")  # fmt: skip
+    if largest == pipe:
+        return (f"a rising main whose friction settles the crank's speed in {1 / pipe:.3g} s "
+                "(a shorter or wider main, or a heavier rotor)")  # fmt: skip
+    return (f"a leak hole whose load settles the crank's speed in {1 / hole:.3g} s "
+            "(a heavier rotor: increase I0 or I1)")  # fmt: skip
+
+
 def check_work(design: Design, t_end: float, record: WindRecord | None = None) -> None:
     """Refuse, before any work, a run whose :func:`estimated_steps` exceed ``MAX_STEPS``: it
-    would stop there, after minutes and gigabytes, as if the design were too stiff."""
+    would stop there, after minutes and gigabytes, as if the design were too stiff. And a rotor
+    so light that a run could not be done in ``MAX_STEPS``: a running crank takes at least
+    ``STIFF_STEPS t_end a1 / I_eff`` steps (:func:`stiffness`), found after a minute before."""
+    windmill = _windmill_slope(design) / design.I_eff  # (stiffness's first: no quadrature)
+    if record is None and STIFF_STEPS * windmill * t_end > MAX_STEPS and _moves(design):
+        raise ParameterError(
+            "design",
+            f"I_eff = {design.I_eff:.3g} kg m^2",
+            f"a rotor heavy enough to run {t_end:g} s in at most {MAX_STEPS:,} integration steps",
+            why=f"the design is too stiff: {_stiff_advice(design)}; or a shorter t_end",
+        )
     steps = estimated_steps(design, t_end, record)
     if steps <= MAX_STEPS:
         return
@@ -482,6 +541,13 @@ def check_work(design: Design, t_end: float, record: WindRecord | None = None) -
         why=f"this one would take about {steps:.3g}: one at every switch (every pi/n of crank "
         "angle) and at every sample where the wind bends; a shorter t_end or a coarser record",
     )
+
+
+def _moves(design: Design) -> bool:
+    """Whether a run of ``design`` keeps its crank turning: it can carry its load (or leaks)."""
+    from .averaged import stall_margin
+
+    return stall_margin(design) > 1.0
 
 
 def simulate(
@@ -598,8 +664,9 @@ def simulate(
         raise ParameterError(
             "design",
             f"I_eff = {design.I_eff:.3g} kg m^2",
-            "a rotor heavy enough to spin up over more than a crank revolution (increase I0 or I1)",
-            why=f"the integration needed more than {MAX_STEPS} steps: the design is too stiff",
+            "a design whose crank speed settles over more than a crank revolution",
+            why=f"the integration needed more than {MAX_STEPS} steps: the design is too stiff: "
+            + _stiff_advice(design),
         )
     return _simulation_result(design, run, record)
 
@@ -637,6 +704,19 @@ def _refuse_too_many_samples(t_end: float, bound: float) -> None:
         )
 
 
+def _settled(volume: np.ndarray) -> None:
+    """Make a leaky run's delivered volume [m^3] (swept less leaked) never fall and never dip
+    below 0, in place: each sample becomes the least of it and every later one, and 0 at most.
+
+    Delivered water never flows back, but a hole's window leaks as a jump at the window's end
+    (docs/model.rst, "The real machine": a leak hole's windows, jumped): a sample inside a
+    window still counts its swept water and not yet its leak, up to the window's leak too high
+    (3e-11 m^3 in the app's preset, -7.6e-12 m^3 below 0 with a hole near the bore; issue 36).
+    The next settled sample is the right level there; the last sample is unchanged."""
+    np.maximum(volume, 0.0, out=volume)
+    volume[:] = np.minimum.accumulate(volume[::-1])[::-1]
+
+
 def _simulation_result(design: Design, run, record: WindRecord | None) -> SimulationResult:
     """The kernels' run (a ``_kernels.KernelRun``) as a :class:`SimulationResult`: volume and flow
     (Eq. 16, every face) from the strokes and flow factor, every array read-only; a leak hole's
@@ -652,6 +732,7 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     else:  # the real machine
         if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
             volume = np.subtract(swept, run.leaked, out=run.leaked)  # (the kernel's own copy)
+            _settled(volume)
         friction = run.friction_loss
         leak = functools.partial(_leak_loss, design, swept, volume, run.leak_loss, friction)
     arrays = (

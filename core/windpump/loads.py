@@ -24,7 +24,8 @@ from ._kernels.equations import delivered_flow, face_pressure, leak_capacity
 from ._kernels.equations import lever_arm as _lever
 from .design import Design
 from .kinematics import cylinder_angles, face_levers
-from .validation import finite_array, whole
+from .validation import LARGEST, finite_array, whole
+from .wind import MAX_WIND
 
 
 def faces_load(levers, theta_dot, design: Design, h=None):
@@ -96,12 +97,19 @@ def load_torque_on_crank(design: Design, theta, theta_dot=None):
     theta : array_like
         Crank angles from TDC [rad].
     theta_dot : array_like, optional
-        Crank speeds [rad/s], >= 0, broadcasting with theta.
+        Crank speeds [rad/s], from 0 to 1e12 (``LARGEST``, as a windmill speed), broadcasting
+        with theta: far past any machine; at 1e200 the rising main's friction load
+        ``rho_w g K Q^2 A |x_c'|`` overflowed a double (inf, and NaN on the idle faces).
 
     Returns
     -------
     ndarray
         The load torque [N m], the broadcast shape of theta and theta_dot.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``theta`` or ``theta_dot`` outside their ranges.
 
     Examples
     --------
@@ -122,8 +130,16 @@ def load_torque_on_crank(design: Design, theta, theta_dot=None):
         # The faces' flows per unit crank speed are A R |lever arm|, the torques rho_w g h times them.
         per_speed = (design.A * design.R * levers).sum(axis=0)
         return design.rho_w * design.g * design.h * per_speed
-    theta_dot = finite_array("theta_dot", theta_dot, "rad/s", minimum=0.0)
+    theta_dot = finite_array("theta_dot", theta_dot, "rad/s", minimum=0.0, maximum=LARGEST)
     load, _ = faces_load(levers, theta_dot, design)
+    return load
+
+
+def load_at_speed(design: Design, theta, theta_dot):
+    """:func:`load_torque_on_crank` at crank speeds theta_dot [rad/s], unchecked: for a run's own
+    angles [rad] and speeds (:func:`windpump.power_budget`), which may pass the 1e12 rad/s a
+    caller may ask about."""
+    load, _ = faces_load(face_levers(theta, design), theta_dot, design)
     return load
 
 
@@ -178,7 +194,8 @@ def rest_torque(design: Design, theta, V=None):
     theta : array_like
         Crank angles from TDC [rad].
     V : float or array_like, optional
-        Wind speed [m/s], >= 0, broadcasting with theta; V_ref by default.
+        Wind speed [m/s], from 0 to 150 (``windpump.wind.MAX_WIND``, as a record's and
+        :func:`windpump.steady_flow`'s), broadcasting with theta; V_ref by default.
 
     Returns
     -------
@@ -196,7 +213,7 @@ def rest_torque(design: Design, theta, V=None):
     1.2
     """
     theta = finite_array("theta", theta, "rad")
-    s = 1.0 if V is None else finite_array("V", V, "m/s", minimum=0.0) / design.V_ref
+    s = 1.0 if V is None else finite_array("V", V, "m/s", 0.0, MAX_WIND) / design.V_ref
     return design.eta_t * design.rest_torque_on_crank * s**2 - _load_at_rest(design, theta)
 
 

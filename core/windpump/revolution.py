@@ -197,6 +197,14 @@ def friction_load(design) -> float:
 SCAN_POINTS = 48
 """Crank speeds from rest to the runaway speed where F is sampled to bracket its roots."""
 
+BISECTIONS = 200
+"""At most this many bisections finish a root the Illinois steps did not: about 12 halve the
+logarithm of any ratio of doubles to a factor 4, 54 more the speed to round-off."""
+
+CRAWL_STEP, CRAWL_DECADES = 1e-3, 110
+"""Below the scan, speeds CRAWL_STEP apart are tried (at most CRAWL_DECADES of them, down past
+the smallest double) for a crawl's largest root."""
+
 ROOT_ITERATIONS = 100
 """At most this many Illinois steps refine a root (a dozen usually bring it to round-off)."""
 
@@ -282,7 +290,25 @@ def largest_roots(points: Points, upper, crawl: bool = False):
     roots = _root(
         points, alpha[every, start], alpha[every, start + 1], np.concatenate(actives), every
     )
-    return tuple(roots[i * rows.size : (i + 1) * rows.size] for i in range(len(starts)))
+    found_roots = tuple(roots[i * rows.size : (i + 1) * rows.size] for i in range(len(starts)))
+    if np.all(last >= 0):
+        return found_roots
+    # F <= 0 at every scanned speed, from 1e-9 of the runaway speed up: a crawl below the scan
+    # (a load through the hole many decades above the windmill's torque; NaN before, issue 36).
+    # F > 0 just above rest, so its largest root lies below the scan's first speed: found on
+    # speeds a thousandth apart down from there, then refined as the others.
+    below = np.flatnonzero(last < 0)
+    hi = np.asarray(upper, dtype=float)[below] * grid[0]
+    lo = hi * CRAWL_STEP
+    for _ in range(CRAWL_DECADES):
+        falling = ~(points.net_torque(lo, below) > 0.0) & (lo > 0.0)
+        if not falling.any():
+            break
+        hi = np.where(falling, lo, hi)
+        lo = np.where(falling, lo * CRAWL_STEP, lo)
+    crawling = _root(points, lo, hi, points.net_torque(lo, below) > 0.0, below)
+    found_roots[0][below] = crawling
+    return found_roots
 
 
 def _root(points: Points, lo, hi, active, of):
@@ -303,9 +329,31 @@ def _root(points: Points, lo, hi, active, of):
         a[i] = np.where(flipped, b[i], a[i])
         fa[i] = np.where(flipped, fb[i], 0.5 * fa[i])
         b[i], fb[i] = c, fc
+    else:  # not all converged: bisect the rest (a bracket over many decades: F ~ 1e-22 at one
+        # end and -1e50 at the other left a crawl's Illinois steps at its low end; issue 36)
+        _bisect(points, a, b, fb, which)
     root = np.full(lo.shape, math.nan)
     root[active] = b
     return root
+
+
+def _bisect(points: Points, a, b, fb, which) -> None:
+    """Bisect the brackets [a, b] (F changes sign; b the estimate, F(b) = fb) of the points
+    ``which`` to round-off in place: halved in the speed's logarithm while the ends lie more
+    than a factor 4 apart, in the speed after."""
+    for _ in range(BISECTIONS):
+        open_ = (np.abs(b - a) > 4e-16 * np.abs(b)) & (fb != 0.0)
+        if not open_.any():
+            return
+        i = np.flatnonzero(open_)
+        low, high = np.minimum(a[i], b[i]), np.maximum(a[i], b[i])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            apart = (low > 0.0) & (high > 4.0 * low)
+            c = np.where(apart, np.sqrt(low) * np.sqrt(high), 0.5 * (low + high))
+        fc = points.net_torque(c, which[i])
+        same = np.sign(fc) == np.sign(fb[i])
+        a[i] = np.where(same, a[i], b[i])
+        b[i], fb[i] = c, fc
 
 
 def slope(points: Points, alpha, active):
@@ -319,6 +367,14 @@ def slope(points: Points, alpha, active):
     result[which] = (values[:, 0] - 8.0 * values[:, 1] + 8.0 * values[:, 2] - values[:, 3]) / (
         12.0 * step
     )
+    # At a falling root F' < 0; where the five points straddle the hole's kink (a face starts
+    # to deliver: u = q_L) they may say otherwise (tau < 0 for a hole near a huge bore; issue
+    # 36): the two-point difference across the root itself, F's sign on each side, instead.
+    wrong = np.flatnonzero(~(result[which] < 0.0))
+    if wrong.size:
+        near = at[wrong, None] * (1.0 + np.array([-1e-7, 1e-7]))
+        sides = points.net_torque(near, which[wrong])
+        result[which[wrong]] = (sides[:, 1] - sides[:, 0]) / (near[:, 1] - near[:, 0])
     return result
 
 

@@ -138,7 +138,8 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     ----------
     design : Design
     mean_wind : float
-        The site's mean wind speed [m/s], > 0 and at most 150.
+        The site's mean wind speed [m/s], from 1e-3 (calm air; below it the Weibull scale
+        underflowed and the answer was NaN) to 150.
     k : float, default 2.0
         Weibull shape [-] (2: Rayleigh), 0.5 to 20.
 
@@ -192,7 +193,7 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
 
     def root_term(q):  # V^2 = V_stop^2 + q^2: sqrt(V^2 - V_stop^2) dV = q^2 / V dq, smooth
         V = math.sqrt(V_stop * V_stop + q * q)
-        return q * q / V * density(V)
+        return q * q / V * density(V) if V > 0.0 else 0.0  # (q = V = 0 when V_stop = 0)
 
     q_from = math.sqrt(max(V_from * V_from - V_stop * V_stop, 0.0))
     q_far = max(q_from, c * 50.0 ** (1.0 / k))  # beyond it the density is below exp(-50)

@@ -237,7 +237,14 @@ class CycleMean:
         spare = self.eta_t * self.R_dagger * self.T_m * self.s**2 - self.mean_load  # [N m]
         pipeless = at_peak * at_peak * spare / (self.eta_t * self.R_dagger * (self.T_m - self.T_0))
         steeper = (1.0 - self.kappa) * (at_peak * self.s) ** 2
-        return self.kappa * (pipeless - steeper)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            # With a pipe, p^2 + (a0 - M) / (b + c): the same number without the difference
+            # of pipeless and steeper, which cancel to their last digits when the pipe's c
+            # dwarfs b (kappa ~ 1e-63: delta^2 was round-off, tau -78 s; issue 36).
+            piped = self.p * self.p + (self.eta_t * self.rest_torque - self.mean_load) / (
+                self.b + self.friction
+            )
+        return np.where(self.friction > 0.0, piped, self.kappa * (pipeless - steeper))
 
     @property
     def delta2_per_s2(self) -> Array:
@@ -246,7 +253,14 @@ class CycleMean:
         s_stop^2)``, ``s_stop^2 = 1/margin(V_ref)`` without a pipe."""
         at_peak = self.omega_m / self.R_dagger
         pipeless = at_peak * at_peak * self.T_m / (self.T_m - self.T_0)
-        return self.kappa * (pipeless - (1.0 - self.kappa) * at_peak * at_peak)
+        # With a pipe kappa (omega_m/R+)^2 (T_0 / (T_m - T_0) + kappa): T_m / (T_m - T_0) - 1
+        # and 1 - kappa cancel to round-off (0, and a division by it) when kappa is tiny.
+        piped = self.kappa * at_peak * at_peak * (self.T_0 / (self.T_m - self.T_0) + self.kappa)
+        return np.where(
+            self.friction > 0.0,
+            piped,
+            self.kappa * (pipeless - (1.0 - self.kappa) * at_peak * at_peak),
+        )
 
     @property
     def s_stop(self) -> Array:

@@ -147,11 +147,17 @@ def fraction(name: str, value: object, unit: str = "") -> float:
 
 
 def magnitude(
-    name: str, value: object, unit: str = "", zero: bool = False, highest: float = LARGEST
+    name: str,
+    value: object,
+    unit: str = "",
+    zero: bool = False,
+    highest: float = LARGEST,
+    lowest: float | None = None,
 ) -> float:
     """Return ``value`` as a float if it lies in [SMALLEST, highest], or [0, highest] when
-    ``zero``."""
-    lowest = 0 if zero else SMALLEST
+    ``zero``, or [lowest, highest] when ``lowest`` is given."""
+    if lowest is None:
+        lowest = 0 if zero else SMALLEST
     allowed = f"a finite real number from {lowest:g} to {highest:g}"
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ParameterError(name, value, allowed, unit)

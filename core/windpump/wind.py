@@ -135,8 +135,14 @@ def _read_only(values) -> np.ndarray:
     return array
 
 
+CALMEST_MEAN = 1e-3
+"""Slowest mean wind of a site [m/s] (:func:`weibull_scale`): calm air, far below any site's.
+Below it the Weibull scale underflows (at 5e-324 m/s it was 0, and the water a day NaN)."""
+
+
 def weibull_scale(mean: float, k: float) -> float:
-    """Scale c [m/s] of the Weibull distribution of wind speeds with this mean and shape k.
+    """Scale c [m/s] of the Weibull distribution of wind speeds with this mean (from 1e-3 to
+    150 m/s) and shape k.
 
     ``c = mean / Gamma(1 + 1/k)``: the distribution's CDF is ``1 - exp(-(V/c)^k)``; k = 2 is the
     Rayleigh wind most sites are close to.
@@ -147,8 +153,11 @@ def weibull_scale(mean: float, k: float) -> float:
     5.6419
     """
     mean = positive("mean_wind", mean, "m/s")
-    if mean > MAX_WIND:
-        raise ParameterError("mean_wind", mean, f"a wind speed > 0 and <= {MAX_WIND:g}", "m/s")
+    if not CALMEST_MEAN <= mean <= MAX_WIND:
+        raise ParameterError(
+            "mean_wind", mean, f"a wind speed from {CALMEST_MEAN:g} to {MAX_WIND:g}", "m/s",
+            why="a site's mean wind: below 1 mm/s it is calm",
+        )  # fmt: skip
     k = shape(k)
     return mean / math.gamma(1.0 + 1.0 / k)
 

@@ -52,6 +52,13 @@ def windmill_power(design: Design, omega):
     )
 
 
+def shaft_power(design: Design, omega):
+    """:func:`windmill_power` at windmill speeds omega [rad/s] >= 0, unchecked: for speeds the
+    model worked out itself (a run's, an operating point's), which may pass the 1e12 rad/s a
+    caller may ask about (omega_m is up to 1e12, and the runaway speed beyond it) [W]."""
+    return _torque_curve(omega / design.omega_m, 1.0, design.T_m, design.T_0) * omega
+
+
 def load_power(design: Design, omega):
     """Mean power the pump draws from the windmill at steady windmill speed omega [W] (Eq. 5,
     m deliveries; the real machine's load).
@@ -136,10 +143,10 @@ def operating_point(design: Design) -> OperatingPoint:
         omega_unstable, power_unstable = math.nan, math.nan
     else:
         omega_unstable = design.R_dagger * crank_unstable
-        power_unstable = float(windmill_power(design, max(omega_unstable, 0.0)))
+        power_unstable = float(shaft_power(design, max(omega_unstable, 0.0)))
     return OperatingPoint(
         omega=omega,
-        power=float(windmill_power(design, omega)),
+        power=float(shaft_power(design, omega)),
         crank_speed=crank_speed,
         flow=float(running_speeds(design).mean_flow),
         omega_unstable=omega_unstable,

@@ -342,6 +342,14 @@ def _calendar_months(hours: int) -> np.ndarray:
     return np.searchsorted(ends, np.arange(hours) % ends[-1], side="right") + 1
 
 
+MOST_WATER = 1e12
+"""Largest demand [m^3/day] and tank [m^3] :func:`supply` and :func:`tank_for` take: a hundred
+times the world's daily water use, far past any pump; a year's sums of it stay exact to a litre's
+share. At 1e307 m^3/day the year's demand overflowed (a loss-of-load probability of NaN, a tank
+of 0 m^3)."""
+WHY_MOST = "past any water supply; larger sums overflow a year's totals"
+
+
 def hourly_demand(demand: float, profile, hours: int) -> np.ndarray:
     """Water asked for in each hour [m^3]: ``demand`` [m^3/day] spread by the 24 weights of
     ``profile`` (flat by default) over each day from the record's start.
@@ -352,8 +360,10 @@ def hourly_demand(demand: float, profile, hours: int) -> np.ndarray:
     [0.1, 0.1, 0.1]
     """
     demand = non_negative("demand", demand, "m^3/day")
-    if not math.isfinite(demand):
-        raise ParameterError("demand", demand, "a finite number >= 0", "m^3/day")
+    if not demand <= MOST_WATER:
+        raise ParameterError(
+            "demand", demand, f"a finite number from 0 to {MOST_WATER:g}", "m^3/day", why=WHY_MOST
+        )
     weights = _profile(profile)
     return demand * np.resize(weights / weights.sum(), hours)
 
@@ -378,8 +388,9 @@ def _profile(profile) -> np.ndarray:
 
 def _tank(tank: object) -> float:
     value = non_negative("tank", tank, "m^3")
-    if not math.isfinite(value):
-        raise ParameterError("tank", value, "a finite number >= 0", "m^3")
+    if not value <= MOST_WATER:
+        raise ParameterError("tank", value, f"a finite number from 0 to {MOST_WATER:g}", "m^3",
+                             why=WHY_MOST)  # fmt: skip
     return value
 
 
@@ -491,9 +502,10 @@ def supply(
         The site's wind at the rotor's height (:meth:`WindRecord.at_height`): hourly or finer
         (averaged to hours), a sample in every hour.
     demand : float
-        Water asked for [m^3/day], >= 0.
+        Water asked for [m^3/day], from 0 to 1e12 (``MOST_WATER``).
     tank : float
-        The tank's capacity [m^3], >= 0 (0: none, water pumped and not used at once spills).
+        The tank's capacity [m^3], from 0 to 1e12 (0: none, water pumped and not used at once
+        spills).
     restart : {"self", "attended"}, keyword-only
         Who restarts a resting pump: the wind (above V_start) or someone (above V_stop).
     profile : 24 weights or None, keyword-only
@@ -579,7 +591,7 @@ def tank_for(
     record : WindRecord or (t, V) pair
         The wind at the rotor, as :func:`supply` takes it.
     demand : float
-        Water asked for [m^3/day], >= 0.
+        Water asked for [m^3/day], from 0 to 1e12 (``MOST_WATER``).
     lolp : float, default 0.05
         The loss-of-load probability allowed [-], from 0 to below 1.
     restart : {"self", "attended"}, keyword-only

@@ -149,8 +149,9 @@ class PowerBudget:
         The largest energy the run holds [J]: of the windmill's work, the kinetic energy
         J theta_dot^2 / 2 and the weights' potential energy m_r g sum x_c themselves (not their
         changes, whose last digits are theirs), at any sample; and the static lift's work over the
-        run's angle, m rho_w g h A R |theta|, whose last digits the angle's are (a light crank
-        that stops within 5e-12 rad of a stroke lifts 4.5e-12 J to 1e-5). The budget closes to the integrator's tolerance of it (:attr:`closure`).
+        run's angle, ``m rho_w g h A R abs(theta)``, whose last digits the angle's are (a light
+        crank that stops within 5e-12 rad of a stroke lifts 4.5e-12 J to 1e-5). The budget
+        closes to the integrator's tolerance of it (:attr:`closure`).
     steps : int
         The run's integration steps.
     """

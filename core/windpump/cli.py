@@ -16,6 +16,7 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -65,10 +66,17 @@ def main(argv: list[str] | None = None) -> int:
         return 1
 
 
+NUMPY_NUMBER = re.compile(r"np\.(?:float|int|uint|complex)\d*\(([^()]*)\)|np\.(True|False)_")
+"""How numpy 2 writes a number in a message (``np.float64(nan)``, ``np.True_``)."""
+
+
 def one_line(error: BaseException, limit: int = 2000) -> str:
     """An error as one line of bounded length; its type too when it is not one of the messages
     windpump writes for people (a ValueError or an OSError)."""
     text = " ".join(str(error).split()) or type(error).__name__
+    text = NUMPY_NUMBER.sub(
+        lambda m: m.group(1) or m.group(2), text
+    )  # np.float64(nan) -> nan: plain numbers
     if len(text) > limit:
         text = text[: limit - 1] + "…"
     if isinstance(error, ValueError | OSError | ImportError):

@@ -300,15 +300,21 @@ def _check(t: np.ndarray, V: np.ndarray) -> WindRecord:
     for name, values in (("times", t), ("speeds", V)):
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
-            raise ParameterError("wind", f"{name}[{bad[0]}] = {values[bad[0]]!r}", f"finite {name}")
+            raise ParameterError(
+                "wind", f"{name}[{bad[0]}] = {float(values[bad[0]])!r}", f"finite {name}"
+            )
     outside = (V < 0.0) | (V > MAX_WIND)
     if np.any(outside):
         i = int(np.flatnonzero(outside)[0])
-        raise ParameterError("wind", f"V[{i}] = {V[i]!r} m/s", f"speeds from 0 to {MAX_WIND:g} m/s")
+        raise ParameterError(
+            "wind", f"V[{i}] = {float(V[i])!r} m/s", f"speeds from 0 to {MAX_WIND:g} m/s"
+        )
     if np.any(np.diff(t) <= 0.0):
         i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
         raise ParameterError(
-            "wind", f"t[{i}] = {t[i]!r} s after t[{i - 1}] = {t[i - 1]!r} s", "increasing times"
+            "wind",
+            f"t[{i}] = {float(t[i])!r} s after t[{i - 1}] = {float(t[i - 1])!r} s",
+            "increasing times",
         )
     return _frozen(t, V)
 

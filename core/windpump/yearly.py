@@ -308,7 +308,7 @@ def hourly(record) -> tuple[np.ndarray, np.ndarray]:
         i = int(np.searchsorted(hour, h)) - 1  # the last sample before the gap
         raise ParameterError(
             "record",
-            f"a gap after t[{i}] = {checked.t[i]!r} s (no sample in hour {h})",
+            f"a gap after t[{i}] = {float(checked.t[i])!r} s (no sample in hour {h})",
             "a sample in every hour",
         )
     V = np.bincount(hour, weights=checked.V) / counts

@@ -48,8 +48,9 @@ def _plain(value: object) -> object:
     if type(value).__module__ == "numpy" and getattr(value, "shape", None) == ():
         item = getattr(value, "item", None)
         return item() if callable(item) else value
-    if type(value) in (list, tuple) and len(value) <= 2 * SHOWN:  # type: ignore[arg-type]
-        return type(value)(_plain(x) for x in value)  # type: ignore[call-arg]
+    if isinstance(value, list | tuple) and type(value) in (list, tuple) and len(value) <= 2 * SHOWN:
+        plain = [_plain(x) for x in value]
+        return plain if isinstance(value, list) else tuple(plain)
     return value
 
 

@@ -299,7 +299,7 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
             f"a torque at rest from 0 to below the peak ({T_m:.4g} N m)",
         )
     residual = y - design_matrix @ scaled
-    errors = _standard_errors(design_matrix, residual, *scaled[:2], at_rest)
+    errors = _standard_errors(design_matrix, residual, scaled[0], scaled[1], at_rest)
     return TorqueFit(
         T_m=float(T_m),
         omega_m=float(omega_m),

@@ -112,7 +112,6 @@ def test_set_takes_the_real_machines_fields(tmp_path):
         (["map", "--heads", "1:2"], "FROM:TO:N"),
         (["map", "--gear-ratios", "3:1:5"], "gear_ratios"),
         (["sweep", "no-such-table.csv"], "no-such-table.csv"),
-        (["sweep", "x.csv", "--workers", "0"], "--workers"),
     ],
 )
 def test_errors_are_one_line_and_exit_1(args, words):

@@ -16,6 +16,7 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -65,10 +66,44 @@ def main(argv: list[str] | None = None) -> int:
         return 1
 
 
+NUMPY_NUMBER = re.compile(r"np\.(?:float|int|uint|complex)\d*\(([^()]*)\)|np\.(True|False)_")
+"""How numpy 2 writes a number in a message (``np.float64(nan)``, ``np.True_``)."""
+
+
+MAX_WORKERS = 1024
+"""Most processes ``--workers`` may ask for."""
+
+
+def workers(text: str) -> int:
+    """``--workers N``: a whole number from 1 to ``MAX_WORKERS``, else a usage error (exit 2).
+    0 and -1 are refused, not taken as 1 or as every core.
+
+    Examples
+    --------
+    >>> workers("4")
+    4
+    >>> workers("0")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: '0' is not allowed: it must be a whole number from 1 to 1024
+    """
+    allowed = f"it must be a whole number from 1 to {MAX_WORKERS}"
+    try:
+        count = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{cut(text)!r} is not allowed: {allowed}") from None
+    if not 1 <= count <= MAX_WORKERS:
+        raise argparse.ArgumentTypeError(f"{cut(text)!r} is not allowed: {allowed}")
+    return count
+
+
 def one_line(error: BaseException, limit: int = 2000) -> str:
     """An error as one line of bounded length; its type too when it is not one of the messages
     windpump writes for people (a ValueError or an OSError)."""
     text = " ".join(str(error).split()) or type(error).__name__
+    text = NUMPY_NUMBER.sub(
+        lambda m: m.group(1) or m.group(2), text
+    )  # np.float64(nan) -> nan: plain numbers
     if len(text) > limit:
         text = text[: limit - 1] + "…"
     if isinstance(error, ValueError | OSError | ImportError):
@@ -122,7 +157,9 @@ def build_parser() -> argparse.ArgumentParser:
     sweeping.add_argument("file", metavar="FILE", help="designs: .csv (a row each) or .json")
     design_options(sweeping, base="the design each row changes")
     run_options(sweeping)
-    sweeping.add_argument("--workers", type=int, default=1, help="processes on this machine")
+    sweeping.add_argument(
+        "--workers", type=workers, default=1, help=f"processes on this machine (1 to {MAX_WORKERS})"
+    )
     sweeping.add_argument("--scheduler", metavar="ADDRESS", help="a dask.distributed scheduler")
     sweeping.add_argument("--csv", metavar="FILE", help="write the table here (default: stdout)")
     sweeping.set_defaults(run=sweep_command)
@@ -510,8 +547,6 @@ def csv_rows(text: str) -> list[list[str]]:
 
 def sweep_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump sweep FILE``: the table as CSV, on --workers processes or a dask scheduler."""
-    if args.workers < 1:
-        raise ValueError(f"--workers {args.workers} is not allowed: it must be 1 or more")
     designs, inputs = read_designs(args.file, chosen_design(args))
     runs = {
         "t_end": inputs.get("t_end", args.t_end),

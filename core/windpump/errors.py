@@ -23,7 +23,11 @@ def shown(value: object, limit: int = SHOWN) -> str:
     "'xxxxxxxxxxxxxxxxxx… (1,000 characters)"
     >>> shown(10**400)
     'an integer of 401 digits'
+    >>> import numpy as np
+    >>> shown(np.float64("nan")), shown([np.int64(3)])  # numpy's numbers as plain ones
+    ('nan', '[3]')
     """
+    value = _plain(value)
     if isinstance(value, str | bytes | bytearray) and len(value) > limit:
         return f"{repr(value[: limit - 2])[:-1]}… ({len(value):,} characters)"
     if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 3 * limit:
@@ -36,6 +40,18 @@ def shown(value: object, limit: int = SHOWN) -> str:
     if "\n" in text:  # a numpy array's repr: one line
         text = " ".join(text.split())
     return text if len(text) <= limit else f"{text[: limit - 1]}…"
+
+
+def _plain(value: object) -> object:
+    """A numpy scalar as the Python number it holds (numpy 2 writes ``np.float64(nan)``); a
+    short list or tuple of them likewise; anything else as it is."""
+    if type(value).__module__ == "numpy" and getattr(value, "shape", None) == ():
+        item = getattr(value, "item", None)
+        return item() if callable(item) else value
+    if isinstance(value, list | tuple) and type(value) in (list, tuple) and len(value) <= 2 * SHOWN:
+        plain = [_plain(x) for x in value]
+        return plain if isinstance(value, list) else tuple(plain)
+    return value
 
 
 def cut(text: str, limit: int = SHOWN) -> str:

@@ -23,7 +23,7 @@ import numpy as np
 
 from .design import Design
 from .errors import ParameterError
-from .progress import Progress, reporter
+from .progress import Progress, check_executor, check_progress, reporter
 from .units import SECONDS_PER_HOUR
 from .validation import real, whole
 
@@ -155,11 +155,7 @@ def full_year(
     from .yearly import RESTARTS, _choice, _quasi_steady_year, hourly
 
     restart = _choice("restart", restart, RESTARTS)
-    chunk_days = whole("chunk_days", chunk_days, 1, 366)
-    intensity = real("turbulence", turbulence)
-    shape = 0.0 if intensity == 0.0 else turbulence_shape(intensity)
-    if seed is not None:
-        whole("seed", seed, 0, 2**63 - 1)
+    chunk_days, shape = full_options(turbulence, seed, chunk_days, executor, progress)
     V, month = hourly(record)
     steady = _quasi_steady_year(design, V, month, restart)
     V_stop, _ = wind_thresholds(design)
@@ -177,6 +173,21 @@ def full_year(
     running = np.concatenate([r[0] for r in results])
     pumped = np.concatenate([r[1] for r in results])
     return FullYear(running, pumped, len(chunks))
+
+
+def full_options(
+    turbulence: object, seed: object, chunk_days: object, executor: object, progress: object
+) -> tuple[int, float]:
+    """The full year's options checked (each a ParameterError naming it): ``chunk_days`` as an
+    int and the gusts' Weibull shape (0: no gusts) from ``turbulence``."""
+    chunk_days = whole("chunk_days", chunk_days, 1, 366)
+    intensity = real("turbulence", turbulence)
+    shape = 0.0 if intensity == 0.0 else turbulence_shape(intensity)
+    if seed is not None:
+        whole("seed", seed, 0, 2**63 - 1)
+    check_executor(executor)
+    check_progress(progress)
+    return chunk_days, shape
 
 
 def _spans(design: Design, V: np.ndarray, hours: int, gusty: bool) -> list[tuple[int, int]]:

@@ -19,6 +19,7 @@ import numpy as np
 from ._kernels.equations import delivered_flow as _delivered_flow
 from ._kernels.equations import lever_arm as _lever
 from ._kernels.equations import piston_over_R as _x_over_R
+from .errors import ParameterError
 from .validation import finite_array, positive, rod_ratio
 
 
@@ -126,8 +127,25 @@ def delivering_faces(segment, cylinders: int, double_acting: bool):
     [[0], [1]]
     >>> delivering_faces(0, 2, True).tolist()  # cylinder 1 is half a turn behind
     [-1, 1]
+
+    Raises
+    ------
+    ParameterError
+        Naming ``segment`` (not whole numbers from -2^53 to 2^53), ``cylinders`` (not a whole
+        number from 1 to 6) or ``double_acting`` (not a bool).
     """
-    segment = np.asarray(segment)[..., None]
+    from .design import MAX_CYLINDERS
+    from .validation import flag, real_array, whole
+
+    cylinders = whole("cylinders", cylinders, 1, MAX_CYLINDERS)
+    double_acting = flag("double_acting", double_acting)
+    allowed = f"whole numbers from {-(2**53)} to {2**53}"
+    values = real_array("segment", segment)
+    with np.errstate(invalid="ignore"):
+        bad = ~(np.isfinite(values) & (np.abs(values) <= 2**53) & (values == np.round(values)))
+    if bad.any():
+        raise ParameterError("segment", float(values.flat[np.flatnonzero(bad)[0]]), allowed)
+    segment = values.astype(np.int64)[..., None]
     behind = np.mod(segment - 2 * np.arange(cylinders), 2 * cylinders)
     return np.where(behind >= cylinders, 1, -1 if double_acting else 0)
 

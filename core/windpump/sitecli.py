@@ -23,6 +23,8 @@ from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
 def add_commands(commands, design_options) -> None:
     """Add ``supply`` and ``tank`` to the command line's subparsers."""
+    from .cli import MAX_WORKERS, workers
+
     year = commands.add_parser(
         "supply",
         help="a year of water at a site, with a tank",
@@ -36,7 +38,9 @@ def add_commands(commands, design_options) -> None:
     year.add_argument(
         "--turbulence", type=float, default=None, help="--full: gusts' turbulence intensity (0)"
     )
-    year.add_argument("--workers", type=int, default=None, help="--full: processes (1)")
+    year.add_argument(
+        "--workers", type=workers, default=None, help=f"--full: processes, 1 to {MAX_WORKERS} (1)"
+    )
     year.add_argument("--csv", metavar="FILE", help="write the hours here")
     year.set_defaults(run=supply_command)
 

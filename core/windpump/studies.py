@@ -20,7 +20,7 @@ from .averaged import stall_margin, steady_speeds, time_constant
 from .design import UNITS, Design
 from .dynamics import simulate
 from .errors import ParameterError
-from .progress import Progress, reporter
+from .progress import Progress, check_executor, reporter
 from .validation import non_negative, positive, real, real_array
 
 FIGURES = {
@@ -186,7 +186,8 @@ def sweep(
         Designs per task; None: the sweep is cut in about 32 chunks.
     progress : bool, callable or None, keyword-only
         Progress: a callable taking (done, total), True or False for a tqdm bar or none, None
-        for a bar only in a terminal.
+        for a bar only in a terminal. A callable that raises is warned about once (a
+        ``RuntimeWarning``) and called no more; the sweep carries on and returns every row.
 
     Returns
     -------
@@ -200,7 +201,8 @@ def sweep(
     ------
     ParameterError
         Naming t_end, theta0, theta_dot0 or chunksize when out of range for every run (a value
-        given per design is checked with its run, which fails alone).
+        given per design is checked with its run, which fails alone); naming executor when it has
+        no ``submit`` method, progress when it is neither a flag, None nor a callable.
 
     Examples
     --------
@@ -212,6 +214,7 @@ def sweep(
     >>> [round(float(q), 1) for q in per_day]
     [33.9, 32.6, 0.0]
     """
+    executor = check_executor(executor)
     designs = tuple(designs)
     for index, design in enumerate(designs):
         if not isinstance(design, Design):

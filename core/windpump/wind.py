@@ -53,15 +53,17 @@ class WindRecord:
     Attributes
     ----------
     t : ndarray
-        Times [s] from the record's start, increasing.
+        Times [s] from the record's start: finite and strictly increasing, at least one.
     V : ndarray
-        Wind speeds [m/s], from 0 to ``MAX_WIND``.
+        Wind speeds [m/s], finite, from 0 to ``MAX_WIND``, one a time. The three arrays are
+        checked (a ParameterError naming ``t``, ``V`` or ``month``, the first sample at fault
+        and the range) and kept read-only, copied unless already read-only floats.
     height : float, default 10.0
         Height of the anemometer above ground [m] (10 m: the meteorological standard).
     name : str, default ""
         The site's name.
     month : ndarray or None, default None
-        The calendar month (1 to 12) each sample belongs to, when the record has dates (a weather
+        The calendar month (whole numbers 1 to 12, one a sample) each sample belongs to, when the record has dates (a weather
         file's; for a file that labels each hour at its end, the month the hour lies in); None
         for a record in seconds only (then :func:`windpump.supply` counts its months from 1
         January of a year of 365 days).
@@ -83,6 +85,31 @@ class WindRecord:
     month: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        t = _field("t", self.t, "s")
+        V = _field("V", self.V, "m/s")
+        if t.ndim != 1 or t.size == 0:
+            raise ParameterError("t", f"an array of shape {t.shape}", "a 1-D array of times", "s")
+        if V.shape != t.shape:
+            raise ParameterError("V", f"{V.size} speeds", f"one a time ({t.size})", "m/s")
+        if not np.all(np.isfinite(t)):
+            i = int(np.flatnonzero(~np.isfinite(t))[0])
+            raise ParameterError("t", f"t[{i}] = {float(t[i])!r}", "finite, increasing times", "s")
+        if np.any(np.diff(t) <= 0.0):
+            i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
+            raise ParameterError(
+                "t", f"t[{i}] = {float(t[i])!r} after t[{i - 1}] = {float(t[i - 1])!r}",
+                "finite, increasing times", "s",
+            )  # fmt: skip
+        outside = ~((V >= 0.0) & (V <= MAX_WIND))  # (NaN too)
+        if outside.any():
+            i = int(np.flatnonzero(outside)[0])
+            raise ParameterError(
+                "V", f"V[{i}] = {float(V[i])!r}", f"finite speeds from 0 to {MAX_WIND:g}", "m/s"
+            )
+        object.__setattr__(self, "t", t)
+        object.__setattr__(self, "V", V)
+        if self.month is not None:
+            object.__setattr__(self, "month", _months(self.month, t.size))
         height = positive("height", self.height, "m")
         if height > MAX_HEIGHT:
             raise ParameterError("height", height, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")
@@ -127,6 +154,36 @@ class WindRecord:
 
 MAX_HEIGHT = 500.0
 """Highest hub or anemometer a record may be scaled to or from [m]."""
+
+
+def _field(name: str, values: object, unit: str) -> np.ndarray:
+    """A record's times or speeds as a read-only float array: the caller's own if it already is
+    one, else a copy (the record never shares an array its caller may change)."""
+    if isinstance(values, np.ndarray) and values.dtype == float and not values.flags.writeable:
+        return values
+    from .validation import real_array
+
+    array = np.array(real_array(name, values, unit), dtype=float)  # a copy
+    array.flags.writeable = False
+    return array
+
+
+def _months(values: object, samples: int) -> np.ndarray:
+    """A record's months as a read-only int array: whole numbers from 1 to 12, one a sample."""
+    from .validation import real_array
+
+    allowed = f"whole numbers from 1 to 12, one a sample ({samples})"
+    months = real_array("month", values)
+    if months.shape != (samples,):
+        raise ParameterError("month", f"an array of shape {months.shape}", allowed)
+    with np.errstate(invalid="ignore"):
+        bad = ~((months >= 1) & (months <= 12) & (months == np.round(months)))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise ParameterError("month", f"month[{i}] = {float(months[i])!r}", allowed)
+    as_int = months.astype(np.int8)
+    as_int.flags.writeable = False
+    return as_int
 
 
 def _read_only(values) -> np.ndarray:
@@ -311,15 +368,21 @@ def _check(t: np.ndarray, V: np.ndarray) -> WindRecord:
     for name, values in (("times", t), ("speeds", V)):
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
-            raise ParameterError("wind", f"{name}[{bad[0]}] = {values[bad[0]]!r}", f"finite {name}")
+            raise ParameterError(
+                "wind", f"{name}[{bad[0]}] = {float(values[bad[0]])!r}", f"finite {name}"
+            )
     outside = (V < 0.0) | (V > MAX_WIND)
     if np.any(outside):
         i = int(np.flatnonzero(outside)[0])
-        raise ParameterError("wind", f"V[{i}] = {V[i]!r} m/s", f"speeds from 0 to {MAX_WIND:g} m/s")
+        raise ParameterError(
+            "wind", f"V[{i}] = {float(V[i])!r} m/s", f"speeds from 0 to {MAX_WIND:g} m/s"
+        )
     if np.any(np.diff(t) <= 0.0):
         i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
         raise ParameterError(
-            "wind", f"t[{i}] = {t[i]!r} s after t[{i - 1}] = {t[i - 1]!r} s", "increasing times"
+            "wind",
+            f"t[{i}] = {float(t[i])!r} s after t[{i - 1}] = {float(t[i - 1])!r} s",
+            "increasing times",
         )
     return _frozen(t, V)
 

@@ -195,15 +195,28 @@ class TorqueFit:
         return self.relative_residual > self.POOR
 
 
+FIT_LARGEST = LARGEST
+"""Largest speed [rad/s] or torque magnitude [N m] a fit takes (the design's own bound)."""
+
+
 def _checked_samples(omega, torque) -> tuple[np.ndarray, np.ndarray]:
-    omega = np.asarray(omega, dtype=float).ravel()
-    torque = np.asarray(torque, dtype=float).ravel()
+    from .validation import real_array
+
+    checked = []
+    for name, values, unit, lowest in (
+        ("omega", omega, "rad/s", 0.0),
+        ("torque", torque, "N m", -FIT_LARGEST),
+    ):
+        allowed = f"finite real numbers from {lowest:g} to {FIT_LARGEST:g}"
+        array = real_array(name, values, unit).ravel()  # (text, None, ragged: refused)
+        outside = ~(np.isfinite(array) & (array >= lowest) & (array <= FIT_LARGEST))
+        if outside.any():
+            i = int(np.flatnonzero(outside)[0])
+            raise ParameterError(name, f"{name}[{i}] = {float(array[i])!r}", allowed, unit)
+        checked.append(array)
+    omega, torque = checked
     if omega.shape != torque.shape:
         raise ParameterError("torque", f"{torque.size} values", f"as many as omega ({omega.size})")
-    if not (np.all(np.isfinite(omega)) and np.all(np.isfinite(torque))):
-        raise ParameterError("omega, torque", "non-finite values", "finite numbers")
-    if np.any(omega < 0):
-        raise ParameterError("omega", float(omega.min()), ">= 0 everywhere", "rad/s")
     return omega, torque
 
 
@@ -219,10 +232,11 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
     Parameters
     ----------
     omega : array_like
-        Windmill speeds [rad/s], finite and >= 0, at least two (three with ``at_rest``) distinct
+        Windmill speeds [rad/s], finite, from 0 to 1e12, at least two (three with ``at_rest``) distinct
         values, and more samples than fitted parameters.
     torque : array_like
-        Measured torques [N m], finite, the same length.
+        Measured torques [N m], finite, from -1e12 to 1e12, the same length. Speeds and torques
+        are fitted in units of the largest of each, so any units fit alike.
     at_rest : bool, default False
         Also fit the torque at rest T_0 (footnote 7: a real windmill has one).
 
@@ -234,7 +248,8 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
     Raises
     ------
     ParameterError
-        When the data are not of that form, or do not describe a torque that rises then falls.
+        When the data are not of that form (naming omega or torque, the first value at fault and
+        the range), or do not describe a torque that rises then falls.
 
     Examples
     --------
@@ -256,9 +271,16 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
             f"at least {fitted} distinct speeds" + ("" if at_rest else " > 0"),
             "rad/s",
         )
-    columns = [omega, omega**2] + ([np.ones_like(omega)] if at_rest else [])
+    # Fitted in units of the fastest speed and the largest torque, so that any units fit alike
+    # (omega^2 neither overflows nor underflows), then carried back.
+    speed_unit = float(omega.max())
+    torque_unit = float(np.abs(torque).max()) or 1.0
+    x, y = omega / speed_unit, torque / torque_unit
+    columns = [x, x**2] + ([np.ones_like(x)] if at_rest else [])
     design_matrix = np.column_stack(columns)
-    coefficients, *_ = np.linalg.lstsq(design_matrix, torque, rcond=None)
+    scaled, *_ = np.linalg.lstsq(design_matrix, y, rcond=None)
+    units = np.array([torque_unit / speed_unit, torque_unit / speed_unit**2, torque_unit])
+    coefficients = scaled * units[: scaled.size]
     a, b = coefficients[:2]
     c = coefficients[2] if at_rest else 0.0
     if not (a > 0 and b < 0):
@@ -283,13 +305,17 @@ def fit_torque_curve(omega, torque, at_rest: bool = False) -> TorqueFit:
             f"a torque at rest of {c:.4g} N m",
             f"a torque at rest from 0 to below the peak ({T_m:.4g} N m)",
         )
-    residual = torque - design_matrix @ coefficients
+    residual = y - design_matrix @ scaled
+    errors = _standard_errors(design_matrix, residual, scaled[0], scaled[1], at_rest)
     return TorqueFit(
         T_m=float(T_m),
         omega_m=float(omega_m),
-        rms_residual=float(np.sqrt(np.mean(residual**2))),
+        rms_residual=float(np.sqrt(np.mean(residual**2))) * torque_unit,
         T_0=float(c),
-        standard_errors=_standard_errors(design_matrix, residual, a, b, at_rest),
+        standard_errors={
+            name: error * (speed_unit if name == "omega_m" else torque_unit)
+            for name, error in errors.items()
+        },
     )
 
 

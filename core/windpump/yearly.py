@@ -308,7 +308,7 @@ def hourly(record) -> tuple[np.ndarray, np.ndarray]:
         i = int(np.searchsorted(hour, h)) - 1  # the last sample before the gap
         raise ParameterError(
             "record",
-            f"a gap after t[{i}] = {checked.t[i]!r} s (no sample in hour {h})",
+            f"a gap after t[{i}] = {float(checked.t[i])!r} s (no sample in hour {h})",
             "a sample in every hour",
         )
     V = np.bincount(hour, weights=checked.V) / counts
@@ -372,18 +372,17 @@ def _profile(profile) -> np.ndarray:
     allowed = "24 weights (one an hour from midnight), each finite and >= 0, with a sum > 0"
     if profile is None:
         return np.ones(HOURS_PER_DAY)
-    try:
-        weights = np.asarray(profile, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError("profile", profile, allowed) from None
+    from .validation import real_array
+
+    weights = real_array("profile", profile)  # (text, None, ragged lists: a ParameterError)
     if (
         weights.shape != (HOURS_PER_DAY,)
-        or not np.all(np.isfinite(weights))
+        or not np.all(np.isfinite(weights))  # (10**400 is inf here)
         or np.any(weights < 0.0)
-        or not weights.sum() > 0.0
+        or not weights.max() > 0.0
     ):
         raise ParameterError("profile", profile, allowed)
-    return weights
+    return weights / weights.max()  # proportions: 24 x 1e308 sums to inf, these to <= 24
 
 
 def _tank(tank: object) -> float:
@@ -520,9 +519,11 @@ def supply(
     chunk_days : int, keyword-only
         ``method="full"``: days per chunk.
     executor : concurrent.futures.Executor or None, keyword-only
-        ``method="full"``: where the chunks run (None: here, one after another).
+        ``method="full"``: where the chunks run: None (here, one after another) or an object with
+        a ``submit`` method (a ``ProcessPoolExecutor``, a dask ``Client.get_executor()``).
     progress : bool, callable or None, keyword-only
-        ``method="full"``: progress as in :func:`windpump.sweep`.
+        ``method="full"``: progress as in :func:`windpump.sweep` (a callable that raises is
+        warned about once and called no more; the year carries on).
 
     Returns
     -------
@@ -531,8 +532,10 @@ def supply(
     Raises
     ------
     ParameterError
-        Naming the argument: demand or tank < 0, a profile not of 24 weights >= 0 with a
-        positive sum, an unknown restart or method, a record with a gap or a bad sample.
+        Naming the argument: demand or tank < 0, a profile not of 24 finite weights >= 0 with a
+        positive sum, an unknown restart or method, a record with a gap or a bad sample; and,
+        checked whatever the method, turbulence, seed, chunk_days, an executor without a
+        ``submit`` method or a progress that is neither a flag, None nor a callable.
 
     Examples
     --------
@@ -544,9 +547,12 @@ def supply(
     >>> year.hours, year.totals.running_hours, round(year.lolp, 3), year.dry_days
     (48, 24, 0.25, 1)
     """
+    from .fullyear import full_options
+
     restart = _choice("restart", restart, RESTARTS)
     method = _choice("method", method, METHODS)
     tank = _tank(tank)
+    full_options(turbulence, seed, chunk_days, executor, progress)  # whatever the method
     V, month = hourly(record)
     demand_h = hourly_demand(demand, profile, V.size)
     name = record.name if isinstance(record, WindRecord) else ""

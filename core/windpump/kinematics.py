@@ -121,18 +121,18 @@ def delivering_faces(segment, cylinders: int, double_acting: bool):
     face delivers (``pi < theta - 2 pi k/n < 2 pi`` modulo 2 pi), -1 where its bottom face does
     (double-acting only, the other half), 0 where neither.
 
+    Raises
+    ------
+    ParameterError
+        Naming ``segment`` (not whole numbers from -2^53 to 2^53), ``cylinders`` (not a whole
+        number from 1 to 6) or ``double_acting`` (not a bool).
+
     Examples
     --------
     >>> delivering_faces([0, 1], 1, False).tolist()  # intake, then exhaust
     [[0], [1]]
     >>> delivering_faces(0, 2, True).tolist()  # cylinder 1 is half a turn behind
     [-1, 1]
-
-    Raises
-    ------
-    ParameterError
-        Naming ``segment`` (not whole numbers from -2^53 to 2^53), ``cylinders`` (not a whole
-        number from 1 to 6) or ``double_acting`` (not a bool).
     """
     from .design import MAX_CYLINDERS
     from .validation import flag, real_array, whole

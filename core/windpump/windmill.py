@@ -331,8 +331,8 @@ def _standard_errors(design_matrix, residual, a, b, at_rest) -> dict[str, float]
         "T_m": [-a / (2 * b), a * a / (4 * b * b)],
         "omega_m": [-1 / (2 * b), a / (2 * b * b)],
     }
-    if at_rest:
-        gradients = {name: g + [1.0] for name, g in gradients.items()}
+    if at_rest:  # T_m moves with c one for one; omega_m does not depend on c
+        gradients = {"T_m": gradients["T_m"] + [1.0], "omega_m": gradients["omega_m"] + [0.0]}
         gradients["T_0"] = [0.0, 0.0, 1.0]
     return {
         name: float(math.sqrt(max(0.0, np.asarray(g) @ covariance @ np.asarray(g))))

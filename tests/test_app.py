@@ -18,7 +18,7 @@ import windpump
 from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
-from windpump_app.inputs import PRESETS, PumpInputs
+from windpump_app.inputs import FROM_THE_LINK, PRESETS, PumpInputs
 from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
@@ -934,6 +934,22 @@ def test_a_fitted_design_travels_through_the_link_to_the_bit():
     for name in app.readouts.readouts:
         assert readout_text(again, name) == readout_text(app, name), name
     assert again.link_query() == app.link_query()
+
+
+def test_the_preset_sentence_goes_when_a_slider_leaves_the_preset():
+    app = Explorer()
+    app.sidebar.preset.value = "The paper's example"
+    assert "spins up over τ ≈ 79 s" in shown(app.sidebar.preset_note)
+    app.inputs.h = 30.0
+    assert "Stalled" in shown(app.readouts.status)
+    assert not app.sidebar.preset_note.visible
+    assert app.sidebar.preset.value == PRESET_PROMPT
+    app.sidebar.preset.value = "A stalled pump"  # a preset chosen again says its sentence
+    assert app.sidebar.preset_note.visible and "At h = 21 m" in shown(app.sidebar.preset_note)
+    linked = Explorer(query={"h": [b"7"]})
+    assert shown(linked.sidebar.preset_note) == FROM_THE_LINK
+    linked.inputs.T_m = 0.8  # no longer the link's design
+    assert not linked.sidebar.preset_note.visible
 
 
 def test_notices_are_bounded_however_long_the_link():

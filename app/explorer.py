@@ -23,6 +23,7 @@ from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, preset_of
 from .link import (
     RESTORED,
     PageLink,
+    dark_from,
     notices_text,
     page_query,
     presentation_from,
@@ -30,7 +31,6 @@ from .link import (
     restored_from,
     tab_from,
     tab_query,
-    text,
 )
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
@@ -82,7 +82,7 @@ class Explorer(Session, pn.viewable.Viewer):
         super().__init__(**params)
         query, notices = readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
-        self.dark = text(query.get("theme", [b""])) == "dark"
+        self.dark = dark_from(query, notices)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)

@@ -952,6 +952,17 @@ def test_the_preset_sentence_goes_when_a_slider_leaves_the_preset():
     assert not linked.sidebar.preset_note.visible
 
 
+def test_an_unknown_theme_is_named_in_a_notice():
+    app = Explorer(query={"theme": [b"purple"], "h": [b"5"]})
+    assert not app.dark and app.notices.visible
+    assert "Theme (theme) = “purple” ignored: light or dark." in shown(app.notices)
+    assert app.link_query() == "h=5"
+    marked = Explorer(query={"theme": [b"<b>x</b>"]})
+    assert "Theme (theme) = “<b>x</b>” ignored" in shown(marked.notices)  # shown as typed
+    for fine in (b"dark", b"light"):
+        assert not Explorer(query={"theme": [fine]}).notices.visible
+
+
 def test_notices_are_bounded_however_long_the_link():
     name = "x" * 30_000
     app = Explorer(query={name: [b"1"], "h": [b"y" * 30_000]})

@@ -261,13 +261,14 @@ def grid_text(value: float, step: float) -> str:
     of multiples of ``step`` (float noise aside), else its shortest text that reads back to the
     same float (``repr``): a fitted Tₘ = 0.5819912 is not written 0.58.
 
-    >>> grid_text(3.0999999999999996, 0.1), grid_text(2.0, 1.0), grid_text(0.5819912, 0.05)
-    ('3.1', '2', '0.5819912')
+    >>> grid_text(3.0999999999999996, 0.1), grid_text(0.5819912, 0.05), grid_text(99.0, 5.0)
+    ('3.1', '0.5819912', '99')
     """
     value = float(value)
     snapped = on_grid(value, step)
     if not math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):
-        return repr(value)
+        text = repr(value)
+        return text.removesuffix(".0")  # 99, not 99.0 (time_scale's step is 5)
     text = f"{snapped:.{step_decimals(step)}f}"
     text = text.rstrip("0").rstrip(".") if "." in text else text
     return "0" if text == "-0" else text

@@ -23,6 +23,7 @@ from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, preset_of
 from .link import (
     RESTORED,
     PageLink,
+    dark_from,
     notices_text,
     page_query,
     presentation_from,
@@ -30,7 +31,6 @@ from .link import (
     restored_from,
     tab_from,
     tab_query,
-    text,
 )
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
@@ -82,7 +82,7 @@ class Explorer(Session, pn.viewable.Viewer):
         super().__init__(**params)
         query, notices = readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
-        self.dark = text(query.get("theme", [b""])) == "dark"
+        self.dark = dark_from(query, notices)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)
@@ -107,6 +107,7 @@ class Explorer(Session, pn.viewable.Viewer):
             self.presentation = presentation
         self.inputs.param.update(**values)
         self._location: PageLink | None = None  # the page's address, once followed
+        self._noted = ""  # the inputs' query when the presets' note was written (``_say``)
         # what start() runs first, and whether the link names the design (taken or refused)
         designs = any(key in FORMATS or key in SWITCHES for key in pump_query)
         self._link = (values, notices, designs)
@@ -166,6 +167,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self.notices.object = notices_text(notices)
         self.notices.visible = bool(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
+        self.inputs.param.watch(self._leave_preset, self.inputs.names())
         self.update(seen)
 
     # -- the tabs, each built when first viewed ------------------------------------------------
@@ -318,17 +320,29 @@ class Explorer(Session, pn.viewable.Viewer):
         if name is not None:
             self.sidebar.preset.value = name  # _on_preset: the same values, and its sentence
         else:
-            self.sidebar.preset_note.object = FROM_THE_LINK
-            self.sidebar.preset_note.visible = True
+            self._say(FROM_THE_LINK)
 
     def _on_preset(self, event) -> None:
         if event.new not in PRESETS:
             return
         values, sentence = PRESETS[event.new]
         self.clear_pinned()
+        self.sidebar.preset_note.visible = False  # its values are not yet the inputs'
         self.set_values(**{**self.inputs.defaults(), **values})
-        self.sidebar.preset_note.object = f"**{event.new}.** {sentence}"
+        self._say(f"**{event.new}.** {sentence}")
+
+    def _say(self, note: str) -> None:
+        """Show ``note`` under the presets menu, about the design the inputs hold now."""
+        self._noted = self.inputs.query()
+        self.sidebar.preset_note.object = note
         self.sidebar.preset_note.visible = True
+
+    def _leave_preset(self, *_events) -> None:
+        """An input left the design the preset's (or the link's) sentence is about: the sentence
+        goes and the menu asks again, so no "spins up over τ ≈ 79 s" sits beside a stall."""
+        if self.sidebar.preset_note.visible and self.inputs.query() != self._noted:
+            self.sidebar.preset_note.visible = False
+            self.sidebar.preset.value = PRESET_PROMPT
 
     def pin(self) -> None:
         """Keep the current traces as a faint ghost to compare the next change with."""

@@ -150,7 +150,8 @@ class PumpInputs(param.Parameterized):
 
     def query(self) -> str:
         """The URL query of the current inputs: only those that differ from their defaults, each
-        written as its slider shows it (``h=3.1``, ``cylinders=2``, ``double_acting=true``)."""
+        written as its slider shows it (``h=3.1``, ``cylinders=2``, ``double_acting=true``), or in
+        full if its slider's grid cannot show it (a fit's ``T_m=0.5819912``: ``link_text``)."""
         return urlencode(
             {
                 name: link_text(name, value)
@@ -170,7 +171,7 @@ class PumpInputs(param.Parameterized):
     def parse_query(self, query: dict) -> tuple[dict[str, float], list[str]]:
         """Values to apply from a URL query (str or bytes values, lists as Tornado gives them),
         and a notice for each key ignored (unknown, not a number, out of its range, a count that
-        is not whole), given twice (the last is used) or moved to its slider's step."""
+        is not whole) or given twice (the last is used)."""
         values, notices = {}, []
         for key, raws in query.items():
             raws = list(raws) if isinstance(raws, list | tuple) else [raws]
@@ -203,17 +204,21 @@ class PumpInputs(param.Parameterized):
         return values, notices
 
     def _read_number(self, key: str, text: str) -> tuple[float | None, str]:
-        """A link's number for slider ``key``, on the slider's step (None if refused), and what
-        to tell the student about it ("" if nothing)."""
-        return read_slider_number(self.param[key], key, text, link_text, whole=key in COUNTS)
+        """A link's number for slider ``key`` (None if refused), and what to tell the student
+        about it ("" if nothing)."""
+        return read_slider_number(self.param[key], key, text, whole=key in COUNTS)
 
 
 def read_slider_number(
-    parameter: param.Number, key: str, text: str, shown_as, *, whole: bool = False
+    parameter: param.Number, key: str, text: str, *, whole: bool = False
 ) -> tuple[float | None, str]:
-    """A link's ``key=text`` for a slider's ``parameter``: the value on the slider's step (None
-    if refused) and what to tell the student ("" if nothing); ``shown_as(key, value)`` writes a
-    value as the link does."""
+    """A link's ``key=text`` for a slider's ``parameter``: the value (None if refused) and what to
+    tell the student ("" if nothing).
+
+    A value in the slider's range is taken exactly (float noise on its grid aside), on the grid or
+    off it: the page writes what it holds in full (``grid_text``), so its own link reads back to
+    the same design, and a hand-typed ``h=3.14159`` is the head the student asked for (the slider
+    sits at it, its label rounded to the slider's decimals)."""
     low, high = parameter.bounds
     try:
         value = float(text)
@@ -224,16 +229,12 @@ def read_slider_number(
         return None, f"{shown} ignored: it must be a number from {low:g} to {high:g}."
     if whole and value != round(value):
         return None, f"{shown} ignored: it must be a whole number from {low:g} to {high:g}."
-    if value == parameter.default:  # a default off the slider's grid (θ₀ = π/2)
-        return value, ""
-    step = parameter.step
-    snapped = on_grid(value, step)
-    if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):  # float noise
+    snapped = on_grid(value, parameter.step)
+    if math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):  # float noise: 3.0999999999999996
         return snapped, ""
-    return (
-        snapped,
-        f"{shown} taken as {shown_as(key, snapped)} (its slider moves in steps of {step:g}).",
-    )
+    # Off the grid (a fit, an uploaded design, θ₀ = π/2, a hand-typed 3.14159): taken exactly, as
+    # the page writes it (``grid_text``), so a link reopens the readouts it was copied from.
+    return value, ""
 
 
 def step_decimals(step: float) -> int:
@@ -248,11 +249,27 @@ def on_grid(value: float, step: float) -> float:
 
 
 def link_text(name: str, value: float | bool) -> str:
-    """A value as the link carries it: as its slider shows it, to its step's decimals, without
-    trailing zeros (``3.1``, ``0.8``, ``2``, ``true``)."""
+    """A value as the link carries it: as its slider shows it if it is on the slider's grid
+    (``3.1``, ``0.8``, ``2``, ``true``), else in full (``grid_text``)."""
     if isinstance(value, bool):
         return str(value).lower()
-    text = f"{float(value):.{step_decimals(PumpInputs.param[name].step)}f}"
+    return grid_text(value, PumpInputs.param[name].step)
+
+
+def grid_text(value: float, step: float) -> str:
+    """``value`` for a link: to ``step``'s decimals without trailing zeros if it is on the grid
+    of multiples of ``step`` (float noise aside), else its shortest text that reads back to the
+    same float (``repr``): a fitted Tₘ = 0.5819912 is not written 0.58.
+
+    >>> grid_text(3.0999999999999996, 0.1), grid_text(0.5819912, 0.05), grid_text(99.0, 5.0)
+    ('3.1', '0.5819912', '99')
+    """
+    value = float(value)
+    snapped = on_grid(value, step)
+    if not math.isclose(snapped, value, rel_tol=1e-9, abs_tol=1e-12):
+        text = repr(value)
+        return text.removesuffix(".0")  # 99, not 99.0 (time_scale's step is 5)
+    text = f"{snapped:.{step_decimals(step)}f}"
     text = text.rstrip("0").rstrip(".") if "." in text else text
     return "0" if text == "-0" else text
 

@@ -63,6 +63,15 @@ def presentation_from(query: dict, notices: list[str]) -> bool | None:
     return None
 
 
+def dark_from(query: dict, notices: list[str]) -> bool:
+    """``?theme=dark`` opens the page in the dark theme; ``light`` (or nothing) in the light one;
+    any other value is ignored with a notice."""
+    raw = text(query.get("theme", [b""]))
+    if raw and raw not in ("light", "dark"):
+        notices.append(f"Theme (theme) = “{clipped(raw)}” ignored: light or dark.")
+    return raw == "dark"
+
+
 TABS = ("mechanisms", "wind", "map", "site")  # ``tab=``: the tabs after the pump's, in order
 
 

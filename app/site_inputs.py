@@ -8,7 +8,7 @@ from urllib.parse import urlencode
 
 import param
 
-from .inputs import clipped, read_slider_number, step_decimals
+from .inputs import clipped, grid_text, read_slider_number
 
 # The records that ship with pvlib, by their link value
 SITES = {"greensboro": "Greensboro, NC (TMY3)", "sand_point": "Sand Point, AK (TMY3)"}
@@ -62,13 +62,11 @@ class SiteInputs(param.Parameterized):
     def link_text(self, name: str, value) -> str:
         if name in self.CHOICES:
             return str(value)
-        text = f"{float(value):.{step_decimals(self.param[name].step)}f}"
-        return text.rstrip("0").rstrip(".") if "." in text else text
+        return grid_text(value, self.param[name].step)
 
     def parse_query(self, query: dict) -> tuple[dict, list[str]]:
         """Values to apply from a link's query (this tab's keys only; str or bytes, lists as
-        Tornado gives them; the last of several is used) and a notice for each value ignored or
-        moved to its slider's step."""
+        Tornado gives them; the last of several is used) and a notice for each value ignored."""
         values, notices = {}, []
         for key in self.keys():
             if key not in query:
@@ -94,4 +92,4 @@ class SiteInputs(param.Parameterized):
         return None, f"{shown} ignored: it must be one of {', '.join(allowed)}."
 
     def _read_number(self, key: str, text: str) -> tuple[float | None, str]:
-        return read_slider_number(self.param[key], key, text, self.link_text)
+        return read_slider_number(self.param[key], key, text)

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
-from bokeh.models import HoverTool, LinearAxis, Range1d, Span
+import math
+
+from bokeh.models import HoverTool, LinearAxis, NumeralTickFormatter, Range1d, Span
+
+from windpump.units import SECONDS_PER_DAY, SECONDS_PER_HOUR
 
 from .figures import HEIGHT, TICKS, draw_band, empty, grow_in_presentation, legend, line, new_figure
 
@@ -83,6 +87,8 @@ def day_figures(s: dict, c: dict):
     speed = new_figure("Crank speed", "time [h]", "crank speed θ̇ [rad/s]", x_range=shared)
     draw_band(speed, s["speed"], c["integrated"])
     litres = new_figure("Water lifted", "time [h]", "water since dawn [L]", x_range=shared)
+    # 100,000 L, not Bokeh's 1.000e+5: a record of days lifts that much
+    litres.yaxis.formatter = NumeralTickFormatter(format="0,0")
     lifted = line(litres, "t", "litres", s["litres"], c["flow"], 3)
     markers = {}
     for fig, suffix in ((wind, "wind"), (litres, "litres")):
@@ -112,3 +118,32 @@ def day_figures(s: dict, c: dict):
             )
         )
     return wind, speed, litres, marker_items
+
+
+def time_unit(duration: float) -> tuple[float, str]:
+    """The day figures' time axis for a record of ``duration`` [s]: (seconds a unit, its
+    symbol), hours up to two days, days beyond (a week is 7 days, not 168 h)."""
+    return (SECONDS_PER_DAY, "days") if duration > 2 * SECONDS_PER_DAY else (SECONDS_PER_HOUR, "h")
+
+
+def a_day(duration: float) -> bool:
+    """Whether a record [s] is a day long (to the minute): its words are then a day's."""
+    return math.isclose(duration, SECONDS_PER_DAY, abs_tol=60.0)
+
+
+def label_day(wind, speed, litres, duration: float) -> None:
+    """The day figures' words for a record of ``duration`` [s]: "The day's wind" and "water since
+    dawn" for a day, the record's for any other span; the time axis and its hover in its unit."""
+    day = a_day(duration)
+    _unit, symbol = time_unit(duration)
+    wind.title.text = "The day's wind" if day else "The record's wind"
+    litres.yaxis.axis_label = (
+        "water since dawn [L]" if day else "water since the record's start [L]"
+    )
+    for fig in (wind, speed, litres):
+        fig.xaxis.axis_label = f"time [{symbol}]"
+        for hover in fig.select(type=HoverTool):
+            hover.tooltips = [
+                (name, f"@t{{0.00}} {symbol}") if name == "t" else (name, field)
+                for name, field in hover.tooltips
+            ]

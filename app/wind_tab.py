@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import functools
 import logging
-import math
 
 import numpy as np
 import panel as pn
@@ -20,7 +19,7 @@ from bokeh.models import ColumnDataSource
 import windpump
 from windpump.labdata import LabDataError, check_file_size
 from windpump.site import kick_in_wind
-from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY, SECONDS_PER_HOUR
+from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY
 from windpump.wind import gusty, read_csv
 
 from .buttons import ActionButton
@@ -45,7 +44,7 @@ from .uploads import (
     sending_note,
 )
 from .views import refill
-from .wind_figures import curve_figure, day_figures
+from .wind_figures import a_day, curve_figure, day_figures, label_day, time_unit
 from .wind_steady import steady_wind
 
 log = logging.getLogger("windpump.app")
@@ -94,7 +93,7 @@ def stops_and_starts(stops: int, starts: int) -> str:
 
 def is_a_day(duration: float) -> bool:
     """Whether a record [s] is a day long (to the minute): its litres are then a day's."""
-    return math.isclose(duration, SECONDS_PER_DAY, abs_tol=60.0)
+    return a_day(duration)
 
 
 def record_water_text(litres: float, per_day: float, duration: float) -> tuple[str, str]:
@@ -325,7 +324,7 @@ class WindTab(Tab):
     def _placeholder_day(self, duration: float) -> None:
         """Flat, empty bands over the day, so that its figures have ranges before it is run
         (Bokeh cannot set the ranges of figures with no data)."""
-        x = [0.0, duration / SECONDS_PER_HOUR]
+        x = [0.0, duration / time_unit(duration)[0]]
         for name in ("wind", "speed"):
             refill(self.sources[name], {"t": x, "lower": [0.0, 0.0], "upper": [0.0, 0.0]})
         refill(self.sources["litres"], {"t": x, "litres": [0.0, 0.0]})
@@ -345,19 +344,21 @@ class WindTab(Tab):
         self.error.visible = False
         run, duration = day.run, day.duration
         self.last_run, self._drawn_day = run, run_of
-        hours = run.t / SECONDS_PER_HOUR
-        self.day_wind.x_range.end = self.day_wind.x_range.start + duration / SECONDS_PER_HOUR
+        unit = time_unit(duration)[0]  # [s] hours, or days for a record of days
+        t = run.t / unit
+        self.day_wind.x_range.end = self.day_wind.x_range.start + duration / unit
+        label_day(self.day_wind, self.day_speed, self.day_litres, duration)
         bins = self.bins
         for name, values in (("wind", run.wind_speed), ("speed", run.theta_dot)):
-            x, lower, upper = band(hours, values, bins)
+            x, lower, upper = band(t, values, bins)
             refill(self.sources[name], {"t": x, "lower": lower, "upper": upper})
-        x, _, lifted = band(hours, LITRES_PER_M3 * run.volume, bins)
+        x, _, lifted = band(t, LITRES_PER_M3 * run.volume, bins)
         refill(self.sources["litres"], {"t": x, "litres": lifted})
         for kind, events in (("stops", day.stops), ("starts", day.starts)):
-            refill(self.sources[f"{kind}_wind"], {"t": events.t / SECONDS_PER_HOUR, "y": events.V})
+            refill(self.sources[f"{kind}_wind"], {"t": events.t / unit, "y": events.V})
             refill(
                 self.sources[f"{kind}_litres"],
-                {"t": events.t / SECONDS_PER_HOUR, "y": LITRES_PER_M3 * events.volume},
+                {"t": events.t / unit, "y": LITRES_PER_M3 * events.volume},
             )
             self.marker_items[kind].visible = len(events) > 0
         self.readouts["day_litres"].show(
@@ -370,7 +371,7 @@ class WindTab(Tab):
             f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
         )
         if self.measured is not None:
-            source += f" ({duration / SECONDS_PER_HOUR:.1f} h)"
+            source += f" ({duration_text(duration)})"
         start = "starts on its own" if day.kick == 0.0 else f"is kicked at {day.kick:g} rad/s"
         self.day_note.object = (
             f"Integrated in full over {source}: the pump {start}, "

@@ -6,6 +6,7 @@ import logging
 import math
 import re
 from decimal import Decimal
+from pathlib import Path
 
 import numpy as np
 import param
@@ -17,7 +18,7 @@ import windpump
 from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
-from windpump_app.inputs import PRESETS, PumpInputs
+from windpump_app.inputs import FROM_THE_LINK, PRESETS, PumpInputs
 from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
@@ -905,15 +906,61 @@ def test_a_key_given_twice_says_which_value_is_used():
     assert "“h” is given 2 times (5, 7): the last, “7”, is used." in app.notices.object
 
 
-def test_a_value_off_its_sliders_step_is_moved_onto_it_and_said():
+def test_a_value_off_its_sliders_step_is_taken_exactly_and_float_noise_is_dropped():
+    """A hand-typed value off the slider's grid is the value asked for (the link keeps it as
+    typed); float noise on the grid is the slider's value, with no word."""
     app = Explorer(query={"h": [b"3.14159"], "T_m": [b"0.7000000000000001"]})
-    assert app.inputs.h == 3.1 and app.inputs.T_m == 0.7
-    assert "Head h [m] (h) = “3.14159” taken as 3.1 (its slider moves in steps of 0.1)." in (
-        app.notices.object
-    )
-    assert "T_m" not in app.notices.object  # float noise is not worth a word
+    assert app.inputs.h == 3.14159 and app.inputs.T_m == 0.7
+    assert not app.notices.visible
+    assert app.link_query() == "h=3.14159&T_m=0.7"
     old = Explorer(query={"theta0": [repr(math.pi / 2).encode()], "I0": [b"%r" % SEED.I0]})
     assert not old.notices.visible and old.inputs.values() == PumpInputs().values()
+
+
+TORQUE_CSV = Path(__file__).parents[1] / "docs" / "examples" / "torque.csv"
+
+
+def test_a_fitted_design_travels_through_the_link_to_the_bit():
+    """A lab fit's Tₘ and ωₘ are off their sliders' grids: the link carries them in full, and
+    the page it opens holds the same design and shows the same readouts."""
+    app = Explorer()
+    app.load_lab_data(TORQUE_CSV.read_bytes())
+    assert (round(app.inputs.T_m, 5), round(app.inputs.omega_m, 2)) == (0.58199, 50.14)
+    pairs = dict(_query_pairs(app.link_query()))
+    assert float(pairs["T_m"]) == app.inputs.T_m and float(pairs["omega_m"]) == app.inputs.omega_m
+    again = Explorer(query={key: [value.encode()] for key, value in pairs.items()})
+    assert again.inputs.design() == app.inputs.design()
+    assert not again.notices.visible
+    for name in app.readouts.readouts:
+        assert readout_text(again, name) == readout_text(app, name), name
+    assert again.link_query() == app.link_query()
+
+
+def test_the_preset_sentence_goes_when_a_slider_leaves_the_preset():
+    app = Explorer()
+    app.sidebar.preset.value = "The paper's example"
+    assert "spins up over τ ≈ 79 s" in shown(app.sidebar.preset_note)
+    app.inputs.h = 30.0
+    assert "Stalled" in shown(app.readouts.status)
+    assert not app.sidebar.preset_note.visible
+    assert app.sidebar.preset.value == PRESET_PROMPT
+    app.sidebar.preset.value = "A stalled pump"  # a preset chosen again says its sentence
+    assert app.sidebar.preset_note.visible and "At h = 21 m" in shown(app.sidebar.preset_note)
+    linked = Explorer(query={"h": [b"7"]})
+    assert shown(linked.sidebar.preset_note) == FROM_THE_LINK
+    linked.inputs.T_m = 0.8  # no longer the link's design
+    assert not linked.sidebar.preset_note.visible
+
+
+def test_an_unknown_theme_is_named_in_a_notice():
+    app = Explorer(query={"theme": [b"purple"], "h": [b"5"]})
+    assert not app.dark and app.notices.visible
+    assert "Theme (theme) = “purple” ignored: light or dark." in shown(app.notices)
+    assert app.link_query() == "h=5"
+    marked = Explorer(query={"theme": [b"<b>x</b>"]})
+    assert "Theme (theme) = “<b>x</b>” ignored" in shown(marked.notices)  # shown as typed
+    for fine in (b"dark", b"light"):
+        assert not Explorer(query={"theme": [fine]}).notices.visible
 
 
 def test_notices_are_bounded_however_long_the_link():

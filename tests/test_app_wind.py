@@ -91,7 +91,8 @@ def test_a_link_sets_the_wind_and_a_tampered_one_is_ignored_with_a_notice():
     assert (app.inputs.V, app.inputs.mean_wind, app.inputs.k) == (6.5, 4.0, 2.5)
     assert (app.inputs.time_scale, app.inputs.seed) == (95.0, 7)
     assert "V=6.5" in app.inputs.query() and "seed=7" in app.inputs.query()
-    assert "time_scale=99" not in Explorer(query={"time_scale": [b"99"]}).link_query()  # step 5
+    off_step = Explorer(query={"time_scale": [b"99"]})  # its slider's step is 5: taken as written
+    assert off_step.inputs.time_scale == 99.0 and off_step.link_query() == "time_scale=99"
     tampered = Explorer(query={"k": [b"99"], "mean_wind": [b"gale"]})
     assert tampered.notices.visible
     assert "Weibull shape k (2: Rayleigh) (k)" in tampered.notices.object
@@ -391,3 +392,27 @@ def test_served_a_day_and_curve_in_flight_are_not_drawn_once_the_inputs_are_back
         then(work())
     assert list(explorer.wind.sources["curve"].data["flow"]) == curve
     assert value(explorer, "day_litres") == litres
+
+
+def test_a_record_of_days_is_titled_and_timed_as_its_span(app):
+    """71 hours of wind is not "the day's wind" nor water "since dawn": the figures say the
+    record's, time runs in days, and the litres' axis is written in plain numbers."""
+    from bokeh.models import HoverTool, NumeralTickFormatter
+
+    app.load_wind_data(steady_record(71.0, 6.0))
+    wind, speed, lifted = app.wind.day_wind, app.wind.day_speed, app.wind.day_litres
+    assert wind.title.text == "The record's wind"
+    assert lifted.yaxis[0].axis_label == "water since the record's start [L]"
+    assert isinstance(lifted.yaxis[0].formatter, NumeralTickFormatter)  # 100,000, not 1.000e+5
+    for fig in (wind, speed, lifted):
+        assert fig.xaxis[0].axis_label == "time [days]"
+        assert ("t", "@t{0.00} days") in fig.select_one(HoverTool).tooltips
+    assert wind.x_range.end == pytest.approx(71 / 24)
+    assert max(app.wind.sources["litres"].data["t"]) == pytest.approx(71 / 24, rel=0.01)
+    assert "This record (3.0 days), in full" in app.wind.readouts["day_litres"].object
+    assert "(3.0 days)" in app.wind.day_note.object
+    app.forget_wind_data()  # the gusty day: a day's words again, in hours
+    assert wind.title.text == "The day's wind"
+    assert lifted.yaxis[0].axis_label == "water since dawn [L]"
+    assert fig.xaxis[0].axis_label == "time [h]" and wind.x_range.end == pytest.approx(24)
+    assert ("t", "@t{0.00} h") in lifted.select_one(HoverTool).tooltips

@@ -430,6 +430,40 @@ def test_a_tampered_link_is_ignored_with_a_notice(browser, url):
         page.close()
 
 
+TORQUE_CSV = Path(__file__).parents[1] / "docs" / "examples" / "torque.csv"
+
+
+def readouts_text(page) -> dict[str, str]:
+    from windpump_app.readouts import READOUTS
+
+    return {name: text(page, name) for name in READOUTS}
+
+
+def test_a_fitted_design_reopens_from_its_link_with_the_same_readouts(browser, url):
+    """A lab fit puts Tₘ and ωₘ off their sliders' grids: the page's link carries them in full
+    and the page it opens shows the same readouts (it once showed Tₘ = 0.6's)."""
+    table = windpump.read_torque_csv(TORQUE_CSV.read_bytes())
+    fit = windpump.fit_torque_curve(table.omega, table.torque)
+    fitted = SEED.replace(T_m=fit.T_m, omega_m=fit.omega_m)
+    page = open_page(browser, url)
+    again = None
+    try:
+        page.locator("input[type=file]").first.set_input_files(files=[TORQUE_CSV])
+        wait_for_readout(page, "mean_flow", flow_readout(fitted))
+        wait_for_link(page, f"?T_m={fit.T_m!r}&omega_m={fit.omega_m!r}")
+        shown = readouts_text(page)
+        again = open_page(browser, url, query="?" + urlparse(page.url).query)
+        wait_for_readout(again, "mean_flow", shown["mean_flow"])
+        assert readouts_text(again) == shown
+        assert again.evaluate(LINK) == page.evaluate(LINK)
+        assert again.get_by_text("Some values in the link").first.is_hidden()  # no notice
+        assert page.problems == [] and again.problems == []
+    finally:
+        page.close()
+        if again is not None:
+            again.close()
+
+
 LINK = "() => location.search"
 # The opacity an element is seen with: its own times its ancestors', through shadow roots.
 SEEN_OPACITY = """e => {

@@ -266,3 +266,74 @@ def test_an_empty_weather_file_says_which_columns_it_needs(contents, says):
     message = str(error.value)
     assert says in message
     assert "time [s] or an ISO timestamp" in message and "wind speed [m/s]" in message
+
+
+@pytest.mark.parametrize("days", [31, 2, 1])
+def test_a_short_tmy3_file_is_read_as_its_span(tmp_path, days):
+    # Greensboro's year cut to its first days: its hours are the full year's first hours, as
+    # pvlib reads the full file (the reference, without coercing the year: no row moved)
+    full, _ = pvlib.iotools.read_tmy3(str(GREENSBORO), map_variables=True)
+    hours = 24 * days
+    path = tmp_path / "short.csv"
+    path.write_text("\n".join(tmy3_lines()[: 2 + hours]) + "\n")
+    record = read_weather(path)
+    np.testing.assert_array_equal(record.V, full["wind_speed"].to_numpy(dtype=float)[:hours])
+    np.testing.assert_array_equal(record.t, 3600.0 * np.arange(hours))
+    assert record.month.tolist() == [1] * hours  # the last hour, 24:00, is still January's
+    assert record.name.startswith("GREENSBORO")
+    assert windpump.supply(windpump.Design.seed_example(), record, 1.0, 0.0).hours == hours
+
+
+def test_a_short_tmy3_file_with_a_gap_names_the_gaps_line(tmp_path):
+    lines = tmy3_lines()[: 2 + 48]
+    path = tmp_path / "gap.csv"
+    path.write_text("\n".join(lines[:20] + lines[23:]) + "\n")  # lines 21 to 23 left out
+    with pytest.raises(LabDataError) as error:
+        read_weather(path)
+    said = str(error.value)
+    assert said.startswith("line 21: ") and "skips" in said, said
+    assert f"“{','.join(lines[23].split(',')[:2])}”" in said  # the file's own date and hour
+    path.write_text("\n".join(lines[:-2] + lines[-1:]) + "\n")  # the last hour but one left out
+    with pytest.raises(LabDataError, match=f"^line {len(lines) - 1}: .* skips"):
+        read_weather(path)
+
+
+def test_a_weather_file_without_a_header_field_says_which_in_words(tmp_path):
+    path = tmp_path / "bare.epw"
+    path.write_text("LOCATION,Here\n" + "\n".join(["x"] * 8) + "\n")
+    with pytest.raises(LabDataError) as error:
+        read_weather(path)
+    assert str(error.value) == (
+        "the file's header has no altitude field: is it a TMY3 or EPW file?"
+    )
+    tmy3 = tmy3_lines()
+    path = tmp_path / "columns.csv"
+    path.write_text("\n".join([tmy3[0], "a,b,c", "1,2,3"]) + "\n")
+    with pytest.raises(LabDataError) as error:
+        read_weather(path)
+    assert "'" not in str(error.value) and "no column “Date (MM/DD/YYYY)”" in str(error.value)
+
+
+def test_a_missing_or_negative_tmy3_speed_is_said_as_a_number(tmp_path):
+    lines = tmy3_lines()[:12]
+    column = lines[1].split(",").index("Wspd (m/s)")
+    for cell, says in (("", "the wind speed is missing"), ("-3", "the wind speed -3.0 m/s")):
+        fields = lines[5].split(",")
+        fields[column] = cell
+        path = tmp_path / "speed.csv"
+        path.write_text("\n".join(lines[:5] + [",".join(fields)] + lines[6:]) + "\n")
+        with pytest.raises(LabDataError) as error:
+            read_weather(path)
+        assert str(error.value).startswith(f"line 6: {says}") and "np." not in str(error.value)
+
+
+def test_a_records_refused_number_is_written_as_a_number():
+    # numpy's repr (np.float64(nan)) is not what a user typed: the message writes the number
+    t = np.arange(3, dtype=float)
+    for V, says in (([1.0, np.nan, 2.0], "speeds[1] = nan"), ([1.0, -2.5, 2.0], "V[1] = -2.5 m/s")):
+        with pytest.raises(ParameterError) as error:
+            windpump.wind.as_record((t, np.asarray(V)), 2.0)
+        assert says in str(error.value) and "np." not in str(error.value), str(error.value)
+    with pytest.raises(ParameterError) as error:
+        windpump.supply(windpump.Design.seed_example(), (np.array([0.0, 7200.0]), [3, 3]), 1, 0)
+    assert "t[0] = 0.0 s" in str(error.value) and "np." not in str(error.value)

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from . import files
-from .errors import LabDataError, ParameterError
+from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import decoded
 from .units import SECONDS_PER_HOUR
 from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
@@ -224,6 +224,7 @@ def _kind(first: str, suffix: str) -> str:
 
 def _tmy3(iotools, text: str, stem: str) -> WindRecord:
     data, meta = _read(iotools.read_tmy3, text, map_variables=True)
+    data = _last_in_its_year(data)
     station = str(meta.get("Name", "")).strip().strip('"').strip()
     state = str(meta.get("State", "")).strip()
     name = f"{station}, {state}" if station and state else station or stem
@@ -242,16 +243,64 @@ def _epw(iotools, text: str, stem: str) -> WindRecord:
     return _hourly(data, data["wind_speed"], name, text, EPW_HEADER_LINES, labelled_at_end=False)
 
 
+HEADER_FIELDS = {
+    "USAF": "station number (USAF)",
+    "Name": "station name",
+    "State": "state",
+    "TZ": "time zone",
+    "latitude": "latitude",
+    "longitude": "longitude",
+    "altitude": "altitude",
+    "loc": "LOCATION",
+    "city": "city",
+    "state-prov": "state or province",
+    "country": "country",
+    "data_type": "data source",
+    "WMO_code": "WMO station number",
+}
+"""The fields of a TMY3's first line and an EPW's LOCATION line, as pvlib's readers name them,
+and in words."""
+
+
 def _read(reader, text: str, **options):
     """pvlib's reader on the file's text, its year coerced to one so the hours increase (a
-    typical year mixes years across months); its failures as a LabDataError."""
+    typical year mixes years across months); its failures as a LabDataError in words: a missing
+    field of the header or column of the hours named as what it is."""
     import io
 
     try:
         return reader(io.StringIO(text), coerce_year=2001, **options)  # not a leap year, as TMY
-    except (ValueError, KeyError, IndexError, TypeError) as error:
-        message = " ".join(str(error).split())[:200]
-        raise LabDataError(f"not a weather file pvlib can read: {message}") from None
+    except KeyError as error:
+        key = str(error.args[0]) if error.args else ""
+        if key in HEADER_FIELDS:
+            raise LabDataError(
+                f"the file's header has no {HEADER_FIELDS[key]} field: is it a TMY3 or EPW file?"
+            ) from None
+        raise LabDataError(
+            f"the file has no column “{cut(key, 60)}”: is it a TMY3 or EPW file?"
+        ) from None
+    except (ValueError, IndexError, TypeError) as error:
+        message = cut(" ".join(str(error).split()), 200)
+        raise LabDataError(f"not a TMY3 or EPW file pvlib can read ({message})") from None
+
+
+def _last_in_its_year(data):
+    """pvlib's TMY3 hours with the last one back in the year it belongs to. With its year
+    coerced, pvlib moves the file's last line to the next year, right only for a year's last hour
+    (``12/31,24:00``, the next year's midnight); a shorter file's last hour (``01/31,24:00``)
+    would be a year after the one before it. It goes back a year unless that puts it at or
+    before the hour before it."""
+    import pandas
+
+    if len(data.index) < 2:
+        return data
+    index = data.index
+    last = index[-1] - pandas.DateOffset(years=1)
+    if last <= index[-2]:
+        return data
+    data = data.copy()
+    data.index = index[:-1].append(pandas.DatetimeIndex([last], tz=index.tz))
+    return data
 
 
 def _hourly(
@@ -262,11 +311,18 @@ def _hourly(
     (it takes an hour off the file's end label). A line at fault is quoted by its own date and
     hour, not pvlib's (whose year is coerced to one)."""
     V = speed.to_numpy(dtype=float)
+    if V.size == 0:
+        raise LabDataError(f"the file has no hours after its header ({header_lines} lines)")
     index = data.index
     seconds = (index - index[0]).total_seconds().to_numpy(dtype=float)
     for i in np.flatnonzero(~np.isfinite(V) | (V < 0.0) | (V > MAX_WIND))[:1]:
+        said = (
+            "is missing (not a number)"
+            if np.isnan(V[i])
+            else f"{shown(V[i])} m/s is outside 0 to {MAX_WIND:g} m/s"
+        )
         raise LabDataError(
-            f"the wind speed {V[i]!r} is not a number from 0 to {MAX_WIND:g} m/s",
+            f"the wind speed {said}",
             header_lines + int(i) + 1,
         )
     steps = np.diff(seconds)

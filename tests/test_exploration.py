@@ -84,7 +84,7 @@ def test_fit_of_noisy_data_is_the_least_squares_optimum():
     "omega, torque, name",
     [
         ([1.0, 2.0], [1.0], "torque"),
-        ([1.0, math.nan], [1.0, 2.0], "omega, torque"),
+        ([1.0, math.nan], [1.0, 2.0], "omega"),
         ([-1.0, 2.0], [1.0, 2.0], "omega"),
         ([2.0, 2.0, 0.0], [1.0, 1.0, 0.0], "omega"),
         ([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], "torque"),  # rising: no peak

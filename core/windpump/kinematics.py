@@ -20,7 +20,7 @@ from ._kernels.equations import delivered_flow as _delivered_flow
 from ._kernels.equations import lever_arm as _lever
 from ._kernels.equations import piston_over_R as _x_over_R
 from .errors import ParameterError
-from .validation import finite_array, positive, rod_ratio
+from .validation import finite_array, flag, positive, real_array, rod_ratio, whole
 
 
 def _exhaust_strokes(theta, ratio):
@@ -135,7 +135,6 @@ def delivering_faces(segment, cylinders: int, double_acting: bool):
     [-1, 1]
     """
     from .design import MAX_CYLINDERS
-    from .validation import flag, real_array, whole
 
     cylinders = whole("cylinders", cylinders, 1, MAX_CYLINDERS)
     double_acting = flag("double_acting", double_acting)

@@ -21,7 +21,7 @@ import numpy as np
 
 from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import _cells, _is_number, check_columns, contents, decoded, split_header
-from .validation import positive, real
+from .validation import positive, real, real_array
 
 MAX_RECORD = 10_000_000
 """Most samples a wind record may hold (a year at one sample every 3 s)."""
@@ -161,7 +161,6 @@ def _field(name: str, values: object, unit: str) -> np.ndarray:
     one, else a copy (the record never shares an array its caller may change)."""
     if isinstance(values, np.ndarray) and values.dtype == float and not values.flags.writeable:
         return values
-    from .validation import real_array
 
     array = np.array(real_array(name, values, unit), dtype=float)  # a copy
     array.flags.writeable = False
@@ -170,7 +169,6 @@ def _field(name: str, values: object, unit: str) -> np.ndarray:
 
 def _months(values: object, samples: int) -> np.ndarray:
     """A record's months as a read-only int array: whole numbers from 1 to 12, one a sample."""
-    from .validation import real_array
 
     allowed = f"whole numbers from 1 to 12, one a sample ({samples})"
     months = real_array("month", values)

@@ -14,7 +14,7 @@ from .design import Design
 from .errors import ParameterError
 from .revolution import mean_load
 from .theory import running_speeds
-from .validation import LARGEST, finite_array, flag
+from .validation import LARGEST, finite_array, flag, real_array
 
 
 def windmill_torque(design: Design, omega):
@@ -200,7 +200,6 @@ FIT_LARGEST = LARGEST
 
 
 def _checked_samples(omega, torque) -> tuple[np.ndarray, np.ndarray]:
-    from .validation import real_array
 
     checked = []
     for name, values, unit, lowest in (

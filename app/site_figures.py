@@ -34,7 +34,9 @@ def monthly_figure(s: dict, c: dict):
     """Each calendar month's demand [m³] as a stacked bar, delivered and short (in a warning
     colour), in front of the water pumped (an outlined bar, cut at the figure's top with its
     number written when it dwarfs the demand: ``water_range``)."""
-    s["monthly"] = empty("month", "pumped", "demand", "delivered", "shortfall", "cut", "cut_at")
+    s["monthly"] = empty(
+        "month", "pumped", "demand", "delivered", "shortfall", "short_top", "cut", "cut_at"
+    )
     fig = new_figure(
         "Water each month",
         "month",
@@ -49,10 +51,15 @@ def monthly_figure(s: dict, c: dict):
         x="month", top="pumped", width=0.85, source=source, fill_color=c["ghost"],
         fill_alpha=0.25, line_color=c["ghost"], line_width=2,
     )  # fmt: skip
-    delivered = fig.vbar(x="month", top="delivered", width=0.5, source=source, color=c["flow"])
+    # filled without an outline: a bar of no height draws nothing (an outline drew a line)
+    delivered = fig.vbar(
+        x="month", top="delivered", width=0.5, source=source, fill_color=c["flow"],
+        line_color=None,
+    )  # fmt: skip
     short = fig.vbar(
-        x="month", bottom="delivered", top="demand", width=0.5, source=source, color=c["best"]
-    )
+        x="month", bottom="delivered", top="short_top", width=0.5, source=source,
+        fill_color=c["best"], line_color=None,
+    )  # fmt: skip
     fig.text(
         x="month", y="cut_at", text="cut", source=source, angle=math.pi / 2, text_align="right",
         text_baseline="middle", text_font_size=LABEL, text_color=c["ink"],
@@ -85,6 +92,13 @@ def water_range(pumped, demand) -> tuple[float, list[str]]:
     return top, [f"{p:,.0f} " if p > top else "" for p in pumped]
 
 
+def short_tops(delivered, shortfall) -> np.ndarray:
+    """The top [m³] of each month's short bar, on its delivered one: delivered + shortfall (the
+    demand), or NaN (no bar at all) for a month with no shortfall."""
+    delivered, shortfall = np.asarray(delivered, float), np.asarray(shortfall, float)
+    return np.where(shortfall > 0.0, delivered + shortfall, np.nan)
+
+
 def show_monthly(source, fig, monthly) -> None:
     """A year's months (``windpump.MonthTable``) in the monthly figure, cut at ``water_range``."""
     top, cut = water_range(monthly.pumped, monthly.demand)
@@ -96,6 +110,7 @@ def show_monthly(source, fig, monthly) -> None:
             "demand": np.asarray(monthly.demand),
             "delivered": np.asarray(monthly.delivered),
             "shortfall": np.asarray(monthly.shortfall),
+            "short_top": short_tops(monthly.delivered, monthly.shortfall),
             "cut": cut,
             "cut_at": np.full(len(cut), 0.98 * top),
         },

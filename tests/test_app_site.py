@@ -136,7 +136,10 @@ def test_the_monthly_chart_shows_the_shortfall_on_the_demands_scale(app):
     short = [
         r for r in app.site.monthly.renderers if getattr(r.glyph, "bottom", None) == "delivered"
     ]
-    assert len(short) == 1 and short[0].glyph.top == "demand"
+    assert len(short) == 1 and short[0].glyph.top == "short_top"
+    drawn = data(app, "monthly")
+    short_months = table.shortfall > 0
+    np.testing.assert_allclose(drawn["short_top"][short_months], table.demand[short_months])
     app.site_inputs.param.update(demand=20.0)  # pumped no longer dwarfs the demand: all in view
     _, supplied = year(design=SEED.with_ratios(T_0=0.3), hub=15.0, demand=20.0, restart="self")
     assert app.site.monthly.y_range.end >= supplied.monthly.pumped.max()
@@ -448,3 +451,26 @@ def test_every_tabs_readouts_grow_with_presentation_mode(app):
         for part in ("label", "value"):
             size = re.search(rf"\.readout \.{part} \{{font-size: ([^;]*);", css).group(1)
             assert ZOOM_VARIABLE in size, (readout.readout_name, part, size)
+
+
+def test_a_month_without_a_shortfall_draws_no_short_bar(app):
+    """A month whose demand is all delivered has no short bar: not a bar of no height, whose
+    outline was a line across the month's delivered bar."""
+    app.set_values(T_0=0.3)
+    app.site_inputs.param.update(hub=15.0, demand=1.0, tank=10.0, restart="self")
+    _, supplied = year(
+        design=SEED.with_ratios(T_0=0.3), hub=15.0, demand=1.0, tank=10.0, restart="self"
+    )
+    table = supplied.monthly
+    met = table.shortfall == 0.0
+    assert met.any() and (~met).any()  # the case: months with and without a shortfall
+    drawn = data(app, "monthly")
+    assert np.isnan(np.asarray(drawn["short_top"], float)[met]).all()  # nothing to draw
+    (short,) = [
+        r for r in app.site.monthly.renderers if getattr(r.glyph, "bottom", None) == "delivered"
+    ]
+    (delivered,) = [
+        r for r in app.site.monthly.renderers if getattr(r.glyph, "top", None) == "delivered"
+    ]
+    for bar in (short, delivered):  # filled, never outlined: no height draws nothing
+        assert bar.glyph.line_color is None and bar.glyph.fill_color is not None

@@ -4,6 +4,7 @@ the link, uploads good and bad."""
 from __future__ import annotations
 
 import datetime
+import inspect
 import math
 import re
 from pathlib import Path
@@ -17,7 +18,7 @@ import windpump
 from windpump.labdata import LabDataError
 from windpump_app.explorer import Explorer
 from windpump_app.serving import SUPERSEDED
-from windpump_app.site_inputs import RESTARTS
+from windpump_app.site_inputs import RESTARTS, SiteInputs
 from windpump_app.site_record import read_upload
 
 from panes import shown
@@ -85,6 +86,26 @@ def test_opening_the_tab_runs_the_year_at_greensboro(app):
     assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
     assert tanks[-1] >= 1.5 * smallest  # the curve reaches past the 5 % tank
     assert "Greensboro" in app.site.note.object
+
+
+def test_one_default_restart_in_the_core_the_command_and_the_tab():
+    """Issue 37: the command line restarted "self" and the Site tab "attended". Now one constant
+    is the default of the core's functions, of --restart and of the tab's control."""
+    from windpump.cli import build_parser
+    from windpump.fullyear import full_year
+    from windpump.yearly import DEFAULT_RESTART
+    from windpump.yearly import RESTARTS as CORE_RESTARTS
+
+    assert DEFAULT_RESTART == "attended" and set(RESTARTS) == set(CORE_RESTARTS)
+    for function in (windpump.supply, windpump.tank_for, windpump.supply_map, full_year):
+        assert inspect.signature(function).parameters["restart"].default is DEFAULT_RESTART
+    assert windpump.Supply.__dataclass_fields__["restart"].default is DEFAULT_RESTART
+    parser = build_parser()
+    for command in ("supply", "tank"):
+        args = parser.parse_args([command, "--site", "sand_point", "--demand", "1"])
+        assert args.restart is DEFAULT_RESTART
+    assert SiteInputs.param["restart"].default is DEFAULT_RESTART
+    assert SiteInputs().restart is DEFAULT_RESTART
 
 
 def test_every_control_moves_the_year(app):

@@ -71,12 +71,15 @@ def test_tank_prints_the_size():
 
 
 def test_tank_says_why_no_tank_is_enough():
-    """Exit 0 (an answer, documented in its --help), and the reason supply gives."""
-    done = windpump_command("tank", "--site", "greensboro", "--demand", "1", "--hub-height", "15")
+    """Exit 0 (an answer, documented in its --help), and the reason supply gives: the paper's
+    pump (no torque at rest) left to restart on its own never runs."""
+    done = windpump_command(
+        "tank", "--site", "greensboro", "--demand", "1", "--hub-height", "15", "--restart", "self"
+    )
     assert done.returncode == 0, done.stderr
     assert "at 15 m" in done.stdout
     never = windpump.supply(
-        windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0
+        windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0, restart="self"
     )
     last = done.stdout.splitlines()[-1]
     assert "none is enough: the pump never runs" in last and never.why in last
@@ -106,7 +109,7 @@ def test_a_short_record_has_fixed_decimals_and_its_own_span(tmp_path):
 
 
 def test_supply_says_why_a_pump_never_runs():
-    done = windpump_command("supply", "--site", "greensboro", "--demand", "1")
+    done = windpump_command("supply", "--site", "greensboro", "--demand", "1", "--restart", "self")
     assert done.returncode == 0 and "never runs" in done.stdout and "T_0 = 0" in done.stdout
     said = next(line for line in done.stdout.splitlines() if line.startswith("never runs"))
     assert "--restart attended" in said and "restart=" not in said

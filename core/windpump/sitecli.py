@@ -18,7 +18,7 @@ from .errors import ParameterError, cut
 from .labdata import LabDataError
 from .units import LITRES_PER_M3
 from .wind import WindRecord
-from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
+from .yearly import DEFAULT_RESTART, MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
 
 def add_commands(commands, design_options) -> None:
@@ -69,8 +69,22 @@ def _site_options(parser: argparse.ArgumentParser, design_options) -> None:
     )
     parser.add_argument("--shear", type=float, default=1 / 7, help="wind shear exponent (1/7)")
     parser.add_argument("--demand", type=float, required=True, help="water asked for [m^3/day]")
-    parser.add_argument("--restart", choices=RESTARTS, default="self", help="who restarts it")
+    parser.add_argument(
+        "--restart",
+        choices=RESTARTS,
+        default=DEFAULT_RESTART,
+        help=f"who restarts a pump a calm stopped: attended ({RESTART_WORDS['attended']}) or "
+        f"self ({RESTART_WORDS['self']}); {DEFAULT_RESTART} by default, as the explorer's "
+        "Site tab",
+    )
     parser.add_argument("--profile", metavar="W1,...,W24", help="the demand's hourly weights")
+
+
+RESTART_WORDS = {
+    "attended": "someone restarts it whenever the wind can carry it, V >= V_stop",
+    "self": "it restarts on its own, V >= V_start: never without torque at rest, T_0 = 0",
+}
+"""What each ``--restart`` means, in the help and the output."""
 
 
 def site_record(args: argparse.Namespace) -> WindRecord:

@@ -8,6 +8,8 @@ from urllib.parse import urlencode
 
 import param
 
+from windpump.yearly import DEFAULT_RESTART
+
 from .inputs import clipped, grid_text, read_slider_number
 
 # The records that ship with pvlib, by their link value
@@ -16,7 +18,7 @@ UPLOADED = "uploaded"  # a file read in this session: not carried by a link
 RESTARTS = {
     "attended": "Attended (V ≥ V_stop)",
     "self": "On its own (V ≥ V_start)",
-}
+}  # the core's restarts (windpump.yearly.RESTARTS), labelled; the default is the core's
 
 
 class SiteInputs(param.Parameterized):
@@ -26,7 +28,7 @@ class SiteInputs(param.Parameterized):
     hub = param.Number(10.0, bounds=(2.0, 40.0), step=0.5, label="Hub height [m]")
     demand = param.Number(10.0, bounds=(0.1, 50.0), step=0.1, label="Demand [m³/day]")
     tank = param.Number(5.0, bounds=(0.0, 100.0), step=0.5, label="Tank [m³]")
-    restart = param.Selector(objects=list(RESTARTS), default="attended", label="Restart")
+    restart = param.Selector(objects=list(RESTARTS), default=DEFAULT_RESTART, label="Restart")
 
     NUMBERS = ("hub", "demand", "tank")
     CHOICES = ("site", "restart")

@@ -3,9 +3,14 @@ the link, uploads good and bad."""
 
 from __future__ import annotations
 
+import csv
 import datetime
+import inspect
+import io
 import math
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,7 +22,7 @@ import windpump
 from windpump.labdata import LabDataError
 from windpump_app.explorer import Explorer
 from windpump_app.serving import SUPERSEDED
-from windpump_app.site_inputs import RESTARTS
+from windpump_app.site_inputs import RESTARTS, SiteInputs
 from windpump_app.site_record import read_upload
 
 from panes import shown
@@ -85,6 +90,63 @@ def test_opening_the_tab_runs_the_year_at_greensboro(app):
     assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
     assert tanks[-1] >= 1.5 * smallest  # the curve reaches past the 5 % tank
     assert "Greensboro" in app.site.note.object
+
+
+def test_one_default_restart_in_the_core_the_command_and_the_tab():
+    """Issue 37: the command line restarted "self" and the Site tab "attended". Now one constant
+    is the default of the core's functions, of --restart and of the tab's control."""
+    from windpump.cli import build_parser
+    from windpump.fullyear import full_year
+    from windpump.yearly import DEFAULT_RESTART
+    from windpump.yearly import RESTARTS as CORE_RESTARTS
+
+    assert DEFAULT_RESTART == "attended" and set(RESTARTS) == set(CORE_RESTARTS)
+    for function in (windpump.supply, windpump.tank_for, windpump.supply_map, full_year):
+        assert inspect.signature(function).parameters["restart"].default is DEFAULT_RESTART
+    assert windpump.Supply.__dataclass_fields__["restart"].default is DEFAULT_RESTART
+    parser = build_parser()
+    for command in ("supply", "tank"):
+        args = parser.parse_args([command, "--site", "sand_point", "--demand", "1"])
+        assert args.restart is DEFAULT_RESTART
+    assert SiteInputs.param["restart"].default is DEFAULT_RESTART
+    assert SiteInputs().restart is DEFAULT_RESTART
+
+
+def test_the_command_without_restart_is_the_site_tabs_year_at_sand_point(app, tmp_path):
+    """``windpump supply`` at Sand Point with the tab's other inputs and no --restart: the year
+    the tab draws there (the paper's pump, no torque at rest: on its own it would never run, and
+    the command says so), hour by hour from its --csv."""
+    app.site_inputs.site = "sand_point"
+    drawn = app.site.supplied
+    inputs = app.site_inputs
+    hours = tmp_path / "hours.csv"
+    done = subprocess.run(
+        [
+            sys.executable, "-m", "windpump", "supply", "--site", "sand_point",
+            "--hub-height", f"{inputs.hub:g}", "--demand", f"{inputs.demand:g}",
+            "--tank", f"{inputs.tank:g}", "--csv", str(hours),
+        ],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert any(line.startswith("restart              attended") for line in lines)
+    assert "never runs" not in done.stdout.replace("would never run", "")
+    assert any("On its own (--restart self) the pump would never run" in line for line in lines)
+    rows = list(csv.reader(io.StringIO(hours.read_text())))[1:]
+    columns = np.array([[float(x) for x in row[2:]] for row in rows]).T
+    V, running, pumped, delivered, shortfall, _, level = columns
+    np.testing.assert_allclose(V, drawn.V, rtol=1e-5)
+    np.testing.assert_array_equal(running.astype(bool), drawn.running)
+    np.testing.assert_allclose(pumped, drawn.pumped, rtol=1e-8)
+    np.testing.assert_allclose(delivered, drawn.delivered, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(shortfall, drawn.shortfall, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(level, drawn.level, rtol=1e-8, atol=1e-12)
+    # attended, the rule as written: every hour the wind can carry the pump, it runs
+    V_stop, V_start = windpump.wind_thresholds(SEED)
+    assert V_start is None  # on its own it never would
+    np.testing.assert_array_equal(drawn.running, drawn.V >= V_stop)
+    assert drawn.running.any() and drawn.why == ""
 
 
 def test_every_control_moves_the_year(app):

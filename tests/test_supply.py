@@ -134,7 +134,7 @@ def test_attended_runs_whenever_the_wind_can_carry_it():
 
 
 def test_without_torque_at_rest_it_never_starts_and_says_why():
-    year = supply(Design.seed_example(), hourly_record([9.0] * 48), 1.0, 2.0)
+    year = supply(Design.seed_example(), hourly_record([9.0] * 48), 1.0, 2.0, restart="self")
     assert not year.running.any() and year.pumped.sum() == 0.0
     assert "T_0 = 0" in year.why and year.lolp == 1.0
     assert "someone must start it" in year.why
@@ -148,7 +148,7 @@ def test_without_torque_at_rest_it_never_starts_and_says_why():
 def test_a_wind_that_never_reaches_the_threshold_is_said_in_words():
     V_stop, V_start = thresholds(SELF_STARTING)
     calm = hourly_record([0.5 * V_stop] * 24)
-    alone = supply(SELF_STARTING, calm, 1.0, 0.0)
+    alone = supply(SELF_STARTING, calm, 1.0, 0.0, restart="self")
     assert f"never reaches {V_start:.3g} m/s (V_start)" in alone.why
     attended = supply(SELF_STARTING, calm, 1.0, 0.0, restart="attended")
     assert f"never reaches {V_stop:.3g} m/s (V_stop)" in attended.why
@@ -215,16 +215,17 @@ def test_tank_for_none_or_endless():
     assert math.isfinite(size) and supply(SELF_STARTING, calm, asked, size).lolp <= 0.55
 
 
-def test_supply_map_against_supply_design_by_design():
+@pytest.mark.parametrize("restart", ["self", "attended"])
+def test_supply_map_against_supply_design_by_design(restart):
     rng = np.random.default_rng(5)
     record = hourly_record(np.clip(rng.weibull(2.0, 24 * 20) * 5.5, 0.0, 20.0))
     ratios, tanks = np.array([3.0, 4.0, 5.5]), np.array([0.0, 1.5, 4.0, 12.0])
-    found = supply_map(SELF_STARTING, record, 6.0, ratios, tanks)
+    found = supply_map(SELF_STARTING, record, 6.0, ratios, tanks, restart=restart)
     assert found.lolp.shape == (tanks.size, ratios.size)
     for j, ratio in enumerate(ratios):
         design = SELF_STARTING.with_ratios(R_dagger=float(ratio))
         for i, tank in enumerate(tanks):
-            year = supply(design, record, 6.0, float(tank))
+            year = supply(design, record, 6.0, float(tank), restart=restart)
             assert found.lolp[i, j] == pytest.approx(year.lolp, abs=1e-12)
         assert found.pumped[j] == pytest.approx(year.pumped.sum(), rel=1e-12)
 
@@ -333,7 +334,7 @@ def test_the_full_year_refuses_a_turbulence_the_gust_model_cannot_give(turbulenc
 def test_attended_in_full_someone_starts_a_pump_without_torque_at_rest():
     seed = Design.seed_example()  # T_0 = 0: it never starts on its own
     record = hourly_record([1.0] * 3 + [6.0] * 9)
-    alone = supply(seed, record, 1.0, 0.0, method="full", chunk_days=1)
+    alone = supply(seed, record, 1.0, 0.0, method="full", restart="self", chunk_days=1)
     assert alone.pumped.sum() == 0.0 and "T_0 = 0" in alone.why
     helped = supply(seed, record, 1.0, 0.0, method="full", restart="attended", chunk_days=1)
     steady = helped.quasi_steady

@@ -71,12 +71,15 @@ def test_tank_prints_the_size():
 
 
 def test_tank_says_why_no_tank_is_enough():
-    """Exit 0 (an answer, documented in its --help), and the reason supply gives."""
-    done = windpump_command("tank", "--site", "greensboro", "--demand", "1", "--hub-height", "15")
+    """Exit 0 (an answer, documented in its --help), and the reason supply gives: the paper's
+    pump (no torque at rest) left to restart on its own never runs."""
+    done = windpump_command(
+        "tank", "--site", "greensboro", "--demand", "1", "--hub-height", "15", "--restart", "self"
+    )
     assert done.returncode == 0, done.stderr
     assert "at 15 m" in done.stdout
     never = windpump.supply(
-        windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0
+        windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0, restart="self"
     )
     last = done.stdout.splitlines()[-1]
     assert "none is enough: the pump never runs" in last and never.why in last
@@ -106,10 +109,67 @@ def test_a_short_record_has_fixed_decimals_and_its_own_span(tmp_path):
 
 
 def test_supply_says_why_a_pump_never_runs():
-    done = windpump_command("supply", "--site", "greensboro", "--demand", "1")
+    done = windpump_command("supply", "--site", "greensboro", "--demand", "1", "--restart", "self")
     assert done.returncode == 0 and "never runs" in done.stdout and "T_0 = 0" in done.stdout
     said = next(line for line in done.stdout.splitlines() if line.startswith("never runs"))
     assert "--restart attended" in said and "restart=" not in said
+
+
+def test_the_restart_is_said_with_what_on_its_own_would_give():
+    """Issue 37: --help says what each restart means and which is the default; the output says
+    which was used and, when the pump restarting on its own gives another year, that year."""
+    for command in ("supply", "tank"):
+        said = " ".join(windpump_command(command, "--help").stdout.split())
+        assert "attended (someone restarts it whenever the wind can carry it, V >= V_stop)" in said
+        assert "self (it restarts on its own, V >= V_start" in said
+        assert "attended by default, as the explorer's Site tab" in said
+    hub = windpump.sample_site("greensboro").at_height(15.0)
+    where = ["--site", "greensboro", "--hub-height", "15", "--demand", "2", "--set", "T_0=0.3"]
+    done = windpump_command("supply", *where, "--tank", "5")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[2].startswith("restart              attended: someone restarts it")
+    assert lines[2].endswith("(the default)")
+    alone = windpump.supply(DESIGN, hub, 2.0, 5.0, restart="self")
+    assert (
+        lines[3].split()
+        == (
+            f"On its own (--restart self) it would pump {alone.totals.pumped:.1f} m^3 and deliver "
+            f"{alone.totals.delivered:.1f} m^3 (loss-of-load prob. {alone.lolp:.4g})."
+        ).split()
+    )
+    chosen = windpump_command("supply", *where, "--tank", "5", "--restart", "self")
+    assert chosen.returncode == 0, chosen.stderr
+    assert "(the default is attended)" in chosen.stdout and "On its own" not in chosen.stdout
+    sized = windpump_command("tank", *where)
+    assert sized.returncode == 0, sized.stderr
+    lines = sized.stdout.splitlines()
+    assert lines[2].startswith("restart              attended") and lines[2].endswith(
+        "(the default)"
+    )
+    needs = windpump.tank_for(DESIGN, hub, 2.0, 0.05, restart="self")
+    assert (
+        lines[3].split()
+        == (f"On its own (--restart self) it would need a tank of {needs:.6g} m^3.").split()
+    )
+    assert lines[-1].split()[:2] == ["tank", f"{windpump.tank_for(DESIGN, hub, 2.0, 0.05):.6g}"]
+
+
+def test_in_full_the_year_on_its_own_is_said_to_be_quasi_steady(tmp_path):
+    """4 m/s carries the pump (V_stop 2.21 m/s) but does not start it on its own (V_start
+    5.65 m/s): attended it runs from the first hour, on its own from the seventh."""
+    path = tmp_path / "mast.csv"
+    hours = [f"2026-06-01T{h:02d}:00,{4.0 if h < 6 else 6.0}" for h in range(24)]
+    path.write_text("time,speed\n" + "\n".join(hours) + "\n")
+    done = windpump_command(
+        "supply", "--weather", str(path), "--demand", "1", "--set", "T_0=0.3", "--full"
+    )
+    assert done.returncode == 0, done.stderr
+    alone = windpump.supply(DESIGN, windpump.read_weather(path), 1.0, 0.0, restart="self")
+    assert alone.running.tolist() == [False] * 6 + [True] * 18
+    said = done.stdout.splitlines()[3].strip()
+    assert said.startswith("On its own (--restart self) it would pump")
+    assert f"{alone.totals.pumped:.1f} m^3" in said and said.endswith(", quasi-steady).")
 
 
 @pytest.mark.parametrize(

@@ -9,8 +9,8 @@ turbulence intensity (the shape k that gives that coefficient of variation), int
 
 Each chunk starts where the quasi-steady year (:func:`windpump.supply`) has the pump at the
 chunk's start: at rest, or running at alpha+ in the first hour's wind; at rest at the year's start.
-With ``restart="attended"`` a pump that comes to rest is restarted (at alpha+) at the start of the
-next hour whose mean wind reaches V_stop.
+Attended (``restart="attended"``, the default) a pump that comes to rest is restarted (at alpha+)
+at the start of the next hour whose mean wind reaches V_stop.
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ from .errors import ParameterError
 from .progress import Progress, check_executor, check_progress, reporter
 from .units import SECONDS_PER_HOUR
 from .validation import real, whole
+from .yearly import DEFAULT_RESTART
 
 if typing.TYPE_CHECKING:
     import concurrent.futures
@@ -119,7 +120,7 @@ def full_year(
     design: Design,
     record,
     *,
-    restart: str = "self",
+    restart: str = DEFAULT_RESTART,
     turbulence: float = 0.0,
     seed: int | None = 0,
     chunk_days: int = 7,
@@ -133,7 +134,8 @@ def full_year(
     design : Design
     record : WindRecord or (t, V) pair
         The wind at the rotor (:func:`windpump.supply`'s).
-    restart : {"self", "attended"}, keyword-only
+    restart : {"self", "attended"}, default "attended", keyword-only
+        Who restarts a resting pump, as :func:`windpump.supply` (``DEFAULT_RESTART``).
     turbulence : float, keyword-only
         Turbulence intensity inside each hour [-]: 0 (the hourly means, linear between them) or
         from 0.063 to 2.24 (:func:`turbulence_shape`).

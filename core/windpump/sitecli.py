@@ -14,11 +14,13 @@ import math
 import os
 from pathlib import Path
 
+import numpy as np
+
 from .errors import ParameterError, cut
 from .labdata import LabDataError
 from .units import LITRES_PER_M3
 from .wind import WindRecord
-from .yearly import MONTH_NAMES, RESTARTS, Supply, supply, tank_for
+from .yearly import DEFAULT_RESTART, MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
 
 def add_commands(commands, design_options) -> None:
@@ -69,8 +71,22 @@ def _site_options(parser: argparse.ArgumentParser, design_options) -> None:
     )
     parser.add_argument("--shear", type=float, default=1 / 7, help="wind shear exponent (1/7)")
     parser.add_argument("--demand", type=float, required=True, help="water asked for [m^3/day]")
-    parser.add_argument("--restart", choices=RESTARTS, default="self", help="who restarts it")
+    parser.add_argument(
+        "--restart",
+        choices=RESTARTS,
+        default=DEFAULT_RESTART,
+        help=f"who restarts a pump a calm stopped: attended ({RESTART_WORDS['attended']}) or "
+        f"self ({RESTART_WORDS['self']}); {DEFAULT_RESTART} by default, as the explorer's "
+        "Site tab",
+    )
     parser.add_argument("--profile", metavar="W1,...,W24", help="the demand's hourly weights")
+
+
+RESTART_WORDS = {
+    "attended": "someone restarts it whenever the wind can carry it, V >= V_stop",
+    "self": "it restarts on its own, V >= V_start: never without torque at rest, T_0 = 0",
+}
+"""What each ``--restart`` means, in the help and the output."""
 
 
 def site_record(args: argparse.Namespace) -> WindRecord:
@@ -135,7 +151,12 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
             year = supply(design, record, args.demand, args.tank, **options)
     else:
         year = supply(design, record, args.demand, args.tank, **options)
-    for line in report(year, record):
+    alone = None
+    if args.restart != "self":  # quasi-steady, whatever the method: milliseconds
+        alone = supply(
+            design, record, args.demand, args.tank, restart="self", profile=options["profile"]
+        )
+    for line in report(year, record, alone):
         print(line)
     if args.csv:
         try:
@@ -160,6 +181,29 @@ def check_writable(path: str) -> None:
         raise OSError(f"--csv {path}: not allowed to write there")
 
 
+def restart_line(restart: str) -> str:
+    """The restart a command used, what it means and whether it is the default."""
+    which = "the default" if restart == DEFAULT_RESTART else f"the default is {DEFAULT_RESTART}"
+    return f"restart              {restart}: {RESTART_WORDS[restart]} ({which})"
+
+
+def self_differs(year: Supply, alone: Supply | None) -> bool:
+    """Whether the pump restarting on its own (``alone``, quasi-steady) runs other hours than
+    ``year``'s quasi-steady year."""
+    if alone is None:
+        return False
+    steady = year if year.quasi_steady is None else year.quasi_steady
+    return not np.array_equal(steady.running, alone.running)
+
+
+def self_sentence(alone: Supply, what: str) -> str:
+    """The sentence that says the pump restarting on its own gives another answer (``what``:
+    that answer, when it runs)."""
+    if alone.why:
+        return f"On its own (--restart self) the pump would never run: {alone.why}."
+    return f"On its own (--restart self) {what}."
+
+
 def attended_hint(year: Supply) -> str:
     """How the command line's user has someone restart the pump, when that would help."""
     if year.why and year.restart == "self":
@@ -174,13 +218,29 @@ def site_line(year: Supply, record: WindRecord) -> str:
     )
 
 
-def report(year: Supply, record: WindRecord) -> list[str]:
-    """The lines ``windpump supply`` prints: the site, the month table, the figures."""
+def report(year: Supply, record: WindRecord, alone: Supply | None = None) -> list[str]:
+    """The lines ``windpump supply`` prints: the site, the restart, the month table, the
+    figures; and, when the pump restarting on its own (``alone``, the quasi-steady year of
+    ``--restart self``) runs other hours, what that year would be."""
     totals = year.totals
     lines = [
         site_line(year, record),
         f"V_stop, V_start      {year.V_stop:.3g} m/s, "
         + ("none (no torque at rest)" if year.V_start is None else f"{year.V_start:.3g} m/s"),
+        restart_line(year.restart),
+    ]
+    if alone is not None and self_differs(year, alone):
+        totals_alone = alone.totals
+        lines.append(
+            " " * 21
+            + self_sentence(
+                alone,
+                f"it would pump {totals_alone.pumped:.1f} m^3 and deliver "
+                f"{totals_alone.delivered:.1f} m^3 (loss-of-load prob. {alone.lolp:.4g}"
+                + (", quasi-steady)" if year.quasi_steady is not None else ")"),
+            )
+        )
+    lines += [
         "",
         "month      pumped    demand delivered shortfall   hours  starts",
     ]
@@ -234,6 +294,19 @@ def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     year = supply(design, record, args.demand, 0.0, **options)  # quasi-steady: quick
     print(site_line(year, record))
     print(f"demand               {args.demand:g} m^3/day, loss of load at most {args.lolp:g}")
+    print(restart_line(args.restart))
+    if args.restart != "self":
+        alone_options = {**options, "restart": "self"}
+        alone = supply(design, record, args.demand, 0.0, **alone_options)
+        if self_differs(year, alone):
+            alone_size = tank_for(design, record, args.demand, args.lolp, **alone_options)
+            if alone_size != size:
+                needs = (
+                    "no tank would be enough"
+                    if math.isinf(alone_size)
+                    else f"it would need a tank of {alone_size:.6g} m^3"
+                )
+                print(" " * 21 + self_sentence(alone, needs))
     if math.isinf(size):
         print(f"tank                 none is enough: {no_tank_why(year, args.lolp)}")
         return 0

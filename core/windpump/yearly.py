@@ -1,11 +1,12 @@
 """A year of water at a site: the pump hour by hour through a wind record, a tank between it and
 the demand, and the tank a demand needs.
 
-Quasi-steady (the default), each hour's mean wind V_h sets the hour: the pump runs when
+Quasi-steady (the default method), each hour's mean wind V_h sets the hour. Attended
+(``restart="attended"``, the default: ``DEFAULT_RESTART``), someone restarts a resting pump and
+it runs whenever ``V_h >= V_stop``; on its own (``restart="self"``) it runs when
 ``V_h >= V_start``, or when it ran the hour before and ``V_h >= V_stop``
 (:func:`windpump.wind_thresholds`: a running pump carries on down to V_stop, a resting one needs
-V_start; someone who restarts it, ``restart="attended"``, makes it run whenever
-``V_h >= V_stop``), and a running hour pumps ``steady_flow(design, V_h) x 3600 s``
+V_start). A running hour pumps ``steady_flow(design, V_h) x 3600 s``
 (:func:`windpump.steady_flow`). The year starts at rest. In full (``method="full"``) the
 equation of motion is integrated through the whole record instead (:func:`windpump.simulate`).
 
@@ -43,6 +44,13 @@ if typing.TYPE_CHECKING:
 RESTARTS = ("self", "attended")
 """Who restarts a pump at rest: ``"self"`` (the windmill's torque at rest, above V_start) or
 ``"attended"`` (someone, whenever the wind could carry it: above V_stop)."""
+
+DEFAULT_RESTART = "attended"
+"""The restart a year takes when none is given: the one default of :func:`supply`,
+:func:`tank_for`, :func:`supply_map`, :func:`windpump.fullyear.full_year`, ``windpump supply``
+and ``windpump tank`` (``--restart``) and the explorer's Site tab: someone restarts a pump a calm
+stopped. A windmill without torque at rest (T_0 = 0, the paper's) never starts on its own:
+with ``"self"`` it never runs."""
 
 METHODS = ("quasi-steady", "full")
 """How the hours are found: the averaged theory in each hour's mean wind, or the full equation
@@ -150,7 +158,7 @@ class Supply:
     V_start : float or None
         Above it a resting pump starts on its own [m/s]; None without torque at rest.
     restart : str
-        ``"self"`` or ``"attended"``.
+        ``"self"`` or ``"attended"`` (the year's; ``DEFAULT_RESTART`` unless asked).
     method : str
         ``"quasi-steady"`` or ``"full"``.
     why : str
@@ -175,7 +183,7 @@ class Supply:
     passes: int
     V_stop: float
     V_start: float | None
-    restart: str = "self"
+    restart: str = DEFAULT_RESTART
     method: str = "quasi-steady"
     why: str = ""
     name: str = ""
@@ -482,7 +490,7 @@ def supply(
     demand: float,
     tank: float,
     *,
-    restart: str = "self",
+    restart: str = DEFAULT_RESTART,
     profile=None,
     method: str = "quasi-steady",
     turbulence: float = 0.0,
@@ -505,8 +513,9 @@ def supply(
     tank : float
         The tank's capacity [m^3], from 0 to 1e12 (0: none, water pumped and not used at once
         spills).
-    restart : {"self", "attended"}, keyword-only
-        Who restarts a resting pump: the wind (above V_start) or someone (above V_stop).
+    restart : {"self", "attended"}, default "attended", keyword-only
+        Who restarts a resting pump: the wind (above V_start) or someone (above V_stop);
+        ``DEFAULT_RESTART`` unless given.
     profile : 24 weights or None, keyword-only
         How the demand spreads over the day's hours from midnight (flat by default).
     method : {"quasi-steady", "full"}, keyword-only
@@ -580,7 +589,7 @@ def tank_for(
     demand: float,
     lolp: float = 0.05,
     *,
-    restart: str = "self",
+    restart: str = DEFAULT_RESTART,
     profile=None,
 ) -> float:
     """The smallest tank [m^3] whose quasi-steady year (:func:`supply`) has a loss-of-load
@@ -600,8 +609,8 @@ def tank_for(
         Water asked for [m^3/day], from 0 to 1e12 (``MOST_WATER``).
     lolp : float, default 0.05
         The loss-of-load probability allowed [-], from 0 to below 1.
-    restart : {"self", "attended"}, keyword-only
-        Who restarts a resting pump, as :func:`supply`.
+    restart : {"self", "attended"}, default "attended", keyword-only
+        Who restarts a resting pump, as :func:`supply` (``DEFAULT_RESTART``).
     profile : 24 weights or None, keyword-only
         The demand's spread over the day's hours, as :func:`supply`.
 
@@ -709,7 +718,7 @@ def supply_map(
     gear_ratios,
     tanks,
     *,
-    restart: str = "self",
+    restart: str = DEFAULT_RESTART,
     profile=None,
 ) -> SupplyMap:
     """The quasi-steady year's loss-of-load probability over sprocket ratio and tank capacity.
@@ -729,8 +738,8 @@ def supply_map(
         Sprocket ratios R+ [-], each giving a valid design.
     tanks : array_like
         Tank capacities [m^3], finite and >= 0.
-    restart : {"self", "attended"}, keyword-only
-        Who restarts a resting pump, as :func:`supply`.
+    restart : {"self", "attended"}, default "attended", keyword-only
+        Who restarts a resting pump, as :func:`supply` (``DEFAULT_RESTART``).
     profile : 24 weights or None, keyword-only
         The demand's spread over the day's hours, as :func:`supply`.
 
@@ -740,13 +749,21 @@ def supply_map(
 
     Examples
     --------
+    A day of 6 m/s, a day of calm, for 2 m^3 a day. On its own a resting pump needs 6.52 m/s to
+    start at R+ = 3, so it never runs in this wind (at R+ = 4, 5.65 m/s: it runs the windy day).
+
     >>> from windpump import Design
+    >>> pump = Design.seed_example().replace(T_0=0.3)
     >>> wind = (3600.0 * np.arange(48), [6.0] * 24 + [0.0] * 24)
-    >>> found = supply_map(Design.seed_example().replace(T_0=0.3), wind, 2.0, [3.0, 4.0], [0.0, 2.0])
+    >>> found = supply_map(pump, wind, 2.0, [3.0, 4.0], [0.0, 2.0], restart="self")
     >>> found.lolp.round(3).tolist()  # rows: tanks, columns: gear ratios
     [[1.0, 0.5], [1.0, 0.0]]
 
-    At R+ = 3 a resting pump needs 6.52 m/s to start: it never runs in this wind.
+    Attended (the default), it runs whenever the wind can carry it (V_stop = 2.56 m/s at
+    R+ = 3): the calm day is short without a tank, and a 2 m^3 tank covers it.
+
+    >>> supply_map(pump, wind, 2.0, [3.0, 4.0], [0.0, 2.0]).lolp.round(3).tolist()
+    [[0.5, 0.5], [0.0, 0.0]]
     """
     from ._kernels import supply as kernels
     from .validation import finite_array

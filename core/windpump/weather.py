@@ -22,6 +22,13 @@ from .labdata import decoded
 from .units import SECONDS_PER_HOUR
 from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
 
+__all__ = [
+    "SITES",
+    "read_weather",
+    "sample_site",
+]
+
+
 # What a weather file must hold, said when it holds nothing.
 NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
 SITES = {"greensboro": "723170TYA.CSV", "sand_point": "703165TY.csv"}

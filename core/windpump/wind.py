@@ -23,6 +23,19 @@ from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import _cells, _is_number, check_columns, contents, decoded, split_header
 from .validation import positive, real, real_array
 
+__all__ = [
+    "MAX_CSV_BYTES",
+    "MAX_RECORD",
+    "MAX_WIND",
+    "WindRecord",
+    "as_record",
+    "gusty",
+    "read_csv",
+    "weibull_density",
+    "weibull_scale",
+]
+
+
 MAX_RECORD = 10_000_000
 """Most samples a wind record may hold (a year at one sample every 3 s)."""
 

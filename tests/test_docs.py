@@ -8,9 +8,14 @@ that the pages keep what moved there from the README.
 from __future__ import annotations
 
 import doctest
+import importlib
 import inspect
+import pkgutil
 import re
 import runpy
+import shutil
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -165,3 +170,96 @@ def test_the_api_reference_lists_every_public_name():
     }
     assert public - listed == set()
     assert listed - set(windpump.__all__) == set()
+
+
+def public_modules() -> list:
+    """``windpump`` and every module of it whose dotted name has no part starting with "_"."""
+    import windpump
+
+    found = pkgutil.walk_packages(windpump.__path__, "windpump.")
+    names = [m.name for m in found if not any(p.startswith("_") for p in m.name.split("."))]
+    return [windpump, *(importlib.import_module(name) for name in names)]
+
+
+def public_objects() -> dict[int, str]:
+    """Every function and class a public ``__all__`` names (the package's or a public module's),
+    by ``id``, with one name for it."""
+    named = {}
+    for module in public_modules():
+        for name in getattr(module, "__all__", ()):
+            obj = getattr(module, name)
+            if inspect.isclass(obj) or inspect.isfunction(obj):
+                named[id(obj)] = f"{module.__name__}.{name}"
+    return named
+
+
+def test_api_summaries_are_whole_first_sentences():
+    """The API tables show a docstring's first sentence as autosummary takes it, with the docs'
+    configuration: a number of the paper's ("Eq. 12", "(Eqs. 18-25)", "Fig. 3") does not end it
+    (23 read like "Integrate the wind pump's equation of motion, Eq."), nor does one stop inside
+    its parentheses (issue 37)."""
+    from docutils.frontend import get_default_settings
+    from docutils.parsers.rst import Parser
+    from sphinx.ext.autosummary import extract_summary
+
+    runpy.run_path(str(DOCS / "conf.py"))  # what the build configures before it takes summaries
+    settings = get_default_settings(Parser)
+    import windpump
+
+    objects = [windpump.simulate, windpump.explore]  # one cut at "Eq.", one at "Fig."
+    objects += [m for m in public_modules()]
+    objects += [
+        obj for m in public_modules() for obj in map(m.__dict__.get, getattr(m, "__all__", ()))
+    ]
+    cut = {}
+    for obj in objects:
+        if not (inspect.isclass(obj) or inspect.isfunction(obj) or inspect.ismodule(obj)):
+            continue
+        summary = extract_summary((inspect.getdoc(obj) or "").splitlines(), settings)
+        whole = summary.endswith(".") and not re.search(r"\b(Eqs?|Figs?)\.$", summary)
+        if not whole or summary.count("(") != summary.count(")"):
+            cut[obj.__name__] = summary
+    assert cut == {}
+    assert extract_summary(inspect.getdoc(windpump.simulate).splitlines(), settings) == (
+        "Integrate the wind pump's equation of motion, Eq. (12), in full, from a start angle and kick."
+    )
+
+
+def test_only_the_public_api_gets_pages(tmp_path):
+    """autosummary writes a page for each function and class a public ``__all__`` names (the
+    package's, or a public module's such as ``windpump.wind``'s) and for each module, and for no
+    other name: the command line's helpers (``windpump.cli.TimeLeft``) get none (issue 37).
+    Built from a copy of docs/, so that no earlier build's pages count."""
+    site = tmp_path / "site"
+    shutil.copytree(DOCS, site / "docs", ignore=shutil.ignore_patterns("_build", "generated"))
+    (site / "core").symlink_to(ROOT / "core")
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-q",
+            "-b",
+            "dummy",
+            str(site / "docs"),
+            str(tmp_path / "out"),
+        ],
+        check=True,
+        timeout=900,  # ~10 s on a quiet machine
+    )
+    pages = {page.stem for page in (site / "docs" / "api" / "generated").glob("*.rst")}
+    modules = {module.__name__ for module in public_modules()}
+    public = public_objects()
+    private = set()
+    for page in pages - modules:
+        where, name = page.rsplit(".", 1)
+        if id(getattr(importlib.import_module(where), name)) not in public:
+            private.add(page)
+    assert private == set()
+    assert "windpump.cli.TimeLeft" not in pages
+    expected = {
+        "windpump.simulate",
+        "windpump.wind.gusty",
+        "windpump.linkage.grashof.grashof_class",
+    }
+    assert expected <= pages and "windpump.cli" in pages

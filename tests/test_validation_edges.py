@@ -6,6 +6,7 @@ the command line's --workers and messages."""
 from __future__ import annotations
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -396,3 +397,55 @@ def test_wind_messages_show_plain_numbers(wind, words):
         windpump.supply(SELF_STARTING, wind, 2.0, 1.0)
     assert words in str(error.value)
     refused(error, "record")
+
+
+# Refusals that take a number, each given a refused value (< 0, or NaN) as a numpy scalar of every
+# kind: the message writes the number as Python would (-3, -2.5, nan), never as numpy 2's repr
+# (np.float64(-2.5), np.int64(-3)), wherever it sits (alone, in a list, in a dict: issue 37).
+NUMPY_KINDS = [np.float64, np.float32, np.float16, np.int64, np.int32, np.int16, np.int8]
+HOURS = 3600.0 * np.arange(48)
+RECORD = WindRecord(HOURS, np.full(48, 5.0))
+LOOPS = windpump.linkage.watt_six_bar_loops(1.0, 3.0, 2.5, 3.0, 1.5, 2.5, 2.0, 2.5, beta=0.4)
+TAKE_A_NUMBER = {
+    **{
+        f"Design.{field}": lambda x, field=field: SEED.replace(**{field: x})
+        for field in ("h", "R", "L", "T_m", "omega_m", "I0", "I1", "T_0", "rho_w", "V_ref")
+    },
+    "WindRecord height": lambda x: WindRecord(HOURS, np.full(48, 5.0), x),
+    "WindRecord t": lambda x: WindRecord([*HOURS[:-1], x], [5.0] * 48),
+    "WindRecord V": lambda x: WindRecord(HOURS, [*[5.0] * 47, x]),
+    "WindRecord month": lambda x: WindRecord(HOURS, np.full(48, 5.0), 10.0, "", [1] * 47 + [x]),
+    "at_height": lambda x: RECORD.at_height(x),
+    "simulate's wind": lambda x: windpump.wind.as_record((HOURS, [*[5.0] * 47, x]), 2.0),
+    "supply demand": lambda x: windpump.supply(SELF_STARTING, RECORD, x, 1.0),
+    "supply tank": lambda x: windpump.supply(SELF_STARTING, RECORD, 1.0, x),
+    "supply profile": lambda x: windpump.supply(SELF_STARTING, RECORD, 1.0, 1.0, profile=[x] * 24),
+    "supply's record": lambda x: windpump.supply(SELF_STARTING, (HOURS, [*[5.0] * 47, x]), 1, 1),
+    "supply turbulence": lambda x: windpump.supply(
+        SELF_STARTING, RECORD, 1.0, 1.0, method="full", turbulence=x
+    ),
+    "tank_for lolp": lambda x: windpump.tank_for(SELF_STARTING, RECORD, 1.0, x),
+    "supply_map tanks": lambda x: windpump.supply_map(SELF_STARTING, RECORD, 1.0, [1.0], [x]),
+    "supply_map ratios": lambda x: windpump.supply_map(SELF_STARTING, RECORD, 1.0, [x], [1.0]),
+    "water_per_day": lambda x: windpump.water_per_day(SELF_STARTING, x),
+    "steady_flow": lambda x: windpump.steady_flow(SELF_STARTING, [1.0, x]),
+    "record_water": lambda x: windpump.record_water(SELF_STARTING, (HOURS, [*[5.0] * 47, x])),
+    "run_in_wind kick": lambda x: windpump.run_in_wind(SELF_STARTING, RECORD, kick=x),
+    "gusty": lambda x: windpump.wind.gusty(x, 3600.0),
+    "linkage known": lambda x: windpump.linkage.assembly_guess(LOOPS, {"theta9": x}, (1, -1)),
+    "linkage guess": lambda x: windpump.linkage.solve_loop(LOOPS[0], {"theta1": 1.0}, {"a": x}),
+}
+
+
+@pytest.mark.parametrize("kind", NUMPY_KINDS, ids=lambda kind: kind.__name__)
+@pytest.mark.parametrize("refusal", TAKE_A_NUMBER)
+def test_a_refused_numpy_number_is_written_as_a_number(refusal, kind):
+    for value in (-3, -2.5, math.nan) if np.issubdtype(kind, np.floating) else (-3,):
+        x = kind(value)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            with pytest.raises(ParameterError) as error:
+                TAKE_A_NUMBER[refusal](x)
+        message = str(error.value)
+        assert not re.search(r"np\.\w+\(|numpy", message), message
+        assert len(message) < SHORT, message

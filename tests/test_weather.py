@@ -4,6 +4,7 @@ and EPW through pvlib, the Wind tab's CSV), pvlib's sample sites, and bad files 
 from __future__ import annotations
 
 import math
+import subprocess
 import sys
 from pathlib import Path
 
@@ -304,7 +305,9 @@ def test_a_weather_file_without_a_header_field_says_which_in_words(tmp_path):
     with pytest.raises(LabDataError) as error:
         read_weather(path)
     assert str(error.value) == (
-        "the file's header has no altitude field: is it a TMY3 or EPW file?"
+        "line 1: the EPW LOCATION line has 2 fields where it needs 10: it has no state or "
+        "province, country, data source, WMO station number, latitude, longitude, time zone or "
+        "altitude"
     )
     tmy3 = tmy3_lines()
     path = tmp_path / "columns.csv"
@@ -312,6 +315,51 @@ def test_a_weather_file_without_a_header_field_says_which_in_words(tmp_path):
     with pytest.raises(LabDataError) as error:
         read_weather(path)
     assert "'" not in str(error.value) and "no column “Date (MM/DD/YYYY)”" in str(error.value)
+
+
+# A weather file whose header lacks a field, or holds a word where pvlib reads a number: pvlib
+# says "KeyError: 'altitude'" or "could not convert string to float: ''"; the file is refused at its
+# first line in words (and a TMY3 station line of 6 fields is still read as a TMY3's, not as a CSV
+# of 6 columns).
+STATION = tmy3_lines()[0].split(",")  # USAF, name, state, time zone, latitude, longitude, altitude
+LOCATION = epw_text([]).splitlines()[0].split(",")
+HEADERS = [
+    ("tmy3", STATION[:6], "line 1: the TMY3 station line has 6 fields where it needs 7: it has no altitude"),
+    ("tmy3", STATION[:6] + [""], "line 1, column 7: the altitude in the TMY3 station line is empty: it must be a number [m]"),
+    ("tmy3", STATION[:5], "line 1: the TMY3 station line has 5 fields where it needs 7: it has no longitude or altitude"),
+    ("tmy3", STATION[:3] + ["EST"] + STATION[4:], "line 1, column 4: the time zone in the TMY3 station line is “EST”: it must be a number [h]"),
+    ("epw", LOCATION[:9], "line 1: the EPW LOCATION line has 9 fields where it needs 10: it has no altitude"),
+    ("epw", LOCATION[:9] + ["  "], "line 1, column 10: the altitude in the EPW LOCATION line is empty: it must be a number [m]"),
+    ("epw", LOCATION[:6] + ["north"] + LOCATION[7:], "line 1, column 7: the latitude in the EPW LOCATION line is “north”: it must be a number [°]"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("kind, fields, says", HEADERS)
+def test_a_weather_files_header_without_a_field_says_which_in_words(tmp_path, kind, fields, says):
+    rows = (
+        tmy3_lines()[1:30]
+        if kind == "tmy3"
+        else epw_text([(1990, 1, 1, h + 1, 4.0) for h in range(24)]).splitlines()[1:]
+    )
+    path = tmp_path / ("station.csv" if kind == "tmy3" else "station.epw")
+    path.write_text("\n".join([",".join(fields), *rows]) + "\n")
+    with pytest.raises(LabDataError) as error:
+        read_weather(path)
+    assert str(error.value) == says
+
+
+def test_the_command_line_says_a_weather_files_missing_altitude_in_words(tmp_path):
+    path = tmp_path / "greensboro.csv"
+    path.write_text("\n".join([",".join(STATION[:6]), *tmy3_lines()[1:30]]) + "\n")
+    done = subprocess.run(
+        [sys.executable, "-m", "windpump", "supply", "--weather", str(path), "--demand", "1"],
+        capture_output=True, text=True, timeout=300,
+    )  # fmt: skip
+    assert done.returncode == 1 and done.stdout == ""
+    assert done.stderr.strip() == (
+        f"windpump supply: error: --weather {path}: line 1: the TMY3 station line has 6 fields "
+        "where it needs 7: it has no altitude"
+    )
 
 
 def test_a_missing_or_negative_tmy3_speed_is_said_as_a_number(tmp_path):

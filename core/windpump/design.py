@@ -203,7 +203,7 @@ class Design:
             object.__setattr__(self, name, value)
         if self.L <= self.R:
             raise ParameterError(
-                "L", self.L, f"> R = {self.R!r} m", "m", why="the rod cannot reach the crank"
+                "L", self.L, f"> R = {shown(self.R)} m", "m", why="the rod cannot reach the crank"
             )
         if self.L / self.R > WIDEST_RATIO:
             raise ParameterError("L", self.L, f"<= {WIDEST_RATIO:g} R", "m", why="L/R is too large")
@@ -215,7 +215,7 @@ class Design:
             raise ParameterError(
                 "T_0",
                 self.T_0,
-                f"< T_m = {self.T_m!r} N m",
+                f"< T_m = {shown(self.T_m)} N m",
                 "N m",
                 why="the torque at rest must lie below the peak torque",
             )
@@ -223,7 +223,7 @@ class Design:
             raise ParameterError(
                 "d_leak",
                 self.d_leak,
-                f"from 0 to below the bore = {self.bore!r} m",
+                f"from 0 to below the bore = {shown(self.bore)} m",
                 "m",
                 why="the leak hole goes through the piston",
             )

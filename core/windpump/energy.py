@@ -20,6 +20,15 @@ from .reciprocating import weight_potential
 from .validation import non_negative, positive, real
 from .windmill import shaft_power as _shaft_power
 
+__all__ = [
+    "CycleMeanPower",
+    "EnergyTotals",
+    "PowerBudget",
+    "StartupPower",
+    "power_budget",
+    "startup_power",
+]
+
 
 class StartupPower(typing.NamedTuple):
     """Mean powers over a start-up at constant acceleration [W]."""

@@ -24,8 +24,8 @@ def shown(value: object, limit: int = SHOWN) -> str:
     >>> shown(10**400)
     'an integer of 401 digits'
     >>> import numpy as np
-    >>> shown(np.float64("nan")), shown([np.int64(3)])  # numpy's numbers as plain ones
-    ('nan', '[3]')
+    >>> shown(np.float64("nan")), shown([np.int64(3)]), shown({"theta1": np.float64(1.5)})
+    ('nan', '[3]', "{'theta1': 1.5}")
     """
     value = _plain(value)
     if isinstance(value, str | bytes | bytearray) and len(value) > limit:
@@ -44,13 +44,16 @@ def shown(value: object, limit: int = SHOWN) -> str:
 
 def _plain(value: object) -> object:
     """A numpy scalar as the Python number it holds (numpy 2 writes ``np.float64(nan)``); a
-    short list or tuple of them likewise; anything else as it is."""
+    short list, tuple or dict of them likewise (a dict's keys and values); anything else as it
+    is."""
     if type(value).__module__ == "numpy" and getattr(value, "shape", None) == ():
         item = getattr(value, "item", None)
         return item() if callable(item) else value
     if isinstance(value, list | tuple) and type(value) in (list, tuple) and len(value) <= 2 * SHOWN:
         plain = [_plain(x) for x in value]
         return plain if isinstance(value, list) else tuple(plain)
+    if type(value) is dict and len(value) <= 2 * SHOWN:
+        return {_plain(key): _plain(item) for key, item in value.items()}
     return value
 
 

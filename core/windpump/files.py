@@ -27,6 +27,13 @@ import stat
 
 from .errors import LabDataError, ParameterError, cut
 
+__all__ = [
+    "MAX_PATH",
+    "check_size",
+    "read_bytes",
+]
+
+
 MAX_PATH = 4096
 """Longest path read [characters] (Linux's PATH_MAX, in bytes, is as long)."""
 

@@ -31,6 +31,12 @@ from .yearly import DEFAULT_RESTART
 if typing.TYPE_CHECKING:
     import concurrent.futures
 
+__all__ = [
+    "FullYear",
+    "full_year",
+]
+
+
 GUST_TIME_SCALE = 60.0
 """Integral time scale of the gusts inside an hour [s]."""
 

@@ -17,6 +17,14 @@ import numpy as np
 from . import files
 from .errors import LabDataError, cut
 
+__all__ = [
+    "MAX_BYTES",
+    "TorqueTable",
+    "check_file_size",
+    "read_torque_csv",
+]
+
+
 MAX_BYTES = 1_000_000
 """Largest lab file read [bytes]; a larger one is refused before it is parsed."""
 

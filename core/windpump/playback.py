@@ -19,6 +19,16 @@ from .dynamics import SimulationResult
 from .kinematics import cylinder_angles, piston_position
 from .validation import positive, whole
 
+__all__ = [
+    "MAX_FRAMES",
+    "CrankTable",
+    "Playback",
+    "crank_table",
+    "piston_table",
+    "playback_frames",
+]
+
+
 MAX_FRAMES = 4000
 """Most frames :func:`playback_frames` returns by default."""
 

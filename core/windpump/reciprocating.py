@@ -22,6 +22,11 @@ from ._kernels import equations
 from .design import Design
 from .kinematics import cylinder_angles
 
+__all__ = [
+    "crank_inertia",
+    "weight_potential",
+]
+
 
 def crank_inertia(design: Design, theta):
     """The inertia on the crank, ``J = I_eff + m_r sum_c x_c'^2`` [kg m^2].

@@ -19,7 +19,7 @@ import numpy as np
 from .averaged import stall_margin
 from .design import Design
 from .dynamics import SimulationResult, simulate
-from .errors import ParameterError
+from .errors import ParameterError, shown
 from .loads import peak_load_torque, starts_from_rest
 from .theory import cycle_mean, running_speeds
 from .units import SECONDS_PER_DAY
@@ -421,7 +421,9 @@ def run_in_wind(design: Design, record, theta0: float = math.pi / 2, kick: float
         raise ParameterError("record", error.value, error.allowed, error.unit, error.why) from None
     duration = float(checked.t[-1])
     if not duration > 0.0:
-        raise ParameterError("record", f"last time {duration!r} s", "a record ending after t = 0")
+        raise ParameterError(
+            "record", f"last time {shown(duration)} s", "a record ending after t = 0"
+        )
     kick = kick_in_wind(design, kick)
     run = simulate(
         design,

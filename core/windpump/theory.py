@@ -43,6 +43,18 @@ import numpy as np
 if typing.TYPE_CHECKING:
     from .design import Design
 
+__all__ = [
+    "CycleMean",
+    "RunningSpeeds",
+    "cycle_mean",
+    "effective_inertia",
+    "load_torque",
+    "mean_load_torque",
+    "rest_torque_on_crank",
+    "running_speeds",
+]
+
+
 Array = typing.Any  # a float or an ndarray: every expression broadcasts
 
 

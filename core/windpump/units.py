@@ -13,6 +13,15 @@ Examples
 
 from __future__ import annotations
 
+__all__ = [
+    "LITRES_PER_M3",
+    "MM_PER_M",
+    "SECONDS_PER_DAY",
+    "SECONDS_PER_HOUR",
+    "WATTS_PER_KW",
+]
+
+
 SECONDS_PER_HOUR = 3_600.0
 """[s/h]"""
 

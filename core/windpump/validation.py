@@ -7,7 +7,7 @@ import numbers
 
 import numpy as np
 
-from .errors import ParameterError
+from .errors import ParameterError, shown
 
 __all__ = [
     "ParameterError",
@@ -69,7 +69,7 @@ def finite_array(
     if bad.size:
         where = f"{name}[{bad[0]}]" if array.ndim else name
         raise ParameterError(
-            name, f"{where} = {float(array.flat[bad[0]])!r}", "finite real numbers", unit
+            name, f"{where} = {shown(array.flat[bad[0]])}", "finite real numbers", unit
         )
     if minimum is not None and array.size and array.min() < minimum:
         raise ParameterError(name, float(array.min()), f">= {minimum:g} everywhere", unit)

@@ -10,6 +10,7 @@ the hour's start: its label less one hour).
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from pathlib import Path
@@ -21,6 +22,12 @@ from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import decoded
 from .units import SECONDS_PER_HOUR
 from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
+
+__all__ = [
+    "SITES",
+    "read_weather",
+    "sample_site",
+]
 
 # What a weather file must hold, said when it holds nothing.
 NEEDED = f"a TMY3 or EPW weather file, or {COLUMNS}"
@@ -123,7 +130,9 @@ def read_weather(
     ------
     LabDataError
         (a ValueError) naming the line at fault: a missing or out-of-range speed (EPW's 999
-        included), an hour that repeats or is skipped (a gap); or a file that is missing, not a
+        included), an hour that repeats or is skipped (a gap), a TMY3 station line or EPW
+        LOCATION line short of a field (which) or with a word where a number goes (line 1, its
+        column); or a file that is missing, not a
         regular file (a pipe, a folder, a device), cannot be read or is over ``MAX_CSV_BYTES``,
         or an empty one (saying what it needs: ``NEEDED``).
     ParameterError
@@ -143,7 +152,8 @@ def read_weather(
     data, stem, suffix = _contents(source)
     if _blank(data):
         raise LabDataError(f"the file is empty; it needs {NEEDED}")
-    kind = _kind(_first_line(data), suffix)
+    first, second = _first_lines(data)
+    kind = _kind(first, suffix, second)
     if kind == "csv":
         text = decoded(data)
         del data  # (a record near the limit: its bytes are let go before it is parsed)
@@ -160,6 +170,7 @@ def read_weather(
                 array.flags.writeable = False  # (frozen where they are: a year is 10^7 samples)
         record = WindRecord(samples.t, samples.V, ANEMOMETER, stem, samples.month)
     else:
+        _check_header(first, kind)
         iotools = pvlib_iotools()
         reader = _tmy3 if kind == "tmy3" else _epw
         record = reader(iotools, data.decode("utf-8", errors="replace"), stem or kind.upper())
@@ -197,10 +208,10 @@ def _blank(data: bytes) -> bool:
     return not data.decode("utf-8", errors="replace").strip()  # (U+00A0, U+3000 ...)
 
 
-def _first_line(data: bytes) -> str:
-    """The file's first line (to its first ``\\n``), as text."""
-    end = data.find(b"\n")
-    return data[: len(data) if end < 0 else end].decode("utf-8", errors="replace")
+def _first_lines(data: bytes) -> tuple[str, str]:
+    """The file's first two lines (each to its ``\\n``; "" if there is none), as text."""
+    lines = data[: 1 << 16].split(b"\n", 2)[:2] + [b""]
+    return lines[0].decode("utf-8", errors="replace"), lines[1].decode("utf-8", errors="replace")
 
 
 def _height(height: object) -> float:
@@ -212,12 +223,13 @@ def _height(height: object) -> float:
     return value
 
 
-def _kind(first: str, suffix: str) -> str:
-    """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name)."""
+def _kind(first: str, suffix: str, second: str = "") -> str:
+    """'tmy3', 'epw' or 'csv', from the file's first line (and an EPW's name, or a TMY3's second
+    line, its columns' names: a TMY3 whose first line lacks a field is still one)."""
     if first.upper().startswith("LOCATION,") or suffix == ".epw":
         return "epw"
     fields = first.strip().split(",")
-    if len(fields) == 7 and fields[0].strip().isdigit():
+    if fields[0].strip().isdigit() and (len(fields) == 7 or second.startswith(TMY3_COLUMNS)):
         return "tmy3"
     return "csv"
 
@@ -260,6 +272,56 @@ HEADER_FIELDS = {
 }
 """The fields of a TMY3's first line and an EPW's LOCATION line, as pvlib's readers name them,
 and in words."""
+
+
+TMY3_COLUMNS = "Date (MM/DD/YYYY),Time (HH:MM),"
+"""How a TMY3 file's second line, its columns' names, begins."""
+
+HEADER_ORDER = {
+    "tmy3": ("USAF", "Name", "State", "TZ", "latitude", "longitude", "altitude"),
+    "epw": (
+        "loc", "city", "state-prov", "country", "data_type", "WMO_code", "latitude", "longitude",
+        "TZ", "altitude",
+    ),
+}  # fmt: skip
+"""The fields of a TMY3's first line and an EPW's LOCATION line in their order, as pvlib's
+readers name them (they take them by position)."""
+
+NUMBERS = {"USAF": "a whole number", "TZ": "a number [h]", "latitude": "a number [°]"}
+NUMBERS |= {"longitude": "a number [°]", "altitude": "a number [m]"}
+"""The header's fields pvlib reads as numbers, and what each must be."""
+
+
+def _check_header(first: str, kind: str) -> None:
+    """A TMY3's first line or an EPW's LOCATION line as pvlib reads it (split at every comma), or
+    a LabDataError at line 1 that says in words which fields are missing, or which one is not a
+    number: pvlib would say ``KeyError: 'altitude'`` or ``could not convert string to float``."""
+    names = HEADER_ORDER[kind]
+    fields = first.rstrip("\n").split(",")
+    what = "the TMY3 station line" if kind == "tmy3" else "the EPW LOCATION line"
+    if len(fields) < len(names):
+        missing = [HEADER_FIELDS[name] for name in names[len(fields) :]]
+        listed = missing[0] if len(missing) == 1 else f"{', '.join(missing[:-1])} or {missing[-1]}"
+        raise LabDataError(
+            f"{what} has {len(fields)} fields where it needs {len(names)}: it has no {listed}", 1
+        )
+    for column, (name, field) in enumerate(zip(names, fields, strict=False), start=1):
+        if name in NUMBERS and not _a_number(field, whole=name == "USAF"):
+            said = f"“{cut(field.strip(), 40)}”" if field.strip() else "empty"
+            raise LabDataError(
+                f"the {HEADER_FIELDS[name]} in {what} is {said}: it must be {NUMBERS[name]}",
+                1,
+                column,
+            )
+
+
+def _a_number(text: str, whole: bool) -> bool:
+    """Whether pvlib reads ``text`` as a finite number (``int`` for a whole one, else ``float``)."""
+    try:
+        value = int(text) if whole else float(text)
+    except ValueError:
+        return False
+    return math.isfinite(value)
 
 
 def _read(reader, text: str, **options):

@@ -23,6 +23,19 @@ from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import _cells, _is_number, check_columns, contents, decoded, split_header
 from .validation import positive, real, real_array
 
+__all__ = [
+    "MAX_CSV_BYTES",
+    "MAX_RECORD",
+    "MAX_WIND",
+    "WindRecord",
+    "as_record",
+    "gusty",
+    "read_csv",
+    "weibull_density",
+    "weibull_scale",
+]
+
+
 MAX_RECORD = 10_000_000
 """Most samples a wind record may hold (a year at one sample every 3 s)."""
 
@@ -93,18 +106,18 @@ class WindRecord:
             raise ParameterError("V", f"{V.size} speeds", f"one a time ({t.size})", "m/s")
         if not np.all(np.isfinite(t)):
             i = int(np.flatnonzero(~np.isfinite(t))[0])
-            raise ParameterError("t", f"t[{i}] = {float(t[i])!r}", "finite, increasing times", "s")
+            raise ParameterError("t", f"t[{i}] = {shown(t[i])}", "finite, increasing times", "s")
         if np.any(np.diff(t) <= 0.0):
             i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
             raise ParameterError(
-                "t", f"t[{i}] = {float(t[i])!r} after t[{i - 1}] = {float(t[i - 1])!r}",
+                "t", f"t[{i}] = {shown(t[i])} after t[{i - 1}] = {shown(t[i - 1])}",
                 "finite, increasing times", "s",
             )  # fmt: skip
         outside = ~((V >= 0.0) & (V <= MAX_WIND))  # (NaN too)
         if outside.any():
             i = int(np.flatnonzero(outside)[0])
             raise ParameterError(
-                "V", f"V[{i}] = {float(V[i])!r}", f"finite speeds from 0 to {MAX_WIND:g}", "m/s"
+                "V", f"V[{i}] = {shown(V[i])}", f"finite speeds from 0 to {MAX_WIND:g}", "m/s"
             )
         object.__setattr__(self, "t", t)
         object.__setattr__(self, "V", V)
@@ -178,7 +191,7 @@ def _months(values: object, samples: int) -> np.ndarray:
         bad = ~((months >= 1) & (months <= 12) & (months == np.round(months)))
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise ParameterError("month", f"month[{i}] = {float(months[i])!r}", allowed)
+        raise ParameterError("month", f"month[{i}] = {shown(months[i])}", allowed)
     as_int = months.astype(np.int8)
     as_int.flags.writeable = False
     return as_int
@@ -367,19 +380,19 @@ def _check(t: np.ndarray, V: np.ndarray) -> WindRecord:
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
             raise ParameterError(
-                "wind", f"{name}[{bad[0]}] = {float(values[bad[0]])!r}", f"finite {name}"
+                "wind", f"{name}[{bad[0]}] = {shown(values[bad[0]])}", f"finite {name}"
             )
     outside = (V < 0.0) | (V > MAX_WIND)
     if np.any(outside):
         i = int(np.flatnonzero(outside)[0])
         raise ParameterError(
-            "wind", f"V[{i}] = {float(V[i])!r} m/s", f"speeds from 0 to {MAX_WIND:g} m/s"
+            "wind", f"V[{i}] = {shown(V[i])} m/s", f"speeds from 0 to {MAX_WIND:g} m/s"
         )
     if np.any(np.diff(t) <= 0.0):
         i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
         raise ParameterError(
             "wind",
-            f"t[{i}] = {float(t[i])!r} s after t[{i - 1}] = {float(t[i - 1])!r} s",
+            f"t[{i}] = {shown(t[i])} s after t[{i - 1}] = {shown(t[i - 1])} s",
             "increasing times",
         )
     return _frozen(t, V)

@@ -11,7 +11,7 @@ import numpy as np
 from ._kernels.equations import windmill_torque as _torque_curve
 from .averaged import steady_speeds
 from .design import Design
-from .errors import ParameterError
+from .errors import ParameterError, shown
 from .revolution import mean_load
 from .theory import running_speeds
 from .validation import LARGEST, finite_array, flag, real_array
@@ -211,7 +211,7 @@ def _checked_samples(omega, torque) -> tuple[np.ndarray, np.ndarray]:
         outside = ~(np.isfinite(array) & (array >= lowest) & (array <= FIT_LARGEST))
         if outside.any():
             i = int(np.flatnonzero(outside)[0])
-            raise ParameterError(name, f"{name}[{i}] = {float(array[i])!r}", allowed, unit)
+            raise ParameterError(name, f"{name}[{i}] = {shown(array[i])}", allowed, unit)
         checked.append(array)
     omega, torque = checked
     if omega.shape != torque.shape:

@@ -30,7 +30,7 @@ import typing
 import numpy as np
 
 from .design import Design
-from .errors import ParameterError
+from .errors import ParameterError, shown
 from .site import steady_flow, wind_thresholds
 from .units import SECONDS_PER_HOUR
 from .validation import non_negative
@@ -316,7 +316,7 @@ def hourly(record) -> tuple[np.ndarray, np.ndarray]:
         i = int(np.searchsorted(hour, h)) - 1  # the last sample before the gap
         raise ParameterError(
             "record",
-            f"a gap after t[{i}] = {float(checked.t[i])!r} s (no sample in hour {h})",
+            f"a gap after t[{i}] = {shown(checked.t[i])} s (no sample in hour {h})",
             "a sample in every hour",
         )
     V = np.bincount(hour, weights=checked.V) / counts

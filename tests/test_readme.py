@@ -84,8 +84,8 @@ def test_every_package_the_tests_import_is_declared_by_the_test_command():
     declared = project["dependencies"] + extras["app"] + extras["test"] + extras["browser"]
     names = {re.split(r"[\[<>=!~ ]", d)[0].lower().replace("-", "_") for d in declared}
     imported_as = {"pil": "pillow", "distributed": "dask", "yaml": "pyyaml"}
-    # installed with the declared ones (panel brings param, bokeh brings tornado)
-    brought = {"param", "tornado", "jinja2"}
+    # installed with the declared ones (panel brings param, bokeh tornado, sphinx docutils)
+    brought = {"param", "tornado", "jinja2", "docutils"}
     ours = {
         "windpump",
         "windpump_app",

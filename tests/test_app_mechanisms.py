@@ -263,7 +263,7 @@ def test_the_waterfalls_axis_is_plain_numbers_over_the_bars():
 
     explorer = Explorer()
     explorer.show_views()
-    explorer.sidebar.preset.value = "A deep well with a heavy pump rod"
+    explorer.sidebar.preset.value = "A deep well, a heavy rod"
     view = explorer.pump.built["energy"]
     right = view.sources["losses"].data["right"]
     assert max(right) > 5e4  # tens of thousands of joules

@@ -471,3 +471,48 @@ def test_the_play_and_pause_labels_are_drawn_by_the_page_fonts(browser, url):
         assert page.evaluate(MISSING_GLYPHS, pause.inner_text() + "▶ Play") == []
     finally:
         page.close()
+
+
+# Every select box shown, through shadow roots: each option's text wider than the room its box
+# leaves it (its inner width less its padding, where the arrow is drawn), measured in its own font.
+CUT_OPTIONS = """() => {
+  const cut = [], ctx = document.createElement('canvas').getContext('2d');
+  let boxes = 0;
+  const walk = (root) => {
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) walk(el.shadowRoot);
+      if (el.tagName !== 'SELECT' || el.getBoundingClientRect().width === 0) continue;
+      boxes += 1;
+      const style = getComputedStyle(el);
+      ctx.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+      const room = el.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+      for (const option of el.options) {
+        const width = ctx.measureText(option.text).width;
+        if (width > room) cut.push([option.text, Math.round(width), Math.round(room)]);
+      }
+    }
+  };
+  walk(document);
+  return {boxes, cut};
+}"""
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_every_select_shows_each_option_whole(browser, url, width, height):
+    """A select box shows its choice on one line and cut it at its edge ("A deep well with a
+    heavy pump roc"): every option of every select (the presets, the machine's playback speed,
+    the Site tab's site and restart) fits its box, in presentation mode's larger text (a phone
+    keeps its usual sizes), whose boxes are as wide as without it."""
+    page = open_page(browser, url, width, height, "?tab=site&presentation=true")
+    try:
+        page.get_by_text("Restart after a calm").wait_for(timeout=120_000)  # the Site tab built
+        page.get_by_text("Wind pump", exact=True).first.click()
+        show_view(page, "machine")  # its playback speed
+        page.get_by_text("Site", exact=True).first.click()  # shown again: its selects measured
+        page.get_by_text("Restart after a calm").wait_for(timeout=60_000)
+        shown = page.evaluate(CUT_OPTIONS)
+        assert shown["boxes"] == 4, shown  # the presets, playback speed, site and restart
+        assert shown["cut"] == [], f"options cut at {width}×{height}: {shown['cut']}"
+        assert page.problems == []
+    finally:
+        page.close()

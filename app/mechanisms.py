@@ -39,6 +39,10 @@ SECOND_LOOP = {
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
 NOTE_CSS = TEXT[:1]
+# [px] a part's (the slider-crank's, the linkage's) flex basis: two figures of 320 px or more side
+# by side, and the two parts beside each other only where both get that (a pane of ~1,590 px at
+# 1920×1080; at 1366×768 its ~1,000 px hold one)
+PART_BASIS = 700
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")  # θ₂, as the sliders write θ₁
 
 
@@ -310,20 +314,31 @@ class Mechanisms(Tab):
         return [crank.crank_figure, crank.travel_figure, self.linkage_figure]
 
     def layout(self) -> pn.Column:
+        """The slider-crank and the linkage, each a part with its figures side by side; the two
+        parts side by side where both fit (1920 px: one part left ~40 % of the screen blank),
+        else one above the other (1366 px and narrower)."""
         crank = self.slider_crank
         figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)
         flex = {"flex": "1 1 320px"}
-        return pn.Column(
+        part = dict(styles={"flex": f"1 1 {PART_BASIS}px"}, sizing_mode="stretch_width")
+        # A Bokeh pane puts its figure itself in the flex box (a pane's styles reach nothing): the
+        # figure's own flex lets the two share a part's width (at their 440 px they wrapped).
+        for fig in (crank.crank_figure, crank.travel_figure):
+            fig.styles = flex
+        slider_crank = pn.Column(
             pn.pane.Markdown(
                 "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
             ),
             crank.crank_angle,
             crank.crank_note,
             pn.FlexBox(
-                pn.pane.Bokeh(crank.crank_figure, styles=flex, **figure),
-                pn.pane.Bokeh(crank.travel_figure, styles=flex, **figure),
+                pn.pane.Bokeh(crank.crank_figure, **figure),
+                pn.pane.Bokeh(crank.travel_figure, **figure),
                 sizing_mode="stretch_width",
             ),
+            **part,
+        )
+        linkages = pn.Column(
             pn.pane.Markdown(
                 "### Four-bar and double loop, by Newton-Raphson", stylesheets=NOTE_CSS
             ),
@@ -347,5 +362,9 @@ class Mechanisms(Tab):
                 ),
                 sizing_mode="stretch_width",
             ),
+            **part,
+        )
+        return pn.Column(
+            pn.FlexBox(slider_crank, linkages, gap="0 24px", sizing_mode="stretch_width"),
             sizing_mode="stretch_width",
         )

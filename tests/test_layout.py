@@ -516,3 +516,47 @@ def test_every_select_shows_each_option_whole(browser, url, width, height):
         assert page.problems == []
     finally:
         page.close()
+
+
+# The boxes of the Mechanisms tab's three figures (the slider-crank's drawing and travel, the
+# linkage), in the page's coordinates, and the tabs' pane's.
+MECHANISM_BOXES = """() => {
+  const boxes = [];
+  for (const model of window.Bokeh.documents[0].all_models) {
+    const title = model.title?.text ?? '';
+    if (!/slider-crank \\(Newton|Piston position|Four-bar \\/ double loop/.test(title)) continue;
+    const view = window.Bokeh.index.find_one(model);
+    if (!view) continue;
+    const b = view.el.getBoundingClientRect();
+    boxes.push({title, x: b.x, y: b.y, right: b.right, bottom: b.bottom, width: b.width});
+  }
+  const pane = document.querySelector('#main').getBoundingClientRect();
+  return {boxes, pane: {x: pane.x, right: pane.right, width: pane.width, bottom: pane.bottom}};
+}"""
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_mechanisms_tab_uses_the_screens_width(browser, url, width, height):
+    """At 1920×1080 the tab drew its figures in the left ~60 % of the pane, the rest blank: its
+    two parts, the slider-crank and the linkage, go side by side where both fit, so the tab fills
+    the width and its three figures are in the first screen. Narrower screens keep them one
+    above the other, each figure at least 300 px wide, nothing wider than the pane."""
+    page = open_page(browser, url, width, height, "?tab=mechanisms")
+    try:
+        page.wait_for_function(f"(n) => ({VIEW_BOX})(n) !== null", arg="linkage_figure")
+        time.sleep(1.0)  # laid out
+        shown = page.evaluate(MECHANISM_BOXES)
+        boxes, pane = shown["boxes"], shown["pane"]
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"mechanisms_{width}x{height}.png"))
+        assert len(boxes) == 3, boxes
+        for box in boxes:
+            assert box["width"] >= 300 - 1, box
+            assert box["x"] >= pane["x"] - 1 and box["right"] <= pane["right"] + 1, (box, pane)
+        if width >= 1920:
+            used = max(box["right"] for box in boxes) - pane["x"]
+            assert used >= 0.9 * pane["width"], f"{used:.0f} px of the pane's {pane['width']:.0f}"
+            assert all(box["bottom"] <= height for box in boxes), boxes  # the first screen
+        assert page.problems == []
+    finally:
+        page.close()

@@ -80,7 +80,9 @@ def palette(dark: bool = False) -> dict[str, str]:
 # Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
 PRESENTATION_SIZES = {TITLE: "22px", LABEL: "19px", TICKS: "18px"}  # text glyphs are LABEL
 LINE_SCALE = 1.5  # lines in presentation mode
-SWATCH = 20  # a legend's swatch [px], Bokeh's default; 1.4 times larger in presentation mode
+SWATCH = 20  # a legend's swatch [px], Bokeh's default; SWATCH_GROWTH larger in presentation mode
+SWATCH_GROWTH = 1.4
+NARROW = 700  # [px] a phone: the page's narrow layout (page.NARROW_CSS), where text keeps its size
 
 
 def present(fig, large: bool) -> None:
@@ -104,7 +106,9 @@ def present(fig, large: bool) -> None:
                 setattr(panel, prop, size[value])
         if isinstance(panel, Legend):
             swatch = getattr(panel, "_swatch", SWATCH)
-            panel.glyph_width = panel.glyph_height = round(swatch * 1.4) if large else swatch
+            panel.glyph_width = panel.glyph_height = (
+                round(swatch * SWATCH_GROWTH) if large else swatch
+            )
     scale = LINE_SCALE if large else 1 / LINE_SCALE
     for renderer in fig.renderers:
         glyph = getattr(renderer, "glyph", None)
@@ -161,10 +165,36 @@ try {
     if (entry == null || model[attr] !== entry.fitted) P.asked.set(key, {size: model[attr], fitted: model[attr]})
     return P.asked.get(key)
   }
+  // On a phone (the page's narrow layout) the text keeps its size in presentation mode, as the
+  // page's HTML does (styles.zoom_css): a size the server asked for presentation mode is drawn
+  // at its usual one (phone_sizes).
+  const phone = window.matchMedia(`(max-width: ${narrow}px)`).matches
+  const usual = (size) => (phone && phone_sizes[size] != null ? phone_sizes[size] : size)
+  const keep = (model, attr) => {
+    if (model == null || typeof model[attr] !== 'string') return
+    const entry = asked(model, attr)
+    entry.fitted = usual(entry.size)
+    if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
+  }
+  for (const axis of [...plot.below, ...plot.left]) keep(axis, 'major_label_text_font_size')
+  for (const panel of [...plot.below, ...plot.above, ...plot.left, ...plot.right, ...plot.center]) {
+    if (panel.items !== undefined) {  // a legend: its labels, and its swatches back to their size
+      const entry = asked(panel, 'label_text_font_size')
+      keep(panel, 'label_text_font_size')
+      const swatch = asked(panel, 'glyph_width')
+      const size = entry.fitted !== entry.size ? Math.round(swatch.size / swatch_growth) : swatch.size
+      swatch.fitted = size
+      if (panel.glyph_width !== size) panel.setv({glyph_width: size, glyph_height: size}, {sync: false})
+    } else if (panel.color_mapper !== undefined) {  // a colour bar
+      keep(panel, 'title_text_font_size')
+      keep(panel, 'major_label_text_font_size')
+    }
+  }
+  for (const renderer of plot.renderers) keep(renderer.glyph, 'text_font_size')
   const fit = (model, attr, text, style, room) => {
     if (model == null || !text || room <= 0) return
     const entry = asked(model, attr)
-    let px = parseFloat(entry.size)
+    let px = parseFloat(usual(entry.size))
     while (px > 14 && measure(text, px, style) > room) px -= 1
     entry.fitted = `${px}px`
     if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
@@ -219,7 +249,16 @@ try {
 
 def fit_text_in_the_browser(fig) -> None:
     """Keep a figure's canvas text inside it at every width (``FIT_TEXT_JS``)."""
-    fit = CustomJS(args=dict(plot=fig, column_gap=LEGEND_COLUMN_GAP), code=FIT_TEXT_JS)
+    fit = CustomJS(
+        args=dict(
+            plot=fig,
+            column_gap=LEGEND_COLUMN_GAP,
+            narrow=NARROW,
+            phone_sizes={large: usual for usual, large in PRESENTATION_SIZES.items()},
+            swatch_growth=SWATCH_GROWTH,
+        ),
+        code=FIT_TEXT_JS,
+    )
     fig.js_on_change("outer_width", fit)
     fig.js_on_change("inner_height", fit)
     fig.title.js_on_change("text", fit)

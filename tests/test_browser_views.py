@@ -205,3 +205,42 @@ def test_a_view_behind_a_phones_controls_is_not_seen(browser, url):
         assert page.problems == []
     finally:
         page.close()
+
+
+# A figure's canvas text sizes as drawn (its title, axes' labels and ticks, legends' labels) and
+# its frame's height [px].
+CANVAS_SIZES = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
+  const view = window.Bokeh.index.find_one(model);
+  const sizes = [model.title.text_font_size];
+  for (const panel of [...model.below, ...model.left]) {
+    if (panel.axis_label !== undefined) sizes.push(panel.axis_label_text_font_size, panel.major_label_text_font_size);
+    if (panel.items !== undefined) sizes.push(panel.label_text_font_size);
+  }
+  return {sizes: [...new Set(sizes)].map(parseFloat).sort(), frame: view.frame.bbox.height};
+}"""
+
+
+@pytest.mark.parametrize("width, height", [(390, 844), (1280, 720)])
+def test_presentation_mode_keeps_a_phones_figure_text_and_plot(browser, url, width, height):
+    """The docs: presentation mode makes every text a quarter larger, and on a phone the page's
+    text keeps its size. The figures' canvas text grew on a phone all the same: the crank speed's
+    legend took four rows of 18 px and left its plot ~76 px high. On a phone a figure's text is
+    as without presentation mode (14 to 16 px) and its plot keeps its height; a projector's text
+    grows (18 to 22 px)."""
+    page = open_page(browser, url, width, height, query="?presentation=true")
+    try:
+        show_view(page, "speed")
+        page.wait_for_function(HAS_DATA, arg=FILLED["speed"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        drawn = page.evaluate(CANVAS_SIZES, "speed")
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"presentation-text-{width}x{height}.png"))
+        if width < 700:
+            assert drawn["sizes"] and max(drawn["sizes"]) <= 16, drawn
+            assert drawn["frame"] >= 150, drawn  # as without presentation mode: ~169 px
+        else:
+            assert min(drawn["sizes"]) >= 18, drawn
+        assert page.problems == []
+    finally:
+        page.close()

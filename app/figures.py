@@ -190,7 +190,6 @@ try {
       keep(panel, 'major_label_text_font_size')
     }
   }
-  for (const renderer of plot.renderers) keep(renderer.glyph, 'text_font_size')
   const fit = (model, attr, text, style, room) => {
     if (model == null || !text || room <= 0) return
     const entry = asked(model, attr)

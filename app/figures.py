@@ -190,6 +190,15 @@ try {
       keep(panel, 'major_label_text_font_size')
     }
   }
+  for (const renderer of plot.renderers) {  // text glyphs: their size is a value spec
+    const glyph = renderer.glyph, spec = glyph?.text_font_size
+    if (spec == null || typeof spec.value !== 'string') continue
+    const key = glyph.id + 'text_font_size', known = P.asked.get(key)
+    if (known == null || spec.value !== known.fitted) P.asked.set(key, {size: spec.value, fitted: spec.value})
+    const entry = P.asked.get(key)
+    entry.fitted = usual(entry.size)
+    if (spec.value !== entry.fitted) glyph.setv({text_font_size: {value: entry.fitted}}, {sync: false})
+  }
   const fit = (model, attr, text, style, room) => {
     if (model == null || !text || room <= 0) return
     const entry = asked(model, attr)

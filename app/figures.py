@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from bokeh.core.property.descriptors import UnsetValueError
 from bokeh.models import ColumnDataSource, CustomJS, GlyphRenderer, Legend, LegendItem
 from bokeh.plotting import figure
 
@@ -354,17 +355,51 @@ MECHANISM_SIZE = 440
 
 
 def mechanism_figure(title: str):
-    """A square drawing with equal scales on both axes, so a link looks as long as it is."""
+    """A drawing with equal scales on both axes, so a link looks as long as it is: its ranges
+    are fixed ones, set by ``show_box`` for the frame's shape (Bokeh's data ranges, recomputed in
+    the browser, kept the first ones it was sent)."""
     fig = new_figure(
         title,
         "x [m]",
         "y [m]",
         height=MECHANISM_SIZE,
         tools="pan,wheel_zoom,reset,save",
-        match_aspect=True,
+        x_range=(-1.0, 1.0),
+        y_range=(-1.0, 1.0),
         max_width=MECHANISM_SIZE,
     )
     return fig
+
+
+def show_box(fig, x0: float, x1: float, y0: float, y1: float) -> None:
+    """Show at least the box [x0, x1] x [y0, y1] [m] on a mechanism's drawing, at equal scales
+    across and up (a link looks as long as it is, a circle stays round): the span with room to
+    spare widened about its middle to the frame's shape. The frame is taken as square until the
+    page says its pixels (``inner_width`` and ``inner_height``), and the box is fitted again
+    whenever the page lays the figure out anew (a drawing beside another at 1920 px, a phone)."""
+    fig._box = (x0, x1, y0, y1)
+    if not getattr(fig, "_follows_frame", False):
+        fig._follows_frame = True
+        for side in ("inner_width", "inner_height"):
+            fig.on_change(side, lambda _attr, _old, _new: fit_box(fig))
+    fit_box(fig)
+
+
+def fit_box(fig) -> None:
+    """``show_box``'s ranges for the frame's pixels as last said."""
+    x0, x1, y0, y1 = fig._box
+    try:
+        width, height = fig.inner_width, fig.inner_height
+    except UnsetValueError:  # not laid out yet, or one of the two said, not the other
+        width = height = None
+    if not width or not height:
+        width = height = 1
+    scale = max((x1 - x0) / width, (y1 - y0) / height)  # [m/px] the box's larger need
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    for axis, centre, pixels in ((fig.x_range, cx, width), (fig.y_range, cy, height)):
+        start, end = centre - scale * pixels / 2, centre + scale * pixels / 2
+        # the reset tool's too (a fixed range resets to the first one the browser was sent)
+        axis.update(start=start, end=end, reset_start=start, reset_end=end)
 
 
 def draw_links(fig, prefix: str, joint_size: int = 12, dark: bool = False):

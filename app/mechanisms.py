@@ -16,7 +16,7 @@ from windpump import linkage
 from windpump.linkage import NoClosure
 from windpump.units import MM_PER_M
 
-from .figures import LINKS, linkage_view, slider_crank_views
+from .figures import LINKS, linkage_view, show_box, slider_crank_views
 from .styles import TEXT
 from .tab import Tab
 
@@ -85,10 +85,8 @@ class SliderCrank:
             "angle": np.degrees(theta),
             "x": MM_PER_M * windpump.piston_position(theta, design.R, design.L),
         }
-        span = design.L + 4 * design.R  # equal spans on a square figure: a circle stays round
-        fig = self.crank_figure
-        fig.x_range.start, fig.x_range.end = -span / 2, span / 2
-        fig.y_range.start, fig.y_range.end = -1.6 * design.R, span - 1.6 * design.R
+        span = design.L + 4 * design.R  # the crank's circle, the rod and the cylinder above
+        show_box(self.crank_figure, -span / 2, span / 2, -1.6 * design.R, span - 1.6 * design.R)
         self.draw()
 
     def draw(self) -> None:
@@ -250,9 +248,8 @@ class Mechanisms(Tab):
             v["r3p"] + v["r4"] if self.kind.value == SIX_BAR else 0.0
         )
         centre = np.mean(points, axis=0)
-        fig = self.linkage_figure
-        fig.x_range.start, fig.x_range.end = centre[0] - reach, centre[0] + reach
-        fig.y_range.start, fig.y_range.end = centre[1] - reach, centre[1] + reach
+        x, y = centre
+        show_box(self.linkage_figure, x - reach, x + reach, y - reach, y + reach)
 
     def _describe(self, closures) -> str:
         values = closures[-1].values

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from bokeh.core.property.descriptors import UnsetValueError
 from bokeh.models import ColumnDataSource, CustomJS, GlyphRenderer, Legend, LegendItem
 from bokeh.plotting import figure
 
@@ -80,7 +81,9 @@ def palette(dark: bool = False) -> dict[str, str]:
 # Canvas-drawn text, normal and in presentation mode (the page's HTML follows styles.px)
 PRESENTATION_SIZES = {TITLE: "22px", LABEL: "19px", TICKS: "18px"}  # text glyphs are LABEL
 LINE_SCALE = 1.5  # lines in presentation mode
-SWATCH = 20  # a legend's swatch [px], Bokeh's default; 1.4 times larger in presentation mode
+SWATCH = 20  # a legend's swatch [px], Bokeh's default; SWATCH_GROWTH larger in presentation mode
+SWATCH_GROWTH = 1.4
+NARROW = 700  # [px] a phone: the page's narrow layout (page.NARROW_CSS), where text keeps its size
 
 
 def present(fig, large: bool) -> None:
@@ -104,7 +107,9 @@ def present(fig, large: bool) -> None:
                 setattr(panel, prop, size[value])
         if isinstance(panel, Legend):
             swatch = getattr(panel, "_swatch", SWATCH)
-            panel.glyph_width = panel.glyph_height = round(swatch * 1.4) if large else swatch
+            panel.glyph_width = panel.glyph_height = (
+                round(swatch * SWATCH_GROWTH) if large else swatch
+            )
     scale = LINE_SCALE if large else 1 / LINE_SCALE
     for renderer in fig.renderers:
         glyph = getattr(renderer, "glyph", None)
@@ -161,10 +166,44 @@ try {
     if (entry == null || model[attr] !== entry.fitted) P.asked.set(key, {size: model[attr], fitted: model[attr]})
     return P.asked.get(key)
   }
+  // On a phone (the page's narrow layout) the text keeps its size in presentation mode, as the
+  // page's HTML does (styles.zoom_css): a size the server asked for presentation mode is drawn
+  // at its usual one (phone_sizes).
+  const phone = window.matchMedia(`(max-width: ${narrow}px)`).matches
+  const usual = (size) => (phone && phone_sizes[size] != null ? phone_sizes[size] : size)
+  const keep = (model, attr) => {
+    if (model == null || typeof model[attr] !== 'string') return
+    const entry = asked(model, attr)
+    entry.fitted = usual(entry.size)
+    if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
+  }
+  for (const axis of [...plot.below, ...plot.left]) keep(axis, 'major_label_text_font_size')
+  for (const panel of [...plot.below, ...plot.above, ...plot.left, ...plot.right, ...plot.center]) {
+    if (panel.items !== undefined) {  // a legend: its labels, and its swatches back to their size
+      const entry = asked(panel, 'label_text_font_size')
+      keep(panel, 'label_text_font_size')
+      const swatch = asked(panel, 'glyph_width')
+      const size = entry.fitted !== entry.size ? Math.round(swatch.size / swatch_growth) : swatch.size
+      swatch.fitted = size
+      if (panel.glyph_width !== size) panel.setv({glyph_width: size, glyph_height: size}, {sync: false})
+    } else if (panel.color_mapper !== undefined) {  // a colour bar
+      keep(panel, 'title_text_font_size')
+      keep(panel, 'major_label_text_font_size')
+    }
+  }
+  for (const renderer of plot.renderers) {  // text glyphs: their size is a value spec
+    const glyph = renderer.glyph, spec = glyph?.text_font_size
+    if (spec == null || typeof spec.value !== 'string') continue
+    const key = glyph.id + 'text_font_size', known = P.asked.get(key)
+    if (known == null || spec.value !== known.fitted) P.asked.set(key, {size: spec.value, fitted: spec.value})
+    const entry = P.asked.get(key)
+    entry.fitted = usual(entry.size)
+    if (spec.value !== entry.fitted) glyph.setv({text_font_size: {value: entry.fitted}}, {sync: false})
+  }
   const fit = (model, attr, text, style, room) => {
     if (model == null || !text || room <= 0) return
     const entry = asked(model, attr)
-    let px = parseFloat(entry.size)
+    let px = parseFloat(usual(entry.size))
     while (px > 14 && measure(text, px, style) > room) px -= 1
     entry.fitted = `${px}px`
     if (model[attr] !== entry.fitted) model.setv({[attr]: entry.fitted}, {sync: false})
@@ -219,7 +258,16 @@ try {
 
 def fit_text_in_the_browser(fig) -> None:
     """Keep a figure's canvas text inside it at every width (``FIT_TEXT_JS``)."""
-    fit = CustomJS(args=dict(plot=fig, column_gap=LEGEND_COLUMN_GAP), code=FIT_TEXT_JS)
+    fit = CustomJS(
+        args=dict(
+            plot=fig,
+            column_gap=LEGEND_COLUMN_GAP,
+            narrow=NARROW,
+            phone_sizes={large: usual for usual, large in PRESENTATION_SIZES.items()},
+            swatch_growth=SWATCH_GROWTH,
+        ),
+        code=FIT_TEXT_JS,
+    )
     fig.js_on_change("outer_width", fit)
     fig.js_on_change("inner_height", fit)
     fig.title.js_on_change("text", fit)
@@ -307,17 +355,51 @@ MECHANISM_SIZE = 440
 
 
 def mechanism_figure(title: str):
-    """A square drawing with equal scales on both axes, so a link looks as long as it is."""
+    """A drawing with equal scales on both axes, so a link looks as long as it is: its ranges
+    are fixed ones, set by ``show_box`` for the frame's shape (Bokeh's data ranges, recomputed in
+    the browser, kept the first ones it was sent)."""
     fig = new_figure(
         title,
         "x [m]",
         "y [m]",
         height=MECHANISM_SIZE,
         tools="pan,wheel_zoom,reset,save",
-        match_aspect=True,
+        x_range=(-1.0, 1.0),
+        y_range=(-1.0, 1.0),
         max_width=MECHANISM_SIZE,
     )
     return fig
+
+
+def show_box(fig, x0: float, x1: float, y0: float, y1: float) -> None:
+    """Show at least the box [x0, x1] x [y0, y1] [m] on a mechanism's drawing, at equal scales
+    across and up (a link looks as long as it is, a circle stays round): the span with room to
+    spare widened about its middle to the frame's shape. The frame is taken as square until the
+    page says its pixels (``inner_width`` and ``inner_height``), and the box is fitted again
+    whenever the page lays the figure out anew (a drawing beside another at 1920 px, a phone)."""
+    fig._box = (x0, x1, y0, y1)
+    if not getattr(fig, "_follows_frame", False):
+        fig._follows_frame = True
+        for side in ("inner_width", "inner_height"):
+            fig.on_change(side, lambda _attr, _old, _new: fit_box(fig))
+    fit_box(fig)
+
+
+def fit_box(fig) -> None:
+    """``show_box``'s ranges for the frame's pixels as last said."""
+    x0, x1, y0, y1 = fig._box
+    try:
+        width, height = fig.inner_width, fig.inner_height
+    except UnsetValueError:  # not laid out yet, or one of the two said, not the other
+        width = height = None
+    if not width or not height:
+        width = height = 1
+    scale = max((x1 - x0) / width, (y1 - y0) / height)  # [m/px] the box's larger need
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    for axis, centre, pixels in ((fig.x_range, cx, width), (fig.y_range, cy, height)):
+        start, end = centre - scale * pixels / 2, centre + scale * pixels / 2
+        # the reset tool's too (a fixed range resets to the first one the browser was sent)
+        axis.update(start=start, end=end, reset_start=start, reset_end=end)
 
 
 def draw_links(fig, prefix: str, joint_size: int = 12, dark: bool = False):

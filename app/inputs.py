@@ -290,7 +290,9 @@ COUNTS = ("cylinders", "seed")
 # Keys the page itself uses, not inputs.
 IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab", "restored"}
 
-# name: (values, one sentence saying what to look at)
+# name: (values, one sentence saying what to look at). A name fits the sidebar's select box in
+# presentation mode's text (~26 characters: a select shows its choice on one line and cuts it at
+# its edge; tests/test_layout.py measures them).
 PRESETS = {
     "The paper's example": (
         {},
@@ -319,7 +321,7 @@ PRESETS = {
         "With a hundredth of the inertia the crank speed swings within every revolution: the "
         "averaged theory (Eq. 24) smooths over what the full Eq. (12) shows.",
     ),
-    "Two cylinders, torque at rest": (
+    "2 cylinders, torque at rest": (
         {"cylinders": 2.0, "T_0": 0.4, "theta_dot0": 0.0},
         "Two cylinders half a turn apart and a windmill with torque at rest: R†T₀ beats the load "
         "at every angle, so it starts from rest with no kick, and the flow pulses twice a turn.",
@@ -329,7 +331,7 @@ PRESETS = {
         "Both faces of the piston deliver: the flow pulses twice per revolution, never stops, and "
         "the load doubles (the margin halves at the same head).",
     ),
-    "A deep well with a heavy pump rod": (
+    "A deep well, a heavy rod": (
         {
             "h": 25.0,
             "T_m": 2.5,

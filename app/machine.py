@@ -211,8 +211,9 @@ class MachineView(View):
         self.button = Button(
             label="▶ Play", button_type="primary", width=120, stylesheets=[css], name="play"
         )
+        # wide enough for "0.1× slow motion" whole in presentation mode's text (cut at 170 px)
         self.speed = Select(
-            value="1", options=SPEEDS, width=170, stylesheets=[css], name="playback_speed"
+            value="1", options=SPEEDS, width=210, stylesheets=[css], name="playback_speed"
         )
         self.scrubber = Slider(
             start=0.0,

@@ -25,6 +25,7 @@ from bokeh.models import (
     HoverTool,
     LogColorMapper,
     PrintfTickFormatter,
+    TapTool,
 )
 from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
@@ -369,6 +370,10 @@ class MapTab(Tab):
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
         self.figure = self._figure()
         self.figure.name = "map_figure"  # a browser test finds it by name
+        # A tap moves the design and selects nothing: Bokeh's tap tool selected what lay under it
+        # (a contour label, a line) and drew the rest of that renderer at a tenth of its alpha
+        # (the other labels faded to near invisible). Its Tap event comes all the same.
+        self.figure.add_tools(TapTool(renderers=[]))
         self.figure.on_event(Tap, lambda event: self.move_to(event.x, event.y))
         self.label_size = LABEL_SIZE  # a contour label's, as shares of the map's (LABEL_PX)
         for side in ("inner_width", "inner_height"):
@@ -385,7 +390,7 @@ class MapTab(Tab):
             "sprocket ratio R₁/R₀",
             "head h [m]",
             height=MAP_HEIGHT,
-            tools="tap,pan,wheel_zoom,reset,save",
+            tools="pan,wheel_zoom,reset,save",
             stylesheets=[PHONE_CSS],
             x_range=(x0, x1),
             y_range=(y0, y1),

@@ -16,7 +16,7 @@ from windpump import linkage
 from windpump.linkage import NoClosure
 from windpump.units import MM_PER_M
 
-from .figures import LINKS, linkage_view, slider_crank_views
+from .figures import LINKS, linkage_view, show_box, slider_crank_views
 from .styles import TEXT
 from .tab import Tab
 
@@ -39,6 +39,10 @@ SECOND_LOOP = {
 }
 BRANCHES = {"+1: B left of A→D": 1, "−1: B right of A→D": -1}
 NOTE_CSS = TEXT[:1]
+# [px] a part's (the slider-crank's, the linkage's) flex basis: two figures of 320 px or more side
+# by side, and the two parts beside each other only where both get that (a pane of ~1,590 px at
+# 1920×1080; at 1366×768 its ~1,000 px hold one)
+PART_BASIS = 700
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")  # θ₂, as the sliders write θ₁
 
 
@@ -81,10 +85,8 @@ class SliderCrank:
             "angle": np.degrees(theta),
             "x": MM_PER_M * windpump.piston_position(theta, design.R, design.L),
         }
-        span = design.L + 4 * design.R  # equal spans on a square figure: a circle stays round
-        fig = self.crank_figure
-        fig.x_range.start, fig.x_range.end = -span / 2, span / 2
-        fig.y_range.start, fig.y_range.end = -1.6 * design.R, span - 1.6 * design.R
+        span = design.L + 4 * design.R  # the crank's circle, the rod and the cylinder above
+        show_box(self.crank_figure, -span / 2, span / 2, -1.6 * design.R, span - 1.6 * design.R)
         self.draw()
 
     def draw(self) -> None:
@@ -246,9 +248,8 @@ class Mechanisms(Tab):
             v["r3p"] + v["r4"] if self.kind.value == SIX_BAR else 0.0
         )
         centre = np.mean(points, axis=0)
-        fig = self.linkage_figure
-        fig.x_range.start, fig.x_range.end = centre[0] - reach, centre[0] + reach
-        fig.y_range.start, fig.y_range.end = centre[1] - reach, centre[1] + reach
+        x, y = centre
+        show_box(self.linkage_figure, x - reach, x + reach, y - reach, y + reach)
 
     def _describe(self, closures) -> str:
         values = closures[-1].values
@@ -310,20 +311,31 @@ class Mechanisms(Tab):
         return [crank.crank_figure, crank.travel_figure, self.linkage_figure]
 
     def layout(self) -> pn.Column:
+        """The slider-crank and the linkage, each a part with its figures side by side; the two
+        parts side by side where both fit (1920 px: one part left ~40 % of the screen blank),
+        else one above the other (1366 px and narrower)."""
         crank = self.slider_crank
         figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)
         flex = {"flex": "1 1 320px"}
-        return pn.Column(
+        part = dict(styles={"flex": f"1 1 {PART_BASIS}px"}, sizing_mode="stretch_width")
+        # A Bokeh pane puts its figure itself in the flex box (a pane's styles reach nothing): the
+        # figure's own flex lets the two share a part's width (at their 440 px they wrapped).
+        for fig in (crank.crank_figure, crank.travel_figure):
+            fig.styles = flex
+        slider_crank = pn.Column(
             pn.pane.Markdown(
                 "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
             ),
             crank.crank_angle,
             crank.crank_note,
             pn.FlexBox(
-                pn.pane.Bokeh(crank.crank_figure, styles=flex, **figure),
-                pn.pane.Bokeh(crank.travel_figure, styles=flex, **figure),
+                pn.pane.Bokeh(crank.crank_figure, **figure),
+                pn.pane.Bokeh(crank.travel_figure, **figure),
                 sizing_mode="stretch_width",
             ),
+            **part,
+        )
+        linkages = pn.Column(
             pn.pane.Markdown(
                 "### Four-bar and double loop, by Newton-Raphson", stylesheets=NOTE_CSS
             ),
@@ -347,5 +359,9 @@ class Mechanisms(Tab):
                 ),
                 sizing_mode="stretch_width",
             ),
+            **part,
+        )
+        return pn.Column(
+            pn.FlexBox(slider_crank, linkages, gap="0 24px", sizing_mode="stretch_width"),
             sizing_mode="stretch_width",
         )

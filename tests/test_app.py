@@ -136,9 +136,7 @@ def test_status_reads_at_a_glance(app, changes, status):
         assert "–" in readout_text(app, "tau")  # no time constant for a run that never started
 
 
-@pytest.mark.parametrize(
-    "preset", ["A deep well with a heavy pump rod", "A leak hole lets it start"]
-)
+@pytest.mark.parametrize("preset", ["A deep well, a heavy rod", "A leak hole lets it start"])
 def test_the_operating_points_dots_lie_where_its_drawn_lines_meet(app, preset):
     """The Operating point view: the windmill's curve runs to where its torque is 0 (with a
     torque at rest beyond 2 omega_m: the curve stopped short of the dot), and the dot lies on

@@ -66,6 +66,21 @@ def test_a_tap_moves_the_design_onto_the_sliders_steps(app):
     assert (app.inputs.R_dagger, app.inputs.h) == (10.0, 0.0)
 
 
+def test_a_tap_selects_nothing_so_the_labels_and_lines_keep_their_look(app):
+    """A tap only moves the design. Bokeh's tap tool also selected what lay under it (a contour
+    label, a line), and drew everything else on that renderer at a tenth of its alpha: the other
+    labels faded to near invisible. Every renderer the tap tool hit-tests keeps its look."""
+    from bokeh.models import GlyphRenderer, TapTool
+
+    figure = app.design_map.figure
+    (tap,) = figure.select(type=TapTool)
+    hit = tap.renderers
+    if hit == "auto":  # Bokeh's default: every renderer of the figure
+        hit = [r for r in figure.renderers if isinstance(r, GlyphRenderer)]
+    changes_look = [r.glyph.__class__.__name__ for r in hit if r.nonselection_glyph is not None]
+    assert changes_look == []
+
+
 def test_a_head_nothing_can_lift_says_so(app):
     app.set_values(h=30.0, T_m=0.05)
     assert "no sprocket ratio on this map carries the load" in app.design_map.readout.object

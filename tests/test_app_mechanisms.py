@@ -263,7 +263,7 @@ def test_the_waterfalls_axis_is_plain_numbers_over_the_bars():
 
     explorer = Explorer()
     explorer.show_views()
-    explorer.sidebar.preset.value = "A deep well with a heavy pump rod"
+    explorer.sidebar.preset.value = "A deep well, a heavy rod"
     view = explorer.pump.built["energy"]
     right = view.sources["losses"].data["right"]
     assert max(right) > 5e4  # tens of thousands of joules
@@ -273,3 +273,25 @@ def test_the_waterfalls_axis_is_plain_numbers_over_the_bars():
     assert fig.x_range.end == pytest.approx(1.02 * max(right))
     fits = view.sources["losses"].js_property_callbacks["change:data"]
     assert any(isinstance(f, CustomJS) and "x_range.end" in f.code for f in fits)
+
+
+@pytest.mark.parametrize("width, height", [(300, 360), (380, 365), (440, 330)])
+def test_the_drawings_keep_equal_scales_whatever_their_frames_shape(app, width, height):
+    """A drawing's ranges were equal spans, equal scales only on a square frame: its frame is
+    ~320 x 365 px beside the travel plot at 1920 px (and on a phone), and the crank's circle was
+    drawn ~14 % taller than wide. Once the page says the frame's pixels, a metre is as many
+    pixels across as up, and everything the spans held is still shown."""
+    tab = app.mechanisms
+    design = app.inputs.design()
+    span = design.L + 4 * design.R  # what the slider-crank's drawing holds, across and up
+    links = {name: tab.links[name].value for name in ("r1", "r2", "r3")}
+    reach = max(links["r1"], links["r2"] + links["r3"])  # the four-bar's, around its pivots
+    for fig, needed in ((tab.slider_crank.crank_figure, span), (tab.linkage_figure, 2 * reach)):
+        fig.set_from_json("inner_width", width)  # as the page sends them: one, then the other
+        fig.set_from_json("inner_height", height)
+        across = (fig.x_range.end - fig.x_range.start) / width  # [m/px]
+        up = (fig.y_range.end - fig.y_range.start) / height
+        assert across == pytest.approx(up, rel=1e-9)
+        assert min(fig.x_range.end - fig.x_range.start, fig.y_range.end - fig.y_range.start) == (
+            pytest.approx(needed, rel=1e-9)
+        )

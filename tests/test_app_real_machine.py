@@ -215,7 +215,7 @@ def margin_and_kick_force(design: windpump.Design, kick: float) -> tuple[float, 
 
 
 def test_the_deep_well_preset_still_runs(app):
-    app.sidebar.preset.value = "A deep well with a heavy pump rod"
+    app.sidebar.preset.value = "A deep well, a heavy rod"
     design = app.inputs.design()
     assert design == SEED.replace(h=25.0, T_m=2.5, m_r=15.0, eta_t=0.8, L_main=30.0, D_main=0.025)
     assert app.inputs.theta_dot0 == 6.0 and not app.sidebar.real_card.collapsed
@@ -254,7 +254,7 @@ def test_the_leak_preset_starts_from_rest_and_the_tight_pump_does_not(app):
 
 
 def test_the_deep_well_preset_runs_as_the_issues_equations_say(app):
-    app.sidebar.preset.value = "A deep well with a heavy pump rod"
+    app.sidebar.preset.value = "A deep well, a heavy rod"
     design = app.inputs.design()
     ref = real_reference_run(design, 120.0, app.inputs.theta0, app.inputs.theta_dot0)
     run = app.seen.run

@@ -952,6 +952,43 @@ def test_the_design_map_marks_the_linked_design_and_a_tap_moves_it(browser, url)
         page.close()
 
 
+# The map's sources with anything selected in them (a tap's selection: see the test below)
+MAP_SELECTED = """() => ['maptab_flow', 'maptab_contour_labels', 'maptab_stall', 'maptab_best',
+  'maptab_here'].filter(name => {
+  const s = window.Bokeh.documents[0].get_model_by_name(name).selected;
+  return s.indices.length + s.line_indices.length + s.image_indices.length > 0;
+})"""
+MAP_BOX = """() => {
+  const figure = window.Bokeh.documents[0].get_model_by_name('map_figure');
+  const b = window.Bokeh.index.find_one(figure).el.getBoundingClientRect();
+  return {x: b.x, y: b.y, width: b.width, height: b.height};
+}"""
+
+
+def test_a_tap_on_a_contour_label_leaves_every_label_as_it_was(browser, url):
+    """Bokeh's tap tool selected the label tapped, and drew the others at a tenth of their
+    alpha (near invisible) until the next selection: a tap moves the design and selects
+    nothing on the map."""
+    page = open_page(browser, url, width=1280, height=720, query="?tab=map&h=5")
+    try:
+        page.wait_for_function(f"() => ({MAP_MARKER})() !== null", timeout=120_000)
+        map_settled(page)
+        labels = page.evaluate(
+            "() => { const d = window.Bokeh.documents[0].get_model_by_name("
+            "'maptab_contour_labels').data; return [Array.from(d.x), Array.from(d.y)] }"
+        )
+        assert len(labels[0]) >= 3
+        box = page.evaluate(MAP_BOX)
+        x, y = page.evaluate(MAP_POINT, [labels[0][1], labels[1][1]])  # on a label's anchor
+        page.mouse.click(box["x"] + x, box["y"] + y)
+        moved = f"() => parseFloat(({QUERY})('h')) !== 5"
+        page.wait_for_function(moved, timeout=60_000)
+        assert page.evaluate(MAP_SELECTED) == []
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 def map_settled(page) -> dict:
     """The Design map's canvas box once mapped and still (its readout laid out above it)."""
     page.get_by_text("the best sprocket ratio is").wait_for(timeout=60_000)

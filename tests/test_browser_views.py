@@ -205,3 +205,65 @@ def test_a_view_behind_a_phones_controls_is_not_seen(browser, url):
         assert page.problems == []
     finally:
         page.close()
+
+
+# A figure's canvas text sizes as drawn (its title, axes' labels and ticks, legends' labels) and
+# its frame's height [px].
+CANVAS_SIZES = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name + '_figure');
+  const view = window.Bokeh.index.find_one(model);
+  const sizes = [model.title.text_font_size];
+  for (const panel of [...model.below, ...model.left]) {
+    if (panel.axis_label !== undefined) sizes.push(panel.axis_label_text_font_size, panel.major_label_text_font_size);
+    if (panel.items !== undefined) sizes.push(panel.label_text_font_size);
+  }
+  return {sizes: [...new Set(sizes)].map(parseFloat).sort(), frame: view.frame.bbox.height};
+}"""
+
+
+WATERFALL_LABELS = """() => {
+  const figure = window.Bokeh.documents[0].get_model_by_name('energy_figure');
+  const text = figure.renderers.find(r => r.glyph.type === 'Text' || r.glyph.constructor.name === 'Text');
+  return text.glyph.text_font_size.value;
+}"""
+
+
+@pytest.mark.parametrize("width, height", [(390, 844), (1280, 720)])
+def test_presentation_mode_keeps_a_phones_figure_text_and_plot(browser, url, width, height):
+    """The docs: presentation mode makes every text a quarter larger, and on a phone the page's
+    text keeps its size. The figures' canvas text grew on a phone all the same: the crank speed's
+    legend took four rows of 18 px and left its plot ~76 px high. On a phone a figure's text is
+    as without presentation mode (14 to 16 px) and its plot keeps its height; a projector's text
+    grows (18 to 22 px)."""
+    page = open_page(browser, url, width, height, query="?presentation=true")
+    try:
+        show_view(page, "speed")
+        page.wait_for_function(HAS_DATA, arg=FILLED["speed"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        drawn = page.evaluate(CANVAS_SIZES, "speed")
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"presentation-text-{width}x{height}.png"))
+        show_view(page, "energy")  # the waterfall's labels: a text glyph's
+        page.wait_for_function(HAS_DATA, arg=FILLED["energy"], timeout=60_000, polling=POLL_MS)
+        time.sleep(1.0)
+        labels = page.evaluate(WATERFALL_LABELS)
+        if width < 700:
+            assert drawn["sizes"] and max(drawn["sizes"]) <= 16, drawn
+            assert drawn["frame"] >= 150, drawn  # as without presentation mode: ~169 px
+            assert labels == "15px"
+            toggle = page.get_by_role("button", name="Presentation mode")
+            toggle.click()  # off, and on again: the server sends the larger sizes anew
+            in_link = "() => location.search.includes('presentation=true')"
+            page.wait_for_function(f"() => !({in_link})()", timeout=30_000)
+            toggle.click()
+            page.wait_for_function(in_link, timeout=30_000)
+            time.sleep(2.0)  # the server's sizes come, and the page keeps a phone's
+            assert page.evaluate(WATERFALL_LABELS) == "15px"
+            again = page.evaluate(CANVAS_SIZES, "speed")
+            assert max(again["sizes"]) <= 16 and again["frame"] >= 150, again
+        else:
+            assert min(drawn["sizes"]) >= 18, drawn
+            assert labels == "19px"
+        assert page.problems == []
+    finally:
+        page.close()

@@ -68,7 +68,7 @@ def test_the_instructors_guide_names_every_link_parameter_and_preset():
         "Near the stall boundary",
         "Kicked below α₋",
         "A light rotor, large ripple",
-        "Two cylinders, torque at rest",
+        "2 cylinders, torque at rest",
         "A double-acting pump",
         "A stalled pump",
     )

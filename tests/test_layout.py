@@ -471,3 +471,92 @@ def test_the_play_and_pause_labels_are_drawn_by_the_page_fonts(browser, url):
         assert page.evaluate(MISSING_GLYPHS, pause.inner_text() + "▶ Play") == []
     finally:
         page.close()
+
+
+# Every select box shown, through shadow roots: each option's text wider than the room its box
+# leaves it (its inner width less its padding, where the arrow is drawn), measured in its own font.
+CUT_OPTIONS = """() => {
+  const cut = [], ctx = document.createElement('canvas').getContext('2d');
+  let boxes = 0;
+  const walk = (root) => {
+    for (const el of root.querySelectorAll('*')) {
+      if (el.shadowRoot) walk(el.shadowRoot);
+      if (el.tagName !== 'SELECT' || el.getBoundingClientRect().width === 0) continue;
+      boxes += 1;
+      const style = getComputedStyle(el);
+      ctx.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+      const room = el.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+      for (const option of el.options) {
+        const width = ctx.measureText(option.text).width;
+        if (width > room) cut.push([option.text, Math.round(width), Math.round(room)]);
+      }
+    }
+  };
+  walk(document);
+  return {boxes, cut};
+}"""
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_every_select_shows_each_option_whole(browser, url, width, height):
+    """A select box shows its choice on one line and cut it at its edge ("A deep well with a
+    heavy pump roc"): every option of every select (the presets, the machine's playback speed,
+    the Site tab's site and restart) fits its box, in presentation mode's larger text (a phone
+    keeps its usual sizes), whose boxes are as wide as without it."""
+    page = open_page(browser, url, width, height, "?tab=site&presentation=true")
+    try:
+        page.get_by_text("Restart after a calm").wait_for(timeout=120_000)  # the Site tab built
+        page.get_by_text("Wind pump", exact=True).first.click()
+        show_view(page, "machine")  # its playback speed
+        page.get_by_text("Site", exact=True).first.click()  # shown again: its selects measured
+        page.get_by_text("Restart after a calm").wait_for(timeout=60_000)
+        shown = page.evaluate(CUT_OPTIONS)
+        assert shown["boxes"] == 4, shown  # the presets, playback speed, site and restart
+        assert shown["cut"] == [], f"options cut at {width}×{height}: {shown['cut']}"
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+# The boxes of the Mechanisms tab's three figures (the slider-crank's drawing and travel, the
+# linkage), in the page's coordinates, and the tabs' pane's.
+MECHANISM_BOXES = """() => {
+  const boxes = [];
+  for (const model of window.Bokeh.documents[0].all_models) {
+    const title = model.title?.text ?? '';
+    if (!/slider-crank \\(Newton|Piston position|Four-bar \\/ double loop/.test(title)) continue;
+    const view = window.Bokeh.index.find_one(model);
+    if (!view) continue;
+    const b = view.el.getBoundingClientRect();
+    boxes.push({title, x: b.x, y: b.y, right: b.right, bottom: b.bottom, width: b.width});
+  }
+  const pane = document.querySelector('#main').getBoundingClientRect();
+  return {boxes, pane: {x: pane.x, right: pane.right, width: pane.width, bottom: pane.bottom}};
+}"""
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_mechanisms_tab_uses_the_screens_width(browser, url, width, height):
+    """At 1920×1080 the tab drew its figures in the left ~60 % of the pane, the rest blank: its
+    two parts, the slider-crank and the linkage, go side by side where both fit, so the tab fills
+    the width and its three figures are in the first screen. Narrower screens keep them one
+    above the other, each figure at least 300 px wide, nothing wider than the pane."""
+    page = open_page(browser, url, width, height, "?tab=mechanisms")
+    try:
+        page.wait_for_function(f"(n) => ({VIEW_BOX})(n) !== null", arg="linkage_figure")
+        time.sleep(1.0)  # laid out
+        shown = page.evaluate(MECHANISM_BOXES)
+        boxes, pane = shown["boxes"], shown["pane"]
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"mechanisms_{width}x{height}.png"))
+        assert len(boxes) == 3, boxes
+        for box in boxes:
+            assert box["width"] >= 300 - 1, box
+            assert box["x"] >= pane["x"] - 1 and box["right"] <= pane["right"] + 1, (box, pane)
+        if width >= 1920:
+            used = max(box["right"] for box in boxes) - pane["x"]
+            assert used >= 0.9 * pane["width"], f"{used:.0f} px of the pane's {pane['width']:.0f}"
+            assert all(box["bottom"] <= height for box in boxes), boxes  # the first screen
+        assert page.problems == []
+    finally:
+        page.close()

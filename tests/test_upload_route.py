@@ -707,3 +707,45 @@ def test_the_words_for_the_upload_rules_are_the_rules_numbers():
     assert f"dropped after {bare}–{most} s" in instructors
     assert f"within {bare}–{most} s" in issues
     assert f"{LIFETIME:.0f} s" in dropped_text("expired", "a")
+
+
+def test_no_log_line_names_a_session_at_any_level():
+    """Bokeh names sessions in its own lines (a WARNING when a session scheduled for discarding
+    comes back, DEBUG on every page); the server's handlers write them without the id or token."""
+    import io
+    import logging
+
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+
+    from windpump_app.serving import HIDDEN, hide_session_ids
+
+    session = generate_session_id()
+    token = generate_jwt_token(session)
+    written = io.StringIO()
+    handler = logging.StreamHandler(written)
+    bokeh = logging.getLogger("bokeh")
+    level = bokeh.level
+    bokeh.addHandler(handler)
+    bokeh.setLevel(logging.DEBUG)
+    try:
+        hide_session_ids(bokeh)
+        hide_session_ids(bokeh)  # once only
+        assert len(handler.filters) == 1
+        contexts = logging.getLogger("bokeh.server.contexts")
+        contexts.warning(f"Session {session!r} was scheduled to discard but came back to life")
+        logging.getLogger("bokeh.server.session").debug(
+            f"Sending pull-doc-reply from session {session!r}"
+        )
+        logging.getLogger("bokeh.server.views.ws").error(
+            "Token for session %r had invalid signature", token
+        )
+        try:
+            raise KeyError(session)
+        except KeyError:
+            contexts.exception("no session %s", session)
+    finally:
+        bokeh.removeHandler(handler)
+        bokeh.setLevel(level)
+    lines = written.getvalue()
+    assert session not in lines and token not in lines
+    assert lines.count(HIDDEN) == 5 and "came back to life" in lines and "KeyError" in lines

@@ -615,11 +615,16 @@ SOLVER_READY.set()
 
 def first_run_when_ready(session_id: str, document, explorer) -> Callable:
     """The page's onload callback while the solver compiles: wait for it off the event loop,
-    then, under the document's lock, run the page's first design and go on as a page does."""
+    then, under the document's lock, run the page's first design and go on as a page does.
+    A page closed meanwhile (its session destroyed, its document's callbacks gone) runs
+    nothing: adding a callback to it raised, a traceback in the log for each such page."""
+    context = getattr(document, "session_context", None)  # None unless served
 
     async def run() -> None:
         if not SOLVER_READY.is_set():
             await asyncio.get_running_loop().run_in_executor(None, SOLVER_READY.wait)
+        if context is not None and context.destroyed:
+            return
 
         def first_run() -> None:
             explorer.start()

@@ -147,17 +147,17 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
     return 0
 
 
-def check_writable(path: str) -> None:
-    """``--csv``'s file can be written (checked before a year is computed), or an OSError
+def check_writable(path: str, option: str = "--csv") -> None:
+    """``option``'s file can be written (checked before the work is done), or an OSError
     naming it."""
     target = Path(path)
     folder = target.parent
     if target.is_dir():
-        raise OSError(f"--csv {path}: a folder, not a file")
+        raise OSError(f"{option} {path}: a folder, not a file")
     if not folder.is_dir():
-        raise OSError(f"--csv {path}: there is no folder {folder}")
+        raise OSError(f"{option} {path}: there is no folder {folder}")
     if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
-        raise OSError(f"--csv {path}: not allowed to write there")
+        raise OSError(f"{option} {path}: not allowed to write there")
 
 
 def attended_hint(year: Supply) -> str:

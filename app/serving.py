@@ -68,7 +68,10 @@ class HideSessionIds(logging.Filter):
     DEBUG each page's "Sending pull-doc-reply from session '<id>'" and its discarding."""
 
     def filter(self, record: logging.LogRecord) -> bool:
-        message = record.getMessage()
+        try:
+            message = record.getMessage()
+        except Exception:  # a line whose arguments do not fit: the handler says so, as before
+            return True
         if SESSION_ID.search(message):
             record.msg, record.args = SESSION_ID.sub(HIDDEN, message), None
         if record.exc_info and not record.exc_text:

@@ -743,6 +743,11 @@ def test_no_log_line_names_a_session_at_any_level():
             raise KeyError(session)
         except KeyError:
             contexts.exception("no session %s", session)
+        logging.raiseExceptions, raised = False, logging.raiseExceptions
+        try:
+            contexts.warning("%d sessions", "many")  # a bad line raises nothing at its caller
+        finally:
+            logging.raiseExceptions = raised
     finally:
         bokeh.removeHandler(handler)
         bokeh.setLevel(level)

@@ -224,7 +224,7 @@ def hours_csv(year: Supply) -> str:
 
 def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump tank``: what it sizes for (site, hub, demand, target), then the smallest tank
-    for --lolp in m^3 (and litres), or why none is enough."""
+    for --lolp in m^3 (and litres), or why no tank is enough."""
     from .cli import chosen_design
 
     design = chosen_design(args)
@@ -235,7 +235,7 @@ def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     print(site_line(year, record))
     print(f"demand               {args.demand:g} m^3/day, loss of load at most {args.lolp:g}")
     if math.isinf(size):
-        print(f"tank                 none is enough: {no_tank_why(year, args.lolp)}")
+        print(f"tank                 no tank is enough: {no_tank_why(year, args.lolp)}")
         return 0
     print(f"tank                 {size:.6g} m^3 ({size * LITRES_PER_M3:.0f} L)")
     return 0

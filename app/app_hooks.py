@@ -25,6 +25,7 @@ from .serving import (
     SOLVER_READY,
     TIDY,
     every_thread_started,
+    hide_session_ids,
     large_blocks_mapped,
     log_request,
     watch_the_loop,
@@ -61,7 +62,8 @@ QUERY_FIELDS_LIMIT = 20_000
 def on_server_loaded(_server_context) -> None:
     """When ``panel serve app/`` starts: compress what the server sends over HTTP (the page's
     scripts shrink about four times); drop a served page's session its browser never connects
-    within 30 s; log requests without their query (a page's link, an upload's name); accept long
+    within 30 s; log requests without their query (a page's link, an upload's name), and no
+    line with a session's id (``serving.HideSessionIds``); accept long
     links; and load the solver from numba's cache before the server answers, or, on a first
     start after an install, compile it in the background while pages open (they run their first
     design once it is ready), and then run a first Wind tab's day in the background
@@ -69,6 +71,7 @@ def on_server_loaded(_server_context) -> None:
     map each large block on its own (``large_blocks_mapped``); and start now what a class would
     start for good among its pages (``ready_for_a_class``)."""
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
+    hide_session_ids()  # no session's id in the server's log, at any level (serving.py)
     large_blocks_mapped()  # a freed upload leaves no heap of freed blocks behind (serving.py)
     servers = bokeh_servers()
     if not servers:

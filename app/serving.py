@@ -13,6 +13,7 @@ import logging
 import math
 import multiprocessing
 import os
+import re
 import threading
 import time
 from collections.abc import Callable
@@ -52,6 +53,40 @@ def log_request(handler) -> None:
         say = access_log.warning if status < 500 else access_log.error
     elapsed = 1000.0 * request.request_time()
     say("%d %s %s (%s) %.2fms", status, request.method, request.path, request.remote_ip, elapsed)
+
+
+# A Bokeh session's id (44 letters and digits: no word or name in a log line is that long), or
+# a token carrying one (base64url JSON, which opens with "eyJ", and its signature).
+SESSION_ID = re.compile(r"\beyJ[A-Za-z0-9_-]+(?:\.[A-Za-z0-9_-]*)*|[A-Za-z0-9]{40,}")
+HIDDEN = "[a session]"
+
+
+class HideSessionIds(logging.Filter):
+    """Writes every session id or token in a log line as HIDDEN (a session's id is the credential
+    of its page's uploads). Bokeh's own lines name sessions: at WARNING "Session '<id>' was
+    scheduled to discard but came back to life", at ERROR a token or id of a bad signature, at
+    DEBUG each page's "Sending pull-doc-reply from session '<id>'" and its discarding."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        try:
+            message = record.getMessage()
+        except Exception:  # a line whose arguments do not fit: the handler says so, as before
+            return True
+        if SESSION_ID.search(message):
+            record.msg, record.args = SESSION_ID.sub(HIDDEN, message), None
+        if record.exc_info and not record.exc_text:
+            record.exc_text = logging.Formatter().formatException(record.exc_info)
+        if record.exc_text and SESSION_ID.search(record.exc_text):
+            record.exc_text = SESSION_ID.sub(HIDDEN, record.exc_text)
+        return True
+
+
+def hide_session_ids(logger: logging.Logger | None = None) -> None:
+    """Add ``HideSessionIds`` to every handler of ``logger`` (the root's: where ``panel serve``
+    writes Bokeh's, Tornado's and these lines, to the terminal or its ``--log-file``), once."""
+    for handler in (logger or logging.getLogger()).handlers:
+        if not any(isinstance(f, HideSessionIds) for f in handler.filters):
+            handler.addFilter(HideSessionIds())
 
 
 class Tidy:
@@ -583,11 +618,16 @@ SOLVER_READY.set()
 
 def first_run_when_ready(session_id: str, document, explorer) -> Callable:
     """The page's onload callback while the solver compiles: wait for it off the event loop,
-    then, under the document's lock, run the page's first design and go on as a page does."""
+    then, under the document's lock, run the page's first design and go on as a page does.
+    A page closed meanwhile (its session destroyed, its document's callbacks gone) runs
+    nothing: adding a callback to it raised, a traceback in the log for each such page."""
+    context = getattr(document, "session_context", None)  # None unless served
 
     async def run() -> None:
         if not SOLVER_READY.is_set():
             await asyncio.get_running_loop().run_in_executor(None, SOLVER_READY.wait)
+        if context is not None and context.destroyed:
+            return
 
         def first_run() -> None:
             explorer.start()

@@ -12,8 +12,8 @@ file-reading process).
 The store is small and bounded (``Uploads``), and shared fairly: bytes only for a session of
 this server whose page is connected (its websocket open: a bare GET of the page builds a session
 too, and posts nothing), each session's share its newest file of each upload (a later one
-replaces one not yet taken), gone once taken, after ``LIFETIME`` s, or when the page's websocket
-closes. The store's own bounds are a last resort: a file within a connected page's share is
+replaces one not yet taken, and a post counts from its first byte: ``Uploads.receiving``), gone
+once taken, after ``LIFETIME`` s, or when the page's websocket closes. The store's own bounds are a last resort: a file within a connected page's share is
 always taken, the oldest file other pages left untaken dropped for it. The session's id, the
 post's credential, goes in a header (``SESSION_HEADER``), not in the URL a log would keep.
 ``serve_uploads`` adds the route when ``panel serve app/`` starts (``app_hooks.on_server_loaded``);
@@ -54,6 +54,7 @@ REFUSALS = {
     "size": 413,
     "session": 403,  # no session of this server with a connected page has this id
     "busy": 503,  # the store is full (bounds below one share only): choose the file again
+    "replaced": 409,  # a later post of the same upload began: it is the page's share now
 }
 
 
@@ -92,13 +93,31 @@ def refusal_text(reason: str, kind: str, size: int) -> str:
         )
     if reason == "busy":
         return f"The server is receiving other files: choose this {word} file again in a moment."
+    if reason == "replaced":
+        return f"This {word} file was replaced by a later one chosen in the same page."
     return f"This {word} file could not be sent to the server: choose it again."
+
+
+class Receiving:
+    """A post being received (``Uploads.receiving``), its bytes so far (``chunks``): ``cut``
+    once a later post of the same upload began or the page went, and its bytes let go at
+    once (not when its client sends more, which it may never do)."""
+
+    def __init__(self, session_id: str, kind: str):
+        self.session_id, self.kind = session_id, kind
+        self.chunks: list[bytes] = []
+        self.cut = ""  # why it was cut: "replaced", "lost"; "" while it is the page's share
 
 
 class Uploads:
     """The files posted and not yet taken, for the sessions of this server whose page is
     connected: ``connected(session_id)``, served, whether the session's websocket is open
-    (``serve_uploads``); until then, every session opened here."""
+    (``serve_uploads``); until then, every session opened here.
+
+    A session's share is one file of each upload (KINDS), counted from the moment its post
+    begins (``receiving``): a later post of the same upload cuts off an earlier one still
+    arriving and drops one not yet taken, so a page holds at most one file of each, arrived or
+    arriving, however many posts it sends at once."""
 
     def __init__(
         self,
@@ -119,6 +138,7 @@ class Uploads:
         self._lock = threading.Lock()
         self._sessions: set[str] = set()
         self._items: dict[str, Posted] = {}
+        self._receiving: dict[tuple[str, str], Receiving] = {}  # (session, kind): in flight
         # ids of files dropped before they were taken, and why ("replaced", "crowded"): the newest
         self._dropped: dict[str, str] = {}
 
@@ -127,16 +147,50 @@ class Uploads:
             self._sessions.add(session_id)
 
     def lost(self, session_id: str) -> None:
-        """A session's page lost its websocket: what it posted is dropped (it posts no more
-        unless it connects again)."""
+        """A session's page lost its websocket: what it posted, or is posting, is dropped (it
+        posts no more unless it connects again)."""
         with self._lock:
-            self._drop(lambda item: item.session_id == session_id)
+            self._drop(lambda item: item.session_id == session_id, "lost")
+            self._cut(session_id, None, "lost")
 
     def closed(self, session_id: str) -> None:
-        """A session closed: it posts no more, and what it posted is dropped."""
+        """A session closed: it posts no more, and what it posted, or is posting, is
+        dropped."""
         with self._lock:
             self._sessions.discard(session_id)
-            self._drop(lambda item: item.session_id == session_id)
+            self._drop(lambda item: item.session_id == session_id, "lost")
+            self._cut(session_id, None, "lost")
+
+    def receiving(self, session_id: str, kind: str) -> Receiving:
+        """A post of the session's ``kind`` upload begins: it is the session's share of that
+        upload from now on. An earlier post of the same upload still arriving is cut off, and
+        a file of it not yet taken dropped ("replaced"): their reference, if the page ever
+        sends it, is answered as a replaced one's. ``done`` when it ends, however it ends."""
+        receipt = Receiving(session_id, kind)
+        with self._lock:
+            self._cut(session_id, kind, "replaced")
+            self._drop(lambda item: item.session_id == session_id and item.kind == kind, "replaced")
+            self._receiving[(session_id, kind)] = receipt
+        return receipt
+
+    def done(self, receipt: Receiving) -> None:
+        """A post has ended (kept, refused or cut off): it no longer holds the share."""
+        with self._lock:
+            key = (receipt.session_id, receipt.kind)
+            if self._receiving.get(key) is receipt:
+                del self._receiving[key]
+
+    def in_flight(self) -> int:
+        """The posts being received now, as the page's share counts them."""
+        with self._lock:
+            return len(self._receiving)
+
+    def _cut(self, session_id: str, kind: str | None, why: str) -> None:
+        """Cut off the session's posts in flight (of ``kind``, or all). Under the lock."""
+        for key in [k for k in self._receiving if k[0] == session_id and kind in (None, k[1])]:
+            receipt = self._receiving.pop(key)
+            receipt.cut = why
+            receipt.chunks.clear()
 
     def is_open(self, session_id: str) -> bool:
         """Whether the session may post: opened here, and its page connected."""
@@ -144,8 +198,16 @@ class Uploads:
             opened = session_id in self._sessions
         return opened and self.connected(session_id)
 
-    def put(self, session_id: str, kind: str, name: str, data: bytes) -> str:
-        """Keep ``data`` for the session; its id. Raises ``Refused``."""
+    def put(
+        self,
+        session_id: str,
+        kind: str,
+        name: str,
+        data: bytes,
+        receipt: Receiving | None = None,
+    ) -> str:
+        """Keep ``data`` for the session; its id. Raises ``Refused``. ``receipt``: the post's
+        (``receiving``), refused if a later post of the same upload cut it off."""
         if kind not in KINDS:
             raise Refused("kind", f"kind must be one of {sorted(KINDS)}, not {kind!r}")
         if not data:
@@ -155,8 +217,11 @@ class Uploads:
         if not self.is_open(session_id):
             raise Refused("session", refusal_text("session", kind, len(data)))
         with self._lock:
+            if receipt is not None and receipt.cut:
+                reason = "replaced" if receipt.cut == "replaced" else "session"
+                raise Refused(reason, refusal_text(reason, kind, len(data)))
             now = self.clock()
-            self._drop(lambda item: now - item.at > self.lifetime)
+            self._drop(lambda item: now - item.at > self.lifetime, "expired")
             self._drop(lambda item: item.session_id == session_id and item.kind == kind, "replaced")
             if not self._room_for(session_id, len(data)):
                 raise Refused("busy", refusal_text("busy", kind, len(data)))
@@ -200,14 +265,15 @@ class Uploads:
     def take(self, session_id: str, upload_id: str) -> Posted | str:
         """The file ``upload_id`` of the session, removed from the store; if it is not there,
         why: "replaced" (a later file of the same upload replaced it: that one's reference
-        follows), "crowded" (dropped for another page's file in a full store) or "gone"
-        (expired, the session's store emptied, another session's)."""
+        follows), "crowded" (dropped for another page's file in a full store), "expired" (not
+        taken within ``lifetime``), "lost" (dropped when its page's websocket closed) or
+        "gone" (never held for this session, or dropped too long ago to say why)."""
         with self._lock:
             item = self._items.get(upload_id)
             if item is None or item.session_id != session_id:
                 return self._dropped.get(upload_id, "gone")
             del self._items[upload_id]
-        return item if self.clock() - item.at <= self.lifetime else "gone"
+        return item if self.clock() - item.at <= self.lifetime else "expired"
 
     def held(self) -> int:
         """The files held now."""
@@ -252,9 +318,9 @@ class UploadHandler(web.RequestHandler):
 
     def initialize(self, uploads: Uploads) -> None:
         self.uploads = uploads
-        self.chunks: list[bytes] = []
         self.size = 0
         self.refusal = ""
+        self.receipt: Receiving | None = None  # the page's share and its bytes, as they arrive
 
     def check_xsrf_cookie(self) -> None:
         """The page's session id is the credential (it is what opens the session's websocket),
@@ -273,27 +339,51 @@ class UploadHandler(web.RequestHandler):
             self.refusal = "session"
         elif self.declared is not None and self.declared > WIND_MAX_BYTES:
             self.refusal = "size"
+        else:  # its bytes count against the page's share as they arrive
+            self.receipt = self.uploads.receiving(self.session_id, self.kind)
 
     def data_received(self, chunk: bytes) -> None:
         if not self.size:
             mark("upload: first piece")
         self.size += len(chunk)
-        if self.refusal:
+        receipt = self.receipt
+        if receipt is not None and receipt.cut and not self.refusal:
+            self.refusal = "replaced" if receipt.cut == "replaced" else "session"
+        if self.refusal or receipt is None:
             return  # read and dropped
         if self.size > WIND_MAX_BYTES:
-            self.refusal, self.chunks = "size", []
+            self.refusal = "size"
+            receipt.chunks.clear()
             return
-        self.chunks.append(chunk)
+        receipt.chunks.append(chunk)
+
+    def on_finish(self) -> None:
+        self.release()
+
+    def on_connection_close(self) -> None:
+        """The client went before the body had arrived (the page chose another file)."""
+        self.release()
+
+    def release(self) -> None:
+        """The post has ended: its share and its bytes go."""
+        if self.receipt is not None:
+            self.receipt.chunks.clear()
+            self.uploads.done(self.receipt)
+            self.receipt = None
 
     def post(self) -> None:
         mark("upload: body read", size=self.size)
+        receipt = self.receipt
+        if receipt is not None and receipt.cut and not self.refusal:
+            self.refusal = "replaced" if receipt.cut == "replaced" else "session"
         try:
-            if self.refusal:
+            if self.refusal or receipt is None:
                 size = self.size if self.declared is None else self.declared
-                raise Refused(self.refusal, refusal_text(self.refusal, self.kind, size))
-            data = b"".join(self.chunks)
-            self.chunks = []
-            upload_id = self.uploads.put(self.session_id, self.kind, self.name, data)
+                reason = self.refusal or "session"
+                raise Refused(reason, refusal_text(reason, self.kind, size))
+            data = b"".join(receipt.chunks)
+            receipt.chunks.clear()
+            upload_id = self.uploads.put(self.session_id, self.kind, self.name, data, receipt)
         except Refused as refused:
             self.set_status(refused.status)
             self.write({"refused": refused.reason, "message": str(refused)})
@@ -328,6 +418,24 @@ def page_connected(application, session_id: str) -> bool:
     return not session.destroyed and session.connection_count > 0
 
 
+def dropped_text(why: str, name: str) -> str:
+    """What the page says of its file ``name`` that the store no longer held when the page
+    sent its reference, dropped for ``why`` (``Uploads.take``'s answer: "expired", "lost",
+    "gone")."""
+    file = clipped(name) or "The file"
+    if why == "expired":
+        return (
+            f"{file} did not reach the page in time: the server keeps a file {LIFETIME:.0f} s "
+            "for its page, and this one was not taken by then. Choose it again."
+        )
+    if why == "lost":
+        return (
+            f"{file} did not reach the page: the page's connection to the server closed "
+            "before the page took it, and the server dropped it then. Choose it again."
+        )
+    return f"{file} did not reach the page: the server no longer holds it. Choose it again."
+
+
 def deliver(channel, tab, session_id: str) -> bool:
     """What the page's upload channel (``uploads.UploadChannel``) says of a wind or site file,
     done in its tab (the Wind or Site tab: ``refuse_size``, ``sending``, ``load_data``, ``say``):
@@ -358,10 +466,7 @@ def deliver(channel, tab, session_id: str) -> bool:
                 "before this page could take it. Choose it again."
             )
             return True
-        tab.say(
-            f"{clipped(name) or 'The file'} did not reach the page in time: it was dropped after "
-            f"{LIFETIME:.0f} s on the server. Choose it again."
-        )
+        tab.say(dropped_text(posted, name))
         return True
     tab.say(refusal_text(detail if detail in REFUSALS else "network", channel.kind, size))
     return True

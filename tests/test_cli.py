@@ -174,6 +174,34 @@ def test_map_writes_the_design_maps_csv_and_png(tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_the_map_is_drawn_in_the_file_named_and_a_folder_is_refused_before_the_work(tmp_path):
+    """matplotlib adds ".png" to a name without a suffix: "map drawn in NAME" named another
+    file, and a folder or /dev/full got a NAME.png beside it."""
+    plain = tmp_path / "map"
+    done = windpump_command(
+        "map", "--gear-ratios", "1:8:4", "--heads", "0:9:3", "--png", str(plain)
+    )
+    assert done.returncode == 0, done.stderr
+    assert plain.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and f"map drawn in {plain}" in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["map"]
+    for option in ("--png", "--csv"):
+        done = windpump_command("map", "--numeric", option, str(tmp_path))
+        assert done.returncode == 1 and "full simulations" not in done.stderr  # nothing run
+        assert (
+            done.stderr.strip() == f"windpump map: error: {option} {tmp_path}: a folder, not a file"
+        )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["map"]
+
+
+@pytest.mark.parametrize("port", ["99999999", "-1", "abc"])
+def test_serve_refuses_a_port_that_is_not_one_in_words(port):
+    done = windpump_command("serve", f"--port={port}")
+    assert done.returncode == 1
+    assert done.stderr.strip() == (
+        f"windpump serve: error: --port '{port}': a port must be a whole number from 0 to 65535"
+    )
+
+
 def test_the_map_png_has_a_log_colour_scale_with_labelled_contours():
     from matplotlib.colors import LogNorm
     from matplotlib.contour import ContourSet

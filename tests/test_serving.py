@@ -110,6 +110,40 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready(monkeypat
         serving.SOLVER_READY.set()
 
 
+def test_a_page_closed_while_the_solver_compiles_runs_nothing(monkeypatch):
+    """A page opened during a first start's compile and closed before it ended: its session is
+    destroyed, and its document takes no callback (Bokeh deletes its callbacks' store, and
+    adding one raised AttributeError, a traceback in the log for every such page)."""
+    import asyncio
+    import threading
+
+    from windpump_app import serving
+
+    class Context:
+        destroyed = False
+
+    class Gone(TickDocument):
+        session_context = Context()
+
+        def add_next_tick_callback(self, callback):
+            raise AttributeError("'DocumentCallbackManager' object has no attribute")
+
+    class Page:
+        def start(self):
+            raise AssertionError("a closed page's design was run")
+
+    document = Gone()
+    serving.SOLVER_READY.clear()
+    try:
+        onload = serving.first_run_when_ready("page", document, Page())
+        document.session_context.destroyed = True  # the student left during the compile
+
+        threading.Timer(0.2, serving.SOLVER_READY.set).start()
+        asyncio.run(asyncio.wait_for(onload(), timeout=60))  # no AttributeError
+    finally:
+        serving.SOLVER_READY.set()
+
+
 def test_closing_sessions_tidy_once_after_the_last_closes(monkeypatch):
     """A class leaving: one full collection after the last page closes, not one per page (each
     blocks every other page for a second or more)."""

@@ -82,7 +82,7 @@ def test_tank_says_why_no_tank_is_enough():
         windpump.Design.seed_example(), windpump.sample_site("greensboro"), 1, 0, restart="self"
     )
     last = done.stdout.splitlines()[-1]
-    assert "none is enough: the pump never runs" in last and never.why in last
+    assert "no tank is enough: the pump never runs" in last and never.why in last
     assert "--restart attended" in last
     assert "Exit code 0" in windpump_command("tank", "--help").stdout.replace("\n", " ")
 

@@ -109,11 +109,11 @@ def test_a_file_expires_and_a_closed_session_leaves_nothing():
     store.opened("s2")
     old = store.put("s1", "wind", "a.csv", b"0,5\n")
     clock.now = 121.0
-    assert store.take("s1", old) == "gone"
+    assert store.take("s1", old) == "expired"
     kept = store.put("s2", "wind", "b.csv", b"0,6\n")
     store.put("s2", "site", "c.csv", b"0,6\n")
     store.closed("s2")
-    assert store.held() == 0 and store.take("s2", kept) == "gone"
+    assert store.held() == 0 and store.take("s2", kept) == "lost"
     with pytest.raises(Refused):
         store.put("s2", "wind", "b.csv", b"0,6\n")  # closed: it posts no more
 
@@ -159,7 +159,115 @@ def test_only_a_session_whose_page_is_connected_may_post_and_its_files_go_when_i
     kept = store.put("page", "wind", "a.csv", b"0,5\n")
     store.put("page", "site", "a.epw", b"0,5\n")
     store.lost("page")  # its websocket closed
-    assert store.held() == 0 and store.take("page", kept) == "gone"
+    assert store.held() == 0 and store.take("page", kept) == "lost"
+
+
+def test_a_post_in_flight_is_the_pages_share_of_its_upload_from_its_first_byte():
+    """A page holds one file of each upload, arrived or arriving: a later post of the same
+    upload cuts off an earlier one still arriving (its bytes let go at once) and drops its
+    file not yet taken; the page's other upload is not touched."""
+    store = Uploads()
+    store.opened("s")
+    held = store.put("s", "wind", "held.csv", b"0,5\n")
+    site = store.put("s", "site", "year.epw", b"0,5\n")
+    first = store.receiving("s", "wind")
+    first.chunks.append(b"1" * 1000)
+    assert store.take("s", held) == "replaced"  # the post that began is the share now
+    second = store.receiving("s", "wind")
+    assert first.cut == "replaced" and first.chunks == [] and second.cut == ""
+    assert store.in_flight() == 1
+    with pytest.raises(Refused) as refused:
+        store.put("s", "wind", "first.csv", b"1" * 1000, first)  # it ended after all
+    assert refused.value.reason == "replaced" and refused.value.status == 409
+    store.done(first)  # its end does not free the later one's share
+    assert store.in_flight() == 1
+    upload_id = store.put("s", "wind", "second.csv", b"0,6\n", second)
+    store.done(second)
+    assert store.in_flight() == 0 and store.take("s", upload_id).name == "second.csv"
+    assert store.take("s", site).name == "year.epw"
+
+
+def test_a_page_that_goes_cuts_off_its_posts_in_flight():
+    store = Uploads()
+    store.opened("s")
+    arriving = store.receiving("s", "site")
+    arriving.chunks.append(b"1" * 1000)
+    store.lost("s")
+    assert arriving.cut == "lost" and arriving.chunks == [] and store.in_flight() == 0
+    with pytest.raises(Refused) as refused:
+        store.put("s", "site", "year.epw", b"1" * 1000, arriving)
+    assert refused.value.reason == "session"
+
+
+def test_a_file_not_taken_is_said_to_be_dropped_for_the_reason_it_was():
+    from windpump_app.upload_route import LIFETIME, dropped_text
+
+    expired = dropped_text("expired", "a.csv")
+    assert f"{LIFETIME:.0f} s" in expired and "not taken by then" in expired
+    for why in ("lost", "gone"):
+        said = dropped_text(why, "a.csv")
+        assert "did not reach the page" in said and "Choose it again" in said
+        assert f"{LIFETIME:.0f}" not in said and " s " not in said  # no time: not the rule
+    assert "connection to the server closed" in dropped_text("lost", "a.csv")
+
+
+def test_a_post_still_arriving_when_a_later_one_is_kept_is_refused_and_the_later_kept():
+    """Through the route, in-process: a page's post that stalls mid-body while a later post of
+    the same upload arrives whole is cut off (409, "replaced") when it ends, and the later file
+    stays the page's: it used to be kept last and replace the later one."""
+    from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+    from tornado.httpserver import HTTPServer
+    from tornado.netutil import bind_sockets
+    from tornado.web import Application
+
+    from windpump_app.upload_route import UploadHandler
+
+    store = Uploads()
+    store.opened("s")
+
+    async def posts() -> tuple:
+        sockets = bind_sockets(0, "127.0.0.1")
+        port = sockets[0].getsockname()[1]
+        server = HTTPServer(Application([(r"/upload", UploadHandler, {"uploads": store})]))
+        server.add_sockets(sockets)
+        stalled, go_on = asyncio.Event(), asyncio.Event()
+
+        async def slowly(write) -> None:
+            await write(b"0,5\n" * 1000)
+            stalled.set()
+            await go_on.wait()
+            await write(b"60,6\n")
+
+        def request(name: str, **body) -> HTTPRequest:
+            return HTTPRequest(
+                f"http://127.0.0.1:{port}/upload?kind=wind&name={name}",
+                method="POST",
+                headers={SESSION_HEADER: "s", "Content-Type": "application/octet-stream"},
+                request_timeout=60,
+                **body,
+            )
+
+        client = AsyncHTTPClient(force_instance=True)
+        try:
+            early = asyncio.ensure_future(
+                client.fetch(request("early.csv", body_producer=slowly), raise_error=False)
+            )
+            await asyncio.wait_for(stalled.wait(), 30)
+            while store.in_flight() == 0:  # its first piece read: it is the page's share
+                await asyncio.sleep(0.01)
+            late = await client.fetch(request("late.csv", body=b"0,7\n60,8\n"), raise_error=False)
+            go_on.set()
+            early = await asyncio.wait_for(early, 30)
+            return early, late
+        finally:
+            client.close()
+            server.stop()
+
+    early, late = asyncio.run(posts())
+    assert late.code == 200, late.body
+    assert early.code == 409 and json.loads(early.body)["refused"] == "replaced"
+    assert store.in_flight() == 0 and store.held() == 1
+    assert store.take("s", json.loads(late.body)["id"]).name == "late.csv"
 
 
 @settings(max_examples=60, deadline=None)
@@ -581,3 +689,68 @@ def test_the_upload_benchmark_runs(capsys):
     bench_upload.main(["1"])
     printed = capsys.readouterr().out
     assert "HTTP POST + reference" in printed and "ratio during / no upload" in printed
+
+
+def test_the_words_for_the_upload_rules_are_the_rules_numbers():
+    """What the docs and the page say of the store's rules carries the numbers the code uses."""
+    from windpump_app.app_hooks import CHECK_UNUSED_SESSIONS, UNCONNECTED_SESSION_LIFETIME
+    from windpump_app.upload_route import LIFETIME, MAX_HELD, MAX_ITEMS, dropped_text
+
+    docs = Path(__file__).resolve().parents[1] / "docs"
+    issues = " ".join((docs / "known-issues.rst").read_text(encoding="utf-8").split())
+    instructors = " ".join((docs / "instructors.rst").read_text(encoding="utf-8").split())
+    assert f"The store holds {MAX_ITEMS} files or {MAX_HELD // 1_000_000} MB" in issues
+    assert f"a file not taken within {LIFETIME:.0f} s is dropped" in instructors
+    assert f"{LIMIT // 1_000_000} MB each" in instructors
+    bare = UNCONNECTED_SESSION_LIFETIME // 1000
+    most = (UNCONNECTED_SESSION_LIFETIME + CHECK_UNUSED_SESSIONS) // 1000
+    assert f"dropped after {bare}–{most} s" in instructors
+    assert f"within {bare}–{most} s" in issues
+    assert f"{LIFETIME:.0f} s" in dropped_text("expired", "a")
+
+
+def test_no_log_line_names_a_session_at_any_level():
+    """Bokeh names sessions in its own lines (a WARNING when a session scheduled for discarding
+    comes back, DEBUG on every page); the server's handlers write them without the id or token."""
+    import io
+    import logging
+
+    from bokeh.util.token import generate_jwt_token, generate_session_id
+
+    from windpump_app.serving import HIDDEN, hide_session_ids
+
+    session = generate_session_id()
+    token = generate_jwt_token(session)
+    written = io.StringIO()
+    handler = logging.StreamHandler(written)
+    bokeh = logging.getLogger("bokeh")
+    level = bokeh.level
+    bokeh.addHandler(handler)
+    bokeh.setLevel(logging.DEBUG)
+    try:
+        hide_session_ids(bokeh)
+        hide_session_ids(bokeh)  # once only
+        assert len(handler.filters) == 1
+        contexts = logging.getLogger("bokeh.server.contexts")
+        contexts.warning(f"Session {session!r} was scheduled to discard but came back to life")
+        logging.getLogger("bokeh.server.session").debug(
+            f"Sending pull-doc-reply from session {session!r}"
+        )
+        logging.getLogger("bokeh.server.views.ws").error(
+            "Token for session %r had invalid signature", token
+        )
+        try:
+            raise KeyError(session)
+        except KeyError:
+            contexts.exception("no session %s", session)
+        logging.raiseExceptions, raised = False, logging.raiseExceptions
+        try:
+            contexts.warning("%d sessions", "many")  # a bad line raises nothing at its caller
+        finally:
+            logging.raiseExceptions = raised
+    finally:
+        bokeh.removeHandler(handler)
+        bokeh.setLevel(level)
+    lines = written.getvalue()
+    assert session not in lines and token not in lines
+    assert lines.count(HIDDEN) == 5 and "came back to life" in lines and "KeyError" in lines

@@ -353,6 +353,11 @@ def map_command(args: argparse.Namespace, extra: list[str]) -> int:
         args.gear_ratios, (design.R_dagger / 8, 2 * design.R_dagger, 200), "gear-ratios"
     )
     heads = grid_option(args.heads, (0.0, 3 * design.h if design.h > 0 else 10.0, 200), "heads")
+    from .sitecli import check_writable
+
+    for option, path in (("--csv", args.csv), ("--png", args.png)):
+        if path:
+            check_writable(path, option)  # before the work, which may take hours
     if args.png:
         import_matplotlib()  # before the work: a missing plotter is found at once
     progress = TimeLeft(ratios.size * heads.size) if args.numeric else None
@@ -412,8 +417,14 @@ def plot_map(result: DesignMap, path: str) -> None:
     """Draw :func:`map_figure` into the PNG file ``path``."""
     plt = import_matplotlib()
     figure = map_figure(result)
-    figure.savefig(path)
-    plt.close(figure)
+    # A PNG unless the name says another format: matplotlib would add ".png" to a name without
+    # one, and "map drawn in NAME" would name another file.
+    try:
+        figure.savefig(path, format=Path(path).suffix[1:].lower() or "png")
+    except OSError as error:
+        raise OSError(f"--png {path}: {error.strerror or error}") from None
+    finally:
+        plt.close(figure)
 
 
 def map_figure(result: DesignMap):
@@ -601,11 +612,17 @@ def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
     if args.help:
         print(args.help_text())
         panel = [sys.executable, "-m", "panel", "serve", "--help"]
-        shown = subprocess.run(panel, capture_output=True, text=True, timeout=300)
+        listed = subprocess.run(panel, capture_output=True, text=True, timeout=300)
         print(
-            shown.stdout if shown.returncode == 0 else "(panel is not installed: pip install panel)"
+            listed.stdout
+            if listed.returncode == 0
+            else "(panel is not installed: pip install panel)"
         )
         return 0
+    port = next((v for o, v in zip(extra, extra[1:], strict=False) if o == "--port"), None)
+    port = next((o[7:] for o in extra if o.startswith("--port=")), port)
+    if port is not None and not (port.isdigit() and int(port) <= 65535):
+        raise ValueError(f"--port {shown(port)}: a port must be a whole number from 0 to 65535")
     command = [sys.executable, "-m", "panel", "serve", str(explorer_folder()), *extra]
     if os.name == "posix":  # become the server: a signal to this process reaches it
         os.execv(sys.executable, command)

@@ -168,17 +168,17 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
     return 0
 
 
-def check_writable(path: str) -> None:
-    """``--csv``'s file can be written (checked before a year is computed), or an OSError
+def check_writable(path: str, option: str = "--csv") -> None:
+    """``option``'s file can be written (checked before the work is done), or an OSError
     naming it."""
     target = Path(path)
     folder = target.parent
     if target.is_dir():
-        raise OSError(f"--csv {path}: a folder, not a file")
+        raise OSError(f"{option} {path}: a folder, not a file")
     if not folder.is_dir():
-        raise OSError(f"--csv {path}: there is no folder {folder}")
+        raise OSError(f"{option} {path}: there is no folder {folder}")
     if not os.access(folder, os.W_OK) or (target.exists() and not os.access(target, os.W_OK)):
-        raise OSError(f"--csv {path}: not allowed to write there")
+        raise OSError(f"{option} {path}: not allowed to write there")
 
 
 def restart_line(restart: str) -> str:
@@ -284,7 +284,7 @@ def hours_csv(year: Supply) -> str:
 
 def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump tank``: what it sizes for (site, hub, demand, target), then the smallest tank
-    for --lolp in m^3 (and litres), or why none is enough."""
+    for --lolp in m^3 (and litres), or why no tank is enough."""
     from .cli import chosen_design
 
     design = chosen_design(args)
@@ -308,7 +308,7 @@ def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
                 )
                 print(" " * 21 + self_sentence(alone, needs))
     if math.isinf(size):
-        print(f"tank                 none is enough: {no_tank_why(year, args.lolp)}")
+        print(f"tank                 no tank is enough: {no_tank_why(year, args.lolp)}")
         return 0
     print(f"tank                 {size:.6g} m^3 ({size * LITRES_PER_M3:.0f} L)")
     return 0

@@ -4,6 +4,7 @@ figures, gusty and measured records. References are written here or in reference
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -484,3 +485,30 @@ def test_a_run_in_wind_refuses_bad_input_by_name(record, kick, name):
     with pytest.raises(ParameterError) as error:
         windpump.run_in_wind(LIGHT, record, kick=kick)
     assert error.value.name == name
+
+
+@pytest.mark.parametrize("times", ["-1e308\n1e308", "0\n1e13", "-2e12\n0"])
+def test_a_file_with_times_past_1e12_s_is_refused_at_its_line(tmp_path, times):
+    """Times so far apart that their difference overflowed (-1e308 and 1e308 made the second
+    sample's time inf, with numpy's RuntimeWarning) are refused at their line, in words."""
+    first, second = times.split("\n")
+    path = tmp_path / "far.csv"
+    path.write_text(f"t,V\n{first},5\n{second},6\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow on the way
+        with pytest.raises(LabDataError, match=r"past 1e\+12 s either side of 0") as caught:
+            read_csv(path)
+    bad_line = 2 if abs(float(first)) > 1e12 else 3
+    assert caught.value.line == bad_line
+
+
+@given(st.floats(1e12, 1e308, exclude_min=True), st.sampled_from([-1.0, 1.0]))
+def test_a_record_holds_times_from_minus_to_plus_1e12_s(far, sign):
+    """A record's times lie within +-MAX_TIME: a time past it is refused by name, so no span
+    between two of them overflows; at the bound itself the record is kept."""
+    times = np.array(sorted([0.0, sign * far]))
+    with pytest.raises(ParameterError, match="from -1e\\+12 to 1e\\+12") as caught:
+        windpump.WindRecord(times, np.array([4.0, 5.0]))
+    assert caught.value.name == "t"
+    kept = windpump.WindRecord(np.array([-1e12, 1e12]), np.array([4.0, 5.0]))
+    assert np.isfinite(np.diff(kept.t)).all()

@@ -49,6 +49,10 @@ while that fits)."""
 MAX_WIND = 150.0
 """Fastest wind speed a record may hold [m/s] (the strongest gusts measured are about 113 m/s)."""
 
+MAX_TIME = 1e12
+"""Largest time a record may hold, either side of zero [s] (about 31,700 years): the core's
+largest number (``validation.LARGEST``); two such times are still apart by a finite number."""
+
 COLUMNS = "two columns: time [s] or an ISO timestamp, then wind speed [m/s]"
 
 
@@ -66,7 +70,8 @@ class WindRecord:
     Attributes
     ----------
     t : ndarray
-        Times [s] from the record's start: finite and strictly increasing, at least one.
+        Times [s] from the record's start: strictly increasing, from -1e12 to 1e12 (``MAX_TIME``),
+        at least one.
     V : ndarray
         Wind speeds [m/s], finite, from 0 to ``MAX_WIND``, one a time. The three arrays are
         checked (a ParameterError naming ``t``, ``V`` or ``month``, the first sample at fault
@@ -104,9 +109,15 @@ class WindRecord:
             raise ParameterError("t", f"an array of shape {t.shape}", "a 1-D array of times", "s")
         if V.shape != t.shape:
             raise ParameterError("V", f"{V.size} speeds", f"one a time ({t.size})", "m/s")
-        if not np.all(np.isfinite(t)):
-            i = int(np.flatnonzero(~np.isfinite(t))[0])
-            raise ParameterError("t", f"t[{i}] = {shown(t[i])}", "finite, increasing times", "s")
+        outside = ~(np.abs(t) <= MAX_TIME)  # (NaN too)
+        if outside.any():
+            i = int(np.flatnonzero(outside)[0])
+            raise ParameterError(
+                "t",
+                f"t[{i}] = {shown(t[i])}",
+                f"increasing times from -{MAX_TIME:g} to {MAX_TIME:g}",
+                "s",
+            )
         if np.any(np.diff(t) <= 0.0):
             i = int(np.flatnonzero(np.diff(t) <= 0.0)[0]) + 1
             raise ParameterError(
@@ -376,12 +387,15 @@ def _check(t: np.ndarray, V: np.ndarray) -> WindRecord:
         )
     if t.size > MAX_RECORD:
         raise ParameterError("wind", f"{t.size} samples", f"at most {MAX_RECORD} samples")
-    for name, values in (("times", t), ("speeds", V)):
-        bad = np.flatnonzero(~np.isfinite(values))
+    for name, values, largest in (("times", t, MAX_TIME), ("speeds", V, np.inf)):
+        bad = np.flatnonzero(~(np.abs(values) <= largest))  # (NaN too)
         if bad.size:
-            raise ParameterError(
-                "wind", f"{name}[{bad[0]}] = {shown(values[bad[0]])}", f"finite {name}"
+            allowed = (
+                f"finite {name}"
+                if largest == np.inf
+                else f"times from -{largest:g} to {largest:g} s"
             )
+            raise ParameterError("wind", f"{name}[{bad[0]}] = {shown(values[bad[0]])}", allowed)
     outside = (V < 0.0) | (V > MAX_WIND)
     if np.any(outside):
         i = int(np.flatnonzero(outside)[0])
@@ -638,7 +652,7 @@ class _Reader:
             origin: float | datetime.datetime = start
         else:
             kind = "seconds"
-            if not np.all(np.isfinite(seconds)) or self.kind not in (None, kind):
+            if not np.all(np.abs(seconds) <= MAX_TIME) or self.kind not in (None, kind):
                 return None
             origin = self.origin if isinstance(self.origin, float) else float(seconds[0])
             seconds -= origin
@@ -663,6 +677,12 @@ class _Reader:
             if moment is None:
                 raise LabDataError(
                     f"'{_cut(cells[0])}' is neither seconds nor an ISO timestamp", number, 1
+                )
+            if isinstance(moment, float) and not abs(moment) <= MAX_TIME:
+                raise LabDataError(
+                    f"the time '{_cut(cells[0])}' is past {MAX_TIME:g} s either side of 0",
+                    number,
+                    1,
                 )
             if self.kind is None:
                 self.kind, self.origin = _kind(moment), moment

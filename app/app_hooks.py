@@ -17,6 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
+from .compiling import COMPILE, COMPILING, FIRST_PAGE, PARTS, WIND_TAB, Workers
 from .policy import protect_pages
 from .serving import (
     FILE_READERS,
@@ -35,8 +36,13 @@ log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
 
 # A first start after an install compiles the solver: measured with benchmarks/bench_app.py
-# first-start on two cores (README, "Measured").
+# first-start on two cores (README, "Measured"): the first page's part, in the server, and all of
+# it, the other parts in worker processes (compiling.py).
 FIRST_COMPILE_SECONDS = 8
+ALL_COMPILED_SECONDS = 60
+
+# The parts after the first page's, compiled (or, a later start, loaded) in worker processes
+WORKERS = Workers(SOLVER_READY)
 
 
 # A page's session is built when its HTML is served and lives while its websocket is open. One
@@ -85,17 +91,23 @@ def on_server_loaded(_server_context) -> None:
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
         TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
-        threading.Thread(target=warm_the_wind_tab, name="warm the Wind tab", daemon=True).start()
+        # a server stopped before its first start's parts were all compiled left them to this one
+        # (each part done is in the cache, and a worker loads it in a second or two)
+        threading.Thread(target=compile_the_rest, name="compile the rest", daemon=True).start()
         return
     # A first start: compile while the server answers, so a page's browser loads meanwhile
-    # (serving.first_run_when_ready runs its design once the solver is ready).
+    # (serving.first_run_when_ready runs its design once the solver is ready), the first page's
+    # part here and the others in worker processes meanwhile (compiling.py).
     SOLVER_READY.clear()
+    COMPILE.begin()
+    threading.Thread(target=compile_the_rest, name="compile the rest", daemon=True).start()
     threading.Thread(target=compile_in_background, name="compile the solver", daemon=True).start()
 
 
 def on_server_unloaded(_server_context) -> None:
-    """When the server stops: no file reader left behind."""
+    """When the server stops: no file reader or compiling worker left behind."""
     FILE_READERS.stop()
+    WORKERS.stop()
 
 
 # What the server's first upload imports to start its reading process (serving.FileReaders)
@@ -130,6 +142,21 @@ def compile_in_background() -> None:
         log.exception("compiling the solver failed")
     finally:
         SOLVER_READY.set()
+        COMPILE.done(FIRST_PAGE)
+
+
+def compile_the_rest() -> None:
+    """Every part after the first page's, in worker processes (``compiling.Workers``), each
+    marked ready as its worker ends; then the Wind tab's first day, loaded from the cache."""
+    rest = [part.name for part in PARTS if part.name != FIRST_PAGE]
+    COMPILE.begin(rest)  # a later start too: its pages wait for a part rather than compile it
+    try:
+        WORKERS.run(rest)
+    except Exception:  # no workers (a checkout not installed): the pages compile what they need
+        log.exception("compiling the solver's parts in worker processes failed")
+        for name in rest:
+            COMPILE.ready[name].set()
+    COMPILE.wait(WIND_TAB)
     warm_the_wind_tab()
 
 
@@ -156,10 +183,13 @@ def prepare_solver() -> None:
     cached = solver_is_cached(seed)
     if not cached:
         log.info(
-            "compiling the solver: the first start after an install takes about %d s (pages "
-            "open meanwhile and show their numbers once it is done); later starts load it "
+            "%s: the first page's part takes about %d s, all %d parts about %d s (pages open "
+            "meanwhile and show their numbers once their part is ready); later starts load it "
             "from numba's cache",
+            COMPILING,
             FIRST_COMPILE_SECONDS,
+            len(PARTS),
+            ALL_COMPILED_SECONDS,
         )
     started = time.perf_counter()
     seen = windpump.explore(seed, 600.0)

@@ -579,15 +579,20 @@ READOUTS_FIRST = ReadoutsFirst(settled=TIDY.settle, draw=DRAW_AFTER_MOVES.later)
 # Set by default: without the hook (a notebook, the tests) nothing waits.
 SOLVER_READY = threading.Event()
 SOLVER_READY.set()
+COMPILE_PROGRESS_EVERY = 1.0  # [s] how often a waiting page says again how far the compile is
 
 
 def first_run_when_ready(session_id: str, document, explorer) -> Callable:
     """The page's onload callback while the solver compiles: wait for it off the event loop,
-    then, under the document's lock, run the page's first design and go on as a page does."""
+    saying in the page how far the compile is as its parts get ready
+    (``explorer.say_compiling``), then, under the document's lock, run the page's first design
+    and go on as a page does."""
 
     async def run() -> None:
-        if not SOLVER_READY.is_set():
-            await asyncio.get_running_loop().run_in_executor(None, SOLVER_READY.wait)
+        loop = asyncio.get_running_loop()
+        while not SOLVER_READY.is_set():
+            if not await loop.run_in_executor(None, SOLVER_READY.wait, COMPILE_PROGRESS_EVERY):
+                document.add_next_tick_callback(explorer.say_compiling)  # still compiling
 
         def first_run() -> None:
             explorer.start()

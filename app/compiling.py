@@ -63,6 +63,17 @@ def wind_tab() -> None:
     warm_up(PumpInputs())
 
 
+def real_in_wind() -> None:
+    """What the Wind tab runs for a preset with a real machine (its own compile of the driver,
+    as long as the real machine's): the deep well's gusty day."""
+    from .inputs import PRESETS, PumpInputs
+    from .wind_tab import warm_up
+
+    inputs = PumpInputs()
+    inputs.param.update(**PRESETS["A deep well with a heavy pump rod"][0])
+    warm_up(inputs)
+
+
 def site_tab() -> None:
     """What a first Site tab runs: the year at the sample site, its tank for 5 % and its
     loss-of-load curve (``site_year.run_year``)."""
@@ -91,14 +102,16 @@ class Part:
 
 
 FIRST_PAGE, REAL_MACHINE = "the first page", "the real machine"
-WIND_TAB, SITE_TAB = "the Wind tab", "the Site tab"
+WIND_TAB, SITE_TAB, REAL_IN_WIND = "the Wind tab", "the Site tab", "the real machine in wind"
 # In the order a page needs them: the first page (in the server), then, in workers, the presets'
-# real machine (the longest compile), the Wind tab and the Site tab.
+# real machine (the longest compile), the Wind tab, the Site tab, and the Wind tab's day of a
+# preset with a real machine (a fourth compile of the driver: a real machine in a wind record).
 PARTS = (
     Part(FIRST_PAGE, first_page),
     Part(REAL_MACHINE, real_machine),
     Part(WIND_TAB, wind_tab),
     Part(SITE_TAB, site_tab),
+    Part(REAL_IN_WIND, real_in_wind),
 )
 
 
@@ -145,7 +158,7 @@ def installed_run_part() -> Callable[[str, int], float]:
 class Compile:
     """Which parts of the solver are ready: all of them unless a first start compiles them
     (``begin``). ``wait(name)`` blocks until part ``name`` is ready; ``progress()`` says how far
-    the compile is ("compiling the solver (once after an install): 2 of 4 parts ready"), or ""
+    the compile is ("compiling the solver (once after an install): 2 of 5 parts ready"), or ""
     once every part is ready."""
 
     def __init__(self, parts=PARTS):
@@ -177,16 +190,16 @@ class Compile:
 
     def waiting(self, name: str) -> str:
         """What a page says while part ``name`` is compiling (Markdown), or "" once it is ready:
-        "**Compiling the solver (once after an install): 1 of 4 parts ready.** These numbers
-        follow once the Wind tab's part is ready." """
+        "**Compiling the solver (once after an install): 1 of 5 parts ready.** These numbers
+        follow once its part (the Wind tab) is ready." """
         return "" if self.ready[name].is_set() else self.saying(name)
 
     def saying(self, name: str) -> str:
         """What ``waiting(name)`` says while part ``name`` compiles, whether or not it does."""
         progress = self.progress() or COMPILING
         return (
-            f"**{progress[0].upper()}{progress[1:]}.** These numbers follow once {name}'s part "
-            "is ready."
+            f"**{progress[0].upper()}{progress[1:]}.** These numbers follow once its part "
+            f"({name}) is ready."
         )
 
 

@@ -115,7 +115,7 @@ class Explorer(Session, pn.viewable.Viewer):
 
     def say_compiling(self) -> None:
         """The status, while the first page's part of the solver compiles (a first start after
-        an install): how far it is, "Compiling the solver (once after an install): 1 of 4 parts
+        an install): how far it is, "Compiling the solver (once after an install): 1 of 5 parts
         ready" (``serving.first_run_when_ready`` says it again as parts get ready)."""
         if self.seen is None:
             status = self.readouts.status

@@ -159,7 +159,7 @@ def compiling():
 
 
 def test_the_terminal_says_how_many_parts_are_ready(compiling, caplog):
-    """Each part done is said with how far the compile is: "2 of 4 parts ready"."""
+    """Each part done is said with how far the compile is: "2 of 5 parts ready"."""
     from windpump_app.compiling import FIRST_PAGE, PARTS, SITE_TAB, WIND_TAB
 
     compiling.begin()
@@ -223,7 +223,7 @@ def test_a_tab_whose_part_compiles_says_so_and_waits_for_it(compiling, tab, part
     while "Compiling the solver" not in said() and time.monotonic() < deadline:
         time.sleep(0.05)
     assert "Compiling the solver (once after an install): " in said()
-    assert f"once {part}'s part is ready" in said()
+    assert f"once its part ({part}) is ready" in said()
     time.sleep(0.5)
     assert opened.is_alive()  # waiting for the part
     compiling.done(part)

@@ -147,9 +147,12 @@ def compile_in_background() -> None:
 
 def compile_the_rest() -> None:
     """Every part after the first page's, in worker processes (``compiling.Workers``), each
-    marked ready as its worker ends; then the Wind tab's first day, loaded from the cache."""
+    marked ready as its worker ends; then the Wind tab's first day, loaded from the cache.
+
+    A later start's pages wait for none of them: each part is most likely in the cache already
+    (the workers then only load it), and a page loads it sooner than a worker that gives way to
+    the server; one a server stopped before it was done is compiled in a worker meanwhile."""
     rest = [part.name for part in PARTS if part.name != FIRST_PAGE]
-    COMPILE.begin(rest)  # a later start too: its pages wait for a part rather than compile it
     try:
         WORKERS.run(rest)
     except Exception:  # no workers (a checkout not installed): the pages compile what they need

@@ -35,11 +35,10 @@ from .upload_route import serve_uploads
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
 
-# A first start after an install compiles the solver: measured with benchmarks/bench_app.py
-# first-start on two cores (README, "Measured"): the first page's part, in the server, and all of
-# it, the other parts in worker processes (compiling.py).
-FIRST_COMPILE_SECONDS = 8
-ALL_COMPILED_SECONDS = 60
+# A first start after an install compiles the solver: its first page's readout this long after
+# the launch, measured with benchmarks/bench_app.py first-start on two cores (docs/measured.rst);
+# the other parts compile in worker processes meanwhile (compiling.py), each said when ready.
+FIRST_COMPILE_SECONDS = 16
 
 # The parts after the first page's, compiled (or, a later start, loaded) in worker processes
 WORKERS = Workers(SOLVER_READY)
@@ -186,13 +185,12 @@ def prepare_solver() -> None:
     cached = solver_is_cached(seed)
     if not cached:
         log.info(
-            "%s: the first page's part takes about %d s, all %d parts about %d s (pages open "
-            "meanwhile and show their numbers once their part is ready); later starts load it "
-            "from numba's cache",
+            "%s: the first page's numbers take about %d s, then %d more parts follow in worker "
+            "processes (pages open meanwhile and show their numbers once their part is ready); "
+            "later starts load it from numba's cache",
             COMPILING,
             FIRST_COMPILE_SECONDS,
-            len(PARTS),
-            ALL_COMPILED_SECONDS,
+            len(PARTS) - 1,
         )
     started = time.perf_counter()
     seen = windpump.explore(seed, 600.0)

@@ -17,6 +17,7 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
+from .compiling import COMPILE, COMPILING, FIRST_PAGE, PARTS, WIND_TAB, Workers
 from .policy import protect_pages
 from .serving import (
     FILE_READERS,
@@ -35,9 +36,13 @@ from .upload_route import serve_uploads
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
 
-# A first start after an install compiles the solver: measured with benchmarks/bench_app.py
-# first-start on two cores (README, "Measured").
-FIRST_COMPILE_SECONDS = 8
+# A first start after an install compiles the solver: its first page's readout this long after
+# the launch, measured with benchmarks/bench_app.py first-start on two cores (docs/measured.rst);
+# the other parts compile in worker processes meanwhile (compiling.py), each said when ready.
+FIRST_COMPILE_SECONDS = 16
+
+# The parts after the first page's, compiled (or, a later start, loaded) in worker processes
+WORKERS = Workers(SOLVER_READY)
 
 
 # A page's session is built when its HTML is served and lives while its websocket is open. One
@@ -88,17 +93,23 @@ def on_server_loaded(_server_context) -> None:
     if solver_is_cached(windpump.Design.seed_example()):
         prepare_solver()  # loaded from numba's cache in under a second: before answering
         TIDY.settle()  # the solver, Panel and Bokeh frozen: no collection walks them again
-        threading.Thread(target=warm_the_wind_tab, name="warm the Wind tab", daemon=True).start()
+        # a server stopped before its first start's parts were all compiled left them to this one
+        # (each part done is in the cache, and a worker loads it in a second or two)
+        threading.Thread(target=compile_the_rest, name="compile the rest", daemon=True).start()
         return
     # A first start: compile while the server answers, so a page's browser loads meanwhile
-    # (serving.first_run_when_ready runs its design once the solver is ready).
+    # (serving.first_run_when_ready runs its design once the solver is ready), the first page's
+    # part here and the others in worker processes meanwhile (compiling.py).
     SOLVER_READY.clear()
+    COMPILE.begin()
+    threading.Thread(target=compile_the_rest, name="compile the rest", daemon=True).start()
     threading.Thread(target=compile_in_background, name="compile the solver", daemon=True).start()
 
 
 def on_server_unloaded(_server_context) -> None:
-    """When the server stops: no file reader left behind."""
+    """When the server stops: no file reader or compiling worker left behind."""
     FILE_READERS.stop()
+    WORKERS.stop()
 
 
 # What the server's first upload imports to start its reading process (serving.FileReaders)
@@ -133,6 +144,24 @@ def compile_in_background() -> None:
         log.exception("compiling the solver failed")
     finally:
         SOLVER_READY.set()
+        COMPILE.done(FIRST_PAGE)
+
+
+def compile_the_rest() -> None:
+    """Every part after the first page's, in worker processes (``compiling.Workers``), each
+    marked ready as its worker ends; then the Wind tab's first day, loaded from the cache.
+
+    A later start's pages wait for none of them: each part is most likely in the cache already
+    (the workers then only load it), and a page loads it sooner than a worker that gives way to
+    the server; one a server stopped before it was done is compiled in a worker meanwhile."""
+    rest = [part.name for part in PARTS if part.name != FIRST_PAGE]
+    try:
+        WORKERS.run(rest)
+    except Exception:  # no workers (a checkout not installed): the pages compile what they need
+        log.exception("compiling the solver's parts in worker processes failed")
+        for name in rest:
+            COMPILE.ready[name].set()
+    COMPILE.wait(WIND_TAB)
     warm_the_wind_tab()
 
 
@@ -159,10 +188,12 @@ def prepare_solver() -> None:
     cached = solver_is_cached(seed)
     if not cached:
         log.info(
-            "compiling the solver: the first start after an install takes about %d s (pages "
-            "open meanwhile and show their numbers once it is done); later starts load it "
-            "from numba's cache",
+            "%s: the first page's numbers take about %d s, then %d more parts follow in worker "
+            "processes (pages open meanwhile and show their numbers once their part is ready); "
+            "later starts load it from numba's cache",
+            COMPILING,
             FIRST_COMPILE_SECONDS,
+            len(PARTS) - 1,
         )
     started = time.perf_counter()
     seen = windpump.explore(seed, 600.0)

@@ -18,6 +18,7 @@ import param
 
 import windpump
 
+from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE
 from .figures import present
 from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, preset_of
 from .link import (
@@ -55,10 +56,6 @@ T = TypeVar("T", bound=Tab)
 
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 WORKING = "**Running the new design…**"
-COMPILING = (
-    "**Compiling the solver.** The first start after an install compiles it (about 8 s); this "
-    "page's numbers follow as soon as it is done."
-)
 
 
 class Explorer(Session, pn.viewable.Viewer):
@@ -114,7 +111,15 @@ class Explorer(Session, pn.viewable.Viewer):
         if start:
             self.start()
         else:
-            self.readouts.status.object, self.readouts.status.alert_type = COMPILING, "info"
+            self.say_compiling()
+
+    def say_compiling(self) -> None:
+        """The status, while the first page's part of the solver compiles (a first start after
+        an install): how far it is, "Compiling the solver (once after an install): 1 of 5 parts
+        ready" (``serving.first_run_when_ready`` says it again as parts get ready)."""
+        if self.seen is None:
+            status = self.readouts.status
+            status.object, status.alert_type = COMPILE.saying(FIRST_PAGE), "info"
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
@@ -253,7 +258,8 @@ class Explorer(Session, pn.viewable.Viewer):
         status = self.readouts.status
         if working:
             self._status_before = (status.object, status.alert_type)
-            status.object, status.alert_type = WORKING, "info"
+            compiling = "" if self.inputs.design().is_ideal else COMPILE.waiting(REAL_MACHINE)
+            status.object, status.alert_type = compiling or WORKING, "info"
             self._mark_stale(True)
             return
         status.object, status.alert_type = self._status_before

@@ -614,18 +614,26 @@ READOUTS_FIRST = ReadoutsFirst(settled=TIDY.settle, draw=DRAW_AFTER_MOVES.later)
 # Set by default: without the hook (a notebook, the tests) nothing waits.
 SOLVER_READY = threading.Event()
 SOLVER_READY.set()
+COMPILE_PROGRESS_EVERY = 1.0  # [s] how often a waiting page says again how far the compile is
 
 
 def first_run_when_ready(session_id: str, document, explorer) -> Callable:
     """The page's onload callback while the solver compiles: wait for it off the event loop,
-    then, under the document's lock, run the page's first design and go on as a page does.
-    A page closed meanwhile (its session destroyed, its document's callbacks gone) runs
-    nothing: adding a callback to it raised, a traceback in the log for each such page."""
+    saying in the page how far the compile is as its parts get ready
+    (``explorer.say_compiling``), then, under the document's lock, run the page's first design
+    and go on as a page does. A page closed meanwhile (its session destroyed, its document's
+    callbacks gone) runs nothing: adding a callback to it raised, a traceback in the log for
+    each such page."""
     context = getattr(document, "session_context", None)  # None unless served
 
     async def run() -> None:
-        if not SOLVER_READY.is_set():
-            await asyncio.get_running_loop().run_in_executor(None, SOLVER_READY.wait)
+        loop = asyncio.get_running_loop()
+        while not SOLVER_READY.is_set():
+            if context is not None and context.destroyed:
+                return
+            if not await loop.run_in_executor(None, SOLVER_READY.wait, COMPILE_PROGRESS_EVERY):
+                if context is None or not context.destroyed:
+                    document.add_next_tick_callback(explorer.say_compiling)  # still compiling
         if context is not None and context.destroyed:
             return
 

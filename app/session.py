@@ -14,6 +14,7 @@ import param
 import windpump
 
 from . import serving
+from .compiling import COMPILE, REAL_MACHINE
 from .escape import as_text
 from .inputs import FORMATS, SEED, PumpInputs, link_text
 from .styles import TEXT
@@ -206,6 +207,8 @@ def shared_explore(design: windpump.Design, t_end: float, *start: float) -> wind
         seen = SHARED_RUNS.get(key)
     if seen is None:
         serving.mark("run: worked out")
+        if not design.is_ideal:  # a first start compiles it in a worker: not a second time here
+            COMPILE.wait(REAL_MACHINE)
         seen = windpump.explore(design, t_end, *start)
         serving.mark("run: done")
         with SHARING:

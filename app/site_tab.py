@@ -17,6 +17,7 @@ from bokeh.models import ColumnDataSource
 
 import windpump
 
+from .compiling import COMPILE, SITE_TAB
 from .escape import as_text
 from .figures import palette
 from .keyboard import FOCUS_CSS
@@ -57,6 +58,9 @@ CAPTION = (
     "short of water one with any. A month's pumped water cut at the top has its number "
     "written; the tank's water is each day's mean. Dashed: the tank's size, and 5 %."
 )
+
+
+COMPUTING = "**Computing the water at the site…**"
 
 
 def number_text(value: float, unit: str = "", digits: int = 1) -> str:
@@ -106,7 +110,7 @@ class SiteTab(Tab):
         )
         self.error = pn.pane.Alert("", alert_type="danger", visible=False, stylesheets=TEXT)
         self.computing = pn.pane.Alert(
-            "**Computing the water at the site…**",
+            COMPUTING,
             alert_type="info",
             visible=False,
             stylesheets=TEXT,
@@ -158,6 +162,7 @@ class SiteTab(Tab):
         if self.supplied is not None and asked == self._drawn:  # the steady wind V moved
             self.computing.visible = self.error.visible = False
             return
+        self.computing.object = COMPILE.waiting(SITE_TAB) or COMPUTING
         self.computing.visible = True
         if self.supplied is None:  # a first year: the figures get ranges until it comes
             placeholder_year(self.sources, tank_range(asked.tank, math.inf, asked.largest_tank))

@@ -12,6 +12,7 @@ import numpy as np
 
 import windpump
 
+from .compiling import COMPILE, SITE_TAB
 from .site_figures import LOLP_TARGET
 from .site_record import SiteRecords
 
@@ -61,6 +62,7 @@ def run_year(records: SiteRecords, asked: Asked, curve: tuple, tank_5: float) ->
     """The year ``asked`` for, with the smallest tank for 5 % and the loss-of-load curve, each
     recomputed only when what it depends on differs from ``curve`` (the one drawn, whose
     smallest tank is ``tank_5``). A design the year cannot run raises the core's ValueError."""
+    COMPILE.wait(SITE_TAB)  # a first start compiles it in a worker: not a second time here
     design, demand = asked.design, asked.demand
     record = records.at(asked.site, asked.hub)
     rule = dict(restart=asked.restart)

@@ -23,6 +23,7 @@ from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY
 from windpump.wind import gusty, read_csv
 
 from .buttons import ActionButton
+from .compiling import COMPILE, REAL_IN_WIND, WIND_TAB
 from .envelope import band
 from .escape import as_text
 from .figures import palette
@@ -142,6 +143,8 @@ def wind_of(wind: windpump.wind.WindRecord | tuple) -> windpump.wind.WindRecord:
 def run_day(design, record, theta0: float, kick: float) -> tuple:
     """The day in ``record`` and the water its wind gives by the averaged theory: (day, low,
     high), all of it the core's, off the event loop."""
+    # a first start compiles it in a worker: not a second time here
+    COMPILE.wait(WIND_TAB if design.is_ideal else REAL_IN_WIND)
     return (
         windpump.run_in_wind(design, record, theta0, kick),
         *windpump.record_water(design, record),
@@ -307,7 +310,8 @@ class WindTab(Tab):
         if ready is not None and _same_day(run_of, ready[0]):  # run off the loop with its record
             self._draw_day(run_of, source, ready[1])
             return
-        self.day_note.object = self.waiting
+        part = WIND_TAB if design.is_ideal else REAL_IN_WIND
+        self.day_note.object = COMPILE.waiting(part) or self.waiting
         if self.last_run is None:  # a first day: the figures get ranges until it comes
             duration = SECONDS_PER_DAY if self.measured is None else self.measured.t[-1]
             self._placeholder_day(float(duration))

@@ -18,7 +18,9 @@ default; needs Debian's chromium at /usr/bin/chromium)
    the CPU the server and each kind of chromium process used until the last readout.
 5. First start after an install (`first-start`): `panel serve app/` launched with an empty numba
    cache (NUMBA_CACHE_DIR a fresh directory), timed from the launch to the first page's checked
-   readout, then launched again on the cache it left (a later start). Then the seed example's
+   readout; then, in that page, each tab's first use (chosen, to its checked readout or its data
+   drawn) and each preset's first use (chosen, to the mean-flow readout windpump gives for it);
+   then launched again on the cache it left (a later start). Then the seed example's
    first run alone, cold, in a process of its own (import, then explore + power_budget +
    playback_frames as the first page runs them): for this checkout and, with BENCH_BASELINE=<git
    revision>, for that revision's core (extracted with git archive).
@@ -284,12 +286,17 @@ def classroom():
     print(f"   on 2 cores in {readouts[-1]:.0f} s)")
 
 
-def launch_to_readout(browser, cache: str) -> tuple[float, float, float, float]:
+def launch_to_readout(
+    browser, cache: str, uses: dict | None = None
+) -> tuple[float, float, float, float, list]:
     """Seconds from launching `panel serve app/` (numba caching to ``cache``) to its answering,
     and to the first page's checked readout; and the server's CPU seconds by then (a measure a
-    busy machine disturbs less)."""
+    busy machine disturbs less). With ``uses`` (``expected_first_uses()``), then each tab's and
+    each preset's first use in that page: (name, seconds from choosing it to its checked
+    readout, seconds from the launch)."""
     before = os.environ.get("NUMBA_CACHE_DIR")
     os.environ["NUMBA_CACHE_DIR"] = cache  # the server inherits it
+    used = []
     try:
         start = time.perf_counter()
         with served_app(timeout=600) as (url, server):
@@ -302,13 +309,74 @@ def launch_to_readout(browser, cache: str) -> tuple[float, float, float, float]:
                 f"(e) => ({READOUT})() === e", arg=expected_readout(SEED.h), timeout=600_000
             )
             readout, readout_cpu = time.perf_counter() - start, cpu_seconds(server.pid)
+            for name, (choose, check, expected) in (uses or {}).items():
+                chosen = time.perf_counter()
+                choose(page)
+                page.wait_for_function(check, arg=expected, timeout=600_000, polling=POLL_MS)
+                done = time.perf_counter()
+                used.append((name, done - chosen, done - start))
             context.close()
     finally:
         if before is None:
             del os.environ["NUMBA_CACHE_DIR"]
         else:
             os.environ["NUMBA_CACHE_DIR"] = before
-    return up, readout, up_cpu, readout_cpu
+    return up, readout, up_cpu, readout_cpu, used
+
+
+# A readout's text, by its data-name, equal to the expected one (the argument)
+SHOWS = "(([name, e]) => ({DEEP_TEXT})(`[data-name=${{name}}]`) === e)"
+# A readout, by its data-name, shown (the Mechanisms tab's depends on the animation's angle)
+PRESENT = "((name) => ({DEEP_TEXT})(`[data-name=${{name}}]`) !== null)"
+# A named Bokeh data source with rows
+HOLDS = (
+    "(name) => {{ const m = window.Bokeh.documents[0].get_model_by_name(name);"
+    " return m !== null && Object.values(m.data).some((c) => c.length > 0) }}"
+)
+
+
+def tab(name: str):
+    return lambda page: page.get_by_role("tab", name=name, exact=True).click()
+
+
+def preset(name: str):
+    def choose(page):
+        page.get_by_role("tab", name="Wind pump", exact=True).click()
+        page.locator("select").filter(has_text="Choose a preset").select_option(name)
+
+    return choose
+
+
+def expected_first_uses() -> dict:
+    """name -> (what the page does, the check run in it, its argument): each tab chosen, to its
+    readout as windpump gives it (the Design map: its map drawn), then each preset chosen, to
+    its mean-flow readout as windpump gives it. Worked out here before any server starts, so
+    this process's own compiling does not share the cores with the server's."""
+    from windpump.units import LITRES_PER_M3 as LITRES
+    from windpump_app.inputs import PRESETS, PumpInputs
+    from windpump_app.wind_tab import kick_in_wind, run_day, wind_of
+
+    shows = SHOWS.format(DEEP_TEXT=DEEP_TEXT)
+    inputs = PumpInputs()
+    design = inputs.design_at_v_ref()
+    wind = (inputs.mean_wind, inputs.k, inputs.time_scale, int(round(inputs.seed)))
+    day, _low, _high = run_day(
+        design, wind_of(wind), inputs.theta0, kick_in_wind(design, inputs.theta_dot0)
+    )
+    record = windpump.sample_site("greensboro").at_height(10.0)
+    year = windpump.supply(SEED, record, 10.0, 5.0, restart="attended")
+    uses = {
+        "Mechanisms tab": (tab("Mechanisms"), PRESENT.format(DEEP_TEXT=DEEP_TEXT), "slider_crank"),
+        "Wind tab": (tab("Wind"), shows, ["day_litres", f"{LITRES * day.volume:,.0f}"]),
+        "Design map tab": (tab("Design map"), HOLDS.format(), "maptab_here"),
+        "Site tab": (tab("Site"), shows, ["site_lolp", f"{100 * year.lolp:.1f} %"]),
+    }
+    for name, (values, _sentence) in PRESETS.items():
+        chosen = PumpInputs()
+        chosen.param.update(**values)
+        seen = windpump.explore(chosen.design(), chosen.t_end, chosen.theta0, chosen.theta_dot0)
+        uses[f"preset: {name}"] = (preset(name), shows, ["mean_flow", readout_text(seen)])
+    return uses
 
 
 # The first page's runs, alone, timed in a process of its own (wall and CPU seconds).
@@ -354,18 +422,26 @@ def baseline_core(revision: str, into: Path) -> Path:
 def first_start():
     # A browser's first page after its launch costs it ~1 s more than later pages; an instructor's
     # browser is usually open already: both are timed, each with an empty numba cache.
+    uses = expected_first_uses()
     with a_browser() as browser, tempfile.TemporaryDirectory() as cache:
         starts = {"first start, browser just launched": launch_to_readout(browser, cache)}
         with tempfile.TemporaryDirectory() as fresh:
-            starts["first start, browser already open"] = launch_to_readout(browser, fresh)
-        starts["later start"] = launch_to_readout(browser, cache)
+            starts["first start, browser already open"] = launch_to_readout(browser, fresh, uses)
+            # on the cache the first uses filled (the first start's, stopped after its first page,
+            # has only the parts done by then: its next start compiles the rest)
+            starts["later start"] = launch_to_readout(browser, fresh, uses)
     print("5. first start after an install: `panel serve app/` launched with an empty numba cache")
     print("   from the launch: answering, first page's checked readout (the server's CPU by then)")
-    for name, (up, readout, up_cpu, readout_cpu) in starts.items():
+    for name, (up, readout, up_cpu, readout_cpu, _used) in starts.items():
         print(
             f"   {name:34s} answering {up:5.1f} s ({up_cpu:4.1f} s of CPU), readout {readout:5.1f} s"
             f" ({readout_cpu:4.1f} s of CPU)"
         )
+    for name in ("first start, browser already open", "later start"):
+        print(f"   {name}: each first use after the first page, in order (readouts checked)")
+        print(f"   {'':40s}{'chosen to shown':>16s}{'from launch':>13s}")
+        for use, took, since_launch in starts[name][4]:
+            print(f"   {use:40s}{took:14.1f} s{since_launch:11.1f} s")
     print("   the first page's runs alone, cold, in a process of their own:")
     cores = {"this checkout": Path(__file__).resolve().parents[1] / "core"}
     with tempfile.TemporaryDirectory() as extracted:

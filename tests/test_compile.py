@@ -143,3 +143,114 @@ def test_a_first_start_answers_while_it_compiles_and_its_first_page_gets_its_num
             page.close()
         assert "solver compiled in" in server_log(server)
         assert "Traceback" not in server_log(server)
+
+
+# -- a first start in parts (app/compiling.py) ---------------------------------------------------
+
+
+@pytest.fixture
+def compiling():
+    """The app's record of which parts of the solver are ready, every part ready again after."""
+    from windpump_app.compiling import COMPILE
+
+    yield COMPILE
+    for name in COMPILE.names:
+        COMPILE.ready[name].set()
+
+
+def test_the_terminal_says_how_many_parts_are_ready(compiling, caplog):
+    """Each part done is said with how far the compile is: "2 of 5 parts ready"."""
+    from windpump_app.compiling import FIRST_PAGE, PARTS, SITE_TAB, WIND_TAB
+
+    compiling.begin()
+    assert (
+        compiling.progress()
+        == f"compiling the solver (once after an install): 0 of {len(PARTS)} parts ready"
+    )
+    with caplog.at_level(logging.INFO, logger="windpump.app"):
+        compiling.done(FIRST_PAGE, 7.5)
+        compiling.done(WIND_TAB)
+    lines = [record.getMessage() for record in caplog.records]
+    assert lines == [
+        f"compiling the solver (once after an install): 1 of {len(PARTS)} parts ready: "
+        "the first page ready in 7.5 s",
+        f"compiling the solver (once after an install): 2 of {len(PARTS)} parts ready: "
+        "the Wind tab ready",
+    ]
+    assert compiling.waiting(WIND_TAB) == ""
+    assert compiling.waiting(SITE_TAB).startswith(
+        f"**Compiling the solver (once after an install): 2 of {len(PARTS)} parts ready.**"
+    )
+
+
+def test_a_waiting_page_says_how_far_the_compile_is(compiling):
+    """A first start's page (start=False) says "compiling the solver" with its progress, again as
+    parts get ready (serving.first_run_when_ready calls say_compiling), until its first run."""
+    from windpump_app.compiling import FIRST_PAGE, PARTS, REAL_MACHINE
+    from windpump_app.explorer import Explorer
+
+    compiling.begin()
+    page = Explorer(start=False)
+    status = page.readouts.status
+    assert f"once after an install): 0 of {len(PARTS)} parts ready" in status.object
+    compiling.done(REAL_MACHINE)
+    page.say_compiling()
+    assert f"once after an install): 1 of {len(PARTS)} parts ready" in status.object
+    compiling.done(FIRST_PAGE)
+    page.start()
+    assert "Compiling" not in status.object and page.seen is not None
+
+
+@pytest.mark.parametrize("tab, part", [(2, "the Wind tab"), (4, "the Site tab")])
+def test_a_tab_whose_part_compiles_says_so_and_waits_for_it(compiling, tab, part):
+    """The Wind and Site tabs opened while their part compiles in a worker say so instead of a bare
+    "…", and run once it is ready, not compiling it a second time meanwhile."""
+    import threading
+
+    import windpump
+    from windpump_app.explorer import Explorer
+
+    page = Explorer()
+    compiling.begin([part])
+    opened = threading.Thread(target=lambda: setattr(page.main(), "active", tab), daemon=True)
+    opened.start()
+    tab_of, name = (page.wind_tab, "day_note") if tab == 2 else (page.site_tab, "computing")
+
+    def said() -> str:  # the tab's word while its day or year runs (built by the thread)
+        return str(getattr(getattr(tab_of, name, None), "object", ""))
+
+    deadline = time.monotonic() + 120
+    while "Compiling the solver" not in said() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert "Compiling the solver (once after an install): " in said()
+    assert f"once its part ({part}) is ready" in said()
+    time.sleep(0.5)
+    assert opened.is_alive()  # waiting for the part
+    compiling.done(part)
+    opened.join(timeout=300)
+    assert not opened.is_alive()
+    if tab == 2:
+        assert "Integrated in full over a gusty day" in page.wind_tab.day_note.object
+    else:
+        record = windpump.sample_site("greensboro").at_height(10.0)
+        year = windpump.supply(
+            windpump.Design.seed_example(), record, 10.0, 5.0, restart="attended"
+        )
+        assert page.site_tab.supplied.lolp == year.lolp and not page.site_tab.computing.visible
+
+
+def test_a_worker_process_writes_its_part_to_numbas_cache(compiling, monkeypatch, tmp_path):
+    """A part compiled in a worker process (spawned, with the server's NUMBA_CACHE_DIR) is in the
+    cache once it is marked ready, where the server loads it from."""
+    import threading
+
+    from windpump_app.compiling import SITE_TAB, Workers
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))  # the worker inherits it
+    compiling.begin([SITE_TAB])
+    first_done = threading.Event()
+    first_done.set()
+    Workers(first_done, processes=1).run([SITE_TAB])
+    assert compiling.ready[SITE_TAB].is_set()
+    indexes = {path.name.split(".")[1].split("-")[0] for path in tmp_path.rglob("supply.*.nbi")}
+    assert {"shortfall_map", "balance"} <= indexes

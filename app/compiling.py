@@ -1,0 +1,256 @@
+"""The solver compiled in parts, in the order a page needs them, on a first start after an
+install (an empty numba cache): the first page's kernels in the server itself, the rest in worker
+processes that write numba's on-disk cache, from which the server loads each part once it is
+ready. A page that needs a part still compiling waits for it (``COMPILE.wait``) rather than
+compiling it a second time, and says so (``COMPILE.progress``).
+
+Measured on a fresh cache (benchmarks/bench_app.py first-start; README, "Measured"): the first
+page's driver, the real machine's (the deep-well and leak-hole presets) and the Wind tab's are
+each a compile of their own of the driver, of 10-25 s of CPU each; the Site tab's year ~3 s. A
+part compiled in a worker is written to the cache when it is done: a server stopped meanwhile
+keeps every part done, and the next start compiles only the others.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import os
+import threading
+import time
+from collections.abc import Callable
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from multiprocessing import get_context
+
+log = logging.getLogger("windpump.app")
+
+COMPILING = "compiling the solver (once after an install)"
+
+
+# -- the parts, each run in a worker process (module-level functions: spawned workers import them)
+
+
+def first_page() -> None:
+    """What a first page runs: the paper's example, its energy budget and its animation."""
+    import windpump
+
+    seen = windpump.explore(windpump.Design.seed_example(), 600.0)
+    windpump.power_budget(seen.run).cycle_means()
+    windpump.playback_frames(seen.run)
+
+
+def real_machine() -> None:
+    """What the presets with a real machine run (a deep well's rod and rising main, a leak
+    hole): the driver compiled for the real machine, and the leak hole's flow."""
+    import windpump
+
+    from .inputs import PRESETS, PumpInputs
+
+    for name in ("A deep well with a heavy pump rod", "A leak hole lets it start"):
+        inputs = PumpInputs()
+        inputs.param.update(**PRESETS[name][0])
+        seen = windpump.explore(inputs.design(), inputs.t_end, inputs.theta0, inputs.theta_dot0)
+        seen.volumetric_efficiency  # noqa: B018 (the leak hole's flow, worked out on reading)
+        windpump.power_budget(seen.run).cycle_means()
+        windpump.playback_frames(seen.run)
+
+
+def wind_tab() -> None:
+    """What a first Wind tab runs (``wind_tab.warm_up``): a gusty day in full."""
+    from .inputs import PumpInputs
+    from .wind_tab import warm_up
+
+    warm_up(PumpInputs())
+
+
+def real_in_wind() -> None:
+    """What the Wind tab runs for a preset with a real machine (its own compile of the driver,
+    as long as the real machine's): the deep well's gusty day."""
+    from .inputs import PRESETS, PumpInputs
+    from .wind_tab import warm_up
+
+    inputs = PumpInputs()
+    inputs.param.update(**PRESETS["A deep well with a heavy pump rod"][0])
+    warm_up(inputs)
+
+
+def site_tab() -> None:
+    """What a first Site tab runs: the year at the sample site, its tank for 5 % and its
+    loss-of-load curve (``site_year.run_year``)."""
+    import numpy as np
+
+    import windpump
+
+    from .inputs import PumpInputs
+    from .site_figures import LOLP_TARGET
+    from .site_inputs import SiteInputs
+    from .site_year import TANKS
+
+    design, site = PumpInputs().design_at_v_ref(), SiteInputs()
+    record = windpump.sample_site(site.site).at_height(site.hub)
+    rule = dict(restart=site.restart)
+    windpump.tank_for(design, record, site.demand, LOLP_TARGET, **rule)
+    tanks = np.linspace(0.0, 20.0, TANKS)
+    windpump.supply_map(design, record, site.demand, [design.R_dagger], tanks, **rule)
+    windpump.supply(design, record, site.demand, site.tank, **rule)
+
+
+@dataclasses.dataclass(frozen=True)
+class Part:
+    name: str  # as the page and the terminal say it
+    run: Callable[[], None]
+
+
+FIRST_PAGE, REAL_MACHINE = "the first page", "the real machine"
+WIND_TAB, SITE_TAB, REAL_IN_WIND = "the Wind tab", "the Site tab", "the real machine in wind"
+# In the order a page needs them: the first page (in the server), then, in workers, the Wind tab
+# (the first worker's, beside the first page: with the presets' real machine first it came 46 s
+# after the first page), the presets' real machine (the longest compile), the Site tab, and the
+# Wind tab's day of a preset with a real machine (a fourth compile of the driver).
+PARTS = (
+    Part(FIRST_PAGE, first_page),
+    Part(WIND_TAB, wind_tab),
+    Part(REAL_MACHINE, real_machine),
+    Part(SITE_TAB, site_tab),
+    Part(REAL_IN_WIND, real_in_wind),
+)
+
+
+def run_part(name: str, parent: int) -> float:
+    """Run part ``name`` in this worker process (numba writes what it compiles to its cache); the
+    seconds it took. The worker ends with the server (``parent``), whatever stops it, and gives
+    way to it (``WORKER_NICENESS``): the server's first page and its pages' moves come first."""
+    watch_parent(parent)
+    started = time.perf_counter()
+    next(part for part in PARTS if part.name == name).run()
+    return time.perf_counter() - started
+
+
+def watch_parent(parent: int) -> None:
+    """End this process (``os._exit``) once ``parent`` is gone: a server killed mid-compile
+    leaves no worker behind."""
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(0)
+
+    if not any(thread.name == "watch the server" for thread in threading.enumerate()):
+        threading.Thread(target=watch, name="watch the server", daemon=True).start()
+        os.nice(WORKER_NICENESS)
+
+
+# A worker's nice value over the server's: on two cores, one compiling the first page's part in
+# the server, it takes the other core, but not from the server's pages.
+WORKER_NICENESS = 10
+
+
+def installed_run_part() -> Callable[[str, int], float]:
+    """``run_part`` as a spawned worker imports it: from the installed ``windpump_app`` (served,
+    Bokeh runs this folder as a package of a made-up name no other process can import), which
+    must be this very file (an editable install, or ``pip install .`` of this checkout)."""
+    from windpump_app import compiling
+
+    if os.path.realpath(compiling.__file__) != os.path.realpath(__file__):
+        raise RuntimeError(f"windpump_app is installed from {compiling.__file__}, not {__file__}")
+    return compiling.run_part
+
+
+class Compile:
+    """Which parts of the solver are ready: all of them unless a first start compiles them
+    (``begin``). ``wait(name)`` blocks until part ``name`` is ready; ``progress()`` says how far
+    the compile is ("compiling the solver (once after an install): 2 of 5 parts ready"), or ""
+    once every part is ready."""
+
+    def __init__(self, parts=PARTS):
+        self.names = [part.name for part in parts]
+        self.ready = {name: threading.Event() for name in self.names}
+        for event in self.ready.values():
+            event.set()
+
+    def begin(self, names=None) -> None:
+        """Parts ``names`` (all of them by default) are being compiled."""
+        for name in self.names if names is None else names:
+            self.ready[name].clear()
+
+    def done(self, name: str, seconds: float | None = None) -> None:
+        self.ready[name].set()
+        took = "" if seconds is None else f" in {seconds:.1f} s"
+        log.info("%s: %s ready%s", self.progress() or COMPILING, name, took)
+
+    def count(self) -> int:
+        return sum(event.is_set() for event in self.ready.values())
+
+    def progress(self) -> str:
+        if self.count() == len(self.names):
+            return ""
+        return f"{COMPILING}: {self.count()} of {len(self.names)} parts ready"
+
+    def wait(self, name: str) -> None:
+        self.ready[name].wait()
+
+    def waiting(self, name: str) -> str:
+        """What a page says while part ``name`` is compiling (Markdown), or "" once it is ready:
+        "**Compiling the solver (once after an install): 1 of 5 parts ready.** These numbers
+        follow once its part (the Wind tab) is ready." """
+        return "" if self.ready[name].is_set() else self.saying(name)
+
+    def saying(self, name: str) -> str:
+        """What ``waiting(name)`` says while part ``name`` compiles, whether or not it does."""
+        progress = self.progress() or COMPILING
+        return (
+            f"**{progress[0].upper()}{progress[1:]}.** These numbers follow once its part "
+            f"({name}) is ready."
+        )
+
+
+COMPILE = Compile()
+
+
+class Workers:
+    """Parts compiled in worker processes (spawned: a fresh interpreter each, with the server's
+    environment and its NUMBA_CACHE_DIR), in order, one at a time while the server compiles the
+    first page on one core, two at a time once it is done (two cores)."""
+
+    def __init__(self, first_done: threading.Event, processes: int = 2):
+        self.first_done = first_done
+        self.processes = processes
+        self.pool: ProcessPoolExecutor | None = None
+        self.stopped = False
+
+    def run(self, names: list[str]) -> None:
+        """Compile parts ``names`` (marked not ready by COMPILE.begin), each marked ready when
+        its worker is done; a part whose worker failed is marked ready too (a page then compiles
+        what it needs itself)."""
+        run = installed_run_part()
+        self.pool = ProcessPoolExecutor(self.processes, mp_context=get_context("spawn"))
+        pending, running = list(names), {}
+        try:
+            while (pending or running) and not self.stopped:
+                limit = self.processes if self.first_done.is_set() else 1
+                while pending and len(running) < limit:
+                    name = pending.pop(0)
+                    running[self.pool.submit(run, name, os.getpid())] = name
+                finished, _ = wait(list(running), timeout=0.5, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    self.finished(running.pop(future), future)
+        finally:
+            for name in pending + list(running.values()):
+                COMPILE.ready[name].set()  # never leave a page waiting
+            self.pool.shutdown(wait=False, cancel_futures=True)
+
+    def finished(self, name: str, future: Future) -> None:
+        try:
+            seconds = future.result()
+        except Exception:
+            log.exception("compiling %s in a worker failed", name)
+            seconds = None
+        COMPILE.done(name, seconds)
+
+    def stop(self) -> None:
+        """End the workers now (the server stops): a part under way is compiled again next time."""
+        self.stopped = True
+        if self.pool is not None:
+            for process in list(getattr(self.pool, "_processes", {}).values()):
+                process.terminate()
+            self.pool.shutdown(wait=False, cancel_futures=True)

@@ -17,7 +17,15 @@ from tornado.web import GZipContentEncoding
 import windpump
 from windpump.dynamics import solver_is_cached
 
-from .compiling import COMPILE, COMPILING, FIRST_PAGE, PARTS, WIND_TAB, Workers
+from .compiling import (
+    COMPILE,
+    COMPILING,
+    FIRST_PAGE,
+    PARTS,
+    WIND_TAB,
+    Workers,
+    compiled_parts,
+)
 from .policy import protect_pages
 from .serving import (
     FILE_READERS,
@@ -153,8 +161,14 @@ def compile_the_rest() -> None:
 
     A later start's pages wait for none of them: each part is most likely in the cache already
     (the workers then only load it), and a page loads it sooner than a worker that gives way to
-    the server; one a server stopped before it was done is compiled in a worker meanwhile."""
-    rest = [part.name for part in PARTS if part.name != FIRST_PAGE]
+    the server; one a server stopped before it was done is compiled in a worker meanwhile.
+    The parts a worker compiled for this very source (``compiling.compiled_parts``) run in no
+    worker again: loading them cost every start seconds of CPU (every test's server, every
+    process behind the proxy)."""
+    done = compiled_parts() - {FIRST_PAGE}
+    for name in done:
+        COMPILE.ready[name].set()  # in numba's cache: a page loads it in a second or two
+    rest = [part.name for part in PARTS if part.name not in done | {FIRST_PAGE}]
     try:
         WORKERS.run(rest)
     except Exception:  # no workers (a checkout not installed): the pages compile what they need

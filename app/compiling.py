@@ -14,6 +14,8 @@ keeps every part done, and the next start compiles only the others.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
+import json
 import logging
 import os
 import threading
@@ -21,6 +23,7 @@ import time
 from collections.abc import Callable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from multiprocessing import get_context
+from pathlib import Path
 
 log = logging.getLogger("windpump.app")
 
@@ -123,6 +126,7 @@ def run_part(name: str, parent: int) -> float:
     watch_parent(parent)
     started = time.perf_counter()
     next(part for part in PARTS if part.name == name).run()
+    record_compiled(name)  # in this process's cache (the server's, by its NUMBA_CACHE_DIR)
     return time.perf_counter() - started
 
 
@@ -154,6 +158,71 @@ def installed_run_part() -> Callable[[str, int], float]:
     if os.path.realpath(compiling.__file__) != os.path.realpath(__file__):
         raise RuntimeError(f"windpump_app is installed from {compiling.__file__}, not {__file__}")
     return compiling.run_part
+
+
+# -- which parts a worker has compiled into numba's cache, for the source it compiled
+
+PARTS_FILE = "windpump-parts-compiled.json"
+
+
+def source_stamp() -> str:
+    """A digest of the solver's source files (path, size, modification time, as numba stamps a
+    cached kernel's source) and numba's version: a part recorded under another stamp is stale."""
+    import numba
+
+    import windpump
+
+    digest = hashlib.sha256(numba.__version__.encode())
+    for path in sorted(Path(windpump.__file__).parent.rglob("*.py")):
+        stat = path.stat()
+        digest.update(f"{path}:{stat.st_size}:{stat.st_mtime_ns}".encode())
+    return digest.hexdigest()
+
+
+def parts_file() -> Path | None:
+    """Where the parts compiled are recorded: beside the driver's cache (numba's private cache
+    API; None when it has changed or caching is off, and then every start runs the workers)."""
+    try:
+        from windpump._kernels import driver
+
+        return Path(driver.integrate._cache._cache_path) / PARTS_FILE
+    except Exception:
+        return None
+
+
+def compiled_parts() -> set[str]:
+    """The parts a worker compiled into the cache for this very source (``record_compiled``)."""
+    where = parts_file()
+    try:
+        recorded = json.loads(where.read_text()) if where else {}
+    except (OSError, ValueError):
+        return set()
+    stamp = source_stamp()
+    return (
+        {name for name, its in recorded.items() if its == stamp}
+        if isinstance(recorded, dict)
+        else set()
+    )
+
+
+def record_compiled(name: str) -> None:
+    """Record that part ``name`` is in numba's cache for this source, so a later start runs no
+    worker for it (a worker only loading a part cost every start seconds of CPU)."""
+    where = parts_file()
+    if where is None:
+        return
+    try:
+        recorded = json.loads(where.read_text())
+    except (OSError, ValueError):
+        recorded = {}
+    recorded = recorded if isinstance(recorded, dict) else {}
+    recorded[name] = source_stamp()
+    try:
+        temporary = where.with_suffix(f".{os.getpid()}.tmp")
+        temporary.write_text(json.dumps(recorded))
+        temporary.replace(where)  # whole or not at all
+    except OSError:
+        pass  # not recorded: the next start's worker loads it from the cache
 
 
 class Compile:
@@ -222,6 +291,8 @@ class Workers:
         """Compile parts ``names`` (marked not ready by COMPILE.begin), each marked ready when
         its worker is done; a part whose worker failed is marked ready too (a page then compiles
         what it needs itself)."""
+        if not names:
+            return
         run = installed_run_part()
         self.pool = ProcessPoolExecutor(self.processes, mp_context=get_context("spawn"))
         pending, running = list(names), {}

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pytest
 
+PARTS_FILE = "windpump-parts-compiled.json"  # compiling.PARTS_FILE
+
 # Run in a process of its own with an empty cache: with a warm one numba loads the driver from
 # disk and compiles nothing, so there would be nothing to count.
 COMPILE_SEED = """
@@ -254,3 +256,29 @@ def test_a_worker_process_writes_its_part_to_numbas_cache(compiling, monkeypatch
     assert compiling.ready[SITE_TAB].is_set()
     indexes = {path.name.split(".")[1].split("-")[0] for path in tmp_path.rglob("supply.*.nbi")}
     assert {"shortfall_map", "balance"} <= indexes
+    (recorded,) = tmp_path.rglob(PARTS_FILE)  # beside the driver's cache, by the worker
+    assert SITE_TAB in json.loads(recorded.read_text())
+
+
+def test_a_later_start_runs_no_worker_for_a_part_compiled_for_this_source(
+    compiling, monkeypatch, tmp_path
+):
+    """A part a worker recorded for this very source is ready at once on a later start and runs
+    in no worker (loading it cost every start seconds of CPU); recorded for other source (numba
+    recompiles then), it runs again."""
+    from windpump_app import app_hooks
+    from windpump_app import compiling as parts
+
+    monkeypatch.setattr(parts, "parts_file", lambda: tmp_path / PARTS_FILE)
+    sent = []
+    monkeypatch.setattr(app_hooks.WORKERS, "run", sent.extend)
+    monkeypatch.setattr(app_hooks, "warm_the_wind_tab", lambda: None)
+    for name in (parts.WIND_TAB, parts.SITE_TAB):
+        parts.record_compiled(name)
+    rest = [part.name for part in parts.PARTS if part.name != parts.FIRST_PAGE]
+    compiling.begin(rest)
+    app_hooks.compile_the_rest()
+    assert sent == [name for name in rest if name not in (parts.WIND_TAB, parts.SITE_TAB)]
+    assert compiling.ready[parts.WIND_TAB].is_set() and compiling.ready[parts.SITE_TAB].is_set()
+    monkeypatch.setattr(parts, "source_stamp", lambda: "another source")
+    assert parts.compiled_parts() == set()

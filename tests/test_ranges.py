@@ -536,3 +536,15 @@ def test_a_numeric_map_of_a_light_rotor_is_refused_before_any_run_with_the_advic
     message = str(caught.value)
     assert caught.value.name == "design" and "increase I0 or I1" in message, message
     assert "gear ratio 4" in message
+
+
+def test_a_pump_with_no_head_runs_in_any_wind_even_when_its_roots_underflow():
+    # hypothesis seed 12: delta^2 and its wind slope both underflowed (kappa ~ 1e-160 under a
+    # 1e-12 m main), and V_stop was 0/0 = NaN. With no load the averaged F = a1 alpha -
+    # (b + c) alpha^2 is positive just above rest in any wind: V_stop = 0.
+    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642324.732643, A=1e12, I0=1e-12,
+                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=0.0, rho_w=1.0, g=1e-12, V_ref=1e-12,
+                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    assert windpump.wind_thresholds(design) == (0.0, None)
+    low, high = windpump.water_per_day(design, 1e-3, 0.5)
+    assert 0.0 <= low <= high and math.isfinite(high)

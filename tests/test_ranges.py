@@ -273,14 +273,12 @@ def test_a_main_that_dwarfs_the_windmill_has_the_closed_form_time_constant():
     assert a_minus == 0.0 and 0.0 < a_plus < design.omega_m / design.R_dagger
 
 
-def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
-    # D_main = 1e-12 m raised ZeroDivisionError. V_stop is where the averaged F's roots meet:
-    # (a1 s)^2 = 4 (b + c) M with a1 s the slope at rest in the wind s = V / V_ref, b the
-    # windmill's curvature, c the main's mean friction load per alpha^2 (by quadrature here).
+def quadrature_stop_wind(design: Design) -> float:
+    """V_stop [m/s] where the averaged F's roots meet, T_0 = 0: (a1 s)^2 = 4 (b + c) M with a1 s
+    the slope at rest in the wind s = V / V_ref, b the windmill's curvature, c the main's mean
+    friction load per alpha^2 (by quadrature here)."""
     from scipy import integrate
 
-    design = SEED.replace(L_main=1.0, D_main=1e-12)
-    V_stop, V_start = windpump.wind_thresholds(design)
     a_main = math.pi / 4 * design.D_main**2
     K = design.f_main * design.L_main / design.D_main / (2 * design.g * a_main**2)
     ratio = design.L / design.R
@@ -292,9 +290,27 @@ def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
     mean_cube = integrate.quad(cubed_lever, math.pi, 2 * math.pi, epsrel=1e-12)[0] / (2 * math.pi)
     AR = design.A * design.R
     c = design.rho_w * design.g * K * AR**3 * mean_cube
-    b = design.R_dagger**3 * design.T_m / design.omega_m**2
-    s = math.sqrt(4.0 * (b + c) * design.mean_load_torque) / windmill_slope(design)
-    assert V_start is None and V_stop == pytest.approx(design.V_ref * s, rel=1e-9)
+    b = design.eta_t * design.R_dagger**3 * design.T_m / design.omega_m**2
+    s = 2.0 * math.sqrt(design.mean_load_torque / (b + c)) * (b + c) / windmill_slope(design)
+    return design.V_ref * s
+
+
+def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
+    # D_main = 1e-12 m raised ZeroDivisionError
+    design = SEED.replace(L_main=1.0, D_main=1e-12)
+    V_stop, V_start = windpump.wind_thresholds(design)
+    assert V_start is None and V_stop == pytest.approx(quadrature_stop_wind(design), rel=1e-9)
+
+
+def test_the_stop_wind_under_a_main_whose_roots_underflow_is_the_quadrature_one():
+    # hypothesis seed 12: kappa = b / (b + c) ~ 1e-186, delta^2 and its wind slope ~kappa^2
+    # underflowed and V_stop was inf; it is 1.25e92 m/s (far past any wind: it never runs)
+    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642317.0 * 1.5, A=1e12, I0=1e-12,
+                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=1e-12, rho_w=1.0, g=1e-12, V_ref=1e-12,
+                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    V_stop, V_start = windpump.wind_thresholds(design)
+    assert V_start is None and V_stop == pytest.approx(quadrature_stop_wind(design), rel=1e-9)
+    assert windpump.water_per_day(design, 150.0) == (0.0, 0.0)
 
 
 @pytest.mark.parametrize("h", [1e6, 1e12])

@@ -564,3 +564,31 @@ def test_a_pump_with_no_head_runs_in_any_wind_even_when_its_roots_underflow():
     assert windpump.wind_thresholds(design) == (0.0, None)
     low, high = windpump.water_per_day(design, 1e-3, 0.5)
     assert 0.0 <= low <= high and math.isfinite(high)
+
+
+def test_a_kick_far_below_the_unstable_speed_decays_from_the_kick():
+    # hypothesis seed 14: a- = 5.5e16 rad/s, a kick of 3 rad/s: spinup said -8 rad/s at t = 0
+    # (a- less a number near a-). Against Eq. (24) in 50 digits from the design's numbers.
+    import mpmath
+
+    design = Design(R0=1e-4, R1=1e-12, R=1.0, L=1.000000001, A=100.0, I0=1e-12, I1=1e-12,
+                    T_m=1e12, omega_m=3162277660.1683793, h=10.0, rho_w=1.0, g=1.0, V_ref=1e-12,
+                    eta_t=0.1)  # fmt: skip
+    mpmath.mp.dps = 50
+    R, eta, T_m, w = (mpmath.mpf(x) for x in (design.R_dagger, 0.1, 1e12, design.omega_m))
+    M = mpmath.mpf(design.rho_w * design.g) * design.h * design.A * design.R / mpmath.pi
+    I_eff = mpmath.mpf(design.I1) + mpmath.mpf(design.I0) * R**2
+    p = w / R
+    delta = mpmath.sqrt(p**2 * (eta * R * T_m - M) / (eta * R * T_m))
+    k = eta * R**3 * T_m / (I_eff * w**2)
+    a_plus, a_minus = p + delta, p - delta
+    kick = mpmath.mpf(3)
+    t_stall = mpmath.log((a_plus - kick) / (a_minus - kick) * a_minus / a_plus) / (
+        k * (a_plus - a_minus)
+    )
+    times = [0.0, float(t_stall) * 1e-6, float(t_stall) / 2, float(t_stall) * 0.999]
+    speeds = windpump.spinup(design, times, 3.0)
+    for t, speed in zip(times, speeds, strict=True):
+        y = (kick - a_minus) / (a_plus - kick) * mpmath.exp(k * (a_plus - a_minus) * t)
+        expected = (a_minus + a_plus * y) / (1 + y)
+        assert speed == pytest.approx(float(expected), rel=1e-6, abs=1e-9 * 3.0), (t, speed)

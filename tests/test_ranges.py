@@ -273,14 +273,12 @@ def test_a_main_that_dwarfs_the_windmill_has_the_closed_form_time_constant():
     assert a_minus == 0.0 and 0.0 < a_plus < design.omega_m / design.R_dagger
 
 
-def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
-    # D_main = 1e-12 m raised ZeroDivisionError. V_stop is where the averaged F's roots meet:
-    # (a1 s)^2 = 4 (b + c) M with a1 s the slope at rest in the wind s = V / V_ref, b the
-    # windmill's curvature, c the main's mean friction load per alpha^2 (by quadrature here).
+def quadrature_stop_wind(design: Design) -> float:
+    """V_stop [m/s] where the averaged F's roots meet, T_0 = 0: (a1 s)^2 = 4 (b + c) M with a1 s
+    the slope at rest in the wind s = V / V_ref, b the windmill's curvature, c the main's mean
+    friction load per alpha^2 (by quadrature here)."""
     from scipy import integrate
 
-    design = SEED.replace(L_main=1.0, D_main=1e-12)
-    V_stop, V_start = windpump.wind_thresholds(design)
     a_main = math.pi / 4 * design.D_main**2
     K = design.f_main * design.L_main / design.D_main / (2 * design.g * a_main**2)
     ratio = design.L / design.R
@@ -292,9 +290,27 @@ def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
     mean_cube = integrate.quad(cubed_lever, math.pi, 2 * math.pi, epsrel=1e-12)[0] / (2 * math.pi)
     AR = design.A * design.R
     c = design.rho_w * design.g * K * AR**3 * mean_cube
-    b = design.R_dagger**3 * design.T_m / design.omega_m**2
-    s = math.sqrt(4.0 * (b + c) * design.mean_load_torque) / windmill_slope(design)
-    assert V_start is None and V_stop == pytest.approx(design.V_ref * s, rel=1e-9)
+    b = design.eta_t * design.R_dagger**3 * design.T_m / design.omega_m**2
+    s = 2.0 * math.sqrt(design.mean_load_torque / (b + c)) * (b + c) / windmill_slope(design)
+    return design.V_ref * s
+
+
+def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
+    # D_main = 1e-12 m raised ZeroDivisionError
+    design = SEED.replace(L_main=1.0, D_main=1e-12)
+    V_stop, V_start = windpump.wind_thresholds(design)
+    assert V_start is None and V_stop == pytest.approx(quadrature_stop_wind(design), rel=1e-9)
+
+
+def test_the_stop_wind_under_a_main_whose_roots_underflow_is_the_quadrature_one():
+    # hypothesis seed 12: kappa = b / (b + c) ~ 1e-186, delta^2 and its wind slope ~kappa^2
+    # underflowed and V_stop was inf; it is 1.25e92 m/s (far past any wind: it never runs)
+    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642317.0 * 1.5, A=1e12, I0=1e-12,
+                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=1e-12, rho_w=1.0, g=1e-12, V_ref=1e-12,
+                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    V_stop, V_start = windpump.wind_thresholds(design)
+    assert V_start is None and V_stop == pytest.approx(quadrature_stop_wind(design), rel=1e-9)
+    assert windpump.water_per_day(design, 150.0) == (0.0, 0.0)
 
 
 @pytest.mark.parametrize("h", [1e6, 1e12])
@@ -405,3 +421,174 @@ def test_a_spinup_with_torque_at_rest_beating_the_load_follows_the_riccati_equat
     tau = windpump.time_constant(extreme)
     speeds = windpump.spinup(extreme, [0.0, 1.0, 1e6, tau, 10 * tau], 3.0)
     assert speeds[0] == 3.0 and np.all(np.diff(speeds) > 0.0), speeds
+
+
+# Designs too stiff or too slow to integrate: refused after a bounded amount of work ------------
+
+# (design, t_end [s], theta_dot0 [rad/s], words the advice must hold); found by hypothesis in the
+# documented ranges, each refused only after MAX_STEPS (2e7) steps before, 15-35 s
+TOO_STIFF = {
+    "a light rotor with a leak hole": (
+        SEED.replace(I0=1e-4, I1=1e-4, d_leak=0.004), 600.0, 3.0, ("leak hole", "d_leak")),
+    "a light, overloaded rotor (it stalls, margin 2e-4)": (
+        Design(R0=6.247e11, R1=0.6247, R=9.025e11, L=1e12, A=1e-12, I0=9.505e11, I1=1e-12,
+               T_m=7.003e11, omega_m=1e-12, h=1e-12, rho_w=10758.0, g=1e12, f_main=0.058,
+               L_main=1e-12, D_main=1e12),
+        2.0, 3.0, ("increase I0 or I1",)),
+    "a crushing head on a leaky rotor": (
+        Design(R0=19967.2, R1=1e12, R=9.65e11, L=1e12, A=1e12, I0=1.746e-5, I1=1e-12, T_m=1.0,
+               omega_m=62.38, h=1e12, rho_w=2e4, g=2.737e10, cylinders=2, double_acting=True,
+               T_0=1e-20, V_ref=2.03e-10, f_main=0.2, D_main=84579.0, d_leak=1.128e6,
+               Cd_leak=0.2079),
+        2.0, 3.0, ("leak hole", "a lower head h")),
+    "a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s": (
+        Design(R0=1e-12, R1=1.0, R=0.00284, L=0.00426, A=1.0, I0=0.34, I1=1e12, T_m=1e-12,
+               omega_m=1e-12, h=0.0, rho_w=11715.0, g=4.81e11, T_0=5e-13, V_ref=65.15,
+               m_r=5.72e11, eta_t=0.486, L_main=1e12, D_main=1e12, f_main=0.0, d_leak=0.0564,
+               Cd_leak=0.3256),
+        2.0, 3.0, ("omega_m / R+", "a larger omega_m")),
+    "a torque at rest whose acceleration underflows": (
+        Design(R0=1e-12, R1=1.0, R=1.0, L=1000.0, A=2.67e11, I0=1.0, I1=1e-12, T_m=2.67e11,
+               omega_m=1.177e11, h=0.0, rho_w=2483.0, g=1.403e11, double_acting=True,
+               T_0=1.319164429353e-312, V_ref=150.0),
+        2.0, 0.0, ("T_0", "1e-200")),
+    "reciprocating masses 4e34 times the rotor": (
+        Design(R0=1.591e11, R1=2.207, R=2.746e11, L=2.746e11 + 274.58, A=1.1347e-9, I0=1.0,
+               I1=1.0, T_m=1e12, omega_m=4.865e-11, h=1e12, rho_w=1.0, g=5.09e11,
+               T_0=4.94065645841e-312, V_ref=1.709, m_r=5.418e11, eta_t=0.1, L_main=0.0,
+               D_main=0.000832, f_main=0.2, d_leak=1.9005e-6, Cd_leak=0.795),
+        2.0, 3.0, ("m_r",)),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", TOO_STIFF)
+def test_a_design_too_stiff_to_integrate_is_refused_after_a_bounded_work(name):
+    from windpump import _kernels, dynamics
+
+    design, t_end, kick, advice = TOO_STIFF[name]
+    with pytest.raises(ParameterError) as caught:
+        windpump.simulate(design, t_end, theta_dot0=kick)
+    message = str(caught.value)
+    assert caught.value.name == "design", message
+    for words in advice:
+        assert words in message, (words, message)
+    # the integrator's work: a few windows of PACE_STEPS, not MAX_STEPS (counted, not timed)
+    ran = _kernels.run(
+        dynamics.kernel_machine(design), math.pi / 2, kick, t_end, dynamics.SAMPLES_PER_STROKE,
+        None, dynamics.RTOL, dynamics.MAX_STEPS, 64, pace=dynamics.PACE_STEPS,
+    )  # fmt: skip
+    assert ran.outcome == _kernels.OVER_BUDGET and ran.steps <= 5 * dynamics.PACE_STEPS, ran.steps
+
+
+def test_a_stiff_start_that_stalls_early_is_still_answered():
+    # 141,497 steps in its first 0.16 s, then it stalls: on pace for 60 s it would need 5e7
+    run = windpump.simulate(SEED.replace(m_r=1e6), 60.0)
+    assert run.stalled and 0.1 < run.t_stall < 0.2 and run.steps > windpump.dynamics.PACE_STEPS
+
+
+def test_a_wind_record_keeps_the_whole_step_budget():
+    # A stormy first minute, then calm for a day: judged on the storm's pace (792,421 steps in a
+    # minute) the run would be refused, yet it needs only those
+    from windpump import _kernels, dynamics
+    from windpump.wind import as_record
+
+    design = SEED.replace(I0=SEED.I0 / 1e5, I1=SEED.I1 / 1e5)
+    record = ([0.0, 60.0, 61.0, 86_400.0], [20.0, 20.0, 0.0, 0.0])
+    run = windpump.simulate(design, 86_400.0, wind=record, sample_dt=600.0)
+    assert run.volume[-1] > 0.0 and run.steps > 5 * dynamics.PACE_STEPS
+    paced = _kernels.run(
+        dynamics.kernel_machine(design, as_record(record, 86_400.0)), math.pi / 2, 3.0,
+        86_400.0, 16, 600.0, dynamics.RTOL, dynamics.MAX_STEPS, 64, pace=dynamics.PACE_STEPS,
+    )  # fmt: skip
+    assert paced.outcome == _kernels.OVER_BUDGET
+
+
+def windmill_rate(design: Design) -> float:
+    """a1 / I_eff [1/s]: the windmill's torque slope at rest over the inertia (closed form)."""
+    return windmill_slope(design) / (design.I1 + design.I0 * design.R_dagger**2)
+
+
+@pytest.mark.parametrize("I0, I1", [(1e-9, 1e-9), (1e-12, 1e-7)])
+def test_the_advice_for_a_light_rotor_names_changes_that_slow_it(I0, I1):
+    design = SEED.replace(I0=I0, I1=I1)
+    advice = windpump.dynamics._stiff_advice(design, 10.0)
+    assert "increase I0 or I1" in advice
+    heavier = design.replace(I0=10 * I0, I1=10 * I1)
+    assert windmill_rate(heavier) < windmill_rate(design) / 9
+    if "smaller R1/R0" in advice:  # only where the ratio is what makes it fast (I1 dominates)
+        geared_down = design.replace(R1=design.R1 / 4)
+        assert windmill_rate(geared_down) < windmill_rate(design) / 4
+
+
+def test_a_heavy_rotor_is_never_told_to_be_heavier_for_what_its_time_scales_miss():
+    # the issue's finding: "increase I0 or I1" at I_eff = 2e18
+    design, t_end, _, _ = TOO_STIFF["a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s"]
+    assert design.I_eff > 1e18
+    advice = windpump.dynamics._stiff_advice(design, t_end)
+    assert "increase I0 or I1" not in advice and "heavier" not in advice, advice
+
+
+@pytest.mark.parametrize(
+    "design, cause, lower",
+    [(SEED.replace(I0=1e-6, I1=1e-6, d_leak=0.004), "leak hole",
+      [{"h": 0.3}, {"d_leak": 0.0}]),
+     (SEED.replace(I0=1e-6, I1=1e-6, L_main=1e6, D_main=1e-3), "rising main",
+      [{"L_main": 1e5}, {"D_main": 2e-3}])],
+)  # fmt: skip
+def test_the_advice_for_a_leak_or_a_main_names_changes_that_slow_it(design, cause, lower):
+    advice = windpump.dynamics._stiff_advice(design, 600.0)
+    assert cause in advice, advice
+    rate = max(windpump.dynamics.stiffness(design)[1:3])
+    for change in lower:
+        (field,) = change
+        assert field in advice, (field, advice)
+        assert max(windpump.dynamics.stiffness(design.replace(**change))[1:3]) < rate / 1.5
+
+
+def test_a_numeric_map_of_a_light_rotor_is_refused_before_any_run_with_the_advice_that_fits():
+    with pytest.raises(ParameterError) as caught:
+        windpump.design_map(SEED.replace(I0=1e-9, I1=1e-9), [4.0], [3.0], numeric=True,
+                            progress=False)  # fmt: skip
+    message = str(caught.value)
+    assert caught.value.name == "design" and "increase I0 or I1" in message, message
+    assert "gear ratio 4" in message
+
+
+def test_a_pump_with_no_head_runs_in_any_wind_even_when_its_roots_underflow():
+    # hypothesis seed 12: delta^2 and its wind slope both underflowed (kappa ~ 1e-160 under a
+    # 1e-12 m main), and V_stop was 0/0 = NaN. With no load the averaged F = a1 alpha -
+    # (b + c) alpha^2 is positive just above rest in any wind: V_stop = 0.
+    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642324.732643, A=1e12, I0=1e-12,
+                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=0.0, rho_w=1.0, g=1e-12, V_ref=1e-12,
+                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    assert windpump.wind_thresholds(design) == (0.0, None)
+    low, high = windpump.water_per_day(design, 1e-3, 0.5)
+    assert 0.0 <= low <= high and math.isfinite(high)
+
+
+def test_a_kick_far_below_the_unstable_speed_decays_from_the_kick():
+    # hypothesis seed 14: a- = 5.5e16 rad/s, a kick of 3 rad/s: spinup said -8 rad/s at t = 0
+    # (a- less a number near a-). Against Eq. (24) in 50 digits from the design's numbers.
+    import mpmath
+
+    design = Design(R0=1e-4, R1=1e-12, R=1.0, L=1.000000001, A=100.0, I0=1e-12, I1=1e-12,
+                    T_m=1e12, omega_m=3162277660.1683793, h=10.0, rho_w=1.0, g=1.0, V_ref=1e-12,
+                    eta_t=0.1)  # fmt: skip
+    mpmath.mp.dps = 50
+    R, eta, T_m, w = (mpmath.mpf(x) for x in (design.R_dagger, 0.1, 1e12, design.omega_m))
+    M = mpmath.mpf(design.rho_w * design.g) * design.h * design.A * design.R / mpmath.pi
+    I_eff = mpmath.mpf(design.I1) + mpmath.mpf(design.I0) * R**2
+    p = w / R
+    delta = mpmath.sqrt(p**2 * (eta * R * T_m - M) / (eta * R * T_m))
+    k = eta * R**3 * T_m / (I_eff * w**2)
+    a_plus, a_minus = p + delta, p - delta
+    kick = mpmath.mpf(3)
+    t_stall = mpmath.log((a_plus - kick) / (a_minus - kick) * a_minus / a_plus) / (
+        k * (a_plus - a_minus)
+    )
+    times = [0.0, float(t_stall) * 1e-6, float(t_stall) / 2, float(t_stall) * 0.999]
+    speeds = windpump.spinup(design, times, 3.0)
+    for t, speed in zip(times, speeds, strict=True):
+        y = (kick - a_minus) / (a_plus - kick) * mpmath.exp(k * (a_plus - a_minus) * t)
+        expected = (a_minus + a_plus * y) / (1 + y)
+        assert speed == pytest.approx(float(expected), rel=1e-6, abs=1e-9 * 3.0), (t, speed)

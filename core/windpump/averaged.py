@@ -304,6 +304,9 @@ def _between_roots(t, k: float, theta_dot0: float, a_plus: float, a_minus: float
     # |ratio| e^rate - 1 and 1 - |ratio| e^rate from the gaps, not from |ratio| ~ 1
     if theta_dot0 > a_plus:  # above a+: falls to it
         return a_plus + span / (span / (theta_dot0 - a_plus) * np.exp(rate) + np.expm1(rate))
-    x = -ratio * np.exp(rate)
-    with np.errstate(divide="ignore"):  # below a-: decays to the stall (x reaches 1 there)
-        return a_minus - span * x / (span / (a_plus - theta_dot0) + ratio * np.expm1(rate))
+    # Below a-: decays to the stall (1 + ratio e^rate reaches 0 there), from the kick as
+    # theta_dot0 + (theta_dot0 - a-) expm1(rate) / (1 + ratio e^rate): written from a- it
+    # cancelled to round-off of a- (a kick of 3 rad/s under a- = 5.5e16 started at -8 rad/s)
+    with np.errstate(divide="ignore"):
+        rest = span / (a_plus - theta_dot0) + ratio * np.expm1(rate)  # 1 + ratio e^rate
+        return theta_dot0 + (theta_dot0 - a_minus) * (np.expm1(rate) / rest)

@@ -468,6 +468,17 @@ def ideal_of(design: Design) -> Design:
     return design.replace(**{name: DEFAULTS[name] for name in REAL_MACHINE})
 
 
+PACE_STEPS = 100_000
+"""Every this many steps, a run without a wind record is refused when, at the pace of its last
+``PACE_STEPS`` (steps per second of t), the rest of it would need more than 10 times what is
+left of ``MAX_STEPS`` (``_kernels.stepping.PACE_MARGIN``: a start may be stiffer than the
+rest): a design too stiff or too slow to integrate, whether its time scales show it or not, is
+refused after ~0.1-0.3 s (twice that on a busy machine), not after ``MAX_STEPS`` (10-60 s). A
+run on pace to need 1 to 10 times ``MAX_STEPS`` is still refused only when they run out. A short
+stiff run that ends early stays inside the margin (the seed example at m_r = 1e6 kg: 141,497
+steps in 0.16 s, then it stalls; the first 100,000 at 4 times the pace of 60 s of MAX_STEPS).
+In a wind record a calm stretch may follow a stormy one, so only ``MAX_STEPS`` holds there."""
+
 STIFF_STEPS = 1.0
 """Integration steps per unit of ``t_end a1 / I_eff`` a light rotor takes at the least (measured
 1.4 to 2.2 on the seed example's pump with I0 = I1 from 1e-7 to 1e-6 kg m^2)."""
@@ -494,27 +505,62 @@ def stiffness(design: Design) -> tuple[float, float, float, float]:
     )
 
 
-def _windmill_slope(design: Design) -> float:
+def _windmill_slope(design: Design, gear_ratio=None):
     """a1 = 2 eta_t R+^2 (T_m - T_0) / omega_m [N m s]: how fast the windmill's torque on the
-    crank falls with the crank's speed, at rest (Eq. 11 through the chain)."""
-    return 2.0 * design.eta_t * design.R_dagger**2 * (design.T_m - design.T_0) / design.omega_m
+    crank falls with the crank's speed, at rest (Eq. 11 through the chain); at the design's
+    R+ = R1/R0, or at the gear ratios given (an array: a design map's)."""
+    ratio = design.R_dagger if gear_ratio is None else gear_ratio
+    return 2.0 * design.eta_t * ratio**2 * (design.T_m - design.T_0) / design.omega_m
 
 
-def _stiff_advice(design: Design) -> str:
-    """What makes ``design`` stiff, in words, from the largest cause of :func:`stiffness`."""
+def _stiff_advice(design: Design, t_end: float | None = None) -> str:
+    """What makes ``design`` too stiff to integrate, in words, and which fields to change in
+    which direction: from the largest cause of :func:`stiffness` when one explains the steps a
+    run of t_end [s] would need (``STIFF_STEPS`` a unit of rate times time), and otherwise from
+    the numbers at the ends of double precision that the time scales miss. The one wording of
+    this advice, for :func:`simulate` and the numeric design maps."""
     windmill, pipe, hole, masses = stiffness(design)
     if masses > 1e3:
         return (f"reciprocating masses of {masses:.3g} times the rotor's inertia on the crank "
-                "(a lighter m_r or a heavier rotor)")  # fmt: skip
+                "(a lighter m_r, or a heavier rotor: increase I0 or I1)")  # fmt: skip
     largest = max(windmill, pipe, hole)
-    if largest == windmill:
-        return (f"a rotor too light for its windmill at this gear ratio: the crank's speed "
-                f"settles in {1 / windmill:.3g} s (increase I0 or I1, or a smaller R1/R0)")  # fmt: skip
-    if largest == pipe:
+    explained = t_end is None or STIFF_STEPS * largest * t_end > PACE_STEPS
+    if explained and largest == windmill:
+        geared = design.I1 > design.I0 * design.R_dagger**2  # a1/I_eff then grows with R+
+        return (f"a rotor too light for its windmill: the crank's speed settles in "
+                f"{1 / windmill:.3g} s (a heavier rotor: increase I0 or I1"
+                + (", or a smaller R1/R0" if geared else "") + ")")  # fmt: skip
+    if explained and largest == pipe:
         return (f"a rising main whose friction settles the crank's speed in {1 / pipe:.3g} s "
-                "(a shorter or wider main, or a heavier rotor)")  # fmt: skip
-    return (f"a leak hole whose load settles the crank's speed in {1 / hole:.3g} s "
-            "(a heavier rotor: increase I0 or I1)")  # fmt: skip
+                "(a shorter or wider main: a smaller L_main or a larger D_main; or a heavier "
+                "rotor)")  # fmt: skip
+    if explained:
+        return (f"a leak hole whose load settles the crank's speed in {1 / hole:.3g} s, "
+                "rho_w g h (A R)^2 / q_L over I_eff (a lower head h, a wider hole d_leak or "
+                "none, or a heavier rotor)")  # fmt: skip
+    return "none of its time scales explains it: " + _extreme_numbers(design)
+
+
+def _extreme_numbers(design: Design) -> str:
+    """The numbers of ``design`` at the ends of double precision that make a run crawl, with
+    the direction that brings each back, in words (:func:`_stiff_advice`)."""
+    peak = design.omega_m / design.R_dagger  # the crank's speed at the windmill's peak torque
+    causes = []
+    if peak < 1e-6:
+        causes.append(f"a crank speed at the windmill's peak torque, omega_m / R+, of "
+                      f"{peak:.3g} rad/s (a larger omega_m or a smaller R1/R0)")  # fmt: skip
+    elif peak > 1e6:
+        causes.append(f"a crank speed at the windmill's peak torque, omega_m / R+, of "
+                      f"{peak:.3g} rad/s (a smaller omega_m or a larger R1/R0)")  # fmt: skip
+    start = design.R_dagger * design.T_0 / design.I_eff  # the crank's acceleration from rest
+    if design.T_0 > 0.0 and start < 1e-200:  # (0.0 when it underflows)
+        causes.append(f"a torque at rest T_0 = {design.T_0:.3g} N m that accelerates the crank "
+                      f"from rest at {start:.3g} rad/s^2, below 1e-200 (a larger T_0, or none: "
+                      "T_0 = 0, or a lighter rotor)")  # fmt: skip
+    if not causes:
+        causes.append("a run longer than the step budget allows at its pace (a shorter t_end, "
+                      "or omega_m, T_m, T_0, R1/R0, I0 and I1 nearer the paper's machine)")  # fmt: skip
+    return "; ".join(causes)
 
 
 def check_work(design: Design, t_end: float, record: WindRecord | None = None) -> None:
@@ -528,7 +574,7 @@ def check_work(design: Design, t_end: float, record: WindRecord | None = None) -
             "design",
             f"I_eff = {design.I_eff:.3g} kg m^2",
             f"a rotor heavy enough to run {t_end:g} s in at most {MAX_STEPS:,} integration steps",
-            why=f"the design is too stiff: {_stiff_advice(design)}; or a shorter t_end",
+            why=f"the design is too stiff: {_stiff_advice(design, t_end)}; or a shorter t_end",
         )
     steps = estimated_steps(design, t_end, record)
     if steps <= MAX_STEPS:
@@ -659,14 +705,16 @@ def simulate(
         RTOL,
         MAX_STEPS,
         capacity=first_capacity(design, t_end, theta_dot0, bound, samples_per_stroke, sample_dt),
+        pace=PACE_STEPS if record is None else None,
     )
     if run.outcome == _kernels.OVER_BUDGET:
         raise ParameterError(
             "design",
             f"I_eff = {design.I_eff:.3g} kg m^2",
             "a design whose crank speed settles over more than a crank revolution",
-            why=f"the integration needed more than {MAX_STEPS} steps: the design is too stiff: "
-            + _stiff_advice(design),
+            why=f"the integration needed more than {MAX_STEPS:,} steps, or after {run.steps:,} "
+            f"was on pace to need them by t_end: the design is too stiff: "
+            + _stiff_advice(design, t_end),
         )
     return _simulation_result(design, run, record)
 

@@ -331,8 +331,16 @@ def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarr
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     """alpha+ measured in full simulations of every running point, and tau where they ran."""
+    from ._kernels import OVER_BUDGET
     from ._kernels.grid import steady_runs  # here: numba loads on the first numeric map
-    from .dynamics import MAX_STEPS, RTOL, kernel_real_base
+    from .dynamics import (
+        MAX_STEPS,
+        PACE_STEPS,
+        RTOL,
+        STIFF_STEPS,
+        _windmill_slope,
+        kernel_real_base,
+    )
 
     shape = alpha_plus.shape
     x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
@@ -342,6 +350,11 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     turns = np.clip(SETTLE_TAUS * tau.ravel() * kick / (2 * math.pi), FEWEST_TURNS, MOST_TURNS)
     t_end = np.where(kick > 0.0, turns * 2 * math.pi / np.where(kick > 0.0, kick, 1.0), 0.0)
     inv_I_eff = 1.0 / effective_inertia(design.I1, design.I0, x)
+    # A rotor too light for its windmill at a point is refused before any run, as simulate does
+    # (the run would take MAX_STEPS, ~20-60 s, to find it: check_work).
+    light = STIFF_STEPS * _windmill_slope(design, x) * inv_I_eff * t_end > MAX_STEPS
+    _refuse_stiff(design, x, heads[np.arange(x.size) // ratios.size], np.where(light, OVER_BUDGET, -1),
+                  inv_I_eff, t_end)  # fmt: skip
     # Runs differ in cost (slow stalls, many fast turns): a shuffled order balances the cores.
     order = np.random.default_rng(0).permutation(x.size)
     speed = np.full(x.size, np.nan)
@@ -351,32 +364,41 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
         chunk = order[start : start + POINTS_PER_REPORT]
         measured, _, outcomes = steady_runs(
             x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
-            design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS,
+            design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS, PACE_STEPS,
             kernel_real_base(design),
         )  # fmt: skip
         speed[chunk] = measured
-        _refuse_stiff(design, x[chunk], heads[chunk // ratios.size], outcomes, inv_I_eff[chunk])
+        _refuse_stiff(
+            design, x[chunk], heads[chunk // ratios.size], outcomes, inv_I_eff[chunk],
+            t_end[chunk],
+        )  # fmt: skip
         report(min(start + POINTS_PER_REPORT, x.size), x.size)
     speed = speed.reshape(shape)
     return speed, np.where(np.isnan(speed), np.nan, tau)
 
 
-def _refuse_stiff(design, ratios, heads, outcomes, inv_I_eff) -> None:
+def _refuse_stiff(design, ratios, heads, outcomes, inv_I_eff, t_end) -> None:
     """Refuse a map where a run needed more than MAX_STEPS steps (as :func:`windpump.simulate`
-    refuses that design), rather than leave NaN there as if it stalled."""
+    refuses that design), rather than leave NaN there as if it stalled, with the advice that
+    fits the design at that gear ratio and head (``dynamics._stiff_advice``)."""
     from ._kernels import OVER_BUDGET
+    from .dynamics import _stiff_advice
 
     stiff = np.flatnonzero(outcomes == OVER_BUDGET)
     if stiff.size:
         i = stiff[0]
+        try:
+            there = design.replace(R1=design.R0 * float(ratios[i]), h=float(heads[i]))
+            advice = _stiff_advice(there, float(t_end[i]))
+        except ParameterError:  # a gear ratio whose R1 is out of the range (no advice there)
+            advice = "map other gear ratios and heads"
         raise ParameterError(
             "design",
             f"I_eff = {1.0 / inv_I_eff[i]:.3g} kg m^2 at gear ratio {ratios[i]:.6g}, "
             f"head {heads[i]:.6g} m",
-            "a rotor heavy enough to spin up over more than a crank revolution (increase I0 or "
-            "I1, or map other gear ratios and heads)",
-            why=f"{stiff.size} run(s) of this map needed more than the integrator's step "
-            "budget: the design is too stiff there",
+            "a design whose crank speed settles over more than a crank revolution",
+            why=f"{stiff.size} run(s) of this map need more than the integrator's step budget: "
+            f"the design is too stiff there: {advice}",
         )
 
 

@@ -32,7 +32,7 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
 
     Below ``V_stop = V_ref / sqrt(stall margin)`` a running pump cannot keep running: the averaged
     theory's stall criterion (Eq. 22, generalised) in the wind V (with a rising main, where the
-    averaged equation's roots meet; 0 with a leak hole, which never stalls). Above
+    averaged equation's roots meet; 0 with a leak hole, which never stalls, or with no head). Above
     ``V_start = V_ref sqrt(peak load torque / (eta_t R+ T_0))`` a resting pump starts from any
     crank angle (:func:`windpump.starts_from_rest` in that wind: the net torque at rest is > 0
     everywhere); None when T_0 = 0 (it never starts on its own), inf when eta_t R+ T_0 is too
@@ -58,8 +58,10 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
 
 def _stop_wind(design: Design) -> float:
     """V_stop [m/s]: ``V_ref / sqrt(stall margin)`` (the margin grows as V^2), where delta^2 = 0
-    with a rising main, 0 with a leak hole (it never stalls)."""
-    if design.d_leak > 0.0:
+    with a rising main, 0 with a leak hole (it never stalls) or with no load to carry (h = 0: the
+    windmill beats a main's friction near rest in any wind; there delta^2 and its wind slope can
+    both underflow, and their ratio was NaN)."""
+    if design.d_leak > 0.0 or design.mean_load_torque == 0.0:
         return 0.0
     if design.friction_coefficient == 0.0:
         return design.V_ref / math.sqrt(stall_margin(design))

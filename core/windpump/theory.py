@@ -277,9 +277,17 @@ class CycleMean:
     @property
     def s_stop(self) -> Array:
         """The wind speed over V_ref below which the pump cannot run [-]: where delta^2 = 0,
-        ``s / sqrt(margin)`` without a pipe."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.sqrt(np.maximum(self.s**2 - self.delta2 / self.delta2_per_s2, 0.0))
+        ``s / sqrt(margin)`` without a pipe. With one, where the averaged equation's roots
+        meet, ``F = a0 (s'/s)^2 + a1 (s'/s) alpha - (b + c) alpha^2 - M`` with a double root:
+        ``s' = s sqrt(4 M / (a1^2 / (b + c) + 4 a0))`` (delta^2 and its wind slope, both ~kappa^2,
+        underflowed under a hair-thin main, and V_stop was inf or NaN; issue 36)."""
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            pipeless = np.sqrt(np.maximum(self.s**2 - self.delta2 / self.delta2_per_s2, 0.0))
+            a0 = self.eta_t * self.rest_torque
+            a1 = 2.0 * self.b * self.omega_m * self.s / self.R_dagger
+            meet = 4.0 * self.mean_load / (a1 * (a1 / (self.b + self.friction)) + 4.0 * a0)
+            piped = self.s * np.sqrt(np.maximum(meet, 0.0))
+            return np.where(self.friction > 0.0, piped, pipeless)
 
     @property
     def delta(self) -> Array:

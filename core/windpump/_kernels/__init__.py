@@ -102,12 +102,14 @@ def run(
     rtol: float,
     max_steps: int,
     capacity: int,
+    pace: int | None = None,
 ) -> KernelRun:
     """Integrate from (theta0 [rad], theta_dot0 [rad/s]) at t = 0 up to t_end [s] or a stop.
 
     Samples every pi / samples_per_stroke of crank angle or, when sample_dt is not None, every
     sample_dt [s]. ``capacity`` is a first guess of the sample count; the output grows
-    (doubling) past it.
+    (doubling) past it. Past ``pace`` steps the run ends OVER_BUDGET as soon as it is on pace to
+    pass max_steps by t_end (None: only at max_steps).
     """
     from . import driver
     from .stepping import START, STOP
@@ -121,6 +123,7 @@ def run(
         sample_dt,
         rtol,
         max_steps,
+        max_steps if pace is None else pace,
         capacity,
     )
     out, n = ran.out, ran.samples
@@ -163,7 +166,7 @@ def is_cached(machine: Machine, sample_dt: float | None) -> bool:
     from . import driver
 
     dispatcher = driver.integrate
-    arguments = (machine, 0.0, 0.0, 1.0, 1, sample_dt, 1e-8, 1, 1)  # typed as run() passes them
+    arguments = (machine, 0.0, 0.0, 1.0, 1, sample_dt, 1e-8, 1, 1, 1)  # typed as run() passes them
     try:
         signature = tuple(numba.typeof(argument) for argument in arguments)
         cache = dispatcher._cache

@@ -81,6 +81,7 @@ from .stepping import (
     dp5_step,
     moves_from_rest,
     next_start,
+    off_pace,
     rates,
 )
 from .wind import has_record, next_kink
@@ -333,6 +334,10 @@ class Limits(typing.NamedTuple):
     t_end: float  # [s]
     rtol: float  # the steps' relative tolerance [-]
     max_steps: int  # Dormand-Prince steps at most (then OVER_BUDGET)
+    pace: int  # every this many steps, OVER_BUDGET if the run is on pace to pass max_steps by
+    # t_end (:func:`~.stepping.off_pace`): a stiff run is refused at once, not after max_steps;
+    # pace >= max_steps checks no pace (in a wind record a calm stretch may follow)
+    mark: np.ndarray  # (steps, t) where the pace's current window began
 
 
 class Grid(typing.NamedTuple):
@@ -520,15 +525,16 @@ def time_stretch(out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, end
     (or sample time, or wind kink), where the run goes on, or to a stop or the end. Returns
     (the run's outcome or -1, out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full,
     segment, events, count)."""
-    t_end, rtol, max_steps = limits
+    t_end, rtol, max_steps, pace, mark = limits
     delta, period, per_revolution = grid
     target = end if g == end_grid or sample_dt is not None else min(g * delta, end)
     until = min(t_end, kink)
     if sample_dt is not None:
         until = min(until, j * sample_dt)
     outcome, t, theta, theta_dot, W, used = advance_in_time(
-        t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps
-    )
+        t, theta, theta_dot, W, target, until, segment, machine, rtol, max_steps - steps,
+        steps, t_end, max_steps, pace, mark,
+    )  # fmt: skip
     steps += used
     out = with_room(out, n, 1)
     if outcome == REACHED_T_END and t < t_end:  # a sample time or a kink
@@ -687,7 +693,7 @@ def in_angle(
     of its own, called per segment, took six double-acting cylinders 17 % longer). Returns
     (status, out, n, j, g, steps, kink, m, t, theta, theta_dot, u, W, full, segment, leak, the
     segment's end and its grid index)."""
-    t_end, rtol, max_steps = limits
+    t_end, rtol, max_steps, pace, mark = limits
     strokes_table, flow_table, work_table, inertia_table = at_grid
     calm = without_wind(machine)  # for the helpers: a wind record's arrays are counted per call
     m_other = m  # the real machine's sub-steps of a segment of the other parity
@@ -753,7 +759,7 @@ def in_angle(
         past_leak = False  # theta is a leak's kink inside sub-step i: its rest is off the tables
         wholes = False  # the split took a sub-step that a leak's kink did not cut
         while i < m_seg:
-            if steps >= max_steps:
+            if off_pace(steps, t, t_end, max_steps, pace, mark):
                 status = OUT_OF_STEPS
                 break
             theta_i, h_i = first + i * h, h
@@ -876,7 +882,7 @@ def in_angle(
 
 @kernel
 def integrate(
-    machine, theta0, theta_dot0, t_end, n_per_stroke, sample_dt, rtol, max_steps, capacity
+    machine, theta0, theta_dot0, t_end, n_per_stroke, sample_dt, rtol, max_steps, pace, capacity
 ):
     """Integrate Eq. (12) from (theta0, theta_dot0) at t = 0 up to t_end or a stop.
 
@@ -887,7 +893,7 @@ def integrate(
     (:func:`time_stretch`). Returns a :class:`Run`.
     """
     width, delta = math.pi / machine.cylinders, math.pi / n_per_stroke
-    limits = Limits(t_end, rtol, max_steps)
+    limits = Limits(t_end, rtol, max_steps, pace, np.zeros(2))
     grid = Grid(delta, 2 * n_per_stroke, faces(machine))
     at_grid = grid_tables(n_per_stroke, machine)
     tables, row_tables, built, end_work = sub_step_tables(machine)

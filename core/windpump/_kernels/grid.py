@@ -18,7 +18,7 @@ from .stepping import REACHED_T_END
 @parallel_kernel
 def steady_runs(
     R_dagger, inv_I_eff, load_torque, theta_dot0, t_end, base, cylinders, double_acting, turns,
-    rtol, max_steps, real_base=None,
+    rtol, max_steps, pace, real_base=None,
 ):  # fmt: skip
     """Run every point from theta = 0 at its theta_dot0 to its t_end; return the cycle-mean crank
     speed [rad/s] and the strokes delivered per second [1/s] over its last ``turns`` revolutions,
@@ -41,7 +41,9 @@ def steady_runs(
             double_acting, None, real_at(real_base, inv_I_eff[i], load_torque[i]),
         )  # fmt: skip
         capacity = int(1.1 * theta_dot0[i] * t_end[i] / math.pi) + 64
-        ran = integrate(machine, 0.0, theta_dot0[i], t_end[i], 1, None, rtol, max_steps, capacity)
+        ran = integrate(
+            machine, 0.0, theta_dot0[i], t_end[i], 1, None, rtol, max_steps, pace, capacity
+        )
         out, n, outcome = ran.out, ran.samples, ran.outcome
         outcomes[i] = outcome
         if outcome != REACHED_T_END:

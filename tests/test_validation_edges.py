@@ -449,3 +449,43 @@ def test_a_refused_numpy_number_is_written_as_a_number(refusal, kind):
         message = str(error.value)
         assert not re.search(r"np\.\w+\(|numpy", message), message
         assert len(message) < SHORT, message
+
+
+@pytest.mark.parametrize("kick", [1e12 * (1 + 1e-15), 1e13, 1e300, 1e308])
+def test_a_kick_past_1e12_rad_s_is_refused_by_its_name_at_once(kick):
+    """simulate's theta_dot0 and run_in_wind's kick are at most LARGEST_KICK (1e12 rad/s): a kick
+    of 1e300 made the sample bound inf and the refusal blamed t_end ("t_end must be <= 0 s"), and
+    run_in_wind ran 2e7 steps (40 s) to blame the design."""
+    seed = windpump.Design.seed_example()
+    with pytest.raises(windpump.ParameterError) as refused:
+        windpump.simulate(seed, 10.0, theta_dot0=kick)
+    assert refused.value.name == "theta_dot0" and "1e+12" in str(refused.value)
+    with pytest.raises(windpump.ParameterError) as refused:
+        windpump.run_in_wind(seed, ([0.0, 60.0], [5.0, 5.0]), kick=kick)
+    assert refused.value.name == "kick" and "1e+12 rad/s" in str(refused.value)
+
+
+@pytest.mark.parametrize(
+    ("t_end", "options", "name"),
+    [
+        (1e308, {}, "t_end"),
+        (10.0, {"sample_dt": 5e-324}, "sample_dt"),
+        (1e308, {"sample_dt": 1.0}, "sample_dt"),
+    ],
+)
+def test_too_many_samples_names_the_argument_and_a_finite_bound(t_end, options, name):
+    """A run that would make more than MAX_SAMPLES samples names t_end, or sample_dt when one is
+    given, with a finite bound (t_end 1e308 said "t_end must be <= nan s")."""
+    from windpump.dynamics import MAX_SAMPLES
+
+    seed = windpump.Design.seed_example()
+    with pytest.raises(windpump.ParameterError) as refused:
+        windpump.simulate(seed, t_end, **options)
+    assert refused.value.name == name
+    number = float(re.search(r"must be [<>]= ([0-9.e+-]+) s", str(refused.value)).group(1))
+    assert math.isfinite(number) and number > 0.0
+    if name == "t_end":  # the longest run: MAX_SAMPLES samples at the fastest crank speed
+        fastest = max(3.0, seed.runaway_speed / seed.R_dagger)
+        assert number == pytest.approx((MAX_SAMPLES - 3) * (math.pi / 16) / fastest, rel=1e-5)
+    else:
+        assert number == pytest.approx(t_end / (MAX_SAMPLES - 3), rel=1e-5)

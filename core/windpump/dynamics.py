@@ -22,7 +22,7 @@ from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
 from .reciprocating import crank_inertia
 from .units import LITRES_PER_M3
-from .validation import non_negative, positive, real, whole
+from .validation import LARGEST, non_negative, positive, real, whole
 from .wind import WindRecord, as_record
 
 SAMPLES_PER_STROKE = 16
@@ -36,6 +36,10 @@ MAX_STEPS = 20 * MAX_SAMPLES
 
 SMALLEST_KICK = 1e-300
 """Smallest non-zero initial crank speed [rad/s]."""
+
+LARGEST_KICK = LARGEST
+"""Largest initial crank speed [rad/s] (1e12, the largest speed the core takes: a kick of 1e300
+made its run's sample bound inf, and the refusal then blamed t_end)."""
 
 RTOL = 1e-8
 """Local relative tolerance of the integrator (u = theta_dot^2/2, and the time per step)."""
@@ -635,7 +639,8 @@ def simulate(
         [0, 2 pi), where the run's ``theta`` starts.
     theta_dot0 : float, default 3.0
         Initial crank speed [rad/s]: 0 (a start from rest, which moves only with torque at rest,
-        see :func:`windpump.starts_from_rest`) or at least ``SMALLEST_KICK``.
+        see :func:`windpump.starts_from_rest`) or from ``SMALLEST_KICK`` (1e-300) to
+        ``LARGEST_KICK`` (1e12).
     wind : (t, V) pair, callable or None, keyword-only
         Wind speeds V [m/s] (0 to 150) at times t [s] (increasing), linear between samples
         and held past the ends, e.g. a :class:`windpump.wind.WindRecord`; or a function of t [s]
@@ -691,7 +696,9 @@ def simulate(
         sample_dt = positive("sample_dt", sample_dt, "s")
     record = None if wind is None else as_record(wind, t_end)
     bound = sample_bound(design, t_end, theta_dot0, samples_per_stroke, sample_dt, record)
-    _refuse_too_many_samples(t_end, bound)
+    if bound > MAX_SAMPLES:  # a second's worth: t_end's bound without overflow (t_end 1e308)
+        per_second = sample_bound(design, 1.0, theta_dot0, samples_per_stroke, sample_dt, record)
+        _refuse_too_many_samples(t_end, bound, per_second - 3, sample_dt)
     check_work(design, t_end, record)
     from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
 
@@ -726,22 +733,35 @@ def _checked_start(t_end, theta0, theta_dot0) -> tuple[float, float, float]:
     # Reduced first: a huge angle leaves no digits for the steps (1e15 rad has an ulp of 0.125).
     theta0 = real("theta0", theta0, "rad") % (2 * math.pi)
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    if 0.0 < theta_dot0 < SMALLEST_KICK:
+    if 0.0 < theta_dot0 < SMALLEST_KICK or theta_dot0 > LARGEST_KICK:
         raise ParameterError(
             "theta_dot0",
             theta_dot0,
-            f"0 or >= {SMALLEST_KICK:g} rad/s",
+            f"0 or from {SMALLEST_KICK:g} to {LARGEST_KICK:g} rad/s",
             "rad/s",
-            why="a smaller kick is below double precision's normal range",
+            why="a smaller kick is below double precision's normal range"
+            if theta_dot0 < SMALLEST_KICK
+            else "",
         )
     return t_end, theta0, theta_dot0
 
 
-def _refuse_too_many_samples(t_end: float, bound: float) -> None:
+def _refuse_too_many_samples(
+    t_end: float, bound: float, per_second: float, sample_dt: float | None
+) -> None:
     """Raise a ParameterError naming t_end [s] when a run could need ``bound`` samples, more than
-    MAX_SAMPLES (:func:`sample_bound`)."""
+    MAX_SAMPLES (:func:`sample_bound`), ``per_second`` samples a second of the run; naming
+    sample_dt [s] when it is given (a run's samples are then t_end / sample_dt)."""
+    if bound > MAX_SAMPLES and sample_dt is not None:
+        raise ParameterError(
+            "sample_dt",
+            sample_dt,
+            f">= {t_end / (MAX_SAMPLES - 3):.6g} s for t_end = {t_end:g} s",
+            "s",
+            why=f"the run would make {bound:.3g} samples; the bound is {MAX_SAMPLES}",
+        )
     if bound > MAX_SAMPLES:
-        longest = t_end * (MAX_SAMPLES - 3) / (bound - 3)
+        longest = (MAX_SAMPLES - 3) / per_second
         raise ParameterError(
             "t_end",
             t_end,

@@ -18,7 +18,7 @@ import numpy as np
 
 from .averaged import stall_margin
 from .design import Design
-from .dynamics import SimulationResult, simulate
+from .dynamics import LARGEST_KICK, SMALLEST_KICK, SimulationResult, simulate
 from .errors import ParameterError, shown
 from .loads import peak_load_torque, starts_from_rest
 from .theory import cycle_mean, running_speeds
@@ -368,6 +368,10 @@ def kick_in_wind(design: Design, kick: float) -> float:
     (3.0, 0.0)
     """
     kick = non_negative("kick", kick, "rad/s")
+    if 0.0 < kick < SMALLEST_KICK or kick > LARGEST_KICK:  # named here, not as theta_dot0
+        raise ParameterError(
+            "kick", kick, f"0 or from {SMALLEST_KICK:g} to {LARGEST_KICK:g} rad/s", "rad/s"
+        )
     return 0.0 if starts_from_rest(design) else kick
 
 
@@ -389,7 +393,8 @@ def run_in_wind(design: Design, record, theta0: float = math.pi / 2, kick: float
     theta0 : float, default pi/2
         Crank angle at t = 0 [rad].
     kick : float, default 3.0
-        Crank speed given at t = 0 to a windmill that cannot start on its own [rad/s], >= 0.
+        Crank speed given at t = 0 to a windmill that cannot start on its own [rad/s], 0 or from
+        1e-300 to 1e12 (as :func:`windpump.simulate`'s ``theta_dot0``).
 
     Returns
     -------

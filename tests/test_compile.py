@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import logging
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -282,3 +283,51 @@ def test_a_later_start_runs_no_worker_for_a_part_compiled_for_this_source(
     assert compiling.ready[parts.WIND_TAB].is_set() and compiling.ready[parts.SITE_TAB].is_set()
     monkeypatch.setattr(parts, "source_stamp", lambda: "another source")
     assert parts.compiled_parts() == set()
+
+
+CALLER = """
+from windpump._kernels.jit import kernel
+from windpump._kernels.zz_callee import step
+
+@kernel
+def twice(x):
+    return 2.0 * step(x)
+"""
+
+RUN_CALLER = "from windpump._kernels.zz_caller import twice; print(twice(1.0))"
+
+
+def test_a_change_to_a_callees_module_alone_recompiles_its_caller(tmp_path):
+    """A kernel loaded from numba's cache holds its callees' code: with numba's own stamp (its
+    source file alone) a change to the callee's module left the caller's old code in use. In a
+    copy of the package, a caller and a callee in two kernel modules: the callee changed, the
+    caller's answer changes with it, on the same cache."""
+    core = tmp_path / "core"
+    shutil.copytree(
+        Path(__file__).resolve().parents[1] / "core" / "windpump",
+        core / "windpump",
+        ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"),
+    )
+    kernels = core / "windpump" / "_kernels"
+    (kernels / "zz_caller.py").write_text(CALLER)
+    callee = kernels / "zz_callee.py"
+    environment = dict(os.environ, PYTHONPATH=str(core))
+    environment.pop("NUMBA_CACHE_DIR", None)  # beside the copied source
+
+    def answer(step: str) -> float:
+        callee.write_text(
+            f"from windpump._kernels.jit import kernel\n\n@kernel\ndef step(x):\n    return {step}\n"
+        )
+        done = subprocess.run(
+            [sys.executable, "-c", RUN_CALLER],
+            env=environment,
+            capture_output=True,
+            text=True,
+            check=True,
+            timeout=600,
+        )
+        return float(done.stdout)
+
+    assert answer("x + 1.0") == 4.0
+    assert list(kernels.glob("__pycache__/zz_caller.*.nbi"))  # cached, so the next run loads it
+    assert answer("x + 10.0") == 22.0  # a new size: numba's stamp of zz_callee.py changes

@@ -2,8 +2,58 @@
 
 from __future__ import annotations
 
+import os
+from pathlib import Path
+
 from numba import njit, types
+from numba.core import caching
 from numba.core.registry import CPUDispatcher
+
+KERNELS = Path(__file__).resolve().parent
+
+
+class KernelsStamp:
+    """A cache locator's source stamp for a kernel of this folder: every kernel module's size and
+    modification time, not its own file's only.
+
+    numba stamps a cached kernel with its own source file, yet the code it caches holds its
+    callees' from other modules: a change to ``stepping.py`` alone left ``driver.integrate``
+    loaded from the cache with the old steps (numba's known limit). Any change to a kernel
+    module now recompiles every kernel, as a fresh install does.
+    """
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        if Path(py_file).resolve().parent != KERNELS:
+            return None  # another folder's function: numba's own locators
+        return super().from_function(py_func, py_file)
+
+    def get_source_stamp(self):
+        stamps = []
+        for path in sorted(KERNELS.glob("*.py")):
+            status = os.stat(path)
+            stamps.append((path.name, status.st_mtime, status.st_size))
+        return tuple(stamps)
+
+
+def stamp_every_kernel_module() -> None:
+    """Put :class:`KernelsStamp` locators first in numba's list (its own for the cache in
+    ``NUMBA_CACHE_DIR`` and beside the source), once; numba's private names have moved between
+    versions (``_CacheImpl`` became ``CacheImpl``), so a numba without them keeps its own."""
+    implementation = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    if implementation is None or any(
+        issubclass(locator, KernelsStamp) for locator in implementation._locator_classes
+    ):
+        return
+    stamped = []
+    for name in ("UserProvidedCacheLocator", "InTreeCacheLocator"):
+        locator = getattr(caching, name, None) or getattr(caching, f"_{name}", None)
+        if locator is not None:
+            stamped.append(type(f"Kernels{name.lstrip('_')}", (KernelsStamp, locator), {}))
+    implementation._locator_classes[:0] = stamped
+
+
+stamp_every_kernel_module()
 
 # NumPy's error model drops the zero-division checks. fastmath allows fused multiply-adds and
 # reciprocals only: no-NaN/no-inf assumptions would break step rejection, approximate library

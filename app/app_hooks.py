@@ -157,7 +157,7 @@ def compile_in_background() -> None:
 
 def compile_the_rest() -> None:
     """Every part after the first page's, in worker processes (``compiling.Workers``), each
-    marked ready as its worker ends; then the Wind tab's first day, loaded from the cache.
+    marked ready as its worker ends; and the Wind tab's first day once its part is ready.
 
     A later start's pages wait for none of them: each part is most likely in the cache already
     (the workers then only load it), and a page loads it sooner than a worker that gives way to
@@ -169,12 +169,19 @@ def compile_the_rest() -> None:
     for name in done:
         COMPILE.ready[name].set()  # in numba's cache: a page loads it in a second or two
     rest = [part.name for part in PARTS if part.name not in done | {FIRST_PAGE}]
+    # the Wind tab's day once its part is ready: at once on a later start, not after every
+    # worker (a server's memory then grew for a minute after its start, the test of bare visits'
+    # included)
+    threading.Thread(target=warm_when_ready, name="warm the Wind tab", daemon=True).start()
     try:
         WORKERS.run(rest)
     except Exception:  # no workers (a checkout not installed): the pages compile what they need
         log.exception("compiling the solver's parts in worker processes failed")
         for name in rest:
             COMPILE.ready[name].set()
+
+
+def warm_when_ready() -> None:
     COMPILE.wait(WIND_TAB)
     warm_the_wind_tab()
 

@@ -38,7 +38,7 @@ from .mechanisms import Mechanisms
 from .page import page
 from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
-from .serving import DRAW_AFTER_MOVES, TIDY, served_document
+from .serving import DRAW_AFTER_MOVES, SOLVER_READY, TIDY, served_document
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
@@ -114,12 +114,27 @@ class Explorer(Session, pn.viewable.Viewer):
             self.say_compiling()
 
     def say_compiling(self) -> None:
-        """The status, while the first page's part of the solver compiles (a first start after
-        an install): how far it is, "Compiling the solver (once after an install): 1 of 5 parts
-        ready" (``serving.first_run_when_ready`` says it again as parts get ready)."""
-        if self.seen is None:
+        """The status, while the part of the solver this page's first run needs compiles (a
+        first start after an install): how far it is, "Compiling the solver (once after an
+        install): 1 of 5 parts ready" (``serving.first_run_when_ready`` says it again as parts
+        get ready)."""
+        part = self.part_awaited()
+        if self.seen is None and part is not None:
             status = self.readouts.status
-            status.object, status.alert_type = COMPILE.saying(FIRST_PAGE), "info"
+            status.object, status.alert_type = COMPILE.saying(part), "info"
+
+    def part_awaited(self) -> str | None:
+        """The part of the solver this page's first run waits for while a first start compiles
+        it, or None once it is ready: the first page's; then, for a page whose link opens a real
+        machine (a deep well), the real machine's, compiled in a worker (waited for off the
+        event loop: on it every page stood still)."""
+        if not (SOLVER_READY.is_set() and COMPILE.ready[FIRST_PAGE].is_set()):
+            return FIRST_PAGE
+        try:
+            ideal = self.inputs.design().is_ideal
+        except Exception:  # refused: its first run says why, and compiles nothing
+            return None
+        return None if ideal or COMPILE.ready[REAL_MACHINE].is_set() else REAL_MACHINE
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(

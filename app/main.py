@@ -9,6 +9,7 @@ from functools import partial
 
 import panel as pn
 
+from .compiling import COMPILE, REAL_MACHINE
 from .defaults import lighter_properties
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
@@ -59,7 +60,8 @@ query = utf8_keys(pn.state.session_args)  # ?café=1 named as typed
 full = query.get("resolution", [b""])[0] == b"full"
 # The first start after an install compiles the solver in the background: this page opens at
 # once and runs its design when the solver is ready (serving.first_run_when_ready).
-ready = SOLVER_READY.is_set()
+# So does one opened while a worker compiles the real machine: its link may open one (a deep well)
+ready = SOLVER_READY.is_set() and COMPILE.ready[REAL_MACHINE].is_set()
 explorer = Explorer(
     bins=None if full else BINS, query=query, defer_views=True, lazy_views=True, start=ready
 )

@@ -23,6 +23,8 @@ from typing import Any
 
 import numpy as np
 
+from .compiling import COMPILE, FIRST_PAGE
+
 log = logging.getLogger("windpump.app")
 
 _LIBC_NAME = ctypes.util.find_library("c")
@@ -618,7 +620,8 @@ COMPILE_PROGRESS_EVERY = 1.0  # [s] how often a waiting page says again how far 
 
 
 def first_run_when_ready(session_id: str, document, explorer) -> Callable:
-    """The page's onload callback while the solver compiles: wait for it off the event loop,
+    """The page's onload callback while the solver compiles: wait for the part its first run
+    needs (``explorer.part_awaited``: the first page's, or a real machine's) off the event loop,
     saying in the page how far the compile is as its parts get ready
     (``explorer.say_compiling``), then, under the document's lock, run the page's first design
     and go on as a page does. A page closed meanwhile (its session destroyed, its document's
@@ -628,10 +631,14 @@ def first_run_when_ready(session_id: str, document, explorer) -> Callable:
 
     async def run() -> None:
         loop = asyncio.get_running_loop()
-        while not SOLVER_READY.is_set():
+        while (part := explorer.part_awaited()) is not None:
             if context is not None and context.destroyed:
                 return
-            if not await loop.run_in_executor(None, SOLVER_READY.wait, COMPILE_PROGRESS_EVERY):
+            events = (SOLVER_READY, COMPILE.ready[FIRST_PAGE]) if part == FIRST_PAGE else ()
+            ready = next((e for e in (*events, COMPILE.ready[part]) if not e.is_set()), None)
+            if ready is None:  # ready since part_awaited asked
+                continue
+            if not await loop.run_in_executor(None, ready.wait, COMPILE_PROGRESS_EVERY):
                 if context is None or not context.destroyed:
                     document.add_next_tick_callback(explorer.say_compiling)  # still compiling
         if context is not None and context.destroyed:

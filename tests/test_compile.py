@@ -331,3 +331,56 @@ def test_a_change_to_a_callees_module_alone_recompiles_its_caller(tmp_path):
     assert answer("x + 1.0") == 4.0
     assert list(kernels.glob("__pycache__/zz_caller.*.nbi"))  # cached, so the next run loads it
     assert answer("x + 10.0") == 22.0  # a new size: numba's stamp of zz_callee.py changes
+
+
+def test_the_real_machines_part_runs_every_preset_with_a_real_machine():
+    """The worker's real-machine part runs the presets whose designs are a real machine, found by
+    their designs: by name, a renamed preset made the part a KeyError (the pages then compiled
+    the real machine themselves, on the event loop)."""
+    from windpump_app.compiling import real_presets
+    from windpump_app.inputs import PRESETS, PumpInputs, preset_of
+
+    def design_of(values):
+        inputs = PumpInputs()
+        inputs.param.update(**values)
+        return inputs.design()
+
+    real = {name for name, (values, _) in PRESETS.items() if not design_of(values).is_ideal}
+    assert len(real) >= 2  # a deep well, a leak hole
+    assert {preset_of(inputs) for inputs in real_presets()} == real
+
+
+def test_a_page_whose_link_opens_a_real_machine_waits_for_its_part_off_the_loop(compiling):
+    """A first start's page whose design is a real machine (a deep well's link) waits off the
+    event loop for the real machine's part, saying so, then runs: it waited on the loop, and
+    every page stood still meanwhile."""
+    import asyncio
+    import threading
+
+    from windpump_app import serving
+    from windpump_app.compiling import REAL_MACHINE, real_presets
+    from windpump_app.explorer import Explorer
+
+    compiling.begin([REAL_MACHINE])
+    page = Explorer(start=False)
+    page.inputs.param.update(**real_presets()[0].values())
+    assert page.part_awaited() == REAL_MACHINE
+    page.say_compiling()
+    assert "(the real machine)" in page.readouts.status.object
+
+    class Document:
+        pending: list = []
+
+        def add_next_tick_callback(self, callback):
+            self.pending.append(callback)
+
+    document = Document()
+    onload = serving.first_run_when_ready("page", document, page)
+    threading.Timer(0.3, compiling.ready[REAL_MACHINE].set).start()
+    # in a thread of its own: a browser test's playwright may hold this thread's event loop
+    waited = threading.Thread(target=asyncio.run, args=(asyncio.wait_for(onload(), timeout=60),))
+    waited.start()
+    waited.join(timeout=90)
+    assert not waited.is_alive()
+    assert page.part_awaited() is None and page.seen is None  # nothing ran on the way
+    assert document.pending  # the first run, on the document's next tick

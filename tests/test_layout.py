@@ -139,10 +139,14 @@ PHONE = (390, 844)
 def in_first_screen(page, locator) -> None:
     """Wholly on the screen, below the header (not under it) and not clipped by a pane's edge."""
     expect(locator).to_be_in_viewport(ratio=1.0)
-    box = locator.evaluate(
-        "(el) => { const b = el.getBoundingClientRect();"
-        " return {y: b.y, bottom: b.bottom, screen: window.innerHeight} }"
-    )
+    for _ in range(40):  # an element Bokeh re-renders meanwhile has no box for a moment (0, 0)
+        box = locator.evaluate(
+            "(el) => { const b = el.getBoundingClientRect();"
+            " return {y: b.y, bottom: b.bottom, screen: window.innerHeight} }"
+        )
+        if box["bottom"] > 0:
+            break
+        page.wait_for_timeout(250)
     header = page.locator("#header").bounding_box()
     assert bottom(header) - 1 <= box["y"] and box["bottom"] <= box["screen"], box
 

@@ -89,6 +89,9 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready(monkeypat
     started, shown = [], []
 
     class Page:
+        def part_awaited(self):  # Explorer's: the first page's part until the solver is ready
+            return None if serving.SOLVER_READY.is_set() else "the first page"
+
         def start(self):
             started.append(serving.SOLVER_READY.is_set())
 
@@ -129,6 +132,9 @@ def test_a_page_closed_while_the_solver_compiles_runs_nothing(monkeypatch):
             raise AttributeError("'DocumentCallbackManager' object has no attribute")
 
     class Page:
+        def part_awaited(self):
+            return None if serving.SOLVER_READY.is_set() else "the first page"
+
         def start(self):
             raise AssertionError("a closed page's design was run")
 

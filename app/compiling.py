@@ -330,6 +330,6 @@ class Workers:
         """End the workers now (the server stops): a part under way is compiled again next time."""
         self.stopped = True
         if self.pool is not None:
-            for process in list(getattr(self.pool, "_processes", {}).values()):
+            for process in list((getattr(self.pool, "_processes", None) or {}).values()):
                 process.terminate()
             self.pool.shutdown(wait=False, cancel_futures=True)

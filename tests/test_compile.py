@@ -253,8 +253,10 @@ def test_a_worker_process_writes_its_part_to_numbas_cache(compiling, monkeypatch
     compiling.begin([SITE_TAB])
     first_done = threading.Event()
     first_done.set()
-    Workers(first_done, processes=1).run([SITE_TAB])
+    workers = Workers(first_done, processes=1)
+    workers.run([SITE_TAB])
     assert compiling.ready[SITE_TAB].is_set()
+    workers.stop()  # the server stops after its workers are done: no AttributeError at its end
     indexes = {path.name.split(".")[1].split("-")[0] for path in tmp_path.rglob("supply.*.nbi")}
     assert {"shortfall_map", "balance"} <= indexes
     (recorded,) = tmp_path.rglob(PARTS_FILE)  # beside the driver's cache, by the worker

@@ -732,18 +732,24 @@ def _checked_start(t_end, theta0, theta_dot0) -> tuple[float, float, float]:
     t_end = positive("t_end", t_end, "s")
     # Reduced first: a huge angle leaves no digits for the steps (1e15 rad has an ulp of 0.125).
     theta0 = real("theta0", theta0, "rad") % (2 * math.pi)
-    theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
-    if 0.0 < theta_dot0 < SMALLEST_KICK or theta_dot0 > LARGEST_KICK:
+    return t_end, theta0, checked_kick("theta_dot0", theta_dot0)
+
+
+def checked_kick(name: str, kick: object) -> float:
+    """A kick [rad/s] as a float: 0, or from SMALLEST_KICK to LARGEST_KICK; a ParameterError
+    naming ``name`` otherwise (simulate's theta_dot0, run_in_wind's kick)."""
+    value = non_negative(name, kick, "rad/s")
+    if 0.0 < value < SMALLEST_KICK or value > LARGEST_KICK:
         raise ParameterError(
-            "theta_dot0",
-            theta_dot0,
+            name,
+            value,
             f"0 or from {SMALLEST_KICK:g} to {LARGEST_KICK:g} rad/s",
             "rad/s",
             why="a smaller kick is below double precision's normal range"
-            if theta_dot0 < SMALLEST_KICK
+            if value < SMALLEST_KICK
             else "",
         )
-    return t_end, theta0, theta_dot0
+    return value
 
 
 def _refuse_too_many_samples(

@@ -18,7 +18,7 @@ import numpy as np
 
 from .averaged import stall_margin
 from .design import Design
-from .dynamics import LARGEST_KICK, SMALLEST_KICK, SimulationResult, simulate
+from .dynamics import SimulationResult, checked_kick, simulate
 from .errors import ParameterError, shown
 from .loads import peak_load_torque, starts_from_rest
 from .theory import cycle_mean, running_speeds
@@ -367,11 +367,7 @@ def kick_in_wind(design: Design, kick: float) -> float:
     >>> kick_in_wind(Design.seed_example(), 3.0), kick_in_wind(Design.seed_example().replace(T_0=0.4), 3.0)
     (3.0, 0.0)
     """
-    kick = non_negative("kick", kick, "rad/s")
-    if 0.0 < kick < SMALLEST_KICK or kick > LARGEST_KICK:  # named here, not as theta_dot0
-        raise ParameterError(
-            "kick", kick, f"0 or from {SMALLEST_KICK:g} to {LARGEST_KICK:g} rad/s", "rad/s"
-        )
+    kick = checked_kick("kick", kick)  # named here, not as theta_dot0
     return 0.0 if starts_from_rest(design) else kick
 
 

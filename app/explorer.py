@@ -213,7 +213,9 @@ class Explorer(Session, pn.viewable.Viewer):
         return self._open(self.site_tab)
 
     def _open(self, tab: T) -> T:
-        """``tab``, built and drawn; the Mechanisms tab's data sources join the page's."""
+        """``tab``, built and drawn (the latest run, if hidden it was left behind it); the
+        Mechanisms tab's data sources join the page's."""
+        tab.catch_up()
         if not tab.built:
             tab.open()
             if tab is self.mechanisms_tab:

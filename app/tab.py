@@ -39,7 +39,8 @@ TABS_CSS = [
 
 class Tab(pn.viewable.Viewer):
     """A tab of the page, built when it is first viewed (most pages never open it: its figures
-    would cost every page) and from then on following every exploration.
+    would cost every page) and from then on following every exploration while it is shown; a
+    built tab hidden behind another (``hide``) draws the latest one when shown again.
 
     A subclass says what it builds (``build``), how it draws an exploration (``draw``), where it
     says that drawing failed (``failed``), its figures and its layout. The page calls
@@ -54,6 +55,8 @@ class Tab(pn.viewable.Viewer):
         self.dark = dark
         self.built = False
         self.seen: windpump.Exploration | None = None  # the latest exploration
+        self.hidden = False  # another tab is shown (``hide``): explorations wait to be drawn
+        self.behind = False  # hidden, it holds an earlier exploration than ``seen``
         self._layout: pn.viewable.Viewable | None = None
 
     def open(self) -> Tab:
@@ -65,9 +68,27 @@ class Tab(pn.viewable.Viewer):
         return self
 
     def update(self, seen: windpump.Exploration) -> None:
-        """A new exploration: drawn at once if the tab is built, else when it is first opened."""
+        """A new exploration: drawn at once if the tab is built and shown, else when it is next
+        shown (``hide(False)``) or first opened."""
         self.seen = seen
-        if self.built:
+        if self.built and self.hidden:
+            self.behind = True
+        elif self.built:
+            self.redraw()
+
+    def hide(self, hidden: bool) -> None:
+        """Another tab is shown (``hidden``), or this one again: drawn then if an exploration
+        came meanwhile. A hidden tab is still laid out by the browser (Panel's ``Tabs``), so a
+        preset chosen with every tab built had all of them run and redraw a day, a year and a
+        map nobody saw: ~4-6 s of the browser's CPU a choice, on top of the server's."""
+        self.hidden = hidden
+        if not hidden:
+            self.catch_up()
+
+    def catch_up(self) -> None:
+        """Draw the latest exploration if the tab, hidden, was left behind it."""
+        if self.behind:
+            self.behind = False
             self.redraw()
 
     def redraw(self) -> None:
@@ -123,12 +144,14 @@ class PageTabs:
             stylesheets=TABS_CSS,
         )
         placed: set[int] = set()
+        self.shown(strip.active)
 
         def place(index: int) -> None:
             tab = self.open(self.tabs[index - 1])  # data first: a figure sent empty warns
             strip[index] = (tab.title, tab)
 
         def chosen(event) -> None:
+            self.shown(event.new)
             if event.new >= 1 and event.new not in placed:
                 placed.add(event.new)
                 later(partial(place, event.new))
@@ -136,6 +159,11 @@ class PageTabs:
         strip.param.watch(chosen, "active")
         strip.jscallback(active=GUARD_NEW_UPLOADS_JS)
         return strip
+
+    def shown(self, index: int) -> None:
+        """The strip shows its tab ``index`` (0: the pump's): every other tab is hidden."""
+        for number, tab in enumerate(self.tabs, start=1):
+            tab.hide(number != index)
 
     def update(self, seen: windpump.Exploration) -> None:
         for tab in self.tabs:

@@ -536,3 +536,23 @@ def test_a_month_without_a_shortfall_draws_no_short_bar(app):
     ]
     for bar in (short, delivered):  # filled, never outlined: no height draws nothing
         assert bar.glyph.line_color is None and bar.glyph.fill_color is not None
+
+
+def test_the_server_reads_the_first_site_tabs_record_as_it_starts(monkeypatch):
+    """``app_hooks.warm_the_site_tab`` (run as the server starts) reads the default site's record
+    at the default hub, pvlib and pandas imported then: the first page to open the Site tab reads
+    no file (it waited seconds for their import on a busy server) and shows the core's year."""
+    from windpump_app import app_hooks, site_record
+
+    _record, expected = year()  # read here, before the file is taken away
+    site_record.sample_at.cache_clear()
+    site_record.sample.cache_clear()
+    app_hooks.warm_the_site_tab()
+
+    def no_file(name):
+        raise AssertionError(f"the record of {name} was read again")
+
+    monkeypatch.setattr(windpump, "sample_site", no_file)
+    app = Explorer()
+    app.main().active = SITE_TAB
+    assert value(app, "site_lolp") == f"{100 * expected.lolp:.1f} %"

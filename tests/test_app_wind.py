@@ -416,3 +416,32 @@ def test_a_record_of_days_is_titled_and_timed_as_its_span(app):
     assert lifted.yaxis[0].axis_label == "water since dawn [L]"
     assert fig.xaxis[0].axis_label == "time [h]" and wind.x_range.end == pytest.approx(24)
     assert ("t", "@t{0.00} h") in lifted.select_one(HoverTool).tooltips
+
+
+def test_a_tab_hidden_behind_another_runs_nothing_until_it_is_shown_again(monkeypatch):
+    """A preset chosen on the pump's tab with the Wind and Site tabs built: neither runs its day
+    or year (hidden, a browser still lays them out: every tab built made a preset cost seconds),
+    and each shows the preset's own when chosen again (the day against the core's, run here)."""
+    import windpump_app.site_tab as site_tab
+    import windpump_app.wind_tab as wind_tab
+
+    app = Explorer()
+    tabs = app.main()
+    tabs.active = 2  # the Wind tab, then the Site tab, built
+    tabs.active = 4
+    tabs.active = 0  # back on the pump's
+    days, years = [], []
+    run_day, run_year = wind_tab.run_day, site_tab.run_year
+    monkeypatch.setattr(wind_tab, "run_day", lambda *a: days.append(a) or run_day(*a))
+    monkeypatch.setattr(site_tab, "run_year", lambda *a: years.append(a) or run_year(*a))
+    app.sidebar.preset.value = "A double-acting pump"
+    design = SEED.replace(double_acting=True, h=1.5)
+    assert app.seen.design == design  # the pump's tab follows
+    assert days == [] and years == []  # hidden: nothing run for them
+    tabs.active = 2
+    assert len(days) == 1 and years == []
+    record = gusty(5.0, DAY, k=2.0, time_scale=60.0, seed=1)
+    run = windpump.simulate(design, DAY, math.pi / 2, 3.0, wind=record, sample_dt=1.0)
+    assert value(app, "day_litres") == litres(1e3 * run.volume[-1])
+    tabs.active = 4
+    assert len(years) == 1 and years[0][1].design == design

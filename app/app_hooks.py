@@ -60,6 +60,7 @@ WORKERS = Workers(SOLVER_READY)
 # opened at once by 12 browsers on the server's own two cores, 8 were built twice and the burst
 # took 91 s instead of 63 s): twice Bokeh's default, checked every CHECK_UNUSED_SESSIONS. A
 # session whose page was closed lingers as long; its uploads go at once (upload_route).
+# A browser's navigation keeps its page longer while it loads (serving.wait_for_the_browser).
 UNCONNECTED_SESSION_LIFETIME = 30_000  # [ms]
 CHECK_UNUSED_SESSIONS = 5_000  # [ms] so a bare session lives 30-35 s
 

@@ -352,6 +352,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self.clear_pinned()
         self.sidebar.preset_note.visible = False  # its values are not yet the inputs'
         self.set_values(**{**self.inputs.defaults(), **values})
+        self.sidebar.cards_as_fresh(self.inputs)
         self._say(f"**{event.new}.** {sentence}")
 
     def _say(self, note: str) -> None:

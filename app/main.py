@@ -28,6 +28,7 @@ from .serving import (
     reopen_when_reconnected,
     session_closed,
     stylesheets_from_this_server,
+    wait_for_the_browser,
     without_mathjax,
     without_webgl,
     writes_not_stranded,
@@ -52,6 +53,7 @@ keyboard_and_screen_readers(document)
 guard_uploads(document, route=page_opened(document))  # a wind or site file by HTTP
 report_views_seen(document, ORDER)
 reopen_when_reconnected(document)
+wait_for_the_browser(document)  # a page loading slowly is built once, not again as it connects
 logging.basicConfig(level=logging.INFO)
 
 pn.state.on_session_destroyed(session_closed)

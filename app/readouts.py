@@ -144,32 +144,55 @@ def efficiency_readout(seen: windpump.Exploration) -> tuple[str, str]:
     return "Efficiency: volumetric, overall", f"{percent(volumetric)}, {percent(overall)}"
 
 
+def shown_joules(left: list[float], right: list[float]) -> tuple[list[int], list[int]]:
+    """Whole joules for the two sides of an energy balance, ``sum(left) = sum(right)``, that add
+    up as shown: the left's terms rounded each, the right's each rounded down or up (within 1 J
+    of its value), the ones with the largest fractions up, so that their sum is the left's
+    ("22 J + 122 J = 143 J" had each term rounded on its own). Where no such choice exists (a
+    balance off by a joule or more) each term is rounded on its own, as it is."""
+    shown_left = [round(v) for v in left]
+    floors = [math.floor(v) for v in right]
+    need = sum(shown_left) - sum(floors)
+    if not 0 <= need <= len(right):
+        return shown_left, [round(v) for v in right]
+    by_fraction = sorted(range(len(right)), key=lambda i: floors[i] - right[i])
+    shown_right = [f + (i in by_fraction[:need]) for i, f in enumerate(floors)]
+    return shown_left, shown_right
+
+
+def shown_totals(totals: windpump.EnergyTotals) -> dict[str, int]:
+    """The run's energy terms in whole joules as the page shows them, in the readout and in the
+    Losses view alike: shaft, transmission, friction, leak, spin (gained if positive, given back
+    if negative) and water, adding up as shown (``shown_joules``)."""
+    spin = totals.kinetic + totals.potential
+    losses = [totals.transmission, totals.friction, totals.leak]
+    if spin >= 0:
+        (work,), (*lost, gained, water) = shown_joules(
+            [totals.shaft], [*losses, spin, totals.water]
+        )
+    else:
+        (work, back), (*lost, water) = shown_joules([totals.shaft, -spin], [*losses, totals.water])
+        gained = -back
+    names = ("transmission", "friction", "leak")
+    return {"shaft": work, **dict(zip(names, lost, strict=True)), "spin": gained, "water": water}
+
+
 def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
     """The run's energy balance in words that keep the sign: a slowing rotor gives energy back.
-    The real machine's losses (chain, rising main, leak) are one term when there are any."""
-    totals = seen.energy_totals
-    work, lift = totals.shaft, totals.water
-    kinetic = totals.kinetic + totals.potential
-    lost = totals.transmission + totals.friction + totals.leak
-    if seen.design.is_ideal:
-        if kinetic >= 0:
-            return (
-                "Windmill's work = gained speed + lifted water",
-                f"{work:,.0f} J = {kinetic:,.0f} J + {lift:,.0f} J",
-            )
-        return (
-            "Windmill's work + speed given back = lifted water",
-            f"{work:,.0f} J + {-kinetic:,.0f} J = {lift:,.0f} J",
-        )
-    if kinetic >= 0:
-        return (
-            "Windmill's work = losses + gained speed + lifted water",
-            f"{work:,.0f} J = {lost:,.0f} J + {kinetic:,.0f} J + {lift:,.0f} J",
-        )
-    return (
-        "Windmill's work + speed given back = losses + lifted water",
-        f"{work:,.0f} J + {-kinetic:,.0f} J = {lost:,.0f} J + {lift:,.0f} J",
+    The real machine's losses (chain, rising main, leak) are one term when there are any. The
+    shown terms add up to the shown sum (``shown_totals``)."""
+    shown = shown_totals(seen.energy_totals)
+    spin = shown["spin"]
+    left = [shown["shaft"], *([] if spin >= 0 else [-spin])]
+    lost = (
+        [] if seen.design.is_ideal else [shown["transmission"] + shown["friction"] + shown["leak"]]
     )
+    right = [*lost, *([spin] if spin >= 0 else []), shown["water"]]
+    words = " = ".join(" + ".join(f"{v:,} J" for v in side) for side in (left, right))
+    gained = "gained speed + " if spin >= 0 else ""
+    back = "" if spin >= 0 else " + speed given back"
+    losses = "" if seen.design.is_ideal else "losses + "
+    return f"Windmill's work{back} = {losses}{gained}lifted water", words
 
 
 def start_text(seen: windpump.Exploration) -> str:

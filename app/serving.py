@@ -43,6 +43,43 @@ def session_closed(session_context) -> None:  # Bokeh requires exactly this sign
     TIDY.closed()
 
 
+# A browser that opened the page connects its websocket once it has loaded the page's scripts: on
+# a busy server (a class opening at once, a first compile) that took over 30 s, the page's session
+# had been dropped as never connected (app_hooks.UNCONNECTED_SESSION_LIFETIME), and the websocket
+# built the page a second time. A browser's navigation says so (``Sec-Fetch-Dest: document``,
+# sent by Chromium, Firefox and Safari; not by a script or most link checkers): its session is
+# kept this long unconnected; a bare GET's still goes after 30-35 s.
+BROWSER_CONNECT_WINDOW = 180.0  # [s]
+
+
+def wait_for_the_browser(document, window: float = BROWSER_CONNECT_WINDOW) -> None:
+    """Keep ``document``'s session for ``window`` seconds while its browser, whose navigation
+    asked for the page, loads it and connects (a session connected is kept while connected,
+    and lingers as Bokeh's lifetime says once closed). A request that is no browser's
+    navigation leaves the session to Bokeh's lifetime alone.
+
+    Examples
+    --------
+    In ``main.py``, as the page is built: ``wait_for_the_browser(pn.state.curdoc)``.
+    """
+    from tornado.ioloop import IOLoop
+
+    context = document.session_context
+    request = getattr(context, "request", None)
+    headers = getattr(request, "headers", None) or {}
+    if headers.get("Sec-Fetch-Dest", "").lower() != "document":
+        return
+
+    def block() -> None:  # once Bokeh has made the session (just after this document is built)
+        session = getattr(context, "_session", None)
+        if session is None or session.destroyed:
+            return
+        session.block_expiration()
+        IOLoop.current().call_later(window, session.unblock_expiration)
+
+    IOLoop.current().add_callback(block)
+
+
 def log_request(handler) -> None:
     """Tornado's line in its access log for a request answered (``log_function``), with the
     request's path and not its query: a page's query is its link (up to megabytes), and an

@@ -114,6 +114,11 @@ class Sliders(dict):
         return built
 
 
+def ideal_machine(inputs: PumpInputs) -> bool:
+    """Whether every input of the real machine holds its default (the paper's ideal machine)."""
+    return all(inputs.is_default(name, getattr(inputs, name)) for name in REAL_MACHINE_INPUTS)
+
+
 class Sidebar(pn.viewable.Viewer):
     """The controls. Their actions are the page's: it wires the buttons (``reset_button``,
     ``pin_button``, ``clear_button``, ``preset``) to itself; ``run_csv()`` is the file to download
@@ -171,9 +176,14 @@ class Sidebar(pn.viewable.Viewer):
         self.download.filename = design_filename(design)
 
     def _open_real_card(self, *events) -> None:
-        inputs = events[0].obj
-        if not all(inputs.is_default(name, getattr(inputs, name)) for name in REAL_MACHINE_INPUTS):
+        if not ideal_machine(events[0].obj):
             self.real_card.collapsed = False
+
+    def cards_as_fresh(self, inputs: PumpInputs) -> None:
+        """The Real machine card as a fresh page of ``inputs``' design has it: open on a real
+        machine, closed on an ideal one (a preset of an ideal machine chosen after one of a real
+        machine left it open over sliders the design does not use)."""
+        self.real_card.collapsed = ideal_machine(inputs)
 
     def card(self, title: str, place: str, note: str = "") -> pn.Card:
         """A collapsed card of the sliders that sit in ``place`` (FORMATS), under a ``note`` of

@@ -24,6 +24,7 @@ from windpump.units import LITRES_PER_M3
 
 from .envelope import band
 from .figures import FACES, HEIGHT, LABEL, draw_band, empty, legend, line, new_figure, palette
+from .readouts import shown_totals
 from .styles import CAPTION_CSS
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
@@ -364,8 +365,9 @@ class EnergyView(View):
         right.append(totals.water)
         values = (W, totals.transmission, totals.friction, totals.leak, spin, totals.water)
         share = [100.0 * v / W if W > 0 else 0.0 for v in values]
-        labels = [f"{v:,.0f} J, {p:.0f} %" for v, p in zip(values, share, strict=True)]
-        labels[4] = labels[4] if spin >= 0 else f"{-spin:,.0f} J given back"
+        joules = list(shown_totals(totals).values())  # as the readout shows them, adding up
+        labels = [f"{v:,} J, {p:.0f} %" for v, p in zip(joules, share, strict=True)]
+        labels[4] = labels[4] if spin >= 0 else f"{-joules[4]:,} J given back"
         # the bars; the page makes room for their labels (FIT_BARS_JS)
         self.figure.x_range.end = 1.02 * max(max(right), 1e-9)
         return {

@@ -232,10 +232,60 @@ def test_a_slowing_rotor_gives_power_back_below_zero(app):
     assert "given back" in bars["label"][spin]
     text = readout_text(app, "energy")
     assert "gained speed" not in text and "given back" in text
-    assert (
-        f"{budget.shaft_work[-1]:,.0f} J + {-kinetic:,.0f} J = {budget.lift_work[-1]:,.0f} J"
-        in text
+    work, back, lift = (int(v.replace(",", "")) for v in re.findall(r"([\d,]+) J", text))
+    assert work == pytest.approx(budget.shaft_work[-1], abs=1)  # each within a joule
+    assert back == pytest.approx(-kinetic, abs=1) and lift == pytest.approx(
+        budget.lift_work[-1], abs=1
     )
+    assert work + back == lift  # and the shown terms add up
+
+
+def shown_balance(text: str) -> tuple[list[int], list[int]]:
+    """The shown energy balance's two sides, in whole joules."""
+    left, right = text.split(" = ")
+    return [
+        [int(term.strip().removesuffix(" J").replace(",", "")) for term in side.split(" + ")]
+        for side in (left, right)
+    ]
+
+
+def test_the_shown_energy_terms_add_up_to_the_shown_sum_over_random_designs(app):
+    """Each term rounded on its own read "22 J + 122 J = 143 J": over random designs, ideal and
+    real, running, slowing and stalled, the shown terms add up exactly, and each is the core's
+    term within a joule (issue 37)."""
+    rng = np.random.default_rng(37)
+    for _ in range(40):
+        values = dict(
+            h=round(rng.uniform(0.5, 25.0), 1),
+            T_m=round(rng.uniform(0.2, 3.0), 2),
+            theta_dot0=round(rng.uniform(0.0, 30.0), 1),
+            t_end=float(rng.choice([10.0, 60.0, 200.0])),
+        )
+        if rng.random() < 0.5:  # a real machine: its losses are a term of their own
+            values.update(eta_t=round(rng.uniform(0.5, 1.0), 2), m_r=round(rng.uniform(0, 20), 1))
+            values.update(L_main=float(rng.integers(0, 40)), d_leak_mm=round(rng.uniform(0, 3), 1))
+        app.set_values(**{**app.inputs.defaults(), **values})
+        value = app.readouts["energy"].object.split('class="value"', 1)[1]
+        text = re.sub(r"<[^>]+>", "", value.split(">", 1)[1])
+        left, right = shown_balance(text)
+        assert sum(left) == sum(right), (values, text)
+        totals = app.seen.energy_totals
+        kinetic = totals.kinetic + totals.potential
+        lost = totals.transmission + totals.friction + totals.leak
+        terms = [totals.shaft] + ([-kinetic] if kinetic < 0 else [])
+        terms += ([] if app.seen.design.is_ideal else [lost]) + ([kinetic] if kinetic >= 0 else [])
+        terms += [totals.water]
+        assert len(terms) == len(left) + len(right), (values, text)
+        for shown_term, term in zip(left + right, terms, strict=True):
+            assert abs(shown_term - term) <= 1.0, (values, text, terms)
+        # the Losses view's bars say the same joules, its losses adding up to the readout's
+        bars = [
+            int(label.split(" J")[0].replace(",", ""))
+            for label in app.sources["losses"].data["label"]
+        ]
+        assert bars[0] == left[0] and bars[-1] == right[-1], (values, text, bars)
+        if not app.seen.design.is_ideal:
+            assert sum(bars[1:4]) == right[0], (values, text, bars)
 
 
 # -- presets and pinning -----------------------------------------------------------------------------

@@ -276,3 +276,18 @@ def test_a_pump_that_never_stalls_reads_so_not_inf(query):
     assert "inf" not in shown and "∞ (never stalls)" in shown
     app.show_views()  # the stall view's title says it too
     assert app.pump.stall.figure.title.text.endswith("margin ∞: it runs")
+
+
+@pytest.mark.parametrize("name", [n for n in PRESETS if n != "A deep well, a heavy rod"])
+def test_a_preset_leaves_the_real_machine_card_as_a_fresh_page_of_it_does(name):
+    """Chosen after a preset of a real machine (which opens the card), a preset leaves the card
+    as a fresh page opened on its link has it: "A stalled pump" kept it open over the real
+    machine's sliders although its machine is the paper's ideal one (issue 37)."""
+    app = Explorer()
+    app.sidebar.preset.value = "A deep well, a heavy rod"
+    assert not app.sidebar.real_card.collapsed
+    app.sidebar.preset.value = name
+    fresh = Explorer(query={k: [v.encode()] for k, v in parse_qsl(app.inputs.query())})
+    assert fresh.inputs.design() == app.inputs.design()  # the same design, opened afresh
+    assert app.sidebar.real_card.collapsed == fresh.sidebar.real_card.collapsed
+    assert app.sidebar.real_card.collapsed == app.inputs.design().is_ideal

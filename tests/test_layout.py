@@ -10,7 +10,7 @@ import pytest
 from playwright.sync_api import expect
 from test_browser import ARTIFACTS, MAP_MARKER, SIZES, handle, map_settled, open_page, text
 
-from served import DEEP_TEXT, show_view
+from served import DEEP_TEXT, VIEW_DRAWN, show_view
 
 pytestmark = pytest.mark.browser
 
@@ -180,6 +180,30 @@ def test_a_phone_shows_the_readouts_while_a_slider_is_moved(browser, url, query)
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / f"phone-moved{query.replace('?', '-')}.png"))
         assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 37, open: at 390×844 the readouts and the status (to ~410 px) leave the crank "
+    "speed ~100 px above the controls' pane; a whole chart with a plot of 150 px or more "
+    "(test_browser_views' presentation test) needs ~330 px, which leaves the controls no room: "
+    "a layout choice (legend, readouts or presets placed otherwise on a phone) is still to make",
+)
+def test_a_phone_shows_the_readouts_and_the_whole_crank_speed_in_its_first_screen(browser, url):
+    """A phone's first screen: the readouts, the status and one whole chart, the crank speed,
+    below the header and above the controls' pane (cut at the fold in a new user's trial)."""
+    page = open_page(browser, url, *PHONE)
+    try:
+        page.get_by_text("Running.").first.wait_for()
+        page.wait_for_function(VIEW_DRAWN, arg="speed", timeout=60_000)
+        time.sleep(1.0)
+        box = page.evaluate(VIEW_BOX, "speed_figure")
+        pane = page.locator("#main").bounding_box()
+        top = bottom(page.locator("#header").bounding_box())
+        assert box is not None and top - 1 <= box["y"], box
+        assert bottom(box) <= bottom(pane) + 1, (box, pane)
     finally:
         page.close()
 

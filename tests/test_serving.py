@@ -3,6 +3,7 @@ and what a served page nobody connects costs (app/app_hooks.py)."""
 
 from __future__ import annotations
 
+import re
 import time
 import urllib.request
 
@@ -681,3 +682,48 @@ def test_served_a_hundred_bare_visits_hold_no_memory_a_minute_later():
             time.sleep(5)
             held = resident_memory(process.pid)
     assert held - before < HELD, f"{before / 1e6:.0f} MB before, {held / 1e6:.0f} MB after"
+
+
+# -- a page whose browser connects late -------------------------------------------------------
+
+LIFETIME_MS = 2_000  # a short unconnected lifetime, so "late" is seconds here, not 30 s
+LATE = 8.0  # [s] the browser connects this long after its page was served: past the lifetime
+
+
+def page_visit(url: str, browser: bool) -> tuple[str, str]:
+    """GET the page, as a browser's navigation (``Sec-Fetch-Dest: document``) or as a script;
+    return its session's id and its HTML."""
+    from bokeh.util.token import get_session_id
+
+    headers = {"Sec-Fetch-Dest": "document", "Sec-Fetch-Mode": "navigate"} if browser else {}
+    with urllib.request.urlopen(urllib.request.Request(url, headers=headers), timeout=300) as page:
+        html = page.read().decode()
+    token = re.search(r'"token": ?"([^"]+)"', html).group(1)
+    return get_session_id(token), html
+
+
+def connected_root_ids(url: str, session_id: str) -> set[str]:
+    """Connect the session's websocket, as the page's scripts do; the ids of its document's roots."""
+    import panel.models  # noqa: F401  (the page's models, to read its document)
+    import panel.models.location  # noqa: F401
+    from bokeh.client import pull_session
+
+    with pull_session(session_id=session_id, url=url) as session:
+        return {root.id for root in session.document.roots}
+
+
+@pytest.mark.timeout(600)
+def test_served_a_page_whose_browser_connects_late_is_built_once_and_works():
+    """A page connected after its session's unconnected lifetime (30 s; 2 s here) was built a
+    second time as it connected, on a busy server: the browser's page is kept until it connects
+    (serving.wait_for_the_browser); a script's bare GET still goes after the lifetime (issue 37)."""
+    args = ("--unused-session-lifetime", str(LIFETIME_MS), "--check-unused-sessions", "500")
+    with served_app(*args) as (url, _process):
+        browsers, script = page_visit(url, browser=True), page_visit(url, browser=False)
+        time.sleep(LATE)
+        for (session_id, html), kept in ((browsers, True), (script, False)):
+            page_roots = set(re.findall(r'data-root-id="([^"]+)"', html))
+            assert page_roots, html[:2000]  # the roots the served HTML places
+            roots = connected_root_ids(url, session_id)
+            # the same document: the one built when the page was served (a rebuilt one has new ids)
+            assert (page_roots <= roots) is kept, (kept, page_roots, roots)

@@ -249,10 +249,11 @@ LATE_MARGIN = 1.5
 for it to be stopped (:func:`off_pace`). Measured (``benchmarks/bench_pace.py``: designs drawn
 as tests/test_ranges.py draws them and the known slow ones, run to the end without a pace
 check): the final steps over the projection at 1e6 steps were 1.003 (a drawn design, 1.26e7
-steps in 3600 s) and 1.40 (the seed example's pump at I0 = I1 = 1e-4 kg m^2 with a 4 mm hole,
-2 s: its start is quicker than the rest); a run that keeps going at its pace is only ever
-under-projected by 1e6 steps in these, and a refusal at 1.5 leaves a third for one that
-slows down. A run that stalls late (the seed example at m_r = 1e6 kg stalls after 0.16 s, at
+steps in 3600 s), 1.0001 (the seed example at I0, I1 / 1e5, 600 s: 3.16e6 steps), 1.40 and
+1.47 (the seed example's pump at I0 = I1 = 1e-4 kg m^2 with a 4 mm hole, 2 s and 6 s: 5.1e6
+and 1.6e7 steps; its start is quicker than the rest): a run that keeps going is only ever
+under-projected by 1e6 steps in these, never over, and a refusal at 1.5 leaves a third for one
+that slows down. A run that stalls late (the seed example at m_r = 1e6 kg stalls after 0.16 s, at
 141,497 steps) is the case no pace can foresee: one that would stall after more than 1e6
 steps on pace for 1.5 times max_steps is refused."""
 

@@ -80,7 +80,7 @@ def numeric_values(argv: list[str], parser: argparse.ArgumentParser) -> list[str
     >>> numeric_values(["tank", "--shear", "-inf", "--lolp", "-1e-3"], build_parser())
     ['tank', '--shear=-inf', '--lolp=-1e-3']
     """
-    takes_value = set()
+    takes_value: set[str] = set()
     parsers = [parser]
     while parsers:
         for action in parsers.pop()._actions:

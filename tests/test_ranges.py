@@ -11,6 +11,7 @@ holds the two together.
 from __future__ import annotations
 
 import math
+import re
 import time
 import warnings
 
@@ -592,3 +593,40 @@ def test_a_kick_far_below_the_unstable_speed_decays_from_the_kick():
         y = (kick - a_minus) / (a_plus - kick) * mpmath.exp(k * (a_plus - a_minus) * t)
         expected = (a_minus + a_plus * y) / (1 + y)
         assert speed == pytest.approx(float(expected), rel=1e-6, abs=1e-9 * 3.0), (t, speed)
+
+
+LEAKY_LIGHT = SEED.replace(I0=1e-4, I1=1e-4, d_leak=4e-3)  # 2.6 million steps a second of run
+
+
+@pytest.mark.parametrize("t_end", [12.0, 25.0, 60.0])
+def test_a_run_on_pace_to_need_1_5_to_10_times_the_budget_is_refused_near_1e6_steps(t_end):
+    # 1.5 to 8 times MAX_STEPS: under the first window's margin of 10, so it ran 10-60 s to
+    # MAX_STEPS before it was refused; now its whole pace from LATE_STEPS on refuses it (at 12 s,
+    # 1.5 times, after 3.7 million steps: its start is quicker than the rest), naming the hole
+    from windpump import _kernels, dynamics
+
+    with pytest.raises(ParameterError) as caught:
+        windpump.simulate(LEAKY_LIGHT, t_end)
+    message = str(caught.value)
+    assert caught.value.name == "design" and "leak hole" in message, message
+    steps = int(re.search(r"after ([\d,]+) was on pace", message).group(1).replace(",", ""))
+    assert steps <= dynamics.MAX_STEPS / 5, message
+    ran = _kernels.run(
+        dynamics.kernel_machine(LEAKY_LIGHT), math.pi / 2, 3.0, t_end, dynamics.SAMPLES_PER_STROKE,
+        None, dynamics.RTOL, dynamics.MAX_STEPS, 64, pace=dynamics.PACE_STEPS,
+    )  # fmt: skip
+    assert ran.outcome == _kernels.OVER_BUDGET and ran.steps == steps
+
+
+def test_a_slow_run_that_fits_its_budget_still_runs_past_1e6_steps_unchanged():
+    # 5.1 million steps in 2 s: past LATE_STEPS, on pace for 0.26 of MAX_STEPS
+    from windpump import _kernels, dynamics
+
+    run = windpump.simulate(LEAKY_LIGHT, 2.0)
+    assert run.steps > 4_000_000 and run.t[-1] == 2.0
+    unpaced = _kernels.run(
+        dynamics.kernel_machine(LEAKY_LIGHT), math.pi / 2, 3.0, 2.0, dynamics.SAMPLES_PER_STROKE,
+        None, dynamics.RTOL, dynamics.MAX_STEPS, 64,
+    )  # fmt: skip
+    assert unpaced.steps == run.steps
+    np.testing.assert_array_equal(unpaced.theta_dot, run.theta_dot)  # bit for bit

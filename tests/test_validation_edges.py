@@ -489,3 +489,26 @@ def test_too_many_samples_names_the_argument_and_a_finite_bound(t_end, options, 
         assert number == pytest.approx((MAX_SAMPLES - 3) * (math.pi / 16) / fastest, rel=1e-5)
     else:
         assert number == pytest.approx(t_end / (MAX_SAMPLES - 3), rel=1e-5)
+
+
+SCALAR_FIELDS = {
+    "Design.h": lambda x: SEED.replace(h=x),
+    "Design.T_m": lambda x: SEED.replace(T_m=x),
+    "simulate t_end": lambda x: windpump.simulate(SEED, x),
+    "simulate theta0": lambda x: windpump.simulate(SEED, 1.0, theta0=x),
+    "water_per_day": lambda x: windpump.water_per_day(SELF_STARTING, x),
+    "supply demand": lambda x: windpump.supply(SELF_STARTING, RECORD, x, 1.0),
+    "at_height": lambda x: RECORD.at_height(x),
+}
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64, np.int64])
+@pytest.mark.parametrize("refusal", SCALAR_FIELDS)
+def test_an_array_where_a_number_belongs_is_written_as_numbers(refusal, dtype):
+    """A message showed numpy's repr of an array ("array([1.5], dtype=float32)") given for a
+    number: now its numbers, plainly."""
+    with pytest.raises(ParameterError) as error:
+        SCALAR_FIELDS[refusal](np.array([1.5, 2.0]).astype(dtype))
+    message = str(error.value)
+    assert not re.search(r"array\(|dtype|np\.\w+\(", message), message
+    assert "an array [1" in message, message

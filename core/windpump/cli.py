@@ -53,7 +53,8 @@ MAX_FILE_BYTES = 50_000_000
 def main(argv: list[str] | None = None) -> int:
     """Run the command line ``argv`` (default: the process's); return the exit code."""
     parser = build_parser()
-    args, extra = parser.parse_known_args(argv)
+    argv = sys.argv[1:] if argv is None else list(argv)
+    args, extra = parser.parse_known_args(numeric_values(argv, parser))
     if extra and args.command != "serve":
         parser.error(f"unrecognized arguments: {' '.join(extra)}")
     try:
@@ -64,6 +65,52 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as error:  # every failure: one line, exit 1, never a traceback
         print(f"windpump {args.command}: error: {one_line(error)}", file=sys.stderr)
         return 1
+
+
+def numeric_values(argv: list[str], parser: argparse.ArgumentParser) -> list[str]:
+    """``argv`` with each option that takes a value and is followed by a negative or signed
+    number joined to it (``--shear -inf`` as ``--shear=-inf``): argparse takes a word starting
+    with '-' for an option unless it is plain digits (-1, -0.5), so ``-inf``, ``-nan`` and
+    ``-1e-3`` (or map's range ``-1:2:10``) were 'expected one argument' instead of a value
+    checked in words. Up to ``serve``
+    (whose options are panel's) or ``--``.
+
+    Examples
+    --------
+    >>> numeric_values(["tank", "--shear", "-inf", "--lolp", "-1e-3"], build_parser())
+    ['tank', '--shear=-inf', '--lolp=-1e-3']
+    """
+    takes_value: set[str] = set()
+    parsers = [parser]
+    while parsers:
+        for action in parsers.pop()._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                parsers.extend(action.choices.values())
+            elif action.option_strings and action.nargs is None:
+                takes_value.update(action.option_strings)
+    joined: list[str] = []
+    words = iter(argv)
+    for word in words:
+        if word in ("serve", "--"):
+            return [*joined, word, *words]
+        joined.append(word)
+        if word in takes_value:
+            value = next(words, None)
+            if value is None:
+                break
+            if value.startswith("-") and (_is_number(value) or ":" in value):
+                joined[-1] = f"{word}={value}"
+            else:
+                joined.append(value)
+    return joined
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 NUMPY_NUMBER = re.compile(r"np\.(?:float|int|uint|complex)\d*\(([^()]*)\)|np\.(True|False)_")

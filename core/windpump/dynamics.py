@@ -477,8 +477,10 @@ PACE_STEPS = 100_000
 ``PACE_STEPS`` (steps per second of t), the rest of it would need more than 10 times what is
 left of ``MAX_STEPS`` (``_kernels.stepping.PACE_MARGIN``: a start may be stiffer than the
 rest): a design too stiff or too slow to integrate, whether its time scales show it or not, is
-refused after ~0.1-0.3 s (twice that on a busy machine), not after ``MAX_STEPS`` (10-60 s). A
-run on pace to need 1 to 10 times ``MAX_STEPS`` is still refused only when they run out. A short
+refused after ~0.1-0.3 s (twice that on a busy machine), not after ``MAX_STEPS`` (10-60 s). From
+``_kernels.stepping.LATE_STEPS`` (1e6) steps on, a run whose pace since t = 0 projects more
+than 1.5 times ``MAX_STEPS`` (``LATE_MARGIN``) is refused too, after ~1-3 s; one on pace to need
+1 to 1.5 times ``MAX_STEPS`` is still refused only when they run out. A short
 stiff run that ends early stays inside the margin (the seed example at m_r = 1e6 kg: 141,497
 steps in 0.16 s, then it stalls; the first 100,000 at 4 times the pace of 60 s of MAX_STEPS).
 In a wind record a calm stretch may follow a stormy one, so only ``MAX_STEPS`` holds there."""
@@ -517,32 +519,50 @@ def _windmill_slope(design: Design, gear_ratio=None):
     return 2.0 * design.eta_t * ratio**2 * (design.T_m - design.T_0) / design.omega_m
 
 
-def _stiff_advice(design: Design, t_end: float | None = None) -> str:
+def _stiff_advice(design: Design, t_end: float | None = None, crawled: bool = False) -> str:
     """What makes ``design`` too stiff to integrate, in words, and which fields to change in
     which direction: from the largest cause of :func:`stiffness` when one explains the steps a
     run of t_end [s] would need (``STIFF_STEPS`` a unit of rate times time), and otherwise from
     the numbers at the ends of double precision that the time scales miss. The one wording of
-    this advice, for :func:`simulate` and the numeric design maps."""
+    this advice, for :func:`simulate` and the numeric design maps. ``crawled``: the run took
+    far more steps than :func:`estimated_steps` before it was refused (then the fastest time
+    scale, when a run spans many of them, is named as the likely cause)."""
     windmill, pipe, hole, masses = stiffness(design)
     if masses > 1e3:
         return (f"reciprocating masses of {masses:.3g} times the rotor's inertia on the crank "
                 "(a lighter m_r, or a heavier rotor: increase I0 or I1)")  # fmt: skip
     largest = max(windmill, pipe, hole)
     explained = t_end is None or STIFF_STEPS * largest * t_end > PACE_STEPS
-    if explained and largest == windmill:
+    if explained:
+        return _fastest_cause(design, windmill, pipe, hole)
+    extreme = _extreme_numbers(design)
+    if extreme != _NO_EXTREME or not crawled or t_end is None or largest * t_end < 1.0:
+        return "none of its time scales explains it: " + extreme
+    # A run over many of its fastest settling times, refused late (on pace to need 1.5 to 10
+    # times MAX_STEPS: a leak hole on a light rotor takes ~1,700 steps per settling time, not
+    # STIFF_STEPS): that time scale is the likely cause, and a shorter t_end the other way
+    return f"most likely {_fastest_cause(design, windmill, pipe, hole)}; or a shorter t_end"
+
+
+def _fastest_cause(design: Design, windmill: float, pipe: float, hole: float) -> str:
+    """The fastest of :func:`stiffness`'s rates [1/s] as a cause, in words (:func:`_stiff_advice`)."""
+    largest = max(windmill, pipe, hole)
+    if largest == windmill:
         geared = design.I1 > design.I0 * design.R_dagger**2  # a1/I_eff then grows with R+
         return (f"a rotor too light for its windmill: the crank's speed settles in "
                 f"{1 / windmill:.3g} s (a heavier rotor: increase I0 or I1"
                 + (", or a smaller R1/R0" if geared else "") + ")")  # fmt: skip
-    if explained and largest == pipe:
+    if largest == pipe:
         return (f"a rising main whose friction settles the crank's speed in {1 / pipe:.3g} s "
                 "(a shorter or wider main: a smaller L_main or a larger D_main; or a heavier "
                 "rotor)")  # fmt: skip
-    if explained:
-        return (f"a leak hole whose load settles the crank's speed in {1 / hole:.3g} s, "
-                "rho_w g h (A R)^2 / q_L over I_eff (a lower head h, a wider hole d_leak or "
-                "none, or a heavier rotor)")  # fmt: skip
-    return "none of its time scales explains it: " + _extreme_numbers(design)
+    return (f"a leak hole whose load settles the crank's speed in {1 / hole:.3g} s, "
+            "rho_w g h (A R)^2 / q_L over I_eff (a lower head h, a wider hole d_leak or "
+            "none, or a heavier rotor)")  # fmt: skip
+
+
+_NO_EXTREME = ("a run longer than the step budget allows at its pace (a shorter t_end, "
+               "or omega_m, T_m, T_0, R1/R0, I0 and I1 nearer the paper's machine)")  # fmt: skip
 
 
 def _extreme_numbers(design: Design) -> str:
@@ -562,8 +582,7 @@ def _extreme_numbers(design: Design) -> str:
                       f"from rest at {start:.3g} rad/s^2, below 1e-200 (a larger T_0, or none: "
                       "T_0 = 0, or a lighter rotor)")  # fmt: skip
     if not causes:
-        causes.append("a run longer than the step budget allows at its pace (a shorter t_end, "
-                      "or omega_m, T_m, T_0, R1/R0, I0 and I1 nearer the paper's machine)")  # fmt: skip
+        causes.append(_NO_EXTREME)
     return "; ".join(causes)
 
 
@@ -715,13 +734,15 @@ def simulate(
         pace=PACE_STEPS if record is None else None,
     )
     if run.outcome == _kernels.OVER_BUDGET:
+        reached = float(run.t[-1])  # the last sample before the refusal
+        crawled = reached > 0.0 and run.steps > 10.0 * estimated_steps(design, reached)
         raise ParameterError(
             "design",
             f"I_eff = {design.I_eff:.3g} kg m^2",
             "a design whose crank speed settles over more than a crank revolution",
             why=f"the integration needed more than {MAX_STEPS:,} steps, or after {run.steps:,} "
             f"was on pace to need them by t_end: the design is too stiff: "
-            + _stiff_advice(design, t_end),
+            + _stiff_advice(design, t_end, crawled),
         )
     return _simulation_result(design, run, record)
 

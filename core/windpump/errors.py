@@ -26,7 +26,14 @@ def shown(value: object, limit: int = SHOWN) -> str:
     >>> import numpy as np
     >>> shown(np.float64("nan")), shown([np.int64(3)]), shown({"theta1": np.float64(1.5)})
     ('nan', '[3]', "{'theta1': 1.5}")
+    >>> shown(np.array([1.5, -2.0], dtype=np.float32)), shown(np.zeros((3, 4)))
+    ('an array [1.5, -2.0]', 'an array of shape (3, 4)')
     """
+    if type(value).__module__ == "numpy" and getattr(value, "ndim", 0) > 0:  # (not its repr:
+        size, shape = getattr(value, "size", 0), getattr(value, "shape", ())  # "dtype=float32")
+        if size <= 8 and len(shape) == 1:
+            return f"an array {shown(value.tolist(), limit)}"  # type: ignore[attr-defined]
+        return f"an array of shape {shape}"
     value = _plain(value)
     if isinstance(value, str | bytes | bytearray) and len(value) > limit:
         return f"{repr(value[: limit - 2])[:-1]}… ({len(value):,} characters)"

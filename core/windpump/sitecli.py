@@ -94,6 +94,13 @@ def site_record(args: argparse.Namespace) -> WindRecord:
     from .weather import read_weather, sample_site
 
     if args.site:
+        if args.height is not None:  # (it was ignored: --height -inf ran the year)
+            raise ParameterError(
+                "--height",
+                args.height,
+                "given only with --weather (a sample site's anemometer height is its own)",
+                "m",
+            )
         record = sample_site(args.site)
     else:
         try:

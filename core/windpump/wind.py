@@ -53,6 +53,17 @@ MAX_TIME = 1e12
 """Largest time a record may hold, either side of zero [s] (about 31,700 years): the core's
 largest number (``validation.LARGEST``); two such times are still apart by a finite number."""
 
+MIN_STEP = 1e-6
+"""Shortest step between two of a record's times [s] (a microsecond; an anemometer samples at
+most ~100 times a second, a windmill's time scales are milliseconds and more), and at least
+``MIN_RELATIVE_STEP`` of the times' size: a run lands a step on every sample, and a record
+spanning 1e-300 s, or two times a few ulps apart near 1e12 s, gave the wind's slope between
+them in round-off (or an overflow) instead of a wind."""
+
+MIN_RELATIVE_STEP = 1e-13
+"""Shortest step between two of a record's times, relative to their size (1e-13: about 450
+ulps; 0.1 s at ``MAX_TIME``)."""
+
 COLUMNS = "two columns: time [s] or an ISO timestamp, then wind speed [m/s]"
 
 
@@ -71,7 +82,8 @@ class WindRecord:
     ----------
     t : ndarray
         Times [s] from the record's start: strictly increasing, from -1e12 to 1e12 (``MAX_TIME``),
-        at least one.
+        at least one; consecutive ones at least ``MIN_STEP`` (1e-6 s) and ``MIN_RELATIVE_STEP``
+        (1e-13) of their size apart.
     V : ndarray
         Wind speeds [m/s], finite, from 0 to ``MAX_WIND``, one a time. The three arrays are
         checked (a ParameterError naming ``t``, ``V`` or ``month``, the first sample at fault
@@ -123,6 +135,12 @@ class WindRecord:
             raise ParameterError(
                 "t", f"t[{i}] = {shown(t[i])} after t[{i - 1}] = {shown(t[i - 1])}",
                 "finite, increasing times", "s",
+            )  # fmt: skip
+        i = short_step(t)
+        if i > 0:
+            raise ParameterError(
+                "t", f"t[{i}] = {shown(t[i])} after t[{i - 1}] = {shown(t[i - 1])}",
+                _STEP_WORDS, "s",
             )  # fmt: skip
         outside = ~((V >= 0.0) & (V <= MAX_WIND))  # (NaN too)
         if outside.any():
@@ -350,12 +368,15 @@ def as_record(wind: object, t_end: float) -> WindRecord:
 
     A pair (t, V) of equal-length arrays: times finite and strictly increasing, speeds from 0 to
     ``MAX_WIND``. A callable is called with an array of times and sampled evenly over [0, t_end]
-    (``CALLABLE_SAMPLES`` points at most, 0.01 s apart while that fits); one that only takes a
+    (``CALLABLE_SAMPLES`` points at most, 0.01 s apart while that fits, and 2 ``MIN_STEP`` apart
+    at the least, past t_end for a run that short); one that only takes a
     number is called point by point. A bad record raises ParameterError naming ``wind``.
     """
     if callable(wind):
         count = int(min(CALLABLE_SAMPLES, max(1001, math.ceil(t_end / 0.01) + 1)))
-        t = np.linspace(0.0, t_end, count)
+        # (a run shorter than 1000 steps of 2 MIN_STEP samples its wind over them, held past
+        # t_end: steps of MIN_STEP itself would fall short of it by round-off)
+        t = np.linspace(0.0, max(t_end, (count - 1) * 2 * MIN_STEP), count)
         try:
             V = np.asarray(wind(t), dtype=float)
         except Exception:  # a function of one number: call it point by point
@@ -409,7 +430,34 @@ def _check(t: np.ndarray, V: np.ndarray) -> WindRecord:
             f"t[{i}] = {shown(t[i])} s after t[{i - 1}] = {shown(t[i - 1])} s",
             "increasing times",
         )
+    i = short_step(t)
+    if i > 0:
+        raise ParameterError(
+            "wind", f"t[{i}] = {shown(t[i])} s after t[{i - 1}] = {shown(t[i - 1])} s",
+            _STEP_WORDS,
+        )  # fmt: skip
     return _frozen(t, V)
+
+
+_STEP_WORDS = (
+    f"increasing times at least {MIN_STEP:g} s and {MIN_RELATIVE_STEP:g} of their size apart"
+)
+
+
+def short_step(t: np.ndarray) -> int:
+    """The index of the first of increasing times ``t`` [s] less than ``MIN_STEP`` (or
+    ``MIN_RELATIVE_STEP`` of their size) after the one before it, or 0 when none is.
+
+    Examples
+    --------
+    >>> short_step(np.array([0.0, 1.0, 2.0])), short_step(np.array([0.0, 1e-300]))
+    (0, 1)
+    """
+    if t.size < 2:
+        return 0
+    size = np.maximum(np.abs(t[1:]), np.abs(t[:-1]))
+    short = np.diff(t) < np.maximum(MIN_STEP, MIN_RELATIVE_STEP * size)
+    return int(np.argmax(short)) + 1 if short.any() else 0
 
 
 def _frozen(t: np.ndarray, V: np.ndarray) -> WindRecord:

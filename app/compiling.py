@@ -6,7 +6,7 @@ compiling it a second time, and says so (``COMPILE.progress``).
 
 Measured on a fresh cache (benchmarks/bench_app.py first-start; docs/measured.rst and
 docs/known-issues.rst, "The first start after an install"): the first page's part takes 13.5-14.5
-s of CPU, its readout 16-17 s after the launch on a quiet machine; while the server compiles it,
+s of CPU, its readout 20-23 s after the launch at load 2-4; while the server compiles it,
 the first worker compiles its last kernels (``AHEAD``), which the server then loads from the
 cache (1.5 s of CPU less at load 3.5, nothing at load 6). The presets' real machine, the Wind
 tab's and the real machine in wind are each a compile of their own of the driver, of 17-26 s of

@@ -47,7 +47,7 @@ log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show 
 # A first start after an install compiles the solver: its first page's readout this long after
 # the launch, measured with benchmarks/bench_app.py first-start on two cores (docs/measured.rst);
 # the other parts compile in worker processes meanwhile (compiling.py), each said when ready.
-FIRST_COMPILE_SECONDS = 16
+FIRST_COMPILE_SECONDS = 20
 
 # The parts after the first page's, compiled (or, a later start, loaded) in worker processes
 WORKERS = Workers(SOLVER_READY)

@@ -4,11 +4,15 @@ processes that write numba's on-disk cache, from which the server loads each par
 ready. A page that needs a part still compiling waits for it (``COMPILE.wait``) rather than
 compiling it a second time, and says so (``COMPILE.progress``).
 
-Measured on a fresh cache (benchmarks/bench_app.py first-start; README, "Measured"): the first
-page's driver, the real machine's (the deep-well and leak-hole presets) and the Wind tab's are
-each a compile of their own of the driver, of 10-25 s of CPU each; the Site tab's year ~3 s. A
-part compiled in a worker is written to the cache when it is done: a server stopped meanwhile
-keeps every part done, and the next start compiles only the others.
+Measured on a fresh cache (benchmarks/bench_app.py first-start; docs/measured.rst and
+docs/known-issues.rst, "The first start after an install"): the first page's part takes 13.5-14.5
+s of CPU, its readout 20-23 s after the launch at load 2-4; while the server compiles it,
+the first worker compiles its last kernels (``AHEAD``), which the server then loads from the
+cache (1.5 s of CPU less at load 3.5, nothing at load 6). The presets' real machine, the Wind
+tab's and the real machine in wind are each a compile of their own of the driver, of 17-26 s of
+CPU; the Site tab's year ~2 s. A part compiled in a worker is written to the cache when it is
+done: a server stopped meanwhile keeps every part done, and the next start compiles only the
+others.
 """
 
 from __future__ import annotations
@@ -52,6 +56,18 @@ def real_machine() -> None:
         seen.volumetric_efficiency  # noqa: B018 (the leak hole's flow, worked out on reading)
         windpump.power_budget(seen.run).cycle_means()
         windpump.playback_frames(seen.run)
+
+
+def first_page_ahead() -> None:
+    """The first page's last kernels (``driver.compile_ahead``), compiled in a worker while the
+    server compiles the first page's part: numba compiles in one thread at a time, and the
+    server loads these from the cache when it comes to them (its first page's compile was
+    1.5-3 s shorter, of ~13.5 s of CPU). No page waits for them: not a part."""
+    import windpump
+    from windpump._kernels.driver import compile_ahead
+    from windpump.dynamics import kernel_machine
+
+    compile_ahead(kernel_machine(windpump.Design.seed_example()))
 
 
 def real_presets() -> list:
@@ -114,25 +130,34 @@ class Part:
 
 FIRST_PAGE, REAL_MACHINE = "the first page", "the real machine"
 WIND_TAB, SITE_TAB, REAL_IN_WIND = "the Wind tab", "the Site tab", "the real machine in wind"
-# In the order a page needs them: the first page (in the server), then, in workers, the Wind tab
-# (the first worker's, beside the first page: with the presets' real machine first it came 46 s
-# after the first page), the presets' real machine (the longest compile), the Site tab, and the
-# Wind tab's day of a preset with a real machine (a fourth compile of the driver).
+# In the order a page needs them: the first page (in the server, alone on its core), then, in
+# workers, the presets' real machine (the deep-well and leak-hole presets: with it third, after
+# the Wind tab's, the deep-well preset waited 39.7 s after the first page), the Wind tab, the
+# Site tab, and the Wind tab's day of a preset with a real machine (a fourth compile of the
+# driver, the least likely to be needed first).
 PARTS = (
     Part(FIRST_PAGE, first_page),
-    Part(WIND_TAB, wind_tab),
     Part(REAL_MACHINE, real_machine),
+    Part(WIND_TAB, wind_tab),
     Part(SITE_TAB, site_tab),
     Part(REAL_IN_WIND, real_in_wind),
 )
 
 
+# Compiled ahead in the first worker while the server compiles the first page's part
+AHEAD = "the first page's last kernels"
+
+
 def run_part(name: str, parent: int) -> float:
-    """Run part ``name`` in this worker process (numba writes what it compiles to its cache); the
-    seconds it took. The worker ends with the server (``parent``), whatever stops it, and gives
-    way to it (``WORKER_NICENESS``): the server's first page and its pages' moves come first."""
+    """Run part ``name`` (or AHEAD) in this worker process (numba writes what it compiles to its
+    cache); the seconds it took. The worker ends with the server (``parent``), whatever stops
+    it, and gives way to it (``WORKER_NICENESS``): the server's first page and its pages' moves
+    come first."""
     watch_parent(parent)
     started = time.perf_counter()
+    if name == AHEAD:
+        first_page_ahead()
+        return time.perf_counter() - started
     next(part for part in PARTS if part.name == name).run()
     record_compiled(name)  # in this process's cache (the server's, by its NUMBA_CACHE_DIR)
     return time.perf_counter() - started
@@ -303,7 +328,9 @@ class Workers:
             return
         run = installed_run_part()
         self.pool = ProcessPoolExecutor(self.processes, mp_context=get_context("spawn"))
-        pending, running = list(names), {}
+        # the first page's last kernels first while the server compiles the first page's part
+        ahead = [] if self.first_done.is_set() else [AHEAD]
+        pending, running = ahead + list(names), {}
         try:
             while (pending or running) and not self.stopped:
                 limit = self.processes if self.first_done.is_set() else 1
@@ -315,7 +342,8 @@ class Workers:
                     self.finished(running.pop(future), future)
         finally:
             for name in pending + list(running.values()):
-                COMPILE.ready[name].set()  # never leave a page waiting
+                if name != AHEAD:
+                    COMPILE.ready[name].set()  # never leave a page waiting
             self.pool.shutdown(wait=False, cancel_futures=True)
 
     def finished(self, name: str, future: Future) -> None:
@@ -324,6 +352,9 @@ class Workers:
         except Exception:
             log.exception("compiling %s in a worker failed", name)
             seconds = None
+        if name == AHEAD:  # no page waits for it
+            log.info("%s: %s compiled ahead", COMPILING, name)
+            return
         COMPILE.done(name, seconds)
 
     def stop(self) -> None:

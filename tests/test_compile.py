@@ -97,6 +97,42 @@ def test_the_cache_says_whether_a_first_run_compiles(first_start):
     assert first_start["cached"] == [False, True]
 
 
+# The first page's last kernels compiled ahead (as a worker does on a first start), then the first
+# page: each compiled for the types integrate's calls have, or integrate compiles it a second time.
+COMPILE_AHEAD = """
+import json, sys
+import windpump
+from windpump._kernels import driver, stepping
+from windpump.dynamics import kernel_machine
+
+ahead = driver.compile_ahead(kernel_machine(windpump.Design.seed_example()))
+seen = windpump.explore(windpump.Design.seed_example(), 600.0)
+kernels = {name: getattr(driver, name, None) or getattr(stepping, name) for name in ahead}
+json.dump({name: len(kernel.signatures) for name, kernel in kernels.items()}, sys.stdout)
+"""
+
+
+def test_the_first_pages_last_kernels_compiled_ahead_are_the_ones_it_runs():
+    """driver.compile_ahead's signatures are integrate's (a worker compiling other types while
+    the server compiles the first page would save it nothing); an ideal machine's only."""
+    from windpump import Design
+    from windpump._kernels import driver
+    from windpump.dynamics import kernel_machine
+
+    done = subprocess.run(
+        [sys.executable, "-c", COMPILE_AHEAD],
+        capture_output=True,
+        text=True,
+        check=True,
+        timeout=600,
+    )
+    signatures = json.loads(done.stdout)
+    assert set(signatures) >= {"advance_in_time", "step_to_kink", "tabulate_segment"}
+    assert signatures == {name: 2 if name == "dp5_step" else 1 for name in signatures}
+    deep_well = Design.seed_example().replace(m_r=20.0)
+    assert driver.compile_ahead(kernel_machine(deep_well)) == []
+
+
 def test_the_server_says_when_it_compiles(monkeypatch, caplog):
     """`panel serve app/` says it is compiling, and for about how long, before it does; and how
     long it took once done (an empty cache is told by solver_is_cached, forced here)."""
@@ -261,6 +297,50 @@ def test_a_worker_process_writes_its_part_to_numbas_cache(compiling, monkeypatch
     assert {"shortfall_map", "balance"} <= indexes
     (recorded,) = tmp_path.rglob(PARTS_FILE)  # beside the driver's cache, by the worker
     assert SITE_TAB in json.loads(recorded.read_text())
+
+
+class SubmittedInOrder:
+    """A process pool that runs nothing: each part submitted is done at once (0 s)."""
+
+    def __init__(self, *args, **kwargs):
+        self.sent = []
+
+    def submit(self, run, name, parent):
+        from concurrent.futures import Future
+
+        self.sent.append(name)
+        done = Future()
+        done.set_result(0.0)
+        return done
+
+    def shutdown(self, **kwargs):
+        pass
+
+
+@pytest.mark.parametrize("first_done", [False, True])
+def test_the_workers_compile_the_first_pages_last_kernels_first_while_it_compiles(
+    compiling, monkeypatch, first_done
+):
+    """While the server compiles the first page, the first worker compiles its last kernels
+    (compiling.AHEAD), then the parts in order; AHEAD is no part: no page waits for it, and
+    "k of 5 parts ready" counts the parts alone."""
+    import threading
+
+    from windpump_app import compiling as parts
+
+    pool = SubmittedInOrder()
+    monkeypatch.setattr(parts, "ProcessPoolExecutor", lambda *args, **kwargs: pool)
+    monkeypatch.setattr(parts, "installed_run_part", lambda: parts.run_part)
+    first = threading.Event()
+    if first_done:
+        first.set()
+    rest = [part.name for part in parts.PARTS if part.name != parts.FIRST_PAGE]
+    compiling.begin(rest)
+    parts.Workers(first).run(rest)
+    assert pool.sent == ([] if first_done else [parts.AHEAD]) + rest
+    assert rest[0] == parts.REAL_MACHINE  # the presets' real machine next, then the Wind tab
+    assert compiling.count() == len(parts.PARTS)
+    assert parts.AHEAD not in compiling.names
 
 
 def test_a_later_start_runs_no_worker_for_a_part_compiled_for_this_source(

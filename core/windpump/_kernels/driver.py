@@ -940,3 +940,43 @@ def integrate(
         )  # fmt: skip
         if outcome >= 0:
             return Run(out, n, outcome, steps, events, count)
+
+
+def compile_ahead(machine: Machine) -> list[str]:
+    """Compile, for an ideal machine in a steady wind (the first page's), the kernels
+    :func:`integrate` calls last, the last first; the names of the kernels compiled (none for
+    another machine: its calls have other types).
+
+    numba compiles a kernel's callees as it types the calls, in order, in one thread at a time.
+    A second process compiling the last ones while the first compiles ``integrate`` leaves them
+    in numba's cache, and the first loads them when it comes to them instead of compiling them
+    (app/compiling.py). The signatures are the ones ``integrate``'s calls type on the grid of
+    angles: tests/test_compile.py checks that ``integrate`` compiles none of them again.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> from windpump.dynamics import kernel_machine
+    >>> compile_ahead(kernel_machine(Design.seed_example()))[0]  # doctest: +SKIP
+    'advance_in_time'
+    """
+    if machine.real is not None or machine.wind is not None:
+        return []
+    import numba
+    from numba import types
+
+    M, f, i, b = numba.typeof(machine), types.float64, types.int64, types.boolean
+    a1, a2, a4, a5 = (types.Array(f, dims, "C") for dims in (1, 2, 4, 5))
+    u3, u4, u7 = types.UniTuple(f, 3), types.UniTuple(f, 4), types.UniTuple(f, 7)
+    grid, frozen = numba.typeof(Grid(0.0, 1, 1)), types.none  # (the ideal machine's frozen)
+    ahead = (  # the last first: time_stretch's, then in_angle's from its end
+        (advance_in_time, (f, f, f, f, f, f, i, M, f, i, i, f, i, i, a1)),
+        (record_grid_angles, (a2, i, i, b, i, grid, a1, a1, a1, a1, *(f,) * 7, u4, u4, u4, u3,
+                              frozen, f)),
+        (step_to_kink, (*(f,) * 6, u4, u4, u4, u3, a1, a2, f, f, i, M)),
+        (dp5_step, (types.literal(ANGLE), *(f,) * 6, u4, u7, a2, i, M)),
+        (tabulate_segment, (i, i, M, a4, a5, types.Array(b, 2, "C"))),
+    )  # fmt: skip
+    for compiled, signature in ahead:
+        compiled.compile(signature)
+    return [compiled.py_func.__name__ for compiled, _ in ahead]

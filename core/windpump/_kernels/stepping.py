@@ -240,40 +240,19 @@ PACE_MARGIN = 10.0
 can be stiffer than the rest, and a run can stall early (the seed example at m_r = 1e6 kg takes
 141,497 steps in 0.16 s, then stalls)."""
 
-LATE_STEPS = 1_000_000
-"""From this many steps on, :func:`off_pace` also judges the run's whole pace so far (steps per
-second of t since t = 0), with ``LATE_MARGIN``: by then the start's transient is behind it."""
-
-LATE_MARGIN = 1.5
-"""How far past max_steps the whole pace so far must project the run at ``LATE_STEPS`` or more
-for it to be stopped (:func:`off_pace`). Measured (``benchmarks/bench_pace.py``: designs drawn
-as tests/test_ranges.py draws them and the known slow ones, run to the end without a pace
-check): the final steps over the projection at 1e6 steps were 1.003 (a drawn design, 1.26e7
-steps in 3600 s), 1.0001 (the seed example at I0, I1 / 1e5, 600 s: 3.16e6 steps), 1.40 and
-1.47 (the seed example's pump at I0 = I1 = 1e-4 kg m^2 with a 4 mm hole, 2 s and 6 s: 5.1e6
-and 1.6e7 steps; its start is quicker than the rest): a run that keeps going is only ever
-under-projected by 1e6 steps in these, never over, and a refusal at 1.5 leaves a third for one
-that slows down. A run that stalls late (the seed example at m_r = 1e6 kg stalls after 0.16 s, at
-141,497 steps) is the case no pace can foresee: one that would stall after more than 1e6
-steps on pace for 1.5 times max_steps is refused."""
-
 
 @kernel
 def off_pace(steps, t, t_end, max_steps, pace, mark):
     """Whether a run has taken max_steps, or has just taken another ``pace`` steps since the
     window of ``mark`` (steps, t) began at a pace that would pass max_steps PACE_MARGIN times
-    over before t_end (the window then starts again here), or, from ``LATE_STEPS`` steps on,
-    at a pace since t = 0 that would pass max_steps ``LATE_MARGIN`` times over. A stiff or
-    crawling run is caught after ``pace`` steps of it, one on pace to need 1.5 to 10 times
-    max_steps after about LATE_STEPS, not max_steps."""
+    over before t_end (the window then starts again here). A stiff or crawling run is caught
+    after ``pace`` steps of it, not max_steps."""
     if steps >= max_steps:
         return True
     if steps < mark[0] + pace:
         return False
     ahead = (steps - mark[0]) * (t_end - t)  # the rest's steps at this pace, times the window's t
     late = ahead > PACE_MARGIN * (max_steps - steps) * (t - mark[1])
-    if steps >= LATE_STEPS:  # the whole run's pace: its total steps at it, times t
-        late = late or steps * t_end > LATE_MARGIN * max_steps * t
     mark[0], mark[1] = steps, t
     return late
 

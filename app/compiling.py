@@ -25,7 +25,7 @@ import os
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, as_completed, wait
 from multiprocessing import get_context
 from pathlib import Path
 
@@ -364,3 +364,44 @@ class Workers:
             for process in list((getattr(self.pool, "_processes", None) or {}).values()):
                 process.terminate()
             self.pool.shutdown(wait=False, cancel_futures=True)
+
+
+# -- every part compiled before the server starts (the README's serve command)
+
+BEFORE_SERVING = 2  # worker processes: one a core of the 2-core machines it is made for
+
+
+def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], None] = print) -> int:
+    """Compile every part not yet in numba's cache for this source, in ``processes`` worker
+    processes, saying each as it is ready; the number of parts that failed (a server then
+    compiles what a page needs itself). After it, ``panel serve app/`` loads the solver from the
+    cache (its first page's readout in ~3-4 s) and runs no worker: the README's serve command runs
+    it once before serving (``python -m windpump_app.compiling``)."""
+    todo = [part.name for part in PARTS if part.name not in compiled_parts()]
+    if not todo:
+        say("The solver is compiled (numba's cache): nothing to do.")
+        return 0
+    say(
+        f"{COMPILING[0].upper()}{COMPILING[1:]}: {len(todo)} of {len(PARTS)} parts, "
+        f"~1 minute on 2 cores; later starts load them from numba's cache."
+    )
+    run, started, failed = installed_run_part(), time.perf_counter(), 0
+    ready = len(PARTS) - len(todo)
+    with ProcessPoolExecutor(processes, mp_context=get_context("spawn")) as pool:
+        running = {pool.submit(run, name, os.getpid()): name for name in todo}
+        for future in as_completed(running):
+            name = running[future]
+            try:
+                seconds = future.result()
+            except Exception as error:  # the server compiles it on a page's first use instead
+                failed += 1
+                say(f"Compiling {name} failed ({type(error).__name__}: {error}); the server will.")
+                continue
+            ready += 1
+            say(f"{COMPILING}: {ready} of {len(PARTS)} parts ready ({name}, {seconds:.1f} s)")
+    say(f"Compiled in {time.perf_counter() - started:.0f} s.")
+    return failed
+
+
+if __name__ == "__main__":
+    compile_every_part()

@@ -1,8 +1,8 @@
 """The explorer in a real browser: first page after a fresh start, slider move to new readout, bytes
 on the wire, and a class of 30 pages opening at once.
 
-Run: python benchmarks/bench_app.py [first] [slider] [class] [first-start]   (the first three by
-default; needs Debian's chromium at /usr/bin/chromium)
+Run: python benchmarks/bench_app.py [first] [slider] [class] [first-start] [readme-start]
+(the first three by default; needs Debian's chromium at /usr/bin/chromium)
 
 1. First page: a fresh `panel serve app/`, then the time from opening the page to the mean-flow
    readout showing, for the first page and for a second one (the goal: the same).
@@ -24,6 +24,9 @@ default; needs Debian's chromium at /usr/bin/chromium)
    first run alone, cold, in a process of its own (import, then explore + power_budget +
    playback_frames as the first page runs them): for this checkout and, with BENCH_BASELINE=<git
    revision>, for that revision's core (extracted with git archive).
+6. The README's serve command (`readme-start`): its compile step (`python -m
+   windpump_app.compiling`) on an empty numba cache, timed (wall and CPU), then `panel serve app/`
+   on that cache, its first page's readout and each tab's and preset's first use as in 5.
 Every readout is checked against windpump, so a fast wrong page cannot pass.
 """
 
@@ -33,6 +36,7 @@ import asyncio
 import contextlib
 import math
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -455,7 +459,45 @@ def first_start():
             )
 
 
-PARTS = {"first": first_pages, "slider": slider, "class": classroom, "first-start": first_start}
+def compile_step(cache: str) -> tuple[float, float]:
+    """The README's compile step, ``python -m windpump_app.compiling``, on ``cache``: its wall
+    seconds and the CPU seconds of it and its worker processes."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.perf_counter()
+    subprocess.run(
+        [sys.executable, "-m", "windpump_app.compiling"],
+        env=dict(os.environ, NUMBA_CACHE_DIR=cache),
+        check=True,
+        timeout=1800,
+    )
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
+    return time.perf_counter() - started, cpu
+
+
+def readme_start():
+    """The README's serve command after an install: the compile step on an empty numba cache,
+    then `panel serve app/`, its first page and each tab's and preset's first use."""
+    uses = expected_first_uses()
+    with a_browser() as browser, tempfile.TemporaryDirectory() as cache:
+        wall, cpu = compile_step(cache)
+        up, readout, up_cpu, readout_cpu, used = launch_to_readout(browser, cache, uses)
+    print("6. the README's serve command: the compile step, then `panel serve app/`")
+    print(f"   compile step on an empty cache {wall:5.1f} s ({cpu:5.1f} s of CPU, its workers')")
+    print(f"   then from the launch: answering {up:5.1f} s ({up_cpu:4.1f} s of CPU), readout")
+    print(f"   {readout:5.1f} s ({readout_cpu:4.1f} s of CPU); each first use after it:")
+    print(f"   {'':40s}{'chosen to shown':>16s}{'from launch':>13s}")
+    for use, took, since_launch in used:
+        print(f"   {use:40s}{took:14.1f} s{since_launch:11.1f} s")
+
+
+PARTS = {
+    "first": first_pages,
+    "slider": slider,
+    "class": classroom,
+    "first-start": first_start,
+    "readme-start": readme_start,
+}
 DEFAULT_PARTS = ("first", "slider", "class")
 
 

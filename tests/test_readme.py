@@ -51,7 +51,7 @@ def test_the_docs_command_builds_what_ci_builds():
 
 
 def test_the_serve_command_serves_the_app():
-    assert 'pip install -e ".[app]" && panel serve app/' in BASH
+    assert 'pip install -e ".[app]" && python -m windpump_app.compiling && panel serve app/' in BASH
     assert (ROOT / "app" / "main.py").is_file()
 
 

@@ -231,7 +231,8 @@ def prepare_solver() -> None:
         log.info(
             "%s: the first page's numbers take about %d s, then %d more parts follow in worker "
             "processes (pages open meanwhile and show their numbers once their part is ready); "
-            "later starts load it from numba's cache",
+            "later starts load it from numba's cache (`python -m windpump_app.compiling` "
+            "compiles every part before a start: the README's serve command)",
             COMPILING,
             FIRST_COMPILE_SECONDS,
             len(PARTS) - 1,

@@ -51,8 +51,8 @@ STALE_ALPHA = (
 )
 DECADES = 2
 MAP_HEIGHT = 520  # [px] the figure: its frame ~335 px high on a projector, the legend below
-# On a phone the figure is no higher than what the tabs' pane shows (page.pane_height_css, ~433
-# of its ~442 px at 390×844): a student sees it whole, colour bar and legend (at 520 px its top
+# On a phone the figure is no higher than what the tabs' pane shows (page.pane_height_css, ~616
+# of its ~632 px at 390×844, ~440 at 640 px high): a student sees it whole, colour bar and legend (at 520 px its top
 # went under the header once scrolled to its foot). Not below 300 px (a frame of ~90 px). Its
 # height and its flex basis: Panel lays it out in a column, where the basis (520 px) rules.
 PHONE_HEIGHT = f"clamp(300px, {pane_height_css()}, {MAP_HEIGHT}px)"

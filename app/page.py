@@ -42,8 +42,11 @@ CITATION_CSS = [
 # Below 700 px (a phone held upright) the screen splits: the tabs, whose readouts answer every
 # move, above; the controls below, in a pane of their own that scrolls, in reach of a thumb and
 # hidden by the header's toggle. A student who moves a slider sees the readouts change without
-# scrolling (the sidebar once stacked ~900 px of controls above the readouts).
-CONTROLS_SHARE = 0.42  # of the screen below the header: the controls' pane on a phone
+# scrolling (the sidebar once stacked ~900 px of controls above the readouts). The controls' pane
+# is a fifth of the screen (158 px at 390×844: the preset menu and a slider), so that the first
+# screen holds the readouts, the status and the crank speed's whole chart above it, its plot as
+# high as elsewhere (at 0.42 the chart's lower half was under the controls; tests/test_layout.py).
+CONTROLS_SHARE = 0.2  # of the screen below the header: the controls' pane on a phone
 PANE_PADDING = (4, 12)  # [px] the tabs' pane's padding on a phone, above and below its content
 HEADER_AT_MOST = 70  # [px] a phone's header, one line (~54 px; tests/test_layout.py)
 NARROW_CSS = f"""
@@ -59,7 +62,7 @@ NARROW_CSS = f"""
   #content > #sidebar {{  /* outranks the template's width */
     order: 1; flex: 0 0 auto; height: {CONTROLS_SHARE:.0%} !important; max-width: 100% !important;
     width: 100% !important; overflow-y: auto !important; overflow-x: hidden !important;
-    border-right: none; border-top: 1px solid var(--bs-border-color);
+    padding-top: 4px !important; border-right: none; border-top: 1px solid var(--bs-border-color);
     box-shadow: 0 -4px 8px rgba(0, 0, 0, 0.15);
   }}
   #content > #sidebar.collapsing {{ height: 0 !important; width: 100% !important; }}
@@ -70,5 +73,5 @@ NARROW_CSS = f"""
 def pane_height_css() -> str:
     """The height of what the tabs' pane shows on a phone (below 700 px), its padding taken off,
     as a CSS length: at least this (the header is ``HEADER_AT_MOST`` at most). A figure this
-    high, or lower, fits the pane whole (390×844: ~433 px of the pane's 442)."""
+    high, or lower, fits the pane whole (390×844: ~616 px of the pane's 632)."""
     return f"calc((100vh - {HEADER_AT_MOST}px) * {1 - CONTROLS_SHARE:g} - {sum(PANE_PADDING)}px)"

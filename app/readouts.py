@@ -26,17 +26,18 @@ READOUT_CSS = f"""
 .readout .label {{font-size: {px(14)}; color: inherit; opacity: 0.85}}
 .readout .value {{font-size: calc(20px * (2 * var({ZOOM_VARIABLE}, 1) - 1)); font-weight: bold}}
 @media (max-width: 700px) {{
-  :host {{margin: 3px 4px !important}}
-  .readout {{min-width: 0; padding: 1px 8px}}
-  .readout .value {{font-size: 18px}}
+  :host {{margin: 2px 3px !important}}
+  .readout {{min-width: 0; padding: 0 6px; line-height: 1.2}}
+  .readout .value {{font-size: 16px}}
   :host(.pair) {{flex: 1 1 40% !important; max-width: calc(50% - 8px) !important}}
 }}
 """
 # A readout of a long label (the Wind tab's) takes half a phone's row, its label wrapping: two a
 # row rather than one.
 PAIR = ["pair"]
-# On a phone the readouts share the top half of the screen with nothing else (page.NARROW_CSS):
-# tighter boxes put two or three in a row, and the status under them stays in view.
+# On a phone the readouts share the tabs' pane above the controls (page.NARROW_CSS) with the
+# status and the crank speed's chart: tighter boxes (no padding above and below, the number at
+# 16 px, the label at 14) put two or three in a row, and the three fit its first screen.
 READOUTS = (
     "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",
 )  # fmt: skip

@@ -29,7 +29,7 @@ TEXT = [
 # An alert on a phone: smaller and tighter, so that a notice, the readouts and the status under
 # them fit the tabs' pane together (page.NARROW_CSS).
 PHONE_ALERT = (  # the alert is the host (Bootstrap's padding on it outranks a :host rule)
-    "@media (max-width: 700px) { :host { font-size: 14px; padding: 4px 10px !important; "
+    "@media (max-width: 700px) { :host { font-size: 14px; line-height: 1.3; padding: 4px 10px !important; "
     "margin: 2px 4px !important; } }"
 )
 COMPACT = [

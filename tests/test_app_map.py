@@ -14,6 +14,7 @@ import windpump
 from windpump.units import SECONDS_PER_DAY
 from windpump_app.explorer import Explorer
 from windpump_app.map_tab import GRID, colour_range, contour_levels
+from windpump_app.page import CONTROLS_SHARE
 
 SEED = windpump.Design.seed_example()
 
@@ -429,7 +430,8 @@ def phone_rules(figure) -> dict[str, str]:
 
 @pytest.mark.parametrize("screen_height", [640, 844, 915])
 def test_on_a_phone_the_map_fits_the_tabs_pane_and_keeps_its_height_elsewhere(app, screen_height):
-    """On a phone (page.NARROW_CSS) the tabs' pane is 58 % of the screen below the header (54 px
+    """On a phone (page.NARROW_CSS) the tabs' pane is what the controls' pane (page.CONTROLS_SHARE) leaves of the screen
+    below the header (54 px
     at 390×844), less its padding (4 px above, 12 below): the map's figure, 520 px high, was
     taller than the pane (~442 px at 390×844) and its top went under the header once scrolled
     to its foot. There it fits the pane; elsewhere it stays 520 px high."""
@@ -438,7 +440,7 @@ def test_on_a_phone_the_map_fits_the_tabs_pane_and_keeps_its_height_elsewhere(ap
     rules = phone_rules(figure)
     # Panel lays the figure out in a column, where its flex basis (520 px) rules over its height
     assert {"height", "flex-basis"} <= set(rules), rules
-    pane = (screen_height - 54) * 0.58 - (4 + 12)
+    pane = (screen_height - 54) * (1 - CONTROLS_SHARE) - (4 + 12)
     for name in ("height", "flex-basis"):
         length, important = rules[name].removesuffix("!important").strip(), "!important"
         assert rules[name].endswith(important)  # over the figure's own 520 px

@@ -237,7 +237,10 @@ def field_values():
 def test_every_figure_is_finite_anywhere_in_the_range(fields, rod, at_rest, cylinders, double):
     fields["V_ref"] = min(fields["V_ref"], 150.0)
     fields["rho_w"] = min(max(fields["rho_w"], 1.0), 2e4)  # a liquid's density
-    fields["L"] = min(fields["R"] * rod, 1e12)
+    fields["R"] = min(max(fields["R"], 1e-4), 1e3)  # a crank, a bore and a planet's gravity
+    fields["A"] = min(max(fields["A"], 1e-8), 1e2)  # any pump could have (issue 36)
+    fields["g"] = min(max(fields["g"], 0.1), 100.0)
+    fields["L"] = min(fields["R"] * rod, 1e3)
     fields["T_0"] = fields["T_m"] * at_rest
     try:
         design = Design(**fields, cylinders=cylinders, double_acting=double)
@@ -371,12 +374,15 @@ def test_a_numeric_map_says_how_long_it_will_take(capsys, monkeypatch, tmp_path)
 @pytest.mark.parametrize("theta_dot0", [0.0, 3.0, 1e30])
 def test_spinup_between_roots_many_decades_apart(scale, theta_dot0):
     # alpha- ~ 1e-45 and alpha+ ~ 1e20 rad/s (or 1e-109 and 2e-36): p + (z0 + d^2 g) / (1 + z0 g)
-    # gave -16384 and NaN (hypothesis found it); the curve must go monotonically from the kick
+    # gave -16384 and NaN (hypothesis found it; in today's ranges 1.6e-10 and 2e20, or 1.6e-74
+    # and 2e-36); the curve must go monotonically from the kick
     # to alpha+ and stay finite and positive.
-    fields = dict.fromkeys(["R", "A", "I0", "I1", "h", "g", "V_ref"], 1e-12)
-    fields["rho_w"] = 1.0  # the lightest liquid; h, A, R, g at 1e-12 keep the load as light
+    fields = dict.fromkeys(["I0", "I1", "h", "V_ref"], 1e-12)
+    # the lightest liquid, the shortest crank, the smallest bore, the weakest gravity and a
+    # 1e-12 m head keep the load as light as the ranges allow
+    fields.update(rho_w=1.0, R=1e-4, A=1e-8, g=0.1)
     design = Design(
-        **fields, R0=scale, R1=1e4 if scale > 1 else 1e12, T_m=scale, omega_m=scale, L=1.5e-12
+        **fields, R0=scale, R1=1e4 if scale > 1 else 1e12, T_m=scale, omega_m=scale, L=1.5e-4
     )
     alpha_plus, alpha_minus = windpump.steady_speeds(design)
     tau = windpump.time_constant(design)

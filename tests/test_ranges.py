@@ -26,15 +26,16 @@ SMALL, LARGE = 1e-12, 1e12
 RANGES = {  # field: (lowest, highest) [SI], as documented
     "R0": (SMALL, LARGE),
     "R1": (SMALL, LARGE),
-    "R": (SMALL, LARGE),
-    "A": (SMALL, LARGE),
+    "R": (1e-4, 1e3),
+    "L": (1e-4, 1e3),
+    "A": (1e-8, 1e2),
     "I0": (SMALL, LARGE),
     "I1": (SMALL, LARGE),
     "T_m": (SMALL, LARGE),
     "omega_m": (SMALL, LARGE),
     "h": (0.0, LARGE),
     "rho_w": (1.0, 2e4),
-    "g": (SMALL, LARGE),
+    "g": (0.1, 100.0),
     "V_ref": (SMALL, 150.0),
     "m_r": (0.0, LARGE),
     "eta_t": (0.1, 1.0),
@@ -75,7 +76,7 @@ def designs(draw, real: bool = True):
     ratio = draw(anywhere(SMALL, LARGE))  # R1 / R0 where R1 stays in range
     fields["R1"] = min(max(fields["R0"] * ratio, SMALL), LARGE)
     rod = draw(st.sampled_from([1.0 + 1e-9, 1.5, 3.75, 1e3, 1e50]))
-    fields["L"] = min(fields["R"] * rod, LARGE)
+    fields["L"] = min(fields["R"] * rod, RANGES["L"][1])
     fields["T_0"] = fields["T_m"] * draw(st.sampled_from([0.0, 5e-324, 1e-20, 0.5, 0.999]))
     fields["cylinders"] = draw(st.integers(1, 6))
     fields["double_acting"] = draw(st.booleans())
@@ -304,10 +305,12 @@ def test_the_stop_wind_with_a_hair_thin_main_is_the_quadrature_one():
 
 def test_the_stop_wind_under_a_main_whose_roots_underflow_is_the_quadrature_one():
     # hypothesis seed 12: kappa = b / (b + c) ~ 1e-186, delta^2 and its wind slope ~kappa^2
-    # underflowed and V_stop was inf; it is 1.25e92 m/s (far past any wind: it never runs)
-    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642317.0 * 1.5, A=1e12, I0=1e-12,
-                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=1e-12, rho_w=1.0, g=1e-12, V_ref=1e-12,
-                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    # underflowed and V_stop was inf (found at R = 7.7e9 m, A = 1e12 m^2, now outside the
+    # ranges; here the largest crank and bore in them under a 1e12 m main): V_stop is 1.4e75
+    # m/s (far past any wind: it never runs)
+    design = Design(R0=1e12, R1=1.0, R=600.0, L=900.0, A=1e2, I0=1e-12, I1=1e-12, T_m=1e-12,
+                    omega_m=1e12, h=1e-12, rho_w=1.0, g=0.1, V_ref=1e-12, eta_t=0.1,
+                    L_main=1e12, D_main=1e-12, f_main=0.2)  # fmt: skip
     V_stop, V_start = windpump.wind_thresholds(design)
     assert V_start is None and V_stop == pytest.approx(quadrature_stop_wind(design), rel=1e-9)
     assert windpump.water_per_day(design, 150.0) == (0.0, 0.0)
@@ -327,7 +330,11 @@ def test_a_leaky_crawl_under_a_crushing_load_has_the_closed_form_time_constant(h
 @pytest.mark.parametrize(
     "field, value, allowed",
     [("rho_w", 1e12, "from 1 to 20000"), ("rho_w", 0.5, "from 1 to 20000"),
-     ("eta_t", 5e-324, "from 0.1 to 1"), ("Cd_leak", 5e-324, "from 0.05 to 1")],
+     ("eta_t", 5e-324, "from 0.1 to 1"), ("Cd_leak", 5e-324, "from 0.05 to 1"),
+     ("R", 1e-12, "from 0.0001 to 1000"), ("R", 4.47e10, "from 0.0001 to 1000"),
+     ("L", 1e12, "from 0.0001 to 1000"), ("A", 1e-12, "from 1e-08 to 100"),
+     ("A", 1e3, "from 1e-08 to 100"), ("g", 1e12, "from 0.1 to 100"),
+     ("g", 1e-12, "from 0.1 to 100")],
 )  # fmt: skip
 def test_the_narrowed_fields_are_refused_by_name(field, value, allowed):
     with pytest.raises(ParameterError) as caught:
@@ -416,8 +423,8 @@ def test_a_spinup_with_torque_at_rest_beating_the_load_follows_the_riccati_equat
         speeds = windpump.spinup(design, t, kick)
         assert speeds[0] == kick
         np.testing.assert_allclose(speeds, reference, rtol=1e-9, atol=1e-12)
-    extreme = Design(R0=1e12, R1=1.0, R=1e-12, L=1.5e-12, A=1e-12, I0=1e-12, I1=1e-12,
-                     T_m=1e-12, omega_m=1e12, h=0.0, g=1e-12, T_0=5e-13, V_ref=1e-12)  # fmt: skip
+    extreme = Design(R0=1e12, R1=1.0, R=1e-4, L=1.5e-4, A=1e-8, I0=1e-12, I1=1e-12,
+                     T_m=1e-12, omega_m=1e12, h=0.0, g=0.1, T_0=5e-13, V_ref=1e-12)  # fmt: skip
     tau = windpump.time_constant(extreme)
     speeds = windpump.spinup(extreme, [0.0, 1.0, 1e6, tau, 10 * tau], 3.0)
     assert speeds[0] == 3.0 and np.all(np.diff(speeds) > 0.0), speeds
@@ -430,35 +437,57 @@ def test_a_spinup_with_torque_at_rest_beating_the_load_follows_the_riccati_equat
 TOO_STIFF = {
     "a light rotor with a leak hole": (
         SEED.replace(I0=1e-4, I1=1e-4, d_leak=0.004), 600.0, 3.0, ("leak hole", "d_leak")),
-    "a light, overloaded rotor (it stalls, margin 2e-4)": (
-        Design(R0=6.247e11, R1=0.6247, R=9.025e11, L=1e12, A=1e-12, I0=9.505e11, I1=1e-12,
-               T_m=7.003e11, omega_m=1e-12, h=1e-12, rho_w=10758.0, g=1e12, f_main=0.058,
-               L_main=1e-12, D_main=1e12),
-        2.0, 3.0, ("increase I0 or I1",)),
-    "a crushing head on a leaky rotor": (
-        Design(R0=19967.2, R1=1e12, R=9.65e11, L=1e12, A=1e12, I0=1.746e-5, I1=1e-12, T_m=1.0,
-               omega_m=62.38, h=1e12, rho_w=2e4, g=2.737e10, cylinders=2, double_acting=True,
-               T_0=1e-20, V_ref=2.03e-10, f_main=0.2, D_main=84579.0, d_leak=1.128e6,
-               Cd_leak=0.2079),
-        2.0, 3.0, ("leak hole", "a lower head h")),
-    "a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s": (
-        Design(R0=1e-12, R1=1.0, R=0.00284, L=0.00426, A=1.0, I0=0.34, I1=1e12, T_m=1e-12,
-               omega_m=1e-12, h=0.0, rho_w=11715.0, g=4.81e11, T_0=5e-13, V_ref=65.15,
-               m_r=5.72e11, eta_t=0.486, L_main=1e12, D_main=1e12, f_main=0.0, d_leak=0.0564,
-               Cd_leak=0.3256),
-        2.0, 3.0, ("omega_m / R+", "a larger omega_m")),
-    "a torque at rest whose acceleration underflows": (
-        Design(R0=1e-12, R1=1.0, R=1.0, L=1000.0, A=2.67e11, I0=1.0, I1=1e-12, T_m=2.67e11,
-               omega_m=1.177e11, h=0.0, rho_w=2483.0, g=1.403e11, double_acting=True,
-               T_0=1.319164429353e-312, V_ref=150.0),
-        2.0, 0.0, ("T_0", "1e-200")),
-    "reciprocating masses 4e34 times the rotor": (
-        Design(R0=1.591e11, R1=2.207, R=2.746e11, L=2.746e11 + 274.58, A=1.1347e-9, I0=1.0,
-               I1=1.0, T_m=1e12, omega_m=4.865e-11, h=1e12, rho_w=1.0, g=5.09e11,
-               T_0=4.94065645841e-312, V_ref=1.709, m_r=5.418e11, eta_t=0.1, L_main=0.0,
-               D_main=0.000832, f_main=0.2, d_leak=1.9005e-6, Cd_leak=0.795),
-        2.0, 3.0, ("m_r",)),
 }  # fmt: skip
+
+# Designs found in the old ranges (every length, area and g from 1e-12 to 1e12) that now lie
+# outside the documented ones: refused by name on construction (field, value, range)
+NOW_OUTSIDE = {
+    "a light, overloaded rotor (it stalls, margin 2e-4)": dict(
+        R0=6.247e11, R1=0.6247, R=9.025e11, L=1e12, A=1e-12, I0=9.505e11, I1=1e-12,
+        T_m=7.003e11, omega_m=1e-12, h=1e-12, rho_w=10758.0, g=1e12, f_main=0.058,
+        L_main=1e-12, D_main=1e12),
+    "a crushing head on a leaky rotor": dict(
+        R0=19967.2, R1=1e12, R=9.65e11, L=1e12, A=1e12, I0=1.746e-5, I1=1e-12, T_m=1.0,
+        omega_m=62.38, h=1e12, rho_w=2e4, g=2.737e10, cylinders=2, double_acting=True,
+        T_0=1e-20, V_ref=2.03e-10, f_main=0.2, D_main=84579.0, d_leak=1.128e6, Cd_leak=0.2079),
+    "a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s": dict(
+        R0=1e-12, R1=1.0, R=0.00284, L=0.00426, A=1.0, I0=0.34, I1=1e12, T_m=1e-12,
+        omega_m=1e-12, h=0.0, rho_w=11715.0, g=4.81e11, T_0=5e-13, V_ref=65.15, m_r=5.72e11,
+        eta_t=0.486, L_main=1e12, D_main=1e12, f_main=0.0, d_leak=0.0564, Cd_leak=0.3256),
+    "a torque at rest whose acceleration underflows": dict(
+        R0=1e-12, R1=1.0, R=1.0, L=1000.0, A=2.67e11, I0=1.0, I1=1e-12, T_m=2.67e11,
+        omega_m=1.177e11, h=0.0, rho_w=2483.0, g=1.403e11, double_acting=True,
+        T_0=1.319164429353e-312, V_ref=150.0),
+    "reciprocating masses 4e34 times the rotor": dict(
+        R0=1.591e11, R1=2.207, R=2.746e11, L=2.746e11 + 274.58, A=1.1347e-9, I0=1.0, I1=1.0,
+        T_m=1e12, omega_m=4.865e-11, h=1e12, rho_w=1.0, g=5.09e11, T_0=4.94065645841e-312,
+        V_ref=1.709, m_r=5.418e11, eta_t=0.1, L_main=0.0, D_main=0.000832, f_main=0.2,
+        d_leak=1.9005e-6, Cd_leak=0.795),
+    "seed 1: a hole passing ~6e19 times the sweep (A = 1e-12, h = g = 1e12)": dict(
+        R0=1e12, R1=1e12, R=1e-12, L=1.000000001e-12, A=1e-12, I0=1e-12, I1=1e-12, T_m=1e-12,
+        omega_m=1.0, h=1e12, rho_w=1.0, g=1e12, V_ref=1e-12, eta_t=0.1, D_main=1e-12,
+        f_main=0.0, d_leak=5.6418958354775624e-08, Cd_leak=0.05),
+    "seed 5: a 1e-12 m crank on a 1e12 m rod, g = 1e-12": dict(
+        R0=1.0, R1=1e-12, R=1e-12, L=1e12, A=1e-12, I0=1e-12, I1=1e-12, T_m=1e-12,
+        omega_m=1e-12, h=0.0, rho_w=1.0, g=1e-12, V_ref=1e-12, m_r=1e-12, eta_t=0.1,
+        D_main=1e-12, f_main=0.0, Cd_leak=0.05),
+    "seed 7: m_r = 1e12 kg on a 4.5e10 m crank": dict(
+        R0=1e-12, R1=1e-12, R=44741874202.0, L=44741874246.741875, A=1e-12, I0=1e12, I1=1e12,
+        T_m=1e-12, omega_m=1e-12, h=0.0, rho_w=1.0, g=1e-12, V_ref=1e-12, m_r=1e12,
+        eta_t=0.1, D_main=1e-12, f_main=0.0, Cd_leak=0.05),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", NOW_OUTSIDE)
+def test_a_design_found_outside_the_documented_ranges_is_refused_by_name(name):
+    fields = NOW_OUTSIDE[name]
+    with pytest.raises(ParameterError) as caught:
+        Design(**fields)
+    field = caught.value.name
+    assert field in ("R", "L", "A", "g"), str(caught.value)
+    low, high = RANGES[field]
+    assert not low <= fields[field] <= high
+    assert f"from {low:g} to {high:g}" in str(caught.value)
 
 
 @pytest.mark.parametrize("name", TOO_STIFF)
@@ -521,8 +550,10 @@ def test_the_advice_for_a_light_rotor_names_changes_that_slow_it(I0, I1):
 
 
 def test_a_heavy_rotor_is_never_told_to_be_heavier_for_what_its_time_scales_miss():
-    # the finding: "increase I0 or I1" at I_eff = 2e18
-    design, t_end, _, _ = TOO_STIFF["a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s"]
+    # the finding: "increase I0 or I1" at I_eff = 2e18 (found at g = 4.81e11, now
+    # outside the documented ranges: the same crank at any planet's gravity)
+    fields = NOW_OUTSIDE["a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s"]
+    design, t_end = Design(**{**fields, "g": 100.0}), 2.0
     assert design.I_eff > 1e18
     advice = windpump.dynamics._stiff_advice(design, t_end)
     assert "increase I0 or I1" not in advice and "heavier" not in advice, advice
@@ -557,10 +588,11 @@ def test_a_numeric_map_of_a_light_rotor_is_refused_before_any_run_with_the_advic
 def test_a_pump_with_no_head_runs_in_any_wind_even_when_its_roots_underflow():
     # hypothesis seed 12: delta^2 and its wind slope both underflowed (kappa ~ 1e-160 under a
     # 1e-12 m main), and V_stop was 0/0 = NaN. With no load the averaged F = a1 alpha -
-    # (b + c) alpha^2 is positive just above rest in any wind: V_stop = 0.
-    design = Design(R0=1e12, R1=1.0, R=7732642317.0, L=7732642324.732643, A=1e12, I0=1e-12,
-                    I1=1e-12, T_m=1e-12, omega_m=1e12, h=0.0, rho_w=1.0, g=1e-12, V_ref=1e-12,
-                    eta_t=0.1, L_main=1e-12, D_main=1e-12, f_main=0.2)  # fmt: skip
+    # (b + c) alpha^2 is positive just above rest in any wind: V_stop = 0. (Found at R = 7.7e9
+    # m, A = 1e12 m^2, now outside the ranges: the largest crank and bore in them, a 1e12 m main.)
+    design = Design(R0=1e12, R1=1.0, R=600.0, L=600.0000006, A=1e2, I0=1e-12, I1=1e-12,
+                    T_m=1e-12, omega_m=1e12, h=0.0, rho_w=1.0, g=0.1, V_ref=1e-12, eta_t=0.1,
+                    L_main=1e12, D_main=1e-12, f_main=0.2)  # fmt: skip
     assert windpump.wind_thresholds(design) == (0.0, None)
     low, high = windpump.water_per_day(design, 1e-3, 0.5)
     assert 0.0 <= low <= high and math.isfinite(high)

@@ -57,16 +57,25 @@ Version 2 added the real machine's fields (``REAL_MACHINE``); a version 1 file i
 design is the ideal machine)."""
 
 NARROWER = {
+    "R": (1e-4, 1e3),
+    "L": (1e-4, 1e3),
+    "A": (1e-8, 1e2),
     "rho_w": (1.0, 2e4),
+    "g": (0.1, 100.0),
     "eta_t": (0.1, 1.0),
     "Cd_leak": (0.05, 1.0),
 }
-"""Fields whose range is narrower than ``SMALLEST`` to ``LARGEST`` [their SI units]: a liquid's
-density from 1 kg/m^3 (below any liquid's, ~70 for liquid hydrogen) to 2e4 (past mercury's
-13,600); a chain drive's efficiency from 0.1 (below it the drive is broken, not lossy) to 1; a
-hole's discharge coefficient from 0.05 (a long, rough bore) to 1. Past them no machine exists,
-and the model's figures were wrong there (issue 36: a leaky pump's speeds NaN at rho_w = 1e12;
-the windmill's torque on the crank underflowed to 0 at eta_t = 5e-324, a ZeroDivisionError)."""
+"""Fields whose range is narrower than ``SMALLEST`` to ``LARGEST`` [their SI units]: a crank
+radius and a connecting rod from 0.1 mm (a model pump's) to 1 km (past any machine's); a piston
+area from 1e-8 m^2 (a 0.11 mm bore) to 100 m^2 (an 11 m bore); a liquid's density from 1 kg/m^3
+(below any liquid's, ~70 for liquid hydrogen) to 2e4 (past mercury's 13,600); gravity from 0.1
+m/s^2 (below the Moon's 1.62, Ceres' 0.28) to 100 (past Jupiter's 24.8, any planet's surface); a
+chain drive's efficiency from 0.1 (below it the drive is broken, not lossy) to 1; a hole's
+discharge coefficient from 0.05 (a long, rough bore) to 1. Past them no machine exists, and the
+model's figures were wrong there (issue 36: a leaky pump's speeds NaN at rho_w = 1e12; the
+windmill's torque on the crank underflowed to 0 at eta_t = 5e-324, a ZeroDivisionError; a run's
+power budget closed far above its tolerance with a 1e-12 m or a 4e10 m crank, a 1e12 m rod, a
+1e-12 m^2 piston or g = 1e12 m/s^2)."""
 
 WIDEST_RATIO = 1e50
 """Largest L/R and R1/R0 (and smallest R1/R0 is its inverse), for the same reason."""
@@ -82,8 +91,9 @@ class Design:
     Every field is checked on construction: numbers from ``SMALLEST`` = 1e-12 to ``LARGEST`` =
     1e12 in SI units (h and T_0 from 0; V_ref is at most 150 m/s, the fastest wind a
     record holds), far past any machine and the range where every figure of the model stays
-    finite; rho_w, eta_t and Cd_leak in the narrower ranges of ``NARROWER`` (a liquid's
-    density, a working chain drive, an orifice), past which the model's answers were wrong. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
+    finite; R, L, A, rho_w, g, eta_t and Cd_leak in the narrower ranges of ``NARROWER`` (a
+    crank, a rod and a bore any pump could have, a liquid's density, a planet's gravity, a
+    working chain drive, an orifice), past which the model's answers were wrong. A bad value raises :class:`~windpump.ParameterError` (a ``ValueError``) naming the
     field, its value (cut to a bounded length) and the allowed range.
 
     Parameters
@@ -93,11 +103,11 @@ class Design:
     R1 : float
         Large sprocket radius, on the crankshaft [m].
     R : float
-        Crank radius [m].
+        Crank radius [m], 1e-4 to 1e3.
     L : float
-        Connecting-rod length [m]; must exceed ``R``.
+        Connecting-rod length [m], 1e-4 to 1e3; must exceed ``R``.
     A : float
-        Piston cross-section [m^2].
+        Piston cross-section [m^2], 1e-8 to 100.
     I0 : float
         Inertia of windmill blades + shaft + small sprocket [kg m^2].
     I1 : float
@@ -111,7 +121,7 @@ class Design:
     rho_w : float, default 1000.0
         Water density [kg/m^3], 1 to 2e4 (any liquid's).
     g : float, default 9.81
-        Gravity [m/s^2].
+        Gravity [m/s^2], 0.1 to 100 (any planet's surface).
     cylinders : int, default 1
         Number of cylinders n, 1 to 6, each with its own slider-crank of the same R, L and A on
         the one crank: cylinder k sees the crank angle ``theta - 2 pi k / n`` (beyond the paper,

@@ -381,8 +381,11 @@ def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], Non
     if not todo:
         say("The solver is compiled (numba's cache): nothing to do.")
         return 0
+    which = (
+        f"{len(todo)} of its {len(PARTS)} parts" if len(todo) < len(PARTS) else f"{len(todo)} parts"
+    )
     say(
-        f"{COMPILING[0].upper()}{COMPILING[1:]}: {len(todo)} of {len(PARTS)} parts, "
+        f"{COMPILING[0].upper()}{COMPILING[1:]}: {which}, {processes} at a time, "
         f"~1 minute on 2 cores; later starts load them from numba's cache."
     )
     run, started, failed = installed_run_part(), time.perf_counter(), 0
@@ -398,7 +401,8 @@ def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], Non
                 say(f"Compiling {name} failed ({type(error).__name__}: {error}); the server will.")
                 continue
             ready += 1
-            say(f"{COMPILING}: {ready} of {len(PARTS)} parts ready ({name}, {seconds:.1f} s)")
+            said = f"{name}, {seconds:.1f} s in its worker"
+            say(f"{COMPILING}: {ready} of {len(PARTS)} parts ready ({said})")
     say(f"Compiled in {time.perf_counter() - started:.0f} s.")
     return failed
 

@@ -410,7 +410,7 @@ def test_the_readmes_compile_step_compiles_every_part_not_yet_compiled(monkeypat
     assert parts.compile_every_part(say=said.append) == 1
     todo = [part.name for part in parts.PARTS if part.name != parts.SITE_TAB]
     assert pool.sent == todo  # the first page first, the recorded Site tab's part not again
-    assert "4 of 5 parts" in said[0]
+    assert "4 of its 5 parts, 2 at a time" in said[0]
     assert any(f"Compiling {parts.WIND_TAB} failed (RuntimeError" in line for line in said)
     assert sum("parts ready" in line for line in said) == 3  # 2 of 5 ... 4 of 5: the failed one not
     assert said[-1].startswith("Compiled in")

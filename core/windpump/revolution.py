@@ -59,7 +59,7 @@ def reciprocating_inertia(design) -> float:
     Examples
     --------
     >>> from windpump import Design
-    >>> d = Design.seed_example().replace(m_r=10.0, L=1e6)  # a long rod: <(x'/R)^2> = 1/2
+    >>> d = Design.seed_example().replace(m_r=10.0, L=1e3)  # a long rod: <(x'/R)^2> ~ 1/2
     >>> round(reciprocating_inertia(d) / (10.0 * 0.04**2 / 2), 9)
     1.0
     """

@@ -44,10 +44,11 @@ from .upload_route import serve_uploads
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
 
-# A first start after an install compiles the solver: its first page's readout this long after
-# the launch, measured with benchmarks/bench_app.py first-start on two cores (docs/measured.rst);
-# the other parts compile in worker processes meanwhile (compiling.py), each said when ready.
-FIRST_COMPILE_SECONDS = 20
+# A first start after an install compiles the solver: its first page's full readouts this long
+# after the launch (11 s on a quiet 2-core machine, 20-23 s at load 2-4; the averaged theory's
+# within ~4 s), measured with benchmarks/bench_app.py first-start (docs/measured.rst); the other
+# parts compile in worker processes meanwhile (compiling.py), each said when ready.
+FIRST_COMPILE_SECONDS = "11-23"
 
 # The parts after the first page's, compiled (or, a later start, loaded) in worker processes
 WORKERS = Workers(SOLVER_READY)
@@ -229,8 +230,9 @@ def prepare_solver() -> None:
     cached = solver_is_cached(seed)
     if not cached:
         log.info(
-            "%s: the first page's numbers take about %d s, then %d more parts follow in worker "
-            "processes (pages open meanwhile and show their numbers once their part is ready); "
+            "%s: the first page's numbers take about %s s (the averaged theory's in a few), then "
+            "%d more parts follow in worker processes (pages open meanwhile and show their "
+            "numbers once their part is ready); "
             "later starts load it from numba's cache (`python -m windpump_app.compiling` "
             "compiles every part before a start: the README's serve command)",
             COMPILING,

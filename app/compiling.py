@@ -297,11 +297,12 @@ class Compile:
         follow once its part (the Wind tab) is ready." """
         return "" if self.ready[name].is_set() else self.saying(name)
 
-    def saying(self, name: str) -> str:
-        """What ``waiting(name)`` says while part ``name`` compiles, whether or not it does."""
+    def saying(self, name: str, numbers: str = "These numbers") -> str:
+        """What ``waiting(name)`` says while part ``name`` compiles, whether or not it does;
+        ``numbers``: what follows once it is ready."""
         progress = self.progress() or COMPILING
         return (
-            f"**{progress[0].upper()}{progress[1:]}.** These numbers follow once its part "
+            f"**{progress[0].upper()}{progress[1:]}.** {numbers} follow once its part "
             f"({name}) is ready."
         )
 

@@ -117,11 +117,18 @@ class Explorer(Session, pn.viewable.Viewer):
         """The status, while the part of the solver this page's first run needs compiles (a
         first start after an install): how far it is, "Compiling the solver (once after an
         install): 1 of 5 parts ready" (``serving.first_run_when_ready`` says it again as parts
-        get ready)."""
+        get ready), and meanwhile the averaged theory's τ, stall margin and α₊, which need no
+        compiled code (``Readouts.show_averaged``)."""
         part = self.part_awaited()
         if self.seen is None and part is not None:
             status = self.readouts.status
-            status.object, status.alert_type = COMPILE.saying(part), "info"
+            try:  # the averaged theory needs no compiled code: its numbers now
+                averaged = self.readouts.show_averaged(self.inputs.design())
+            except windpump.ParameterError:  # refused: its first run says why
+                averaged = ""
+            numbers = "The full run's numbers" if averaged else "These numbers"
+            status.object = f"{COMPILE.saying(part, numbers)} {averaged}".strip()
+            status.alert_type = "info"
 
     def part_awaited(self) -> str | None:
         """The part of the solver this page's first run waits for while a first start compiles

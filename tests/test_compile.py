@@ -243,6 +243,42 @@ def test_a_waiting_page_says_how_far_the_compile_is(compiling):
     assert "Compiling" not in status.object and page.seen is not None
 
 
+@pytest.mark.parametrize(
+    "preset", ["The paper's example", "A deep well, a heavy rod", "A stalled pump"]
+)
+def test_a_waiting_page_shows_the_averaged_theory_meanwhile(compiling, preset):
+    """While a first start compiles, the page shows what needs no compiled code: the averaged
+    theory's τ (Eq. 25) and stall margin (Eq. 22) in their readouts and α₊ (Eq. 21) in the
+    status, each as the core computes them for the page's design; the full run's readouts (the
+    mean flow, the page's sign that it has run) stay empty until its part is ready."""
+    import re
+
+    import windpump
+    from windpump_app.explorer import Explorer
+    from windpump_app.inputs import PRESETS
+
+    compiling.begin()
+    page = Explorer(start=False)
+    page.inputs.param.update(**PRESETS[preset][0])
+    page.say_compiling()
+    design = page.inputs.design()
+
+    def shown(name):
+        return re.sub(r"<[^>]+>", "", page.readouts[name].object)
+
+    margin = windpump.stall_margin(design)
+    assert f"{margin:.3f}" in shown("margin")
+    status = page.readouts.status.object
+    assert "Compiling the solver" in status and "The averaged theory meanwhile" in status
+    if margin > 1.0:
+        assert f"{windpump.time_constant(design):.1f} s" in shown("tau")
+        assert f"{windpump.steady_speeds(design)[0]:.2f}" in status
+    else:
+        assert "–" in shown("tau") and "cannot carry the load" in status
+    assert page.readouts["mean_flow"].object == "" and page.seen is None
+    assert "The full run's numbers follow once its part (the first page) is ready" in status
+
+
 @pytest.mark.parametrize("tab, part", [(2, "the Wind tab"), (4, "the Site tab")])
 def test_a_tab_whose_part_compiles_says_so_and_waits_for_it(compiling, tab, part):
     """The Wind and Site tabs opened while their part compiles in a worker say so instead of a bare

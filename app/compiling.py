@@ -387,7 +387,7 @@ def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], Non
     )
     say(
         f"{COMPILING[0].upper()}{COMPILING[1:]}: {which}, {processes} at a time, "
-        f"~1 minute on 2 cores; later starts load them from numba's cache."
+        f"1-2 minutes on 2 cores; later starts load them from numba's cache."
     )
     run, started, failed = installed_run_part(), time.perf_counter(), 0
     ready = len(PARTS) - len(todo)

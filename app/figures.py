@@ -240,15 +240,49 @@ try {
   const room = plot.outer_width - (frame != null ? frame.left : (plot.outer_width - width) * 0.8)
   for (const legend of [...plot.below, ...plot.above]) {
     if (legend.orientation !== 'horizontal' || legend.items === undefined) continue
+    // On a phone a label drops its equation's number (", Eq. (12)"): the caption under the
+    // figure gives them, and the legend takes a row less. Back as the server sent it elsewhere.
+    for (const item of legend.items) {
+      const label = item.label
+      if (label == null || typeof label.value !== 'string') continue
+      const entry = P.asked.get(item.id + 'label')
+      if (entry == null || label.value !== entry.fitted) P.asked.set(item.id + 'label', {size: label.value, fitted: label.value})
+      const own = P.asked.get(item.id + 'label')
+      own.fitted = phone ? own.size.replace(/,? ?Eqs?\\. \\([0-9]+\\)$/, '') : own.size
+      if (label.value !== own.fitted) item.setv({label: {value: own.fitted}}, {sync: false})
+    }
     ctx.font = `${legend.label_text_font_size} helvetica`
-    // in two columns, row by row: the first column holds items 0, 2, 4..., the second 1, 3, 5...
+    // in n columns, row by row: the first column holds items 0, n, 2n..., the second 1, n + 1...
+    // (two at most, three on a phone, whose labels are short)
     const shown = legend.items.filter(item => item.visible !== false)
     const widths = shown.map(item => ctx.measureText(item.label?.value ?? String(item.label ?? '')).width)
-    const widest = (j) => Math.max(0, ...widths.filter((_, i) => i % 2 === j))
     const swatch = legend.glyph_width + legend.label_standoff
-    const box = widest(0) + widest(1) + 2 * swatch + column_gap + 2 * legend.padding + 2 * legend.border_line_width
-    const ncols = box <= room - legend.margin ? 2 : 1
+    const packed = phone ? phone_legend : wide_legend
+    const box = (n) => {
+      let sum = 0
+      for (let j = 0; j < n; j++) sum += Math.max(0, ...widths.filter((_, i) => i % n === j))
+      return sum + n * swatch + (n - 1) * column_gap + 2 * packed.padding + 2 * legend.border_line_width
+    }
+    let ncols = 1
+    for (let n = 2; n <= (phone ? 3 : 2) && n <= shown.length; n++) if (box(n) <= room - packed.margin) ncols = n
     if (legend.ncols !== ncols) legend.setv({ncols}, {sync: false})
+    // On a phone a legend below is packed (PHONE_LEGEND): its rows ~16 px, not ~23, and less
+    // padding, so that a plot with five items (a deep well's crank speed, three rows) still fits
+    // the first screen whole, its frame as high as elsewhere.
+    const changed = Object.fromEntries(Object.entries(packed).filter(([k, v]) => legend[k] !== v))
+    if (Object.keys(changed).length > 0) legend.setv(changed, {sync: false})
+    if (phone && legend.glyph_height > phone_legend.label_height) {
+      legend.setv({glyph_height: phone_legend.label_height}, {sync: false})
+    }
+  }
+  // A figure the first screen of a phone shows whole (the crank speed, page.NARROW_CSS): its
+  // height there is what its frame of ``phone_frame`` px needs with its title, axes and legend.
+  const frame_px = (plot.tags ?? []).find(tag => tag?.phone_frame != null)?.phone_frame
+  if (frame_px != null) {
+    const entry = asked(plot, 'height')
+    const around = plot.outer_height - plot.inner_height
+    entry.fitted = phone && around > 0 ? Math.round(around + frame_px) : entry.size
+    if (Math.abs(plot.height - entry.fitted) > 1) plot.setv({height: entry.fitted}, {sync: false})
   }
 } finally {
   P.busy = false
@@ -265,6 +299,8 @@ def fit_text_in_the_browser(fig) -> None:
             narrow=NARROW,
             phone_sizes={large: usual for usual, large in PRESENTATION_SIZES.items()},
             swatch_growth=SWATCH_GROWTH,
+            phone_legend=PHONE_LEGEND,
+            wide_legend=WIDE_LEGEND,
         ),
         code=FIT_TEXT_JS,
     )
@@ -293,6 +329,13 @@ def line(fig, x: str, y: str, source, color: str, width: float = 2, dash: str = 
     return fig.line(x, y, source=source, color=color, line_width=width, line_dash=dash)
 
 
+# A legend below a plot on a phone (FIT_TEXT_JS): its rows, padding, margin and spacing [px]
+# packed, its text at its size; Bokeh's own elsewhere. Three rows take ~60 px instead of ~96.
+PHONE_LEGEND = {"label_height": 16, "padding": 4, "margin": 4, "spacing": 0}
+WIDE_LEGEND = {"label_height": "auto", "padding": 10, "margin": 10, "spacing": 3}
+# [px] the crank speed's frame on a phone (its figure as high as that, its title, axes and legend
+# need): the readouts, a four-line status and the whole chart fit the first screen of 390×844.
+PHONE_FRAME = 160
 LEGEND_WIDTH = 340  # [px] a figure's width on a phone (390 px): a legend below fits in it
 # [px] between a legend's columns (its ``spacing``, 3 px, ran a swatch into the label before it:
 # "max▬ ▬ mean"); its rows keep theirs (Bokeh's legend is a CSS grid: ``gap`` sets both)

@@ -10,13 +10,14 @@ import re
 
 import numpy as np
 import panel as pn
+from bokeh.models import CustomJS
 
 import windpump
 from windpump import linkage
 from windpump.linkage import NoClosure
 from windpump.units import MM_PER_M
 
-from .figures import LINKS, linkage_view, show_box, slider_crank_views
+from .figures import LINKS, MECHANISM_SIZE, linkage_view, show_box, slider_crank_views
 from .styles import TEXT
 from .tab import Tab
 
@@ -43,6 +44,35 @@ NOTE_CSS = TEXT[:1]
 # by side, and the two parts beside each other only where both get that (a pane of ~1,590 px at
 # 1920×1080; at 1366×768 its ~1,000 px hold one)
 PART_BASIS = 700
+# Where the two parts stand side by side (1920×1080), each figure takes the screen's height below
+# its top (a bottom margin of FILL_MARGIN px), MECHANISM_SIZE px at least and twice that at most:
+# at 440 px the tab left ~30 % of the screen blank below them. One above the other (1366 px and
+# narrower, a phone) the page scrolls anyway: they keep MECHANISM_SIZE. The drawings keep equal
+# scales in any frame (figures.show_box).
+FILL_MARGIN = 24
+FILL_TAG = "fills_the_height"  # the figures' tag: the slider-crank's, its travel's, the linkage's
+FILL_HEIGHT_JS = """
+// after the layout pass that called it (a new height set within it left the legend's swatches
+// blank, "Eq. (1)" with no line, until the next paint)
+setTimeout(() => {
+  // found by their tag (FILL_TAG), in the order the tag gives them
+  const tagged = [...cb_obj.document.all_models].filter(m => (m.tags ?? []).some(t => t?.[tag] != null))
+  const figures = tagged.sort((a, b) => a.tags.find(t => t?.[tag] != null)[tag] - b.tags.find(t => t?.[tag] != null)[tag])
+  if (figures.length !== 3) return
+  const views = figures.map(f => window.Bokeh?.index?.find_one?.(f))
+  if (views.some(v => v == null)) return
+  const boxes = views.map(v => v.el.getBoundingClientRect())
+  if (boxes.some(b => b.width === 0)) return  // a hidden tab: laid out when shown
+  const beside = boxes[2].top < boxes[0].bottom  // the linkage's part beside the slider-crank's
+  const pane = document.querySelector('#main')
+  const scrolled = pane != null ? pane.scrollTop : 0
+  figures.forEach((fig, i) => {
+    const room = window.innerHeight - margin - (boxes[i].top + scrolled)
+    const want = beside ? Math.round(Math.min(2 * least, Math.max(least, room))) : least
+    if (Math.abs(fig.height - want) > 1) fig.setv({height: want}, {sync: false})
+  })
+}, 0)
+"""
 SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")  # θ₂, as the sliders write θ₁
 
 
@@ -310,11 +340,24 @@ class Mechanisms(Tab):
         crank = self.slider_crank
         return [crank.crank_figure, crank.travel_figure, self.linkage_figure]
 
+    def fill_the_height(self) -> None:
+        """The figures as high as the screen has room for where the parts stand side by side
+        (``FILL_HEIGHT_JS``), whenever the page lays them out."""
+        figures = self.figures()
+        fill = CustomJS(
+            args=dict(least=MECHANISM_SIZE, margin=FILL_MARGIN, tag=FILL_TAG),
+            code=FILL_HEIGHT_JS,
+        )
+        for order, fig in enumerate(figures):
+            fig.tags = [*fig.tags, {FILL_TAG: order}]
+            fig.js_on_change("outer_width", fill)
+
     def layout(self) -> pn.Column:
         """The slider-crank and the linkage, each a part with its figures side by side; the two
         parts side by side where both fit (1920 px: one part left ~40 % of the screen blank),
         else one above the other (1366 px and narrower)."""
         crank = self.slider_crank
+        self.fill_the_height()
         figure = dict(sizing_mode="stretch_width", max_width=460, min_width=300)
         flex = {"flex": "1 1 320px"}
         part = dict(styles={"flex": f"1 1 {PART_BASIS}px"}, sizing_mode="stretch_width")

@@ -23,12 +23,15 @@ from .styles import COMPACT, ZOOM_VARIABLE, keep_terms, keep_units, px
 # numbers a class reads from the back of the room by half (20 -> 30 px: 2 x zoom - 1).
 READOUT_CSS = f"""
 .readout {{border: 1px solid #bbb; border-radius: 6px; padding: 2px 10px; min-width: 120px}}
+.readout .phone {{display: none}}
 .readout .label {{font-size: {px(14)}; color: inherit; opacity: 0.85}}
 .readout .value {{font-size: calc(20px * (2 * var({ZOOM_VARIABLE}, 1) - 1)); font-weight: bold}}
 @media (max-width: 700px) {{
   :host {{margin: 2px 3px !important}}
   .readout {{min-width: 0; padding: 0 6px; line-height: 1.2}}
   .readout .value {{font-size: 16px}}
+  .not-phone {{display: none}}
+  .phone {{display: inline !important}}
   :host(.pair) {{flex: 1 1 40% !important; max-width: calc(50% - 8px) !important}}
 }}
 """
@@ -216,7 +219,9 @@ def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
     gained = "gained speed + " if spin >= 0 else ""
     back = "" if spin >= 0 else " + speed given back"
     losses = "" if seen.design.is_ideal else "losses + "
-    return f"Windmill's work{back} = {losses}{gained}lifted water", words
+    # "Work" on a phone: the label keeps one line there (page.NARROW_CSS: the first screen)
+    work = '<span class="not-phone">Windmill\'s work</span><span class="phone">Work</span>'
+    return f"{work}{back} = {losses}{gained}lifted water", words
 
 
 def start_text(seen: windpump.Exploration) -> str:

@@ -24,6 +24,15 @@ REAL_MACHINE_NOTE = (
     "The pump rod, the chain, the rising main and a leak hole: what the paper's ideal machine "
     "leaves out."
 )
+# A preset's sentence on a phone: its first two lines, ending in "…", so that the controls' pane
+# (a fifth of the screen, page.CONTROLS_SHARE) shows the menu, the sentence's start and a slider;
+# a tap on it shows it all (a tap hovers, on a touch screen), a tap elsewhere folds it again.
+PRESET_NOTE_CSS = [
+    *TEXT,
+    "@media (max-width: 700px) { p { display: -webkit-box; -webkit-box-orient: vertical; "
+    "-webkit-line-clamp: 2; line-clamp: 2; overflow: hidden; margin: 0 0 4px; cursor: pointer; } "
+    ":host(:hover) p, :host(:focus-within) p { -webkit-line-clamp: unset; line-clamp: unset; } }",
+]
 CARD_NOTE_CSS = [*TEXT, f":host {{ font-size: {px(15)}; margin: 0 10px 4px; opacity: 0.85; }}"]
 
 
@@ -157,7 +166,7 @@ class Sidebar(pn.viewable.Viewer):
         self.preset = pn.widgets.Select(
             label="Presets", options=[PRESET_PROMPT, *PRESETS], **button
         )
-        self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=TEXT)
+        self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=PRESET_NOTE_CSS)
         self.pin_button = ActionButton(label="Pin this run", **button)
         self.clear_button = ActionButton(label="Clear pinned", disabled=True, **button)
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)

@@ -23,7 +23,18 @@ import windpump
 from windpump.units import LITRES_PER_M3
 
 from .envelope import band
-from .figures import FACES, HEIGHT, LABEL, draw_band, empty, legend, line, new_figure, palette
+from .figures import (
+    FACES,
+    HEIGHT,
+    LABEL,
+    PHONE_FRAME,
+    draw_band,
+    empty,
+    legend,
+    line,
+    new_figure,
+    palette,
+)
 from .readouts import shown_totals
 from .styles import CAPTION_CSS
 
@@ -162,6 +173,9 @@ class SpeedView(TimeView):
             "θ̇ [rad/s]",
             [("t", "@t{0.00} s"), ("θ̇", "@lower{0.000} to @upper{0.000} rad/s")],
         )
+        fig.tags = [
+            {"phone_frame": PHONE_FRAME}
+        ]  # figures.FIT_TEXT_JS: whole in a phone's first screen
         ghost = draw_band(fig, s["speed_ghost"], c["ghost"])
         integrated = draw_band(fig, s["speed"], c["integrated"])
         averaged = line(fig, "t", "speed", s["spinup"], c["averaged"], 3, "dashed")

@@ -390,3 +390,47 @@ def test_progress_is_a_bar_on_request_and_a_callback_as_given(capsys):
     windpump.sweep([SEED, SEED], 10.0, chunksize=1, progress=lambda *a: calls.append(a))
     assert calls == [(1, 2), (2, 2)]
     assert reporter(False, 4, "quiet")(4, 4) is None and capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("skip", [False, True])
+def test_serve_runs_the_readmes_compile_step_before_the_server(monkeypatch, skip):
+    """``windpump serve`` is the README's ``python -m windpump_app.compiling && panel serve app/``
+    (it ran the server alone, which then compiled in the background while a page waited);
+    ``--no-compile`` skips the step, and a failed step is said and the server started all the
+    same. Faked: no compile, no server."""
+    from windpump import cli
+
+    ran: list[tuple[str, list[str]]] = []
+
+    def compile_step(command):
+        ran.append(("compile", list(command)))
+        return 1
+
+    class Served(Exception):
+        """A real execv does not return: the process becomes the server."""
+
+    def serve(path, command):
+        ran.append(("serve", list(command)))
+        raise Served
+
+    monkeypatch.setattr(cli.subprocess, "call", compile_step)
+    monkeypatch.setattr(cli.os, "execv", serve)
+    monkeypatch.setattr(cli.os, "name", "posix")
+    options = ["--no-compile"] if skip else []
+    with pytest.raises(Served):
+        cli.serve_command(
+            *cli.build_parser().parse_known_args(["serve", *options, "--port", "5999"])
+        )
+    served = ("serve", [sys.executable, "-m", "panel", "serve", str(cli.explorer_folder()),
+                        "--port", "5999"])  # fmt: skip
+    compiled = ("compile", [sys.executable, "-m", "windpump_app.compiling"])
+    assert ran == ([served] if skip else [compiled, served])
+
+
+def test_serve_help_says_it_compiles_first_and_how_to_skip_it():
+    from windpump.cli import build_parser
+
+    parser = build_parser()
+    serve = parser._subparsers._group_actions[0].choices["serve"]  # type: ignore[union-attr]
+    text = serve.format_help()
+    assert "windpump_app.compiling" in text and "--no-compile" in text

@@ -210,6 +210,58 @@ def test_a_phone_shows_the_readouts_and_the_whole_crank_speed_in_its_first_scree
         page.close()
 
 
+# The legend below a figure: its box (in the canvas's coordinates), its visible items, and the
+# canvas's height.
+LEGEND_BELOW = """(name) => {
+  const model = window.Bokeh.documents[0].get_model_by_name(name);
+  const view = window.Bokeh.index.find_one(model);
+  const legend = model.below.find(panel => panel.items !== undefined);
+  const shown = legend.items.filter(item => item.visible !== false).length;
+  const box = view.views.find_one(legend).bbox;
+  return {shown, top: box.top, bottom: box.bottom, canvas: view.el.getBoundingClientRect().height};
+}"""
+
+
+def test_a_phone_shows_a_deep_wells_whole_crank_speed_and_a_slider_under_its_preset(browser, url):
+    """The preset "A deep well, a heavy rod" on a phone: its crank speed's legend holds five
+    items in three rows, and the first screen cut its last rows (the chart ~55 px past the
+    controls' pane); its sentence, six lines, filled the controls' pane. Now the whole chart,
+    legend and a plot as high as the paper's example's, is above the controls, and the controls
+    show the sentence's start (two lines; a tap shows it all) and, scrolled to it, no more."""
+    page = open_page(browser, url, *PHONE)
+    try:
+        page.get_by_text("Running.").first.wait_for()
+        page.locator("#sidebar select").first.select_option(label="A deep well, a heavy rod")
+        page.get_by_text("It settles at α₊ = 20.74 rad/s").first.wait_for(timeout=120_000)
+        page.wait_for_function(
+            f"() => ({LEGEND_BELOW})('speed_figure').shown === 5", timeout=60_000
+        )
+        time.sleep(1.0)  # laid out
+        box = page.evaluate(VIEW_BOX, "speed_figure")
+        pane = page.locator("#main").bounding_box()
+        top = bottom(page.locator("#header").bounding_box())
+        assert top - 1 <= box["y"] and bottom(box) <= bottom(pane) + 1, (box, pane)
+        legend = page.evaluate(LEGEND_BELOW, "speed_figure")
+        assert 0 < legend["top"] and legend["bottom"] <= legend["canvas"] + 1, legend
+        assert page.evaluate(FRAME_HEIGHT, "Crank speed") >= 150  # not squashed to fit
+        note = page.locator("#sidebar p", has_text="A deep well, a heavy rod.")
+        line = float(note.evaluate("(el) => parseFloat(getComputedStyle(el).lineHeight)"))
+        folded = note.bounding_box()["height"]
+        assert folded <= 2 * line + 2, (folded, line)
+        sidebar = page.locator("#sidebar").bounding_box()
+        assert bottom(note.bounding_box()) <= bottom(sidebar) - 20  # room for what follows
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "phone-deep-well.png"))
+        note.click()  # a tap shows the whole sentence
+        page.wait_for_function(
+            "([el, h]) => el.getBoundingClientRect().height > h + 1",
+            arg=[note.element_handle(), folded],
+        )
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 def test_a_phone_hides_and_shows_its_controls_with_the_header_toggle(browser, url):
     """The header's toggle hides the controls' pane (the views take the whole screen) and brings
     it back; the sidebar's own scroll holds the controls below its first screen."""
@@ -587,6 +639,32 @@ def test_the_mechanisms_tab_uses_the_screens_width(browser, url, width, height):
             used = max(box["right"] for box in boxes) - pane["x"]
             assert used >= 0.9 * pane["width"], f"{used:.0f} px of the pane's {pane['width']:.0f}"
             assert all(box["bottom"] <= height for box in boxes), boxes  # the first screen
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_mechanisms_tab_uses_a_wide_screens_height(browser, url, width, height):
+    """At 1920×1080 the figures stood 440 px high and left ~30 % of the screen blank below them:
+    where the two parts stand side by side the figures take the screen's height (the lowest
+    ending within 10 % of the screen's foot, none past it), their drawings still at equal
+    scales. Where the parts stand one above the other (1366 px and narrower) the figures keep
+    their 440 px."""
+    page = open_page(browser, url, width, height, "?tab=mechanisms")
+    try:
+        page.wait_for_function(f"(n) => ({VIEW_BOX})(n) !== null", arg="linkage_figure")
+        time.sleep(2.0)  # laid out
+        boxes = page.evaluate(MECHANISM_BOXES)["boxes"]
+        assert len(boxes) == 3, boxes
+        if width >= 1920:
+            lowest = max(box["bottom"] for box in boxes)
+            assert 0.9 * height <= lowest <= height, f"figures end at {lowest:.0f} of {height}"
+        else:
+            heights = [box["bottom"] - box["y"] for box in boxes]
+            assert all(abs(h - 440) <= 2 for h in heights), heights
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"mechanisms-height_{width}x{height}.png"))
         assert page.problems == []
     finally:
         page.close()

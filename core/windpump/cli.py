@@ -217,15 +217,26 @@ def build_parser() -> argparse.ArgumentParser:
 
     serve = commands.add_parser(
         "serve",
-        help="start the explorer (panel serve app/)",
-        description="Start the explorer: panel serve app/, with every other option passed on.",
-        usage="%(prog)s [-h] [panel serve options]",
+        help="compile the solver if needed, then start the explorer (panel serve app/)",
+        description=(
+            "Start the explorer: first the solver's compile step (python -m "
+            "windpump_app.compiling: ~1 minute on 2 cores once after an install, then "
+            '"nothing to do" within seconds), then panel serve app/, with every other option '
+            "passed on."
+        ),
+        usage="%(prog)s [-h] [--no-compile] [panel serve options]",
         epilog=SERVE_OPTIONS,
         formatter_class=argparse.RawDescriptionHelpFormatter,
         add_help=False,  # its --help adds panel serve's own
     )
     serve.add_argument(
         "-h", "--help", action="store_true", help="show this and panel serve's options, then exit"
+    )
+    serve.add_argument(
+        "--no-compile",
+        action="store_true",
+        help="skip the compile step: the server then compiles in the background what a page "
+        "needs, and a page waits for it",
     )
     serve.set_defaults(run=serve_command, help_text=serve.format_help)
     return parser
@@ -654,8 +665,15 @@ def explorer_folder() -> Path:
     return Path(folders[0]).resolve()  # an editable install's is app/: the page's URL is /app
 
 
+COMPILE_STEP = ["-m", "windpump_app.compiling"]  # the README's, before panel serve app/
+
+
 def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
-    """``windpump serve [panel serve options]``: the explorer, as ``panel serve app/``."""
+    """``windpump serve [--no-compile] [panel serve options]``: the README's serve command,
+    ``python -m windpump_app.compiling && panel serve app/``. The compile step (in a process of
+    its own: the core never imports the app) compiles each part of the solver not yet in numba's
+    cache and says "nothing to do" when all are; a failed step is said, and the server then
+    compiles what a page needs itself."""
     if args.help:
         print(args.help_text())
         panel = [sys.executable, "-m", "panel", "serve", "--help"]
@@ -671,6 +689,14 @@ def serve_command(args: argparse.Namespace, extra: list[str]) -> int:
     if port is not None and not (port.isdigit() and int(port) <= 65535):
         raise ValueError(f"--port {shown(port)}: a port must be a whole number from 0 to 65535")
     command = [sys.executable, "-m", "panel", "serve", str(explorer_folder()), *extra]
+    if not args.no_compile:
+        failed = subprocess.call([sys.executable, *COMPILE_STEP])
+        if failed:
+            print(
+                f"windpump serve: the compile step exited with {failed}: "
+                "the server compiles what a page needs itself",
+                file=sys.stderr,
+            )
     if os.name == "posix":  # become the server: a signal to this process reaches it
         os.execv(sys.executable, command)
     return subprocess.call(command)

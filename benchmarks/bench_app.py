@@ -442,7 +442,9 @@ def first_start():
             # has only the parts done by then: its next start compiles the rest)
             starts["later start"] = launch_to_readout(browser, fresh, uses)
     print("5. first start after an install: `panel serve app/` launched with an empty numba cache")
-    print("   from the launch: answering, the averaged τ, first page's checked readout (server CPU)")
+    print(
+        "   from the launch: answering, the averaged τ, first page's checked readout (server CPU)"
+    )
     for name, (up, averaged, readout, up_cpu, readout_cpu, _used) in starts.items():
         print(
             f"   {name:34s} answering {up:5.1f} s ({up_cpu:4.1f} s of CPU), averaged τ"

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 import os
+import subprocess
+import sys
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -30,6 +32,20 @@ ACCURACY_CASES = {
         5.0,
     ),
 }
+
+
+# Under pytest-xdist the workers share numba's on-disk cache (beside the kernels' source), and
+# numba writes a cache's index unlocked: two processes compiling one kernel at once may each
+# give its code the same data file. So the controller compiles what the app compiles (every
+# part of windpump_app.compiling, one after another) before any worker starts; the workers then
+# load, not write. In its own process: the controller itself stays without numba.
+WARM_UP = "from windpump_app import compiling\nfor part in compiling.PARTS:\n    part.run()"
+
+
+def pytest_configure(config):
+    if hasattr(config, "workerinput") or not config.getoption("numprocesses", None):
+        return  # a worker, or no workers
+    subprocess.run([sys.executable, "-c", WARM_UP], check=True)
 
 
 @pytest.fixture(scope="session")

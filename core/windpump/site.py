@@ -198,9 +198,23 @@ def _expected_flow(design: Design, V_from: float, c: float, k: float) -> float:
         return q * q / V * density(V) if V > 0.0 else 0.0  # (q = V = 0 when V_stop = 0)
 
     q_from = math.sqrt(max(V_from * V_from - V_stop * V_stop, 0.0))
-    q_far = max(q_from, c * 50.0 ** (1.0 / k))  # beyond it the density is below exp(-50)
+    # Beyond V_far the density is below exp(-50) of its value at V_from (not of its peak: far out
+    # a fixed cut left the near part a zero-length or 600-e-fold span, and quad warned, issue 36).
+    u_far = (V_from / c) ** k + 50.0
+    V_far = c * u_far ** (1.0 / k)
+    q_far = math.sqrt(max((V_far - V_stop) * (V_far + V_stop), q_from * q_from))
     near, _ = integrate.quad(root_term, q_from, q_far, epsabs=0.0, epsrel=1e-12, limit=400)
-    tail, _ = integrate.quad(root_term, q_far, math.inf, epsabs=0.0, epsrel=1e-12, limit=400)
+    # Beyond q_far, in u = (V/c)^k = u_far + t (density dV = exp(-u) du): the tail is
+    # exp(-u_far) times the integral of sqrt(V^2 - V_stop^2) exp(-t) dt over t >= 0, whose
+    # integrand grows only as a power of t. (In q it decays as exp(-(q/c)^k), slowly for k < 1,
+    # and quad to infinity warned "probably divergent" at k = 0.5, issue 36.)
+
+    def tail_term(t):  # V^2 - V_stop^2 = q_far^2 + (V - V_far)(V + V_far), without cancellation
+        rise = V_far * math.expm1(math.log1p(t / u_far) / k)  # V - V_far
+        return math.sqrt(q_far * q_far + rise * (rise + 2.0 * V_far)) * math.exp(-t)
+
+    tail, _ = integrate.quad(tail_term, 0.0, math.inf, epsabs=0.0, epsrel=1e-12, limit=400)
+    tail *= math.exp(-u_far)
     return per_radian * (p / design.V_ref * linear + g * (near + tail))
 
 

@@ -108,7 +108,6 @@ CIRCLES_LEFT_FOR_LATER = {
     frozenset(
         {"windpump.fullyear", "windpump.yearly"}
     ): "shared helpers into one module (issue 38)",
-    frozenset({"windpump.cli", "windpump.sitecli"}): "shared helpers into one module (issue 38)",
 }
 
 

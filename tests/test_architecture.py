@@ -87,3 +87,63 @@ def test_the_study_extras_are_imported_only_where_used(path):
 def test_the_rules_see_the_files():
     assert len(CORE_FILES) > 20 and len(KERNEL_FILES) > 5
     assert any(name == "numba" for _, name, _ in imports(parsed(KERNELS / "jit.py")))
+
+
+# Import circles among the core's modules, counting imports inside functions (grimp reads them all).
+# Each entry is one circle (a strongly connected set of modules) allowed for now, with the reason.
+CIRCLES_LEFT_FOR_LATER = {
+    # estimated_steps calls site.steady_flow; steady_flow is being changed elsewhere and moves into
+    # the averaged theory below the run in issue 38's folder move.
+    frozenset({"windpump.dynamics", "windpump.site"}): "steady_flow moves below dynamics later",
+    # Not yet broken by issue 38's first slice (timebox): each must go, not grow.
+    frozenset(
+        {
+            "windpump.design",
+            "windpump.kinematics",
+            "windpump.loads",
+            "windpump.revolution",
+            "windpump.theory",
+        }
+    ): "Design's closed forms move below design (issue 38, next step)",
+    frozenset(
+        {"windpump.fullyear", "windpump.yearly"}
+    ): "shared helpers into one module (issue 38)",
+}
+
+
+def module_circles() -> list[frozenset[str]]:
+    """The core's import circles: sets of top-level modules that each reach all the others."""
+    grimp = pytest.importorskip("grimp")
+    graph = grimp.build_graph("windpump")
+
+    def top(name: str) -> str:
+        return ".".join(name.split(".")[:2])
+
+    edges: dict[str, set[str]] = {}
+    for module in graph.modules:
+        for imported in graph.find_modules_directly_imported_by(module):
+            if top(module) != top(imported):
+                edges.setdefault(top(module), set()).add(top(imported))
+    reach = {}
+    for start in edges:
+        seen, todo = set(), [start]
+        while todo:
+            for nxt in edges.get(todo.pop(), ()):
+                if nxt not in seen:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        reach[start] = seen
+    circles = {
+        frozenset({a} | {b for b in reach[a] if a in reach.get(b, ())})
+        for a in reach
+        if a in reach[a]
+    }
+    return sorted(circles, key=sorted)
+
+
+def test_no_import_circles_but_those_left_for_later():
+    circles = module_circles()
+    unexpected = [sorted(c) for c in circles if c not in CIRCLES_LEFT_FOR_LATER]
+    assert not unexpected, f"import circles in the core: {unexpected}"
+    gone = [sorted(c) for c in CIRCLES_LEFT_FOR_LATER if c not in circles]
+    assert not gone, f"these circles are broken now: take them off CIRCLES_LEFT_FOR_LATER: {gone}"

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .cliargs import MAX_WORKERS, chosen_design, workers
 from .errors import ParameterError, cut
 from .labdata import LabDataError
 from .units import LITRES_PER_M3
@@ -25,8 +26,6 @@ from .yearly import DEFAULT_RESTART, MONTH_NAMES, RESTARTS, Supply, supply, tank
 
 def add_commands(commands, design_options) -> None:
     """Add ``supply`` and ``tank`` to the command line's subparsers."""
-    from .cli import MAX_WORKERS, workers
-
     year = commands.add_parser(
         "supply",
         help="a year of water at a site, with a tank",
@@ -135,8 +134,6 @@ def profile(text: str | None) -> list[float] | None:
 
 def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump supply``: the month table and the year's figures; the hours in --csv."""
-    from .cli import chosen_design
-
     full_only = [
         f"--{name}" for name in ("turbulence", "workers") if getattr(args, name) is not None
     ]
@@ -292,8 +289,6 @@ def hours_csv(year: Supply) -> str:
 def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump tank``: what it sizes for (site, hub, demand, target), then the smallest tank
     for --lolp in m^3 (and litres), or why no tank is enough."""
-    from .cli import chosen_design
-
     design = chosen_design(args)
     record = site_record(args)
     options: dict = {"restart": args.restart, "profile": profile(args.profile)}

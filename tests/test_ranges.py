@@ -358,6 +358,28 @@ def test_a_leaky_run_delivers_a_volume_that_never_falls_nor_goes_negative():
         assert budget.closure <= budget.tolerance
 
 
+# Found by --hypothesis-seed=1 (issue 36): a hole as wide as a 1e-8 m^2 bore under a 1e12 m head
+# passes 7e7 times what the face sweeps; the rod 1e-6 longer than the crank (Eq. 1's near-toggle)
+THIN_CORNER = SEED.replace(
+    R=1e-4, L=1.0000000001e-4, A=1e-8, d_leak=1.128e-4, Cd_leak=0.05, h=1e12, g=0.1, rho_w=1.0,
+    I0=1e-12, I1=1e-12, T_m=1e-12, omega_m=1.0, V_ref=1e-12, eta_t=0.1,
+)  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    "design", [THIN_CORNER, SEED.replace(d_leak=0.035, h=3.0), SEED.replace(d_leak=0.03, h=1e4)]
+)
+def test_a_hole_that_passes_all_a_face_sweeps_delivers_nothing(design):
+    """Where the hole's capacity q_L exceeds the most a face sweeps, 2 A R theta_dot (the lever
+    arm of Eq. 1 is below 2), no face ever delivers (delivered_flow = max(u - q_L, 0)): the volume
+    is 0 at every sample, not the swept volume less the leaked one, whose quadrature error at
+    the thin corner was 3.5 % of the swept volume."""
+    run = windpump.simulate(design, 2.0, theta_dot0=3.0, samples_per_stroke=4)
+    assert design.leak_capacity >= 4.0 * design.A * design.R * float(np.max(run.theta_dot))
+    assert float(run.swept_volume[-1]) > 0.0
+    assert np.all(np.asarray(run.volume) == 0.0) and run.volumetric_efficiency == 0.0
+
+
 @pytest.mark.parametrize("m_r", [1e6, 1e9, 1e12])
 def test_the_budget_closes_to_its_tolerance_with_heavy_reciprocating_masses(m_r):
     run = windpump.simulate(SEED.replace(m_r=m_r), 60.0)

@@ -800,6 +800,17 @@ def _refuse_too_many_samples(
         )
 
 
+def _hole_passes_all(design: Design, theta_dot: np.ndarray) -> bool:
+    """Whether a leak hole passes all its face ever sweeps over a run: its capacity q_L at least
+    twice the most a face can sweep at the run's fastest sample, 2 A R max theta_dot (the lever
+    arm |x'/R| of Eq. 1 is below 2 for any L/R > 1; the factor 2 over it covers a speed between
+    samples). Such a run delivers nothing (Eq. 16 with :func:`~windpump.loads.delivered_flow`):
+    its volume is 0 exactly, not the swept volume less the leaked one, a difference of two equal
+    quadratures whose error is all that would be left (issue 36)."""
+    fastest = float(np.max(theta_dot)) if len(theta_dot) else 0.0
+    return design.leak_capacity >= 4.0 * design.A * design.R * fastest
+
+
 def _settled(volume: np.ndarray) -> None:
     """Make a leaky run's delivered volume [m^3] (swept less leaked) never fall and never dip
     below 0, in place: each sample becomes the least of it and every later one, and 0 at most.
@@ -826,7 +837,9 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     if run.leaked is None:  # the ideal machine
         friction = leak = np.zeros_like(run.t)
     else:  # the real machine
-        if design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
+        if design.leak_capacity > 0.0 and _hole_passes_all(design, run.theta_dot):
+            volume = np.zeros_like(swept)
+        elif design.leak_capacity > 0.0:  # (a tight piston delivers what it sweeps)
             volume = np.subtract(swept, run.leaked, out=run.leaked)  # (the kernel's own copy)
             _settled(volume)
         friction = run.friction_loss

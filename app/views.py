@@ -331,7 +331,8 @@ class EnergyView(View):
         "Over the run, the windmill's work W = ∫ T ω dt, and where it went: the chain (1 − η_t) W, "
         "the rising main's friction ∫ ρ_w g h_f Q dt, the leak hole, the spinning up "
         "Δ(½ J θ̇²) and the rod's weight, and the lifted water ρ_w g h V (a slowing rotor gives "
-        "energy back: its bar goes up)."
+        "energy back: its bar goes up). Each share is of the energy that came in: W and what "
+        "the rotor gave back."
     )
     STEPS = ("windmill's work", "chain", "rising main", "leak hole", "spinning up", "lifted water")
     COLORS = ("windmill", "structure", "wind", "data", "alpha_minus", "flow")
@@ -367,7 +368,9 @@ class EnergyView(View):
         refill(self.sources["losses"], self.waterfall(seen.energy_totals))
 
     def waterfall(self, totals: windpump.EnergyTotals) -> dict:
-        """The bars: W from 0, each loss hanging from what is left, the water from 0."""
+        """The bars: W from 0, each loss hanging from what is left, the water from 0; each
+        labelled with its joules and its share of the energy that came in (W, and what a
+        slowing rotor gave back)."""
         spin = totals.kinetic + totals.potential
         W = totals.shaft
         left, right, running = [0.0], [W], W
@@ -378,10 +381,14 @@ class EnergyView(View):
         left.append(0.0)
         right.append(totals.water)
         values = (W, totals.transmission, totals.friction, totals.leak, spin, totals.water)
-        share = [100.0 * v / W if W > 0 else 0.0 for v in values]
+        # Shares of the energy that came in: the windmill's work, and what a slowing rotor gave
+        # back (of W alone, a stalling pump's water was "156 J, 456 %")
+        came_in = W + max(-spin, 0.0)
+        share = [100.0 * abs(v) / came_in if came_in > 0 else 0.0 for v in values]
         joules = list(shown_totals(totals).values())  # as the readout shows them, adding up
         labels = [f"{v:,} J, {p:.0f} %" for v, p in zip(joules, share, strict=True)]
-        labels[4] = labels[4] if spin >= 0 else f"{-joules[4]:,} J given back"
+        if spin < 0:
+            labels[4] = f"{-joules[4]:,} J given back, {share[4]:.0f} %"
         # the bars; the page makes room for their labels (FIT_BARS_JS)
         self.figure.x_range.end = 1.02 * max(max(right), 1e-9)
         return {

@@ -87,8 +87,9 @@ def day_figures(s: dict, c: dict):
     speed = new_figure("Crank speed", "time [h]", "crank speed θ̇ [rad/s]", x_range=shared)
     draw_band(speed, s["speed"], c["integrated"])
     litres = new_figure("Water lifted", "time [h]", "water since dawn [L]", x_range=shared)
-    # 100,000 L, not Bokeh's 1.000e+5: a record of days lifts that much
-    litres.yaxis.formatter = NumeralTickFormatter(format="0,0")
+    # 100,000 L, not Bokeh's 1.000e+5 (a record of days lifts that much); 0.5 L, not "1" beside
+    # "1" (a stalling pump's half-litre ticks on a phone): decimals where a tick has them
+    litres.yaxis.formatter = NumeralTickFormatter(format="0,0.[00]")
     lifted = line(litres, "t", "litres", s["litres"], c["flow"], 3)
     markers = {}
     for fig, suffix in ((wind, "wind"), (litres, "litres")):

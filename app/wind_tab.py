@@ -429,7 +429,8 @@ class WindTab(Tab):
         if data is None:
             return
         name = (self.upload.filename or "") if name is None else name
-        self.say(f"Reading {clipped(name) or 'the file'} and running the day…", "info")
+        # (its span is not known before it is read: "the day" was said over a week's record)
+        self.say(f"Reading {clipped(name) or 'the file'} and running the pump through it…", "info")
         design, theta0, kick = (
             self.inputs.design_at_v_ref(),
             self.inputs.theta0,
@@ -520,9 +521,9 @@ class WindTab(Tab):
             self.day_note,
             pn.FlexBox(*day, flex_wrap="wrap", sizing_mode="stretch_width"),
             caption(
-                "The day integrated in full (Eq. 12 with the curve following V(t)): a pump at "
-                "rest waits until R†T₀(V/V_ref)² beats the load at its angle. Red: stops; green: "
-                "starts."
+                "The wind's run integrated in full (Eq. 12 with the curve following V(t)), a day's "
+                "or a record's: a pump at rest waits until R†T₀(V/V_ref)² beats the load at its "
+                "angle. Red: stops; green: starts."
             ),
             sizing_mode="stretch_width",
         )

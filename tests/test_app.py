@@ -230,6 +230,12 @@ def test_a_slowing_rotor_gives_power_back_below_zero(app):
     assert bars["left"][spin] == pytest.approx(float(budget.shaft_work[-1]))
     assert bars["right"][spin] == pytest.approx(float(budget.lift_work[-1]))
     assert "given back" in bars["label"][spin]
+    # each bar's share is of the energy that came in, W and what the rotor gave back: the water
+    # took all of it, never more (of W alone it was "456 %" for a stalling pump)
+    came_in = float(budget.shaft_work[-1]) - kinetic
+    shares = [int(re.search(r"(\d+) %", label).group(1)) for label in bars["label"]]
+    assert all(0 <= share <= 100 for share in shares), bars["label"]
+    assert shares[-1] == round(100 * float(budget.lift_work[-1]) / came_in)  # the water, last
     text = readout_text(app, "energy")
     assert "gained speed" not in text and "given back" in text
     work, back, lift = (int(v.replace(",", "")) for v in re.findall(r"([\d,]+) J", text))

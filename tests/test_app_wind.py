@@ -6,6 +6,7 @@ import math
 import re
 
 import numpy as np
+import panel as pn
 import pytest
 from scipy import special, stats
 
@@ -15,7 +16,7 @@ from windpump.wind import gusty, read_csv
 from windpump_app.explorer import Explorer
 from windpump_app.views import BINS
 
-from panes import shown
+from panes import rendered, shown
 
 SEED = windpump.Design.seed_example()
 
@@ -399,11 +400,20 @@ def test_a_record_of_days_is_titled_and_timed_as_its_span(app):
     record's, time runs in days, and the litres' axis is written in plain numbers."""
     from bokeh.models import HoverTool, NumeralTickFormatter
 
+    said = []
+    say = app.wind.say
+    app.wind.say = lambda text, *args: said.append(text) or say(text, *args)
     app.load_wind_data(steady_record(71.0, 6.0))
+    app.wind.say = say
+    words = [text for text in said] + [
+        rendered(pane) for pane in app.wind.layout().select(pn.pane.Markdown)
+    ]
+    assert words and not [text for text in words if "the day" in text.lower()], words
     wind, speed, lifted = app.wind.day_wind, app.wind.day_speed, app.wind.day_litres
     assert wind.title.text == "The record's wind"
     assert lifted.yaxis[0].axis_label == "water since the record's start [L]"
     assert isinstance(lifted.yaxis[0].formatter, NumeralTickFormatter)  # 100,000, not 1.000e+5
+    assert lifted.yaxis[0].formatter.format == "0,0.[00]"  # 0.5 L, not a second "1"
     for fig in (wind, speed, lifted):
         assert fig.xaxis[0].axis_label == "time [days]"
         assert ("t", "@t{0.00} days") in fig.select_one(HoverTool).tooltips

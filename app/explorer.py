@@ -38,14 +38,13 @@ from .mechanisms import Mechanisms
 from .page import page
 from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
-from .serving import DRAW_AFTER_MOVES, SOLVER_READY, TIDY, served_document
+from .server.api import DRAW_AFTER_MOVES, SOLVER_READY, TIDY, deliver, served_document
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
 from .site_tab import SITE_MESSAGE, SiteTab
 from .styles import NOTICE
 from .tab import PageTabs, Tab
-from .upload_route import deliver
 from .views import BINS
 from .wind_tab import WIND_MESSAGE, WindTab
 

@@ -13,10 +13,10 @@ import param
 
 import windpump
 
-from . import serving
 from .compiling import COMPILE, REAL_MACHINE
 from .escape import as_text
 from .inputs import FORMATS, SEED, PumpInputs, link_text
+from .server import api as serving
 from .styles import TEXT
 
 log = logging.getLogger("windpump.app")

@@ -562,7 +562,7 @@ async def moving_to(students: list[Student], torques: list[float]) -> list[float
 
 
 async def has_upload_route(student: Student) -> bool:
-    """Whether the server has the upload route (``app/upload_route.py``): an empty POST is
+    """Whether the server has the upload route (``app/server/upload_route.py``): an empty POST is
     refused there in words, and answered 404 by a server without it."""
     parsed = urlparse(student.url)
     request = HTTPRequest(

@@ -44,7 +44,9 @@ def _unpatched(thing):
     for mark in ("bokeh", "panel", "param", "__wrapped__"):
         original = getattr(thing, mark, None)
         if callable(original):
-            return _unpatched(original.__func__ if isinstance(original, classmethod) else original)
+            if isinstance(original, classmethod) or inspect.ismethod(original):
+                original = original.__func__  # a classmethod's function: (cls, ...)
+            return _unpatched(original)
     return thing
 
 

@@ -24,4 +24,5 @@ def without_webgl() -> None:
         return bundle
 
     bundle_without_webgl.without_webgl = True
+    bundle_without_webgl.panel = bundle_resources  # type: ignore[attr-defined]
     server.bundle_resources = bundle_without_webgl

@@ -1,5 +1,6 @@
 """A served page's moves: each run off the event loop, one at a time, in order, the latest winning
-(app/session.py: ``Session.move``), with the loop answering other pages meanwhile.
+(app/session.py: ``Session.move``, the session an ``Explorer`` holds), with the loop
+answering other pages meanwhile.
 
 In-process: the page believes it is served (``server.api.served_document`` gives a stand-in whose
 next-tick and timeout callbacks run on the test's event loop), and a run can be held in its thread

@@ -29,7 +29,7 @@ byte, each time to a design no other page holds (its run worked out, not shared)
 with and without a file arriving.
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
-``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
+``server.watch.LoopWatch``: its full garbage collections and the times its loop ran late), and the
 report sets them beside the slow round trips: how many of those had a collection or a late loop
 during their flight.
 

@@ -20,7 +20,7 @@ import windpump
 
 from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE
 from .figures import present
-from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, preset_of
+from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -38,14 +38,13 @@ from .mechanisms import Mechanisms
 from .page import page
 from .pump import ORDER, PumpViews, name_sources
 from .readouts import Readouts
-from .serving import DRAW_AFTER_MOVES, SOLVER_READY, TIDY, served_document
+from .server.api import DRAW_AFTER_MOVES, SOLVER_READY, TIDY, deliver, served_document
 from .session import Session
 from .sidebar import PRESET_PROMPT, Sidebar, design_filename, slider
 from .site_inputs import SiteInputs
 from .site_tab import SITE_MESSAGE, SiteTab
 from .styles import NOTICE
 from .tab import PageTabs, Tab
-from .upload_route import deliver
 from .views import BINS
 from .wind_tab import WIND_MESSAGE, WindTab
 
@@ -58,11 +57,15 @@ STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 WORKING = "**Running the new design…**"
 
 
-class Explorer(Session, pn.viewable.Viewer):
+class Explorer(pn.viewable.Viewer):
     """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from;
     ``start=False`` waits for ``start()`` to run it (while the server compiles the solver);
     ``defer_views`` waits for ``show_views()`` to put the views on the page, and ``lazy_views``
-    builds each view only once the page says it shows it (``see_views``)."""
+    builds each view only once the page says it shows it (``see_views``).
+
+    Its ``session`` (``session.Session``) holds the inputs, the run on the screen and whether it
+    is current, and takes a move from its inputs to its run drawn here (``_draw``, ``_mark_stale``,
+    ``_followed``, ``_working``: the page as the session's screen)."""
 
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
@@ -77,6 +80,7 @@ class Explorer(Session, pn.viewable.Viewer):
         **params,
     ):
         super().__init__(**params)
+        self.session = Session(screen=self)  # inputs -> run -> this page
         query, notices = readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
         self.dark = dark_from(query, notices)
@@ -112,6 +116,28 @@ class Explorer(Session, pn.viewable.Viewer):
             self.start()
         else:
             self.say_compiling()
+
+    # -- the session's state, as the page shows it -------------------------------------------
+
+    @property
+    def inputs(self) -> PumpInputs:
+        """The pump's inputs (the session's)."""
+        return self.session.inputs
+
+    @property
+    def seen(self) -> windpump.Exploration | None:
+        """The run on the screen (the session's)."""
+        return self.session.seen
+
+    @property
+    def stale(self) -> bool:
+        """Whether the screen shows an earlier design: the last input was refused."""
+        return self.session.stale
+
+    @property
+    def error(self) -> pn.pane.Alert:
+        """The session's message of a refused input, above the plots."""
+        return self.session.error
 
     def say_compiling(self) -> None:
         """The status, while the part of the solver this page's first run needs compiles (a
@@ -186,7 +212,7 @@ class Explorer(Session, pn.viewable.Viewer):
             return
         values, notices, designs = self._link
         self._link = None
-        seen = self.run_link(values, notices)
+        seen = self.session.run_link(values, notices)
         # A reopened link that names the design says what it shows, as a chosen preset does,
         # whatever of it was refused (?h=-5 shows the paper's example, and says so).
         if designs:
@@ -195,7 +221,7 @@ class Explorer(Session, pn.viewable.Viewer):
         self.notices.visible = bool(notices)
         self.inputs.param.watch(self._on_inputs, self.inputs.names())
         self.inputs.param.watch(self._leave_preset, self.inputs.names())
-        self.update(seen)
+        self.session.update(seen)
 
     # -- the tabs, each built when first viewed ------------------------------------------------
 
@@ -274,7 +300,7 @@ class Explorer(Session, pn.viewable.Viewer):
     def _on_inputs(self, *_events) -> None:
         # The run off the event loop, one at a time, the latest move winning (Session.move): a
         # dragged slider redraws as fast as the machine can and always ends on its final value.
-        self.move()
+        self.session.move()
 
     def _working(self, working: bool) -> None:
         """A move's run is taking long: the status says so and the views and readouts are marked
@@ -314,7 +340,7 @@ class Explorer(Session, pn.viewable.Viewer):
                 self._plot(seen)
         except Exception as error:
             log.exception("drawing failed")
-            self._show_error(
+            self.session.show_error(
                 f"Something went wrong ({type(error).__name__}: {error}); it has been logged."
             )
 

@@ -12,7 +12,7 @@ import windpump
 
 from .buttons import ActionButton
 from .keyboard import FOCUS_CSS
-from .serving import Newest, in_a_process, off_the_loop
+from .server.api import Newest, in_a_process, off_the_loop
 from .session import sentence
 from .styles import TEXT
 from .uploads import Encoded, FileUpload, Reveal, chosen, decoded

@@ -148,7 +148,7 @@ class PageLink:
         """``write``, served: after the readouts of the moves pending (``DRAW_AFTER_MOVES``), as
         the plots are; a move's answer does not wait for its link (~1 ms of the event loop a
         move, a message of its own). Asked for twice before it runs, it runs once."""
-        from .serving import DRAW_AFTER_MOVES, served_document
+        from .server.api import DRAW_AFTER_MOVES, served_document
 
         document = served_document()
         if document is None:

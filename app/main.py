@@ -10,30 +10,32 @@ from functools import partial
 import panel as pn
 
 from .compiling import COMPILE, REAL_MACHINE
-from .defaults import lighter_properties
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
-from .lighter import lighter_components
 from .link import utf8_keys
 from .link_values import link_values_read_safely
 from .pump import ORDER
-from .serving import (
-    READOUTS_FIRST,
-    SOLVER_READY,
-    TIDY,
+from .server.memory import TIDY
+from .server.patches import (
     fake_roots_forgotten,
-    first_run_when_ready,
+    lighter_components,
     lighter_patches,
+    lighter_properties,
     lighter_updates,
-    reopen_when_reconnected,
-    session_closed,
-    stylesheets_from_this_server,
-    wait_for_the_browser,
     without_mathjax,
     without_webgl,
     writes_not_stranded,
 )
-from .upload_route import page_opened
+from .server.sessions import (
+    READOUTS_FIRST,
+    SOLVER_READY,
+    first_run_when_ready,
+    reopen_when_reconnected,
+    session_closed,
+    stylesheets_from_this_server,
+    wait_for_the_browser,
+)
+from .server.upload_route import page_opened
 from .uploads import guard_uploads
 from .viewport import report_views_seen
 
@@ -61,7 +63,7 @@ query = utf8_keys(pn.state.session_args)  # ?café=1 named as typed
 # ?resolution=full sends every sample instead of min/max bands (benchmarks/bench_app.py's baseline)
 full = query.get("resolution", [b""])[0] == b"full"
 # The first start after an install compiles the solver in the background: this page opens at
-# once and runs its design when the solver is ready (serving.first_run_when_ready).
+# once and runs its design when the solver is ready (server.sessions.first_run_when_ready).
 # So does one opened while a worker compiles the real machine: its link may open one (a deep well)
 ready = SOLVER_READY.is_set() and COMPILE.ready[REAL_MACHINE].is_set()
 explorer = Explorer(
@@ -71,13 +73,13 @@ explorer.follow_in_link(pn.state.location)  # one way: the page writes its link,
 with document.models.freeze():  # one walk of the models for the page, not one per root
     explorer.template().servable()
 # The plots and the machine follow once the page has loaded, and once every other page opening
-# meanwhile shows its readouts (serving.ReadoutsFirst): a class opening it at once reads sooner;
+# meanwhile shows its readouts (server.sessions.ReadoutsFirst): a class opening it at once reads sooner;
 # each view only once the page shows it (viewport.report_views_seen): a page nobody scrolls
 # builds the two of its first screen.
 session_id = document.session_context.id
 READOUTS_FIRST.opened(session_id)
 TIDY.opened()
-TIDY.settle()  # its objects frozen, out of every later collection's walk (serving.Tidy)
+TIDY.settle()  # its objects frozen, out of every later collection's walk (server.memory.Tidy)
 # partial, not a lambda: Bokeh clears this module's globals once the session has started
 if ready:
     pn.state.onload(partial(READOUTS_FIRST.loaded, session_id, document, explorer.show_views))

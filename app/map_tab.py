@@ -37,7 +37,7 @@ from .escape import as_text
 from .figures import TICKS, empty, legend, new_figure, palette
 from .inputs import on_grid
 from .page import pane_height_css
-from .serving import Newest, off_the_loop
+from .server.api import Newest, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .views import refill

@@ -7,57 +7,72 @@ import logging
 import re
 import threading
 import weakref
+from typing import Protocol
 
 import panel as pn
 import param
 
 import windpump
 
-from . import serving
 from .compiling import COMPILE, REAL_MACHINE
 from .escape import as_text
 from .inputs import FORMATS, SEED, PumpInputs, link_text
+from .server import api as serving
 from .styles import TEXT
 
 log = logging.getLogger("windpump.app")
 
 
+class Screen(Protocol):
+    """What a session draws on: the page (``explorer.Explorer``)."""
+
+    def _draw(self, seen: windpump.Exploration) -> None:
+        """Show ``seen``."""
+
+    def _mark_stale(self, stale: bool) -> None:
+        """Show that the screen holds an earlier run than the inputs (or no longer)."""
+
+    def _followed(self, seen: windpump.Exploration) -> None:
+        """``seen`` is on the screen: what follows it (the tabs) may follow too."""
+
+    def _working(self, working: bool) -> None:
+        """Say that a move's run is taking long (``working``), or no longer."""
+
+
 class Session(param.Parameterized):
-    """The inputs → exploration half of a page; the page (``explorer.Explorer``) draws it."""
+    """The inputs → exploration half of a page, drawn on its ``screen`` (the page,
+    ``explorer.Explorer``, holds one): a move's whole path, from an input changed to its run drawn
+    or refused, reads here (``move``, ``update``).
+
+    >>> from windpump_app.session import Session
+    >>> class Blank:  # a screen that draws nothing
+    ...     def _draw(self, seen): self.drawn = seen
+    ...     def _mark_stale(self, stale): pass
+    ...     def _followed(self, seen): pass
+    ...     def _working(self, working): pass
+    >>> session = Session(screen=Blank())
+    >>> session.inputs.h = 5.0
+    >>> session.move()  # not served: run at once
+    >>> session.screen.drawn.design.h, session.stale
+    (5.0, False)
+    """
 
     inputs = param.ClassSelector(class_=PumpInputs)
     stale = param.Boolean(
         False, doc="The plots show an earlier design: the last input was rejected."
     )
 
-    def __init__(self, **params):
+    def __init__(self, screen: Screen, **params):
         super().__init__(inputs=PumpInputs(), **params)
+        self.screen = screen  # what it draws on; read at each call (a test may replace its methods)
         self.seen: windpump.Exploration | None = None  # the run on the screen
         self._asked = 0  # moves asked for (``move``)
         self._running = False  # a move's run is under way off the event loop
         self._runs = 0  # moves' runs started
-        self._working_shown = False  # the page says it is working (``_working``)
+        self._working_shown = False  # the page says it is working (``screen._working``)
         self.error = pn.pane.Alert(
             "", alert_type="danger", visible=False, stylesheets=TEXT, sizing_mode="stretch_width"
         )
-
-    # -- what the page does with it (explorer.Explorer) ----------------------------------------
-
-    def _draw(self, seen: windpump.Exploration) -> None:
-        """Show ``seen``."""
-        raise NotImplementedError
-
-    def _mark_stale(self, stale: bool) -> None:
-        """Show that the screen holds an earlier run than the inputs (or no longer)."""
-        raise NotImplementedError
-
-    def _followed(self, seen: windpump.Exploration) -> None:
-        """``seen`` is on the screen: what follows it (the tabs) may follow too."""
-        raise NotImplementedError
-
-    def _working(self, working: bool) -> None:
-        """Say that a move's run is taking long (``working``), or no longer."""
-        raise NotImplementedError
 
     # -- the one path from inputs to screen --------------------------------------------------
 
@@ -106,14 +121,14 @@ class Session(param.Parameterized):
             return
         if self._working_shown:
             self._working_shown = False
-            self._working(False)
+            self.screen._working(False)
         self.update(outcome)
 
     def _still_running(self, number: int) -> None:
         """``WORKING_AFTER`` after run ``number`` started: say so if it is still under way."""
         if self._running and self._runs == number and not self._working_shown:
             self._working_shown = True
-            self._working(True)
+            self.screen._working(True)
 
     def update(self, seen: windpump.Exploration | Exception | None = None) -> None:
         """Run the core on the current inputs (``seen``: that run, done already, or the exception
@@ -123,30 +138,31 @@ class Session(param.Parameterized):
             if isinstance(seen, Exception):
                 raise seen
             with pn.io.hold():
-                self._draw(seen)
+                self.screen._draw(seen)
         except ValueError as error:  # the core's verdict on an input: say so, mark the plots stale
-            self._show_error(f"{self.culprit(error)}cannot be run: {page_symbols(str(error))}")
+            self.show_error(f"{self.culprit(error)}cannot be run: {page_symbols(str(error))}")
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("update failed")
-            self._show_error(
+            self.show_error(
                 f"Something went wrong ({type(error).__name__}: {error}); it has been logged."
             )
         else:
             self.seen = seen
             self.error.visible = False
             self.stale = False
-            self._mark_stale(False)
-            self._followed(seen)
+            self.screen._mark_stale(False)
+            self.screen._followed(seen)
 
-    def _show_error(self, message: str) -> None:
+    def show_error(self, message: str) -> None:
+        """Say ``message`` above the plots, and mark what they show as not current."""
         self.error.object = message
         self.error.visible = True
         if self.seen is None:  # nothing drawn yet (a link's design was rejected): show the paper's
             self.seen = shared_explore(SEED, 600.0)  # example behind it, marked not current
             with pn.io.hold():
-                self._draw(self.seen)
+                self.screen._draw(self.seen)
         self.stale = True
-        self._mark_stale(True)
+        self.screen._mark_stale(True)
 
     def explore(self) -> windpump.Exploration:
         i = self.inputs

@@ -16,7 +16,7 @@ from windpump.labdata import check_file_size
 
 from .escape import as_text
 from .inputs import clipped
-from .serving import in_a_process
+from .server.api import in_a_process
 from .site_inputs import SITES, UPLOADED
 from .styles import TEXT
 from .uploads import (

@@ -22,7 +22,7 @@ from .escape import as_text
 from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
-from .serving import Newest, off_the_loop
+from .server.api import Newest, off_the_loop
 from .sidebar import PromptSlider
 from .site_figures import (
     level_figure,

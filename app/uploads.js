@@ -3,7 +3,7 @@
 // server hears of the refusal through a hidden text input (CSS class `channel_class`) and says
 // so next to the upload control. A wind record or a site's weather file (up to wind_max_bytes)
 // is posted by HTTP to `upload_url` instead of going over the websocket as one ~13 MB message
-// (app/upload_route.py), and the same input carries its reference: "sending", then "posted <id>"
+// (app/server/upload_route.py), and the same input carries its reference: "sending", then "posted <id>"
 // once the server holds it, or "failed <reason>"; an empty file is "empty" (nothing to send).
 // The server takes a file only from a page whose websocket is open, this page's session id in
 // the header `session_header`.

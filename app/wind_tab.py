@@ -29,7 +29,7 @@ from .escape import as_text
 from .figures import palette
 from .inputs import clipped
 from .readouts import PAIR, Readout
-from .serving import Newest, in_a_process, mark, off_the_loop
+from .server.api import Newest, in_a_process, mark, off_the_loop
 from .styles import CAPTION_CSS, TEXT
 from .tab import Tab
 from .uploads import (

@@ -29,7 +29,7 @@ byte, each time to a design no other page holds (its run worked out, not shared)
 with and without a file arriving.
 
 ``--watch``: the server writes what holds up its event loop (``WINDPUMP_LOOP_WATCH``, see
-``serving.LoopWatch``: its full garbage collections and the times its loop ran late), and the
+``server.watch.LoopWatch``: its full garbage collections and the times its loop ran late), and the
 report sets them beside the slow round trips: how many of those had a collection or a late loop
 during their flight.
 
@@ -562,7 +562,7 @@ async def moving_to(students: list[Student], torques: list[float]) -> list[float
 
 
 async def has_upload_route(student: Student) -> bool:
-    """Whether the server has the upload route (``app/upload_route.py``): an empty POST is
+    """Whether the server has the upload route (``app/server/upload_route.py``): an empty POST is
     refused there in words, and answered 404 by a server without it."""
     parsed = urlparse(student.url)
     request = HTTPRequest(

@@ -6,7 +6,7 @@ Run: python benchmarks/bench_page_memory.py [N] [--views | --every-view] [--top 
      [--baseline]
      (N = 10 by default; --views: each page also builds its first screen's views, the crank speed
      and the machine, as a page at 1280x720 names them once loaded; --every-view: all seven, as a
-     page scrolled to its end; --baseline: without app/lighter.py's cuts, to compare)
+     page scrolled to its end; --baseline: without app/server/patches/'s cuts, to compare)
 
 Printed, per page (the mean of N, after one page built first to warm every cache):
 - bytes by tracemalloc (what the N pages allocated and still hold), and its top allocation sites
@@ -33,14 +33,14 @@ FRAMES = 40  # tracemalloc's traceback depth: deep enough to reach the app's fra
 
 def setup(lighter: bool = True) -> None:
     """What ``app/main.py`` does once per process before a page; without ``lighter``, without
-    the cuts to a page's memory (``lighter.lighter_components``, and Bokeh's empty defaults made
-    with each model: ``defaults.empty_defaults_made_when_read`` left out), to compare."""
+    the cuts to a page's memory (``server.patches.lighter_components``, and Bokeh's empty defaults made
+    with each model: ``bokeh_properties.empty_defaults_made_when_read`` left out), to compare."""
     import panel as pn
 
-    from windpump_app.defaults import lighter_properties
-    from windpump_app.lighter import lighter_components
-    from windpump_app.serving import (
+    from windpump_app.server.patches import (
+        lighter_components,
         lighter_patches,
+        lighter_properties,
         lighter_updates,
         without_mathjax,
         without_webgl,
@@ -55,7 +55,7 @@ def setup(lighter: bool = True) -> None:
         lighter_properties()
         lighter_components()
         return
-    from windpump_app import defaults
+    from windpump_app.server.patches import bokeh_properties as defaults
 
     cut = defaults.empty_defaults_made_when_read
     defaults.empty_defaults_made_when_read = lambda: None  # type: ignore[assignment]
@@ -78,7 +78,7 @@ def page(views: bool | tuple[str, ...] = False):
     from windpump_app.explorer import Explorer
     from windpump_app.keyboard import keyboard_and_screen_readers
     from windpump_app.pump import ORDER
-    from windpump_app.serving import reopen_when_reconnected, stylesheets_from_this_server
+    from windpump_app.server.sessions import reopen_when_reconnected, stylesheets_from_this_server
     from windpump_app.uploads import guard_uploads
     from windpump_app.viewport import report_views_seen
 

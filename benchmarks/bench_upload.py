@@ -7,7 +7,7 @@ that checkout's ``windpump`` importable): a witness page (a protocol-level stude
 ``bench_hall.py``, in this process) moves a slider one move after another, while a loader page in
 a process of its own (as a student's browser is) sends a 10 MB record as the page does: by HTTP
 POST and its reference over the websocket when the server has the upload route
-(``app/upload_route.py``), else as the FileInput's base64 value in one websocket message. Printed:
+(``app/server/upload_route.py``), else as the FileInput's base64 value in one websocket message. Printed:
 the witness's round trips with no upload against those sent within 0.6 s of the upload's first
 byte (the same witness, the same server), their ratio, and how long the upload took until the
 server said it read the file. Bounded: ROUNDS <= 20, every wait has a timeout; loopback only.

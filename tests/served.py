@@ -146,9 +146,9 @@ def server_log(process: subprocess.Popen) -> str:
 
 
 def wait_until_up(url: str, process: subprocess.Popen, log, timeout: float) -> None:
-    """The proxy's wait (:func:`windpump_app.proxy.wait_until_up`), with the server's log when
+    """The proxy's wait (:func:`windpump_app.server.proxy.wait_until_up`), with the server's log when
     it does not come up."""
-    from windpump_app import proxy
+    from windpump_app.server import proxy
 
     try:
         proxy.wait_until_up(url, process, timeout)
@@ -174,7 +174,7 @@ def require_nginx() -> None:
     """Skip on a user's machine without Debian's nginx; in CI its absence is a failure."""
     import pytest
 
-    from windpump_app import proxy
+    from windpump_app.server import proxy
 
     if Path(proxy.NGINX).exists():
         return
@@ -188,7 +188,7 @@ def require_jemalloc() -> str:
     without it (they fall back to Python's allocator); in CI its absence is a failure."""
     import pytest
 
-    from windpump_app import proxy
+    from windpump_app.server import proxy
 
     library = proxy.jemalloc_library()
     if library is not None:

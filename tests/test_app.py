@@ -628,7 +628,7 @@ def test_the_machine_drawing_lies_inside_its_figure_at_equal_scales(cylinders):
 def test_a_page_built_while_the_solver_compiles_runs_its_link_on_start():
     """start=False (a first start's pages): controls and a word on the compile, no run; start()
     runs the link's design and names what it ignored, as a page built ready does."""
-    from windpump_app import serving
+    from windpump_app.server import sessions as serving
 
     query = {"h": [b"5"], "foo": [b"1"]}
     serving.SOLVER_READY.clear()  # a first start's compile under way
@@ -734,7 +734,7 @@ def test_a_session_built_without_its_html_page_asks_no_cdn_for_stylesheets():
     from bokeh.models import ImportedStyleSheet
     from panel.io.state import set_curdoc
 
-    from windpump_app.serving import stylesheets_from_this_server
+    from windpump_app.server.sessions import stylesheets_from_this_server
 
     document = Document()
     with set_curdoc(document):
@@ -845,7 +845,7 @@ def test_the_new_inputs_travel_in_the_link():
 
 
 def test_no_figure_asks_for_webgl(app):
-    """app/serving.py leaves Bokeh's WebGL bundle out of the page: safe while no figure, on any
+    """app/server/patches/panel_bundle_resources.py leaves Bokeh's WebGL bundle out of the page: safe while no figure, on any
     tab, asks for WebGL."""
     from bokeh.models import Plot
 

@@ -1,4 +1,4 @@
-"""Bokeh's property machinery made lighter for a page (app/defaults.py): the same values, fewer
+"""Bokeh's property machinery made lighter for a page (app/server/patches/bokeh_properties.py): the same values, fewer
 workings-out. Each test compares with what Bokeh's own methods give, kept aside by the patch."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from bokeh.models import ColumnDataSource, Div, GlyphRenderer, Line, Slider
 from bokeh.plotting import figure
 from bokeh.themes import Theme
 
-from windpump_app.defaults import immutable, lighter_properties
+from windpump_app.server.patches.bokeh_properties import immutable, lighter_properties
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_page_memory  # noqa: E402

@@ -1,4 +1,4 @@
-"""Panel's components made lighter for a page kept in memory (app/lighter.py): what a page shows
+"""Panel's components made lighter for a page kept in memory (app/server/patches/: panel_pane_layout.py, param_watchers.py): what a page shows
 and sends is the same, with fewer objects kept. Each test compares with Panel's own behaviour,
 restored for the comparison (``panels_own``)."""
 
@@ -15,7 +15,8 @@ from panel.pane.markup import HTMLBasePane
 from panel.viewable import Layoutable
 from param.parameterized import _InstancePrivate
 
-from windpump_app.lighter import ValueWatchers, lighter_components
+from windpump_app.server.patches import lighter_components
+from windpump_app.server.patches.param_watchers import ValueWatchers
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_page_memory  # noqa: E402

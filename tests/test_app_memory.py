@@ -74,7 +74,7 @@ def test_panels_link_registry_forgets_a_dropped_pages_buttons():
 BLOCKS = """
 import sys
 import numpy as np
-from windpump_app.serving import large_blocks_mapped
+from windpump_app.server.memory import large_blocks_mapped
 
 def resident():
     with open("/proc/self/status") as status:
@@ -164,7 +164,7 @@ def test_a_closed_pages_template_root_leaves_panels_fake_roots():
     from bokeh.document import Document
     from panel.io.state import state
 
-    from windpump_app.serving import fake_roots_forgotten
+    from windpump_app.server.patches import fake_roots_forgotten
 
     fake_roots_forgotten()
     before = list(state._fake_roots)
@@ -181,7 +181,7 @@ def test_a_class_gone_its_designs_are_forgotten(monkeypatch):
     pages' objects, kept, they kept those pages' memory (``serving.forget_the_class``)."""
     import windpump
     from windpump.dynamics import ideal_of
-    from windpump_app import serving
+    from windpump_app.server import memory as serving
 
     monkeypatch.setattr(serving, "_LIBC", None)
     ideal_of(windpump.Design.seed_example().replace(m_r=3.0))
@@ -199,7 +199,7 @@ def test_the_servers_threads_are_started_before_a_class():
     class's work first needs it, in the middle of the class."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from windpump_app.serving import every_thread_started
+    from windpump_app.server.threads import every_thread_started
 
     pool = ThreadPoolExecutor(max_workers=3)
     try:

@@ -1,7 +1,8 @@
 """A served page's moves: each run off the event loop, one at a time, in order, the latest winning
-(app/session.py: ``Session.move``), with the loop answering other pages meanwhile.
+(app/session.py: ``Session.move``, the session an ``Explorer`` holds), with the loop
+answering other pages meanwhile.
 
-In-process: the page believes it is served (``serving.served_document`` gives a stand-in whose
+In-process: the page believes it is served (``server.api.served_document`` gives a stand-in whose
 next-tick and timeout callbacks run on the test's event loop), and a run can be held in its thread
 (``Held``) while the test moves other sliders or other pages. Every wait is bounded; nothing is
 timed. Without the runs off the loop, the first held run blocks the test itself until its gate
@@ -16,8 +17,10 @@ import threading
 import time
 
 import windpump
-from windpump_app import serving, session
+from windpump_app import session
 from windpump_app.explorer import WORKING, Explorer
+from windpump_app.server import api
+from windpump_app.server import threads as serving
 
 WAIT = 60.0  # [s] the longest any condition is waited for
 SEED = windpump.Design.seed_example()
@@ -80,7 +83,7 @@ async def until(condition, what: str) -> None:
 
 def served(monkeypatch, document_of) -> None:
     """Pages served: ``document_of()`` is the document of the page being changed."""
-    monkeypatch.setattr(serving, "served_document", document_of)
+    monkeypatch.setattr(api, "served_document", document_of)
 
 
 def flow_text(h: float) -> str:

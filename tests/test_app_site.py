@@ -21,7 +21,7 @@ import pytest
 import windpump
 from windpump.labdata import LabDataError
 from windpump_app.explorer import Explorer
-from windpump_app.serving import SUPERSEDED
+from windpump_app.server.threads import SUPERSEDED
 from windpump_app.site_inputs import RESTARTS, SiteInputs
 from windpump_app.site_record import read_upload
 

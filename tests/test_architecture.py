@@ -147,3 +147,40 @@ def test_no_import_circles_but_those_left_for_later():
     assert not unexpected, f"import circles in the core: {unexpected}"
     gone = [sorted(c) for c in CIRCLES_LEFT_FOR_LATER if c not in circles]
     assert not gone, f"these circles are broken now: take them off CIRCLES_LEFT_FOR_LATER: {gone}"
+
+
+# -- the app in two rooms (issue 38): the page (app/'s top level) and the server (app/server/)
+
+APP = CORE.parents[1] / "app"
+APP_ENTRIES = {"main", "app_hooks", "compiling", "__init__"}  # wire both rooms (pyproject says why)
+
+
+def _app_contract(name: str) -> dict:
+    import tomllib
+
+    config = tomllib.loads((CORE.parents[1] / "pyproject.toml").read_text())["tool"]
+    [contract] = [c for c in config["importlinter"]["contracts"] if c["name"] == name]
+    assert "windpump_app" in config["importlinter"]["root_packages"]
+    return contract
+
+
+def test_every_page_module_reaches_the_server_through_its_api_alone():
+    """The import-linter contract (`lint-imports`) lists every page module of app/ as a source,
+    and every module of app/server/ but ``api`` as forbidden: a page module or a server module
+    added later is covered, not left out of the list."""
+    contract = _app_contract("The page reaches the server through windpump_app.server.api alone")
+    page = {path.stem for path in APP.glob("*.py")} - APP_ENTRIES
+    assert set(contract["source_modules"]) == {f"windpump_app.{name}" for name in page}
+    server = {path.stem for path in (APP / "server").glob("*.py")} - {"__init__", "api"}
+    server |= {path.name for path in (APP / "server").iterdir() if (path / "__init__.py").is_file()}
+    assert set(contract["forbidden_modules"]) == {f"windpump_app.server.{name}" for name in server}
+    assert contract["type"] == "forbidden"
+
+
+def test_the_server_imports_none_of_the_page_s_tabs():
+    """The server may use of the page only its inputs' and uploads' checks (and the entries'
+    compiling.py); every other page module is forbidden to it."""
+    contract = _app_contract("The server imports none of the page's tabs")
+    assert contract["source_modules"] == ["windpump_app.server"]
+    page = {path.stem for path in APP.glob("*.py")} - {"compiling", "__init__", "inputs", "uploads"}
+    assert set(contract["forbidden_modules"]) == {f"windpump_app.{name}" for name in page}

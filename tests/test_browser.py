@@ -844,7 +844,7 @@ def a_day_of_wind(name: str, step: float = 1.0) -> dict:
 
 
 def test_a_measured_day_of_wind_is_uploaded_and_a_huge_file_refused(browser, url):
-    """The file goes to the server by HTTP (app/upload_route.py), not over the websocket; of two
+    """The file goes to the server by HTTP (app/server/upload_route.py), not over the websocket; of two
     chosen one after the other the later one is the day; an empty file and one over the limit
     are said, and the page keeps working."""
     page = open_page(browser, url)

@@ -88,7 +88,7 @@ def test_a_link_opens_the_site_tab_and_presentation_enlarges_its_readouts(browse
 
 def test_a_weather_file_over_the_limit_is_refused_in_the_page(browser, url):
     """The page's size check (uploads.js) knows the Site tab's upload: 10 MB, said in the tab;
-    a file within it goes to the server by HTTP (app/upload_route.py) and becomes the site."""
+    a file within it goes to the server by HTTP (app/server/upload_route.py) and becomes the site."""
     page = open_page(browser, url)
     try:
         page.get_by_role("tab", name="Site").click()

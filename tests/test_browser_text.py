@@ -1,5 +1,5 @@
 """Nothing a link or a file says runs in the page, served in Debian's chromium: each payload is
-shown as typed, no script of it runs, and the page's Content-Security-Policy (app/policy.py) is
+shown as typed, no script of it runs, and the page's Content-Security-Policy (app/server/policy.py) is
 never even called on, yet blocks markup that would reach the page by another road."""
 
 from __future__ import annotations

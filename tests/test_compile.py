@@ -139,7 +139,7 @@ def test_the_first_pages_last_kernels_compiled_ahead_are_the_ones_it_runs(tmp_pa
 def test_the_server_says_when_it_compiles(monkeypatch, caplog):
     """`panel serve app/` says it is compiling, and for about how long, before it does; and how
     long it took once done (an empty cache is told by solver_is_cached, forced here)."""
-    from windpump_app import app_hooks
+    from windpump_app.server import hooks as app_hooks
 
     for cached, done in [(False, "solver compiled in"), (True, "loaded from numba's cache in")]:
         caplog.clear()
@@ -388,13 +388,13 @@ def test_a_later_start_runs_no_worker_for_a_part_compiled_for_this_source(
     """A part a worker recorded for this very source is ready at once on a later start and runs
     in no worker (loading it cost every start seconds of CPU); recorded for other source (numba
     recompiles then), it runs again."""
-    from windpump_app import app_hooks
     from windpump_app import compiling as parts
+    from windpump_app.server import hooks as app_hooks
 
     monkeypatch.setattr(parts, "parts_file", lambda: tmp_path / PARTS_FILE)
     sent = []
     monkeypatch.setattr(app_hooks.WORKERS, "run", sent.extend)
-    monkeypatch.setattr(app_hooks, "warm_the_wind_tab", lambda: None)
+    monkeypatch.setattr(app_hooks, "WARM_UPS", [])  # the page's warm-ups (app/app_hooks.py)
     for name in (parts.WIND_TAB, parts.SITE_TAB):
         parts.record_compiled(name)
     rest = [part.name for part in parts.PARTS if part.name != parts.FIRST_PAGE]
@@ -528,9 +528,9 @@ def test_a_page_whose_link_opens_a_real_machine_waits_for_its_part_off_the_loop(
     import asyncio
     import threading
 
-    from windpump_app import serving
     from windpump_app.compiling import REAL_MACHINE, real_presets
     from windpump_app.explorer import Explorer
+    from windpump_app.server import sessions as serving
 
     compiling.begin([REAL_MACHINE])
     page = Explorer(start=False)

@@ -101,7 +101,7 @@ async def classroom(browser, url, sessions=SESSIONS):
 
 def settled_memory(pid, target):
     """Resident memory once it falls to target or SETTLE seconds pass (closed sessions are dropped
-    after a second, then their memory is handed back: app/serving.py)."""
+    after a second, then their memory is handed back: app/server/memory.py)."""
     deadline = time.monotonic() + SETTLE
     while (memory := resident_memory(pid)) > target and time.monotonic() < deadline:
         time.sleep(2)
@@ -113,7 +113,7 @@ def test_a_class_of_thirty_concurrent_sessions():
     require_chromium()
     # Closed sessions dropped after a second, so memory can be read soon after a class; it also
     # makes Bokeh rebuild most pages' sessions when their websocket connects, a path that must
-    # ask no other host either (app/serving.py: stylesheets_from_this_server).
+    # ask no other host either (app/server/sessions.py: stylesheets_from_this_server).
     lifetime = ["--unused-session-lifetime", "1000", "--check-unused-sessions", "1000"]
     with served_app(*lifetime) as (url, server):
         seen = {}

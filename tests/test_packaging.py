@@ -21,12 +21,19 @@ def test_every_package_of_the_checkout_is_installed():
     setuptools = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
     folders = {name: ROOT / "core" / name.replace(".", "/") for name in setuptools["packages"]}
     for name, folder in setuptools["package-dir"].items():
-        if name:
-            folders[name] = ROOT / folder
+        if (
+            name
+        ):  # a mapped package's sub-packages are in its folder (windpump_app.server: app/server)
+            for package in setuptools["packages"]:
+                if package == name or package.startswith(f"{name}."):
+                    folders[package] = ROOT / folder / package[len(name) + 1 :].replace(".", "/")
     on_disk = {
         ".".join(init.parent.relative_to(ROOT / "core").parts)
         for init in (ROOT / "core").rglob("__init__.py")
-    } | {"windpump_app"}
+    } | {
+        ".".join(("windpump_app", *init.parent.relative_to(ROOT / "app").parts))
+        for init in (ROOT / "app").rglob("__init__.py")
+    }
     assert set(setuptools["packages"]) == on_disk
     assert all((folder / "__init__.py").is_file() for folder in folders.values())
 

@@ -1,4 +1,4 @@
-"""Two `panel serve app/` processes behind nginx (app/proxy.py, app/nginx.conf), on loopback:
+"""Two `panel serve app/` processes behind nginx (app/server/proxy.py, app/server/nginx.conf), on loopback:
 students spread over both, each page's websocket reaches the process that built it, and with one
 process killed its pages reopen on the other from their link, saying so.
 
@@ -17,7 +17,7 @@ from urllib.parse import urlparse
 
 import pytest
 
-from windpump_app import proxy
+from windpump_app.server import proxy
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_hall  # noqa: E402
@@ -111,7 +111,7 @@ async def a_class_behind_the_proxy(url: str, servers, ports):
     seen = {"built on": [s.ws_cookies[COOKIE] for s in students]}
     seen["connected to"] = [s.cookies[COOKIE] for s in students]
     seen["moves"] = [len(s.moves) for s in students]
-    # A wind file posted by HTTP (app/upload_route.py) reaches the process of its page's session,
+    # A wind file posted by HTTP (app/server/upload_route.py) reaches the process of its page's session,
     # by the same cookie; sent to the other process, it is refused (no such session there).
     record = bench_hall.wind_record(200_000)
     seen["posted"] = [await bench_hall.post_upload(s, record) for s in students]

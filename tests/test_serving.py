@@ -1,5 +1,5 @@
-"""The server-wide order of a class opening the page at once (app/serving.py: ReadoutsFirst),
-and what a served page nobody connects costs (app/app_hooks.py)."""
+"""The server-wide order of a class opening the page at once (app/server/sessions.py: ReadoutsFirst),
+and what a served page nobody connects costs (app/server/hooks.py)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,8 @@ from bokeh import __version__ as bokeh_version
 from hypothesis import given
 from hypothesis import strategies as st
 
-from windpump_app.serving import Newest, ReadoutsFirst
+from windpump_app.server.sessions import ReadoutsFirst
+from windpump_app.server.threads import Newest
 
 from served import require_jemalloc, resident_memory, served_app
 
@@ -80,7 +81,7 @@ def test_a_page_opened_while_the_solver_compiles_runs_once_it_is_ready(monkeypat
     import asyncio
     import threading
 
-    from windpump_app import serving
+    from windpump_app.server import sessions as serving
 
     monkeypatch.setattr(serving.READOUTS_FIRST, "settled", lambda: None)
     monkeypatch.setattr(
@@ -121,7 +122,7 @@ def test_a_page_closed_while_the_solver_compiles_runs_nothing(monkeypatch):
     import asyncio
     import threading
 
-    from windpump_app import serving
+    from windpump_app.server import sessions as serving
 
     class Context:
         destroyed = False
@@ -156,7 +157,7 @@ def test_closing_sessions_tidy_once_after_the_last_closes(monkeypatch):
     blocks every other page for a second or more)."""
     import asyncio
 
-    from windpump_app import serving
+    from windpump_app.server import memory as serving
 
     runs = []
     monkeypatch.setattr(serving.gc, "collect", lambda: runs.append("collect"))
@@ -186,7 +187,7 @@ def test_a_built_page_is_frozen_out_of_later_collections_until_sessions_close():
     import gc
 
     from windpump_app.explorer import Explorer
-    from windpump_app.serving import Tidy
+    from windpump_app.server.memory import Tidy
 
     tidy, walked = Tidy(), []
 
@@ -219,7 +220,7 @@ def test_closed_sessions_are_collected_once_they_are_a_quarter_of_those_open(mon
     of the live ones (or none is open), as Python's own rule for full collections does."""
     import asyncio
 
-    from windpump_app import serving
+    from windpump_app.server import memory as serving
 
     runs = []
     for name in ("collect", "freeze", "unfreeze"):
@@ -249,7 +250,7 @@ def test_the_loop_watch_writes_full_collections_and_a_stalled_loop(tmp_path):
     import json
     import time
 
-    from windpump_app.serving import LoopWatch
+    from windpump_app.server.watch import LoopWatch
 
     path = tmp_path / "watch.jsonl"
     watch = LoopWatch(str(path), slow=0.2, every=0.02)
@@ -295,7 +296,7 @@ def test_readouts_of_queued_moves_go_out_before_any_plots():
     from panel.io.state import state
     from tornado.ioloop import IOLoop
 
-    from windpump_app.serving import DrawAfterMoves
+    from windpump_app.server.threads import DrawAfterMoves
 
     drawing, order = DrawAfterMoves(retry=0.001), []
     a, b = LoopDocument(), LoopDocument()
@@ -336,7 +337,7 @@ def test_a_patch_message_is_bokehs_own_with_references_made_when_met():
     from bokeh.models import Column, ColumnDataSource, Div
     from bokeh.protocol.messages.patch_doc import patch_doc
 
-    from windpump_app.serving import lighter_patches
+    from windpump_app.server.patches import lighter_patches
 
     if not bokeh_version.startswith("3.9."):
         pytest.skip(f"lighter_patches applies to Bokeh 3.9 only, not {bokeh_version}")
@@ -382,7 +383,7 @@ def test_plots_wait_for_moves_no_longer_than_their_patience():
 
     from panel.io.state import state
 
-    from windpump_app.serving import DrawAfterMoves
+    from windpump_app.server.threads import DrawAfterMoves
 
     drawing, order, gone = DrawAfterMoves(retry=0.001, patience=0.05), [], LoopDocument()
 
@@ -411,7 +412,7 @@ def test_a_closed_pages_drawing_holds_up_no_other_pages():
     """A page closed while its plots were queued: the plots queued behind it are still drawn."""
     import asyncio
 
-    from windpump_app.serving import DrawAfterMoves
+    from windpump_app.server.threads import DrawAfterMoves
 
     drawing, order = DrawAfterMoves(retry=0.001, patience=0.05), []
 
@@ -430,7 +431,7 @@ def test_a_change_sends_what_panels_own_update_sends_with_the_design_worked_out_
     import panel as pn
     from panel.reactive import Reactive
 
-    from windpump_app.serving import lighter_updates
+    from windpump_app.server.patches import lighter_updates
 
     lighter_updates()
     ours = Reactive._update_properties
@@ -467,7 +468,7 @@ def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
 
     import windpump
     from windpump.wind import read_csv
-    from windpump_app import serving
+    from windpump_app.server import threads as serving
 
     data = b"time,speed\n0,4.5\n10,6\n20,5.25\n"
     readers = serving.FileReaders()
@@ -502,7 +503,7 @@ def test_files_read_at_once_by_several_pages_are_all_read():
     import numpy as np
 
     from windpump.wind import read_csv
-    from windpump_app import serving
+    from windpump_app.server import threads as serving
 
     files = [f"time,speed\n0,{v}\n10,6\n".encode() for v in (1.5, 2.5, 3.5, 4.5)]
     readers = serving.FileReaders()
@@ -533,7 +534,7 @@ def test_changes_queued_while_a_page_sends_are_sent_when_its_sending_ends(monkey
     from panel.io import document as documents
     from tornado.locks import Lock
 
-    from windpump_app.serving import writes_not_stranded
+    from windpump_app.server.patches import writes_not_stranded
 
     monkeypatch.setattr(documents, "_dispatch_msgs", documents._dispatch_msgs)  # put back after
     writes_not_stranded()
@@ -666,7 +667,7 @@ def test_served_a_hundred_bare_visits_hold_no_memory_a_minute_later():
     connects it. The server runs on jemalloc (as the proxy's processes do), which hands back
     what is freed: with Python's allocator a few dropped pages' objects pin arenas and the
     figure wanders by tens of MB either way (docs/known-issues.rst)."""
-    from windpump_app import proxy
+    from windpump_app.server import proxy
 
     env = proxy.allocator_env("jemalloc", library=require_jemalloc())
     with served_app(env=env) as (url, process):

@@ -1,4 +1,4 @@
-"""A wind record or a site's weather file sent by HTTP (``app/upload_route.py``): the bounded
+"""A wind record or a site's weather file sent by HTTP (``app/server/upload_route.py``): the bounded
 store, the page's channel read in-process, and the route of a real `panel serve app/` (bad input,
 and a 10 MB record posted while another page moves)."""
 
@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from windpump_app.explorer import Explorer
-from windpump_app.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
+from windpump_app.server.upload_route import UPLOADS, Posted, Refused, Uploads, page_opened
 from windpump_app.uploads import SESSION_HEADER, WIND_MAX_BYTES
 
 from panes import shown
@@ -200,7 +200,7 @@ def test_a_page_that_goes_cuts_off_its_posts_in_flight():
 
 
 def test_a_file_not_taken_is_said_to_be_dropped_for_the_reason_it_was():
-    from windpump_app.upload_route import LIFETIME, dropped_text
+    from windpump_app.server.upload_route import LIFETIME, dropped_text
 
     expired = dropped_text("expired", "a.csv")
     assert f"{LIFETIME:.0f} s" in expired and "not taken by then" in expired
@@ -220,7 +220,7 @@ def test_a_post_still_arriving_when_a_later_one_is_kept_is_refused_and_the_later
     from tornado.netutil import bind_sockets
     from tornado.web import Application
 
-    from windpump_app.upload_route import UploadHandler
+    from windpump_app.server.upload_route import UploadHandler
 
     store = Uploads()
     store.opened("s")
@@ -326,7 +326,7 @@ def test_a_page_is_given_the_route_only_when_served_with_it(monkeypatch):
             self.events[event] = callback
 
     store = Uploads()
-    monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
+    monkeypatch.setattr("windpump_app.server.upload_route.UPLOADS", store)
     assert page_opened(Document()) == {"url": "", "session": ""} and not store.is_open("a-session")
     store.url = "/app/upload"
     page = Document()
@@ -396,7 +396,7 @@ def test_what_could_not_be_sent_is_said_and_the_day_stays(app):
 
 def test_a_file_dropped_for_another_pages_in_a_full_store_is_said(app, monkeypatch):
     store = Uploads(max_items=1)
-    monkeypatch.setattr("windpump_app.upload_route.UPLOADS", store)
+    monkeypatch.setattr("windpump_app.server.upload_route.UPLOADS", store)
     store.opened("")
     store.opened("another page")
     upload_id = store.put("", "wind", "mast.csv", rows())
@@ -693,8 +693,8 @@ def test_the_upload_benchmark_runs(capsys):
 
 def test_the_words_for_the_upload_rules_are_the_rules_numbers():
     """What the docs and the page say of the store's rules carries the numbers the code uses."""
-    from windpump_app.app_hooks import CHECK_UNUSED_SESSIONS, UNCONNECTED_SESSION_LIFETIME
-    from windpump_app.upload_route import LIFETIME, MAX_HELD, MAX_ITEMS, dropped_text
+    from windpump_app.server.hooks import CHECK_UNUSED_SESSIONS, UNCONNECTED_SESSION_LIFETIME
+    from windpump_app.server.upload_route import LIFETIME, MAX_HELD, MAX_ITEMS, dropped_text
 
     docs = Path(__file__).resolve().parents[1] / "docs"
     issues = " ".join((docs / "known-issues.rst").read_text(encoding="utf-8").split())
@@ -717,7 +717,7 @@ def test_no_log_line_names_a_session_at_any_level():
 
     from bokeh.util.token import generate_jwt_token, generate_session_id
 
-    from windpump_app.serving import HIDDEN, hide_session_ids
+    from windpump_app.server.watch import HIDDEN, hide_session_ids
 
     session = generate_session_id()
     token = generate_jwt_token(session)

@@ -60,7 +60,7 @@ def content_security_policy(nonce: str) -> str:
 class ScriptNonce(OutputTransform):
     """A Tornado output transform: an HTML response gets a fresh nonce in its ``<script>`` tags
     and the policy that runs those alone (``content_security_policy``); other responses pass as
-    they are. It runs before the compression (``app_hooks.compress_responses``)."""
+    they are. It runs before the compression (``hooks.compress_responses``)."""
 
     def __init__(self, request) -> None:
         self.nonce: bytes | None = None

@@ -16,7 +16,7 @@ replaces one not yet taken, and a post counts from its first byte: ``Uploads.rec
 once taken, after ``LIFETIME`` s, or when the page's websocket closes. The store's own bounds are a last resort: a file within a connected page's share is
 always taken, the oldest file other pages left untaken dropped for it. The session's id, the
 post's credential, goes in a header (``SESSION_HEADER``), not in the URL a log would keep.
-``serve_uploads`` adds the route when ``panel serve app/`` starts (``app_hooks.on_server_loaded``);
+``serve_uploads`` adds the route when ``panel serve app/`` starts (``hooks.on_server_loaded``);
 a server without it (``panel serve app/main.py``, a notebook) leaves the page on Bokeh's
 websocket path.
 """
@@ -34,9 +34,9 @@ from functools import partial
 
 from tornado import web
 
-from .inputs import clipped
-from .serving import mark
-from .uploads import KINDS, SESSION_HEADER, WIND_MAX_BYTES, refused_size
+from ..inputs import clipped
+from ..uploads import KINDS, SESSION_HEADER, WIND_MAX_BYTES, refused_size
+from .watch import mark
 
 log = logging.getLogger("windpump.app")
 

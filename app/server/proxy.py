@@ -1,10 +1,10 @@
 """Several `panel serve app/` processes behind nginx with sticky sessions: one command for a
 class larger than one process carries.
 
-    python -m windpump_app.proxy --processes 4 --port 8080 [--address 0.0.0.0] [--host NAME:PORT]
+    python -m windpump_app.server.proxy --processes 4 --port 8080 [--address 0.0.0.0] [--host NAME:PORT]
 
 starts ``--processes`` servers on free loopback ports and nginx (Debian's ``/usr/sbin/nginx``, as
-a child process, its configuration ``app/nginx.conf`` filled in and written to a temporary
+a child process, its configuration ``app/server/nginx.conf`` filled in and written to a temporary
 directory) listening on ``--address:--port``; students open ``http://NAME:PORT/app``. Ctrl-C stops
 them all. See docs/instructors.rst, "More students than one process carries".
 
@@ -30,9 +30,9 @@ import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 
-APP = Path(__file__).resolve().parent
+APP = Path(__file__).resolve().parent.parent  # app/, what `panel serve` serves
 NGINX = "/usr/sbin/nginx"
-CONFIG = APP / "nginx.conf"
+CONFIG = Path(__file__).resolve().parent / "nginx.conf"
 
 log = logging.getLogger("windpump.app")
 
@@ -98,7 +98,7 @@ def free_port(address: str = "127.0.0.1") -> int:
 
 
 def nginx_config(listen: str, ports: list[int], prefix: str) -> str:
-    """``app/nginx.conf`` for nginx listening on ``listen`` (address:port) in front of the
+    """``app/server/nginx.conf`` for nginx listening on ``listen`` (address:port) in front of the
     servers on 127.0.0.1 at ``ports``, its files under ``prefix``."""
     backends = [f"127.0.0.1:{port}" for port in ports]
     servers = "\n".join(f"    server {b} max_fails=1 fail_timeout=10s;" for b in backends)

@@ -8,6 +8,7 @@ and imports without them.
 from __future__ import annotations
 
 import ast
+import functools
 import sys
 from pathlib import Path
 
@@ -90,25 +91,8 @@ def test_the_rules_see_the_files():
 
 
 # Import circles among the core's modules, counting imports inside functions (grimp reads them all).
-# Each entry is one circle (a strongly connected set of modules) allowed for now, with the reason.
-CIRCLES_LEFT_FOR_LATER = {
-    # estimated_steps calls site.steady_flow; steady_flow is being changed elsewhere and moves into
-    # the averaged theory below the run in issue 38's folder move.
-    frozenset({"windpump.dynamics", "windpump.site"}): "steady_flow moves below dynamics later",
-    # Not yet broken by issue 38's first slice (timebox): each must go, not grow.
-    frozenset(
-        {
-            "windpump.design",
-            "windpump.kinematics",
-            "windpump.loads",
-            "windpump.revolution",
-            "windpump.theory",
-        }
-    ): "Design's closed forms move below design (issue 38, next step)",
-    frozenset(
-        {"windpump.fullyear", "windpump.yearly"}
-    ): "shared helpers into one module (issue 38)",
-}
+# None is left (issue 38 broke the last four): any circle fails the test below.
+CIRCLES_LEFT_FOR_LATER: dict[frozenset[str], str] = {}
 
 
 def module_circles() -> list[frozenset[str]]:
@@ -184,3 +168,115 @@ def test_the_server_imports_none_of_the_page_s_tabs():
     assert contract["source_modules"] == ["windpump_app.server"]
     page = {path.stem for path in APP.glob("*.py")} - {"compiling", "__init__", "inputs", "uploads"}
     assert set(contract["forbidden_modules"]) == {f"windpump_app.{name}" for name in page}
+
+
+def module_name(path: Path) -> str:
+    """``core/windpump/a/b.py`` -> ``windpump.a.b`` (a package's ``__init__`` is the package)."""
+    parts = path.relative_to(CORE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def imported_modules(path: Path, node: ast.Import | ast.ImportFrom) -> list[str]:
+    """The absolute names of the modules an import statement in ``path`` imports: ``from . import
+    x`` and ``from .pkg import x`` name ``pkg.x`` where x is a module, ``pkg`` where it is a
+    name."""
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    if node.level == 0:
+        base = node.module or ""
+    else:
+        package = module_name(path).split(".")
+        if path.name != "__init__.py":
+            package = package[:-1]
+        kept = package[: len(package) - node.level + 1]
+        base = ".".join(kept + ([node.module] if node.module else []))
+    if root(base) != "windpump":
+        return [base]
+    return [
+        f"{base}.{alias.name}" if path_of(f"{base}.{alias.name}") else base for alias in node.names
+    ]
+
+
+def path_of(module: str) -> Path | None:
+    """The source file of one of the core's modules (None: a name, not a module)."""
+    relative = Path(*module.split(".")[1:]) if "." in module else None
+    if relative is None:
+        return CORE / "__init__.py" if module == "windpump" else None
+    for candidate in (CORE / relative.with_suffix(".py"), CORE / relative / "__init__.py"):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+@functools.cache
+def top_level_modules(module: str) -> tuple[str, ...]:
+    """The modules ``module`` (one of the core's) imports when it is imported, TYPE_CHECKING's
+    aside."""
+    path = path_of(module)
+    if path is None:
+        return ()
+    found: list[str] = []
+    for statement in parsed(path).body:
+        if isinstance(statement, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            continue
+        if isinstance(statement, ast.If) and "TYPE_CHECKING" in ast.unparse(statement.test):
+            continue
+        for node in ast.walk(statement):
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                found += imported_modules(path, node)
+    return tuple(found)
+
+
+def loads_numba(module: str) -> bool:
+    """Whether importing ``module`` (one of the core's) imports numba: at its top, or through a
+    module of the core it imports at its top."""
+    seen, todo = {module}, [module]
+    while todo:
+        for name in top_level_modules(todo.pop()):
+            if root(name) == "numba":
+                return True
+            if root(name) == "windpump" and name not in seen:
+                seen.add(name)
+                todo.append(name)
+    return False
+
+
+def lazy_imports_of_the_core(path: Path) -> list[tuple[str, int]]:
+    """Imports of the core's own modules inside a function of ``path``: (module, line)."""
+    found = []
+    for function in ast.walk(parsed(path)):
+        if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for node in ast.walk(function):
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                found += [
+                    (name, node.lineno)
+                    for name in imported_modules(path, node)
+                    if root(name) == "windpump"
+                ]
+    return sorted(set(found))
+
+
+@pytest.mark.parametrize("path", CORE_FILES, ids=lambda p: str(p.relative_to(CORE)))
+def test_the_core_imports_its_own_modules_at_the_top(path):
+    """No import of the core's own modules inside a function, but of a module that loads numba
+    (``_kernels.real``, ``.grid``, ``.supply``, ... : kept lazy so that ``import windpump`` stays
+    free of numba, each with its reason beside it): a lazy import hid an import circle."""
+    bad = [(name, line) for name, line in lazy_imports_of_the_core(path) if not loads_numba(name)]
+    assert bad == [], f"{path.name} imports the core's own modules inside a function: {bad}"
+
+
+def test_the_lazy_import_rule_sees_what_it_should():
+    assert loads_numba("windpump._kernels.real") and loads_numba("windpump._kernels.supply")
+    assert not loads_numba("windpump._kernels") and not loads_numba("windpump._kernels.equations")
+    assert not loads_numba("windpump.dynamics") and not loads_numba("windpump")
+    tree = ast.parse("def f():\n    from .site import steady_flow\n    from . import _kernels\n")
+    function = tree.body[0]
+    assert isinstance(function, ast.FunctionDef)
+    names = [
+        name
+        for node in function.body
+        if isinstance(node, ast.ImportFrom)
+        for name in imported_modules(CORE / "dynamics.py", node)
+    ]
+    assert names == ["windpump.site", "windpump._kernels"]

@@ -24,6 +24,7 @@ import numpy as np
 from .design import Design
 from .errors import StallError
 from .kinematics import lever_arm
+from .revolution import leaky_spinup
 from .theory import cycle_mean, running_speeds
 from .validation import finite_array, non_negative, rod_ratio
 
@@ -258,8 +259,6 @@ def spinup(design: Design, t, theta_dot0: float):
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     t = finite_array("t", t, "s", minimum=0.0)
     if design.d_leak > 0.0:
-        from .revolution import leaky_spinup
-
         return leaky_spinup(design, t, theta_dot0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)

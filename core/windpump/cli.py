@@ -39,6 +39,7 @@ from .cliargs import (  # noqa: F401 (cli.NAME keeps working)
     workers,
 )
 from .design import UNITS, Design, read_json
+from .dynamics import simulate
 from .errors import StallError, cut, shown
 from .maps import MAX_POINTS, DesignMap, design_map
 from .progress import Progress, reporter
@@ -239,8 +240,6 @@ def run_options(parser: argparse.ArgumentParser) -> None:
 
 def simulate_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump simulate``: a summary on stdout, the samples in --csv."""
-    from .dynamics import simulate
-
     design = chosen_design(args)
     run = simulate(design, args.t_end, args.theta0, args.theta_dot0)
     for line in summary(design, run):

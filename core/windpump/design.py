@@ -7,7 +7,7 @@ import json
 import math
 import typing
 
-from . import theory
+from . import groups
 from ._kernels import equations
 from .errors import DesignFileError, ParameterError, shown
 from .validation import LARGEST as LARGEST
@@ -414,7 +414,7 @@ class Design:
     @property
     def I_eff(self) -> float:
         """Inertia reflected to the crank, I1 + I0 (R1/R0)^2 [kg m^2] (Eq. 12)."""
-        return theory.effective_inertia(self.I1, self.I0, self.R_dagger)
+        return groups.effective_inertia(self.I1, self.I0, self.R_dagger)
 
     @property
     def Tm_dagger(self) -> float:
@@ -429,7 +429,7 @@ class Design:
     @property
     def load_torque(self) -> float:
         """Piston force times crank radius, rho_w g h A R [N m] (the load scale of Eq. 12)."""
-        return theory.load_torque(self.rho_w, self.g, self.h, self.A, self.R)
+        return groups.load_torque(self.rho_w, self.g, self.h, self.A, self.R)
 
     @property
     def stroke_volume(self) -> float:
@@ -449,13 +449,13 @@ class Design:
     @property
     def mean_load_torque(self) -> float:
         """Cycle-mean load torque on the crank, m rho_w g h A R / pi [N m] (Eq. 18 for m faces)."""
-        return theory.mean_load_torque(self.deliveries, self.load_torque)
+        return groups.mean_load_torque(self.deliveries, self.load_torque)
 
     @property
     def rest_torque_on_crank(self) -> float:
         """The windmill's torque at rest reflected to the crank, R+ T_0 [N m]: a resting pump
         starts where it beats the load on the crank (:func:`windpump.starts_from_rest`)."""
-        return theory.rest_torque_on_crank(self.R_dagger, self.T_0)
+        return groups.rest_torque_on_crank(self.R_dagger, self.T_0)
 
     @property
     def runaway_speed(self) -> float:

@@ -16,11 +16,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .averaged import steady_speeds
+from . import _kernels  # light: its names load numba on first use (_kernels.LAZY), on the first run
+from .averaged import stall_margin, steady_speeds
 from .design import REAL_MACHINE, UNITS, Design
 from .errors import ParameterError, StallError
 from .kinematics import delivering_faces, face_flows
 from .reciprocating import crank_inertia
+from .revolution import friction_load, reciprocating_inertia
+from .theory import steady_flow
 from .units import LITRES_PER_M3
 from .validation import LARGEST, non_negative, positive, real, whole
 from .wind import WindRecord, as_record
@@ -438,8 +441,6 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
     """About how many integration steps a run takes: one at every switch (every pi/n of crank
     angle, at the averaged running speed in each wind: :func:`windpump.steady_flow`) and one at
     every sample of the record where the wind bends. A float: it may be too large for an int."""
-    from .site import steady_flow
-
     if not design.is_ideal:
         # The ideal machine runs at least as fast, and its averaged theory is in closed form (a
         # leak hole's takes a quadrature a wind speed: seconds for a day's record); a real run's
@@ -497,8 +498,6 @@ def stiffness(design: Design) -> tuple[float, float, float, float]:
     torque p = omega_m / R+, the leak hole's ``2 rho_w g h (A R)^2 / q_L`` where a face starts to
     deliver, and the reciprocating masses' share of the inertia ``m_r sum <x_c'^2> / I_eff``
     [-]), each slope over I_eff. An explicit step must be shorter than about their inverse."""
-    from .revolution import friction_load, reciprocating_inertia
-
     inertia = design.I_eff
     windmill = _windmill_slope(design)
     pipe = 2.0 * friction_load(design) * design.omega_m / design.R_dagger
@@ -615,8 +614,6 @@ def check_work(design: Design, t_end: float, record: WindRecord | None = None) -
 
 def _moves(design: Design) -> bool:
     """Whether a run of ``design`` keeps its crank turning: it can carry its load (or leaks)."""
-    from .averaged import stall_margin
-
     return stall_margin(design) > 1.0
 
 
@@ -720,8 +717,6 @@ def simulate(
         per_second = sample_bound(design, 1.0, theta_dot0, samples_per_stroke, sample_dt, record)
         _refuse_too_many_samples(t_end, bound, per_second - 3, sample_dt)
     check_work(design, t_end, record)
-    from . import _kernels  # here: numba loads on the first run, not on ``import windpump``
-
     run = _kernels.run(
         kernel_machine(design, record),
         theta0,
@@ -828,8 +823,6 @@ def _simulation_result(design: Design, run, record: WindRecord | None) -> Simula
     """The kernels' run (a ``_kernels.KernelRun``) as a :class:`SimulationResult`: volume and flow
     (Eq. 16, every face) from the strokes and flow factor, every array read-only; a leak hole's
     flow and loss are worked out when first read (:class:`Deferred`)."""
-    from . import _kernels
-
     swept = design.stroke_volume * (run.strokes - run.strokes[0])
     volume = swept
     # Eq. (16); with a leak hole the kernel's flow factor is the delivered flow's, not the swept
@@ -898,8 +891,6 @@ def _leak_loss(design: Design, swept, volume, excess_work, friction) -> np.ndarr
 
 def kernel_machine(design: Design, record: WindRecord | None = None):
     """The design (and wind record, if any) as the compiled integrator takes them."""
-    from . import _kernels
-
     return _kernels.Machine(
         R_dagger=design.R_dagger,
         T_m=design.T_m,
@@ -917,7 +908,7 @@ def kernel_machine(design: Design, record: WindRecord | None = None):
 
 def kernel_real(design: Design):
     """The real machine's terms as the compiled integrator takes them (``_kernels.Real``)."""
-    from ._kernels.real import real_at
+    from ._kernels.real import real_at  # lazy: _kernels.real imports numba at its top
 
     return real_at(kernel_real_base(design), 1.0 / design.I_eff, design.load_torque)
 
@@ -927,7 +918,7 @@ def kernel_real_base(design: Design):
     None for the ideal machine."""
     if design.is_ideal:
         return None
-    from ._kernels.real import RealBase
+    from ._kernels.real import RealBase  # lazy: _kernels.real imports numba at its top
 
     return RealBase(
         eta_t=design.eta_t,
@@ -956,8 +947,6 @@ def solver_is_cached(design: Design) -> bool:
     -------
     bool
     """
-    from . import _kernels
-
     return _kernels.is_cached(kernel_machine(design), sample_dt=None)
 
 
@@ -965,8 +954,6 @@ def kernel_wind(record: WindRecord, V_ref: float):
     """The record as the kernels take it: V/V_ref at its kinks (steps land on every sample, so
     one on a straight line with its neighbours, or on the flat held past the ends, is left out),
     and the spacing when the samples are even."""
-    from ._kernels import Wind
-
     t, V = record.t, record.V
     if len(t) > 1:  # V is held before the first sample and after the last: flat there
         rise, run = np.diff(V), np.diff(t)
@@ -976,7 +963,7 @@ def kernel_wind(record: WindRecord, V_ref: float):
         t, V = t[keep], V[keep]
     steps = np.diff(t)
     even = len(t) > 1 and bool(np.all(t == t[0] + steps[0] * np.arange(len(t))))
-    return Wind(
+    return _kernels.Wind(
         np.ascontiguousarray(t, dtype=float),
         np.ascontiguousarray(V / V_ref),
         float(steps[0]) if even else 0.0,

@@ -21,12 +21,17 @@ import typing
 
 import numpy as np
 
+from . import dynamics  # dynamics.MAX_STEPS read at each year (a test may lower it)
 from .design import Design
+from .dynamics import estimated_steps, simulate
 from .errors import ParameterError
+from .hours import DEFAULT_RESTART, RESTARTS, _choice, _quasi_steady_year, hourly
 from .progress import Progress, check_executor, check_progress, reporter
+from .site import wind_thresholds
+from .theory import running_speeds
 from .units import SECONDS_PER_HOUR
 from .validation import real, whole
-from .yearly import DEFAULT_RESTART
+from .wind import as_record, gusty
 
 if typing.TYPE_CHECKING:
     import concurrent.futures
@@ -158,10 +163,6 @@ def full_year(
     -------
     FullYear
     """
-    from .site import wind_thresholds
-    from .theory import running_speeds
-    from .yearly import RESTARTS, _choice, _quasi_steady_year, hourly
-
     restart = _choice("restart", restart, RESTARTS)
     chunk_days, shape = full_options(turbulence, seed, chunk_days, executor, progress)
     V, month = hourly(record)
@@ -202,9 +203,6 @@ def _spans(design: Design, V: np.ndarray, hours: int, gusty: bool) -> list[tuple
     """The chunks (first hour, hours): ``hours`` long, halved until each run's estimated work
     (:func:`windpump.dynamics.estimated_steps`, a gust's bend a second added) is at most half
     the integrator's bound ``MAX_STEPS``, so a windy site's week is cut rather than refused."""
-    from .dynamics import MAX_STEPS, estimated_steps
-    from .wind import as_record
-
     todo = [(first, min(hours, V.size - first)) for first in range(0, V.size, hours)]
     spans = []
     while todo:
@@ -214,7 +212,7 @@ def _spans(design: Design, V: np.ndarray, hours: int, gusty: bool) -> list[tuple
         work = estimated_steps(design, length * SECONDS_PER_HOUR, record)
         work *= 2.0 if gusty else 1.0
         work += length * SECONDS_PER_HOUR / GUST_DT if gusty else 0.0
-        if work <= MAX_STEPS / 2 or length == 1:
+        if work <= dynamics.MAX_STEPS / 2 or length == 1:
             spans.append((first, length))
         else:
             half = length // 2
@@ -249,8 +247,6 @@ def chunk_wind(chunk: _Chunk) -> tuple[np.ndarray, np.ndarray]:
     t_mid = (np.arange(-1, chunk.hours + 1) + 0.5) * SECONDS_PER_HOUR
     if chunk.shape == 0.0:
         return t_mid, chunk.V
-    from .wind import gusty
-
     duration = chunk.hours * SECONDS_PER_HOUR
     rng = np.random.default_rng(chunk.seed)
     factor = gusty(1.0, duration, chunk.shape, GUST_TIME_SCALE, GUST_DT, seed=rng)
@@ -265,8 +261,6 @@ def run_chunk(chunk: _Chunk) -> tuple[np.ndarray, np.ndarray]:
     next starts (at alpha+) at the first hour from then whose mean wind reaches V_stop, as it
     does at the chunk's start when the pump rests there.
     """
-    from .dynamics import simulate
-
     t, V = chunk_wind(chunk)
     end = chunk.hours * SECONDS_PER_HOUR
     boundaries = np.arange(chunk.hours + 1) * SECONDS_PER_HOUR
@@ -299,8 +293,6 @@ def _restart(chunk: _Chunk, boundaries: np.ndarray, after: float) -> tuple[float
     """When someone restarts a resting pump, from ``after`` [s]: the first hour's start whose mean
     wind reaches V_stop, and the crank speed they give it (alpha+ in that wind, or the usual kick
     where the averaged theory has none); the chunk's end when no hour does."""
-    from .theory import running_speeds
-
     later = np.flatnonzero((boundaries[:-1] >= after) & (chunk.V[1:-1] >= chunk.V_stop))
     if not later.size:
         return float(boundaries[-1]), 0.0

@@ -19,6 +19,7 @@ import numpy as np
 from ._kernels.equations import delivered_flow as _delivered_flow
 from ._kernels.equations import lever_arm as _lever
 from ._kernels.equations import piston_over_R as _x_over_R
+from .design import MAX_CYLINDERS
 from .errors import ParameterError
 from .validation import finite_array, flag, positive, real_array, rod_ratio, whole
 
@@ -134,8 +135,6 @@ def delivering_faces(segment, cylinders: int, double_acting: bool):
     >>> delivering_faces(0, 2, True).tolist()  # cylinder 1 is half a turn behind
     [-1, 1]
     """
-    from .design import MAX_CYLINDERS
-
     cylinders = whole("cylinders", cylinders, 1, MAX_CYLINDERS)
     double_acting = flag("double_acting", double_acting)
     allowed = f"whole numbers from {-(2**53)} to {2**53}"

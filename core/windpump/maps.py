@@ -21,7 +21,19 @@ import math
 
 import numpy as np
 
+from . import (
+    _kernels,  # light: _kernels.OVER_BUDGET loads numba on first use
+    dynamics,  # dynamics.MAX_STEPS read at each map (a test lowers it)
+)
 from .design import WIDEST_RATIO, Design
+from .dynamics import (
+    PACE_STEPS,
+    RTOL,
+    STIFF_STEPS,
+    _stiff_advice,
+    _windmill_slope,
+    kernel_real_base,
+)
 from .errors import ParameterError
 from .progress import Progress, reporter
 from .theory import cycle_mean, effective_inertia, load_torque, running_speeds
@@ -331,16 +343,7 @@ def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarr
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     """alpha+ measured in full simulations of every running point, and tau where they ran."""
-    from ._kernels import OVER_BUDGET
-    from ._kernels.grid import steady_runs  # here: numba loads on the first numeric map
-    from .dynamics import (
-        MAX_STEPS,
-        PACE_STEPS,
-        RTOL,
-        STIFF_STEPS,
-        _windmill_slope,
-        kernel_real_base,
-    )
+    from ._kernels.grid import steady_runs  # lazy: _kernels.grid imports numba at its top
 
     shape = alpha_plus.shape
     x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
@@ -352,8 +355,8 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     inv_I_eff = 1.0 / effective_inertia(design.I1, design.I0, x)
     # A rotor too light for its windmill at a point is refused before any run, as simulate does
     # (the run would take MAX_STEPS, ~20-60 s, to find it: check_work).
-    light = STIFF_STEPS * _windmill_slope(design, x) * inv_I_eff * t_end > MAX_STEPS
-    _refuse_stiff(design, x, heads[np.arange(x.size) // ratios.size], np.where(light, OVER_BUDGET, -1),
+    light = STIFF_STEPS * _windmill_slope(design, x) * inv_I_eff * t_end > dynamics.MAX_STEPS
+    _refuse_stiff(design, x, heads[np.arange(x.size) // ratios.size], np.where(light, _kernels.OVER_BUDGET, -1),
                   inv_I_eff, t_end)  # fmt: skip
     # Runs differ in cost (slow stalls, many fast turns): a shuffled order balances the cores.
     order = np.random.default_rng(0).permutation(x.size)
@@ -364,7 +367,7 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
         chunk = order[start : start + POINTS_PER_REPORT]
         measured, _, outcomes = steady_runs(
             x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
-            design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, MAX_STEPS, PACE_STEPS,
+            design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, dynamics.MAX_STEPS, PACE_STEPS,
             kernel_real_base(design),
         )  # fmt: skip
         speed[chunk] = measured
@@ -381,10 +384,7 @@ def _refuse_stiff(design, ratios, heads, outcomes, inv_I_eff, t_end) -> None:
     """Refuse a map where a run needed more than MAX_STEPS steps (as :func:`windpump.simulate`
     refuses that design), rather than leave NaN there as if it stalled, with the advice that
     fits the design at that gear ratio and head (``dynamics._stiff_advice``)."""
-    from ._kernels import OVER_BUDGET
-    from .dynamics import _stiff_advice
-
-    stiff = np.flatnonzero(outcomes == OVER_BUDGET)
+    stiff = np.flatnonzero(outcomes == _kernels.OVER_BUDGET)
     if stiff.size:
         i = stiff[0]
         try:

@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from ._kernels.equations import lever_arm, lever_arm_slope, windmill_torque
+from .groups import RunningSpeeds, effective_inertia
 from .kinematics import face_levers
 from .loads import faces_load, leak_capacity_at
 
@@ -213,8 +214,6 @@ class Points:
     """Designs varied in gear ratio, head and wind, flattened: F(alpha) of each."""
 
     def __init__(self, design, gear_ratio, head, V):
-        from .theory import effective_inertia
-
         R_dagger = design.R_dagger if gear_ratio is None else np.asarray(gear_ratio, dtype=float)
         h = design.h if head is None else np.asarray(head, dtype=float)
         s = 1.0 if V is None else np.asarray(V, dtype=float) / design.V_ref
@@ -244,8 +243,6 @@ def leaky_running_speeds(design, *, gear_ratio=None, head=None, V=None):
     """:func:`windpump.theory.running_speeds` of a pump with a leak hole: F scanned from rest to
     the runaway speed, its largest falling root (alpha+) and the rising root below it (alpha-)
     refined, tau from a central difference, the mean flow by quadrature at alpha+."""
-    from .theory import RunningSpeeds
-
     points = Points(design, gear_ratio, head, V)
     alpha_plus, alpha_minus = largest_roots(points, points.runaway)
     runs = ~np.isnan(alpha_plus)

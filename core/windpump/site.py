@@ -21,10 +21,13 @@ from .design import Design
 from .dynamics import SimulationResult, checked_kick, simulate
 from .errors import ParameterError, shown
 from .loads import peak_load_torque, starts_from_rest
-from .theory import cycle_mean, running_speeds
+from .revolution import mean_load
+from .theory import LEAK_TABLE as LEAK_TABLE  # re-exported: steady_flow moved below the run
+from .theory import cycle_mean
+from .theory import steady_flow as steady_flow
 from .units import SECONDS_PER_DAY
-from .validation import finite_array, non_negative
-from .wind import MAX_WIND, WindRecord, as_record, shape, weibull_scale
+from .validation import non_negative
+from .wind import WindRecord, as_record, shape, weibull_scale
 
 
 def wind_thresholds(design: Design) -> tuple[float, float | None]:
@@ -66,59 +69,6 @@ def _stop_wind(design: Design) -> float:
     if design.friction_coefficient == 0.0:
         return design.V_ref / math.sqrt(stall_margin(design))
     return design.V_ref * float(cycle_mean(design).s_stop)
-
-
-LEAK_TABLE = 257
-"""With a leak hole, more distinct wind speeds than this are interpolated on this many (evenly
-spaced over them): a quadrature and root finding per wind took 79 s for a day's record."""
-
-
-def steady_flow(design: Design, V):
-    """Averaged mean flow [m^3/s] in steady winds V [m/s]: the revolution mean of the delivered
-    flow at alpha+(V), ``m A R alpha+(V) / pi`` for a tight piston, above V_stop.
-
-    ``alpha+(V)`` is the running crank speed of :func:`windpump.steady_speeds` for
-    ``design.in_wind(V)``; below (and at) V_stop the pump cannot run and the flow is 0. Above V_stop
-    the flow jumps from 0 to ``m A R p s_stop / pi`` and then grows about linearly with V (the
-    crank runs near the windmill's peak, which moves with V). With a leak hole the flow is the
-    delivered one (swept less leaked), 0 while the pump only crawls; more than ``LEAK_TABLE``
-    distinct winds are interpolated linearly on that many.
-
-    Parameters
-    ----------
-    design : Design
-    V : array_like
-        Wind speeds [m/s], from 0 to 150 (``windpump.wind.MAX_WIND``, as a record's).
-
-    Returns
-    -------
-    ndarray or float
-        The flow [m^3/s], the shape of V.
-
-    Examples
-    --------
-    >>> from windpump import Design, steady_flow
-    >>> from windpump.units import LITRES_PER_M3
-    >>> flows = steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])
-    >>> [round(float(q) * LITRES_PER_M3, 3) for q in flows]  # [L/s]
-    [0.0, 0.379, 0.627]
-    """
-    speeds = finite_array("V", V, "m/s", minimum=0.0)
-    if speeds.size and speeds.max() > MAX_WIND:  # as a record's (a flow of inf, otherwise)
-        raise ParameterError("V", float(speeds.max()), f"wind speeds from 0 to {MAX_WIND:g}", "m/s")
-    if design.d_leak > 0.0:  # a quadrature per wind speed: each distinct one once
-        values, where = np.unique(speeds, return_inverse=True)
-        if values.size > LEAK_TABLE:  # a record's winds: interpolated on a table of them
-            table = np.linspace(values[0], values[-1], LEAK_TABLE)
-            table_flow = np.nan_to_num(running_speeds(design, V=table).mean_flow)
-            flow = np.interp(speeds, table, table_flow)
-        else:
-            flow = np.nan_to_num(running_speeds(design, V=values).mean_flow)[
-                where.reshape(speeds.shape)
-            ]
-    else:
-        flow = np.nan_to_num(running_speeds(design, V=speeds).mean_flow)
-    return flow if flow.ndim else float(flow)
 
 
 def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[float, float]:
@@ -232,8 +182,6 @@ def _leaky_flows(design: Design, V_far: float) -> tuple[np.ndarray, np.ndarray]:
     wind). The running speed alpha+(V) is the largest alpha with ``V_ref s(alpha) = V``, so V
     runs through ``V_ref min over alpha' >= alpha of s(alpha')``, non-decreasing in alpha.
     """
-    from .revolution import mean_load
-
     top = design.runaway_speed / design.omega_m  # x where T vanishes at V_ref
     fastest = V_far / design.V_ref * design.omega_m * top / design.R_dagger
     alpha = np.linspace(0.0, fastest, LEAKY_SPEEDS + 1)[1:]
@@ -279,8 +227,6 @@ def record_water(design: Design, record) -> tuple[float, float]:
     >>> low, round(high, 2)
     (0.0, 32.77)
     """
-    from .wind import as_record
-
     t, V = as_record(record, 1.0)
     if len(t) < 2:
         raise ParameterError("record", f"{len(t)} sample", "a record of at least 2 samples")

@@ -20,6 +20,7 @@ from .cliargs import MAX_WORKERS, chosen_design, workers
 from .errors import ParameterError, cut
 from .labdata import LabDataError
 from .units import LITRES_PER_M3
+from .weather import read_weather, sample_site
 from .wind import WindRecord
 from .yearly import DEFAULT_RESTART, MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 
@@ -90,8 +91,6 @@ RESTART_WORDS = {
 
 def site_record(args: argparse.Namespace) -> WindRecord:
     """The wind at the rotor from --site or --weather, --height, --hub-height and --shear."""
-    from .weather import read_weather, sample_site
-
     if args.site:
         if args.height is not None:  # (it was ignored: --height -inf ran the year)
             raise ParameterError(

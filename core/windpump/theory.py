@@ -28,8 +28,12 @@ m = 1, T_0 = 0 and s = 1; delta^2 > 0 exactly when the stall margin ``R+ T_m s^2
 
 :mod:`windpump.averaged` (one design, with its checks and ``StallError``), :mod:`windpump.maps`
 (a grid of gear ratios and heads) and :mod:`windpump.site` (wind speeds) all evaluate these
-expressions here, through :func:`cycle_mean`. This module imports nothing of the package at run
-time, so :class:`~windpump.Design` takes its groups (I_eff, the load torques) from it too.
+expressions here, through :func:`cycle_mean`. The groups they share with
+:class:`~windpump.Design` (I_eff, the load torques, the torque at rest) and
+:class:`~windpump.groups.RunningSpeeds` live below the design, in :mod:`windpump.groups`, and are
+re-exported here. :func:`steady_flow` (re-exported by
+:mod:`windpump.site`) is the mean flow of the running speeds in steady winds: it sits here, below
+the full run, whose step estimate (:func:`windpump.dynamics.estimated_steps`) uses it.
 """
 
 from __future__ import annotations
@@ -40,8 +44,18 @@ import typing
 
 import numpy as np
 
-if typing.TYPE_CHECKING:
-    from .design import Design
+from .design import Design
+from .errors import ParameterError
+from .groups import (
+    RunningSpeeds,
+    effective_inertia,
+    load_torque,
+    mean_load_torque,
+    rest_torque_on_crank,
+)
+from .revolution import friction_load, leaky_running_speeds, reciprocating_inertia
+from .validation import finite_array
+from .wind import MAX_WIND
 
 __all__ = [
     "CycleMean",
@@ -52,91 +66,11 @@ __all__ = [
     "mean_load_torque",
     "rest_torque_on_crank",
     "running_speeds",
+    "steady_flow",
 ]
 
 
 Array = typing.Any  # a float or an ndarray: every expression broadcasts
-
-
-def effective_inertia(I1: Array, I0: Array, R_dagger: Array) -> Array:
-    """Inertia reflected to the crank, ``I1 + I0 R+^2`` [kg m^2] (Eq. 12).
-
-    Parameters
-    ----------
-    I1, I0 : float or ndarray
-        Inertias of the crank side and of the windmill side [kg m^2].
-    R_dagger : float or ndarray
-        Gear ratio R1/R0 [-].
-
-    Examples
-    --------
-    >>> effective_inertia(1.0, 0.5, 4.0)
-    9.0
-    """
-    return I1 + I0 * R_dagger**2
-
-
-def load_torque(rho_w: Array, g: Array, h: Array, A: Array, R: Array) -> Array:
-    """Piston force times crank radius, ``rho_w g h A R`` [N m]: the load scale of Eq. (12).
-
-    Parameters
-    ----------
-    rho_w : float or ndarray
-        Water density [kg/m^3].
-    g : float or ndarray
-        Gravity [m/s^2].
-    h : float or ndarray
-        Head [m].
-    A : float or ndarray
-        Piston cross-section [m^2].
-    R : float or ndarray
-        Crank radius [m].
-
-    Examples
-    --------
-    >>> round(load_torque(1000.0, 9.81, 3.0, 1e-3, 0.04), 4)
-    1.1772
-    """
-    return rho_w * g * h * A * R
-
-
-def mean_load_torque(deliveries: Array, load: Array) -> Array:
-    """Cycle-mean load torque on the crank, ``m rho_w g h A R / pi`` [N m] (Eq. 18 for m faces).
-
-    Parameters
-    ----------
-    deliveries : int or ndarray
-        Deliveries per crank revolution m [-].
-    load : float or ndarray
-        The load scale ``rho_w g h A R`` [N m] (:func:`load_torque`).
-
-    Examples
-    --------
-    >>> mean_load_torque(2, math.pi)
-    2.0
-    """
-    return deliveries * load / math.pi
-
-
-def rest_torque_on_crank(R_dagger: Array, T_0: Array, s: Array = 1.0) -> Array:
-    """The windmill's torque at rest reflected to the crank, ``R+ T_0 s^2`` [N m] (Eq. 11 with
-    T_0 at omega = 0, in the wind s = V / V_ref).
-
-    Parameters
-    ----------
-    R_dagger : float or ndarray
-        Gear ratio R1/R0 [-].
-    T_0 : float or ndarray
-        Torque at rest at V_ref [N m].
-    s : float or ndarray, default 1.0
-        Wind speed over V_ref [-].
-
-    Examples
-    --------
-    >>> rest_torque_on_crank(4.0, 0.25, s=2.0)
-    4.0
-    """
-    return R_dagger * T_0 * s**2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -373,14 +307,10 @@ def cycle_mean(
     78.6
     """
     if design.d_leak > 0.0:
-        from .errors import ParameterError
-
         raise ParameterError(
             "d_leak", design.d_leak, "0 (no leak hole) for the closed forms", "m",
             why="with a leak hole the averaged equation is solved by quadrature: running_speeds",
         )  # fmt: skip
-    from .revolution import friction_load, reciprocating_inertia
-
     R_dagger = design.R_dagger if gear_ratio is None else np.asarray(gear_ratio, dtype=float)
     h = design.h if head is None else np.asarray(head, dtype=float)
     load = load_torque(design.rho_w, design.g, h, design.A, design.R)
@@ -396,44 +326,6 @@ def cycle_mean(
         friction=friction_load(design),
         reciprocating_inertia=reciprocating_inertia(design),
     )
-
-
-@dataclasses.dataclass(frozen=True)
-class RunningSpeeds:
-    """The averaged equation's answers for designs varied in gear ratio, head and wind, with
-    or without a leak hole (:func:`running_speeds`); every array has the broadcast shape.
-
-    Attributes
-    ----------
-    margin : ndarray
-        Stall margin [-]: the largest ``eta_t R+ T(R+ alpha) / L-bar(alpha)`` over the crank
-        speeds where the windmill drives; inf with a leak hole (or no load).
-    alpha_plus : ndarray
-        Stable running crank speed alpha+ [rad/s]: the largest root of F where F falls; NaN
-        where the pump cannot run.
-    alpha_minus : ndarray
-        The rising root of F below alpha+ [rad/s] (unstable: a pump below it slows); NaN where
-        F has none (with a leak hole, where F > 0 from rest up to alpha+). Without a hole it is
-        ``CycleMean.alpha_minus`` (<= 0 when the torque at rest beats the mean load).
-    tau : ndarray
-        Time constant ``I-bar / (-F'(alpha+))`` [s]; NaN where the pump cannot run.
-    mean_flow : ndarray
-        Revolution mean of the delivered flow at alpha+ [m^3/s]; NaN where it cannot run.
-    I_bar : ndarray
-        Revolution-mean inertia on the crank [kg m^2].
-    """
-
-    margin: Array
-    alpha_plus: Array
-    alpha_minus: Array
-    tau: Array
-    mean_flow: Array
-    I_bar: Array
-
-    @property
-    def runs(self) -> Array:
-        """Whether the pump can run: the margin exceeds 1 [bool]."""
-        return self.margin > 1.0
 
 
 def running_speeds(
@@ -485,6 +377,57 @@ def running_speeds(
             mean_flow=design.volume_per_revolution * alpha_plus / (2 * math.pi),
             I_bar=mean.I_bar,
         )
-    from .revolution import leaky_running_speeds
-
     return leaky_running_speeds(design, gear_ratio=gear_ratio, head=head, V=V)
+
+
+LEAK_TABLE = 257
+"""With a leak hole, more distinct wind speeds than this are interpolated on this many (evenly
+spaced over them): a quadrature and root finding per wind took 79 s for a day's record."""
+
+
+def steady_flow(design: Design, V):
+    """Averaged mean flow [m^3/s] in steady winds V [m/s]: the revolution mean of the delivered
+    flow at alpha+(V), ``m A R alpha+(V) / pi`` for a tight piston, above V_stop.
+
+    ``alpha+(V)`` is the running crank speed of :func:`windpump.steady_speeds` for
+    ``design.in_wind(V)``; below (and at) V_stop the pump cannot run and the flow is 0. Above V_stop
+    the flow jumps from 0 to ``m A R p s_stop / pi`` and then grows about linearly with V (the
+    crank runs near the windmill's peak, which moves with V). With a leak hole the flow is the
+    delivered one (swept less leaked), 0 while the pump only crawls; more than ``LEAK_TABLE``
+    distinct winds are interpolated linearly on that many.
+
+    Parameters
+    ----------
+    design : Design
+    V : array_like
+        Wind speeds [m/s], from 0 to 150 (``windpump.wind.MAX_WIND``, as a record's).
+
+    Returns
+    -------
+    ndarray or float
+        The flow [m^3/s], the shape of V.
+
+    Examples
+    --------
+    >>> from windpump import Design, steady_flow
+    >>> from windpump.units import LITRES_PER_M3
+    >>> flows = steady_flow(Design.seed_example(), [2.0, 5.0, 8.0])
+    >>> [round(float(q) * LITRES_PER_M3, 3) for q in flows]  # [L/s]
+    [0.0, 0.379, 0.627]
+    """
+    speeds = finite_array("V", V, "m/s", minimum=0.0)
+    if speeds.size and speeds.max() > MAX_WIND:  # as a record's (a flow of inf, otherwise)
+        raise ParameterError("V", float(speeds.max()), f"wind speeds from 0 to {MAX_WIND:g}", "m/s")
+    if design.d_leak > 0.0:  # a quadrature per wind speed: each distinct one once
+        values, where = np.unique(speeds, return_inverse=True)
+        if values.size > LEAK_TABLE:  # a record's winds: interpolated on a table of them
+            table = np.linspace(values[0], values[-1], LEAK_TABLE)
+            table_flow = np.nan_to_num(running_speeds(design, V=table).mean_flow)
+            flow = np.interp(speeds, table, table_flow)
+        else:
+            flow = np.nan_to_num(running_speeds(design, V=values).mean_flow)[
+                where.reshape(speeds.shape)
+            ]
+    else:
+        flow = np.nan_to_num(running_speeds(design, V=speeds).mean_flow)
+    return flow if flow.ndim else float(flow)

@@ -21,6 +21,7 @@ from . import files
 from .errors import LabDataError, ParameterError, cut, shown
 from .labdata import decoded
 from .units import SECONDS_PER_HOUR
+from .validation import real
 from .wind import COLUMNS, MAX_CSV_BYTES, MAX_HEIGHT, MAX_WIND, WindRecord, parse_samples
 
 __all__ = [
@@ -215,8 +216,6 @@ def _first_lines(data: bytes) -> tuple[str, str]:
 
 
 def _height(height: object) -> float:
-    from .validation import real
-
     value = real("height", height, "m")
     if not 0.0 < value <= MAX_HEIGHT:
         raise ParameterError("height", value, f"a height > 0 and <= {MAX_HEIGHT:g}", "m")

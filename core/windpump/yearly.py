@@ -30,27 +30,19 @@ import typing
 import numpy as np
 
 from .design import Design
-from .errors import ParameterError, shown
-from .site import steady_flow, wind_thresholds
-from .units import SECONDS_PER_HOUR
-from .validation import non_negative
-from .wind import WindRecord, as_record
+from .errors import ParameterError
+from .fullyear import full_options, full_year
+from .hours import DAYS_IN_MONTH as DAYS_IN_MONTH  # re-exported: the hours moved to hours.py
+from .hours import DEFAULT_RESTART as DEFAULT_RESTART
+from .hours import HOURS_PER_DAY as HOURS_PER_DAY
+from .hours import RESTARTS as RESTARTS
+from .hours import _choice, _quasi_steady_year, _Year, hourly
+from .progress import Progress
+from .validation import finite_array, non_negative, real, real_array
+from .wind import WindRecord
 
 if typing.TYPE_CHECKING:
     import concurrent.futures
-
-    from .progress import Progress
-
-RESTARTS = ("self", "attended")
-"""Who restarts a pump at rest: ``"self"`` (the windmill's torque at rest, above V_start) or
-``"attended"`` (someone, whenever the wind could carry it: above V_stop)."""
-
-DEFAULT_RESTART = "attended"
-"""The restart a year takes when none is given: the one default of :func:`supply`,
-:func:`tank_for`, :func:`supply_map`, :func:`windpump.fullyear.full_year`, ``windpump supply``
-and ``windpump tank`` (``--restart``) and the explorer's Site tab: someone restarts a pump a calm
-stopped. A windmill without torque at rest (T_0 = 0, the paper's) never starts on its own:
-with ``"self"`` it never runs."""
 
 METHODS = ("quasi-steady", "full")
 """How the hours are found: the averaged theory in each hour's mean wind, or the full equation
@@ -62,14 +54,9 @@ LEVEL_TOLERANCE = 1e-6
 MOST_PASSES = 20
 """Most passes through the year looking for the level it repeats at."""
 
-HOURS_PER_DAY = 24
-
 DRY_TOLERANCE = 1e-9
 """Shortfall in a day [m^3] (a microlitre) beyond which the day counts as dry: above the
 round-off of the tank's books."""
-
-DAYS_IN_MONTH = (31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31)
-"""A year of 365 days: the months of a record without dates, counted from 1 January."""
 
 MONTH_NAMES = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
 
@@ -282,74 +269,6 @@ def _longest_run(flags: np.ndarray) -> int:
     return int((edges[1::2] - edges[::2]).max()) if edges.size else 0
 
 
-def hourly(record) -> tuple[np.ndarray, np.ndarray]:
-    """A record's hourly mean winds [m/s] and the hours' calendar months.
-
-    Hour h holds the samples with ``h <= (t - t[0]) / 3600 < h + 1``; a record finer than an
-    hour is averaged (the mean of the hour's samples), an hourly one kept as it is. The months
-    are the record's (its first sample's in each hour) or, without dates, counted from 1 January
-    of a year of 365 days.
-
-    Parameters
-    ----------
-    record : WindRecord or (t, V) pair
-        Times [s] and speeds [m/s]: finite, speeds >= 0, times increasing, a sample in every
-        hour from the first to the last.
-
-    Raises
-    ------
-    ParameterError
-        Naming ``record`` and the sample at fault.
-
-    Examples
-    --------
-    >>> V, month = hourly(([0.0, 1800.0, 3600.0, 5400.0], [4.0, 6.0, 3.0, 3.0]))
-    >>> V.tolist(), month.tolist()
-    ([5.0, 3.0], [1, 1])
-    """
-    checked = _record(record)
-    hour = ((checked.t - checked.t[0]) // SECONDS_PER_HOUR).astype(np.int64)
-    counts = np.bincount(hour)
-    empty = np.flatnonzero(counts == 0)
-    if empty.size:
-        h = int(empty[0])
-        i = int(np.searchsorted(hour, h)) - 1  # the last sample before the gap
-        raise ParameterError(
-            "record",
-            f"a gap after t[{i}] = {shown(checked.t[i])} s (no sample in hour {h})",
-            "a sample in every hour",
-        )
-    V = np.bincount(hour, weights=checked.V) / counts
-    if checked.month is not None:
-        first = np.searchsorted(hour, np.arange(counts.size))
-        month = np.asarray(checked.month, dtype=int)[first]
-    else:
-        month = _calendar_months(counts.size)
-    return V, month
-
-
-def _record(record) -> WindRecord:
-    """``record`` checked, as :func:`windpump.wind.as_record` checks ``simulate``'s, named."""
-    try:
-        checked = as_record(record, 1.0)
-    except ParameterError as error:
-        raise ParameterError("record", error.value, error.allowed, error.unit, error.why) from None
-    if isinstance(record, WindRecord):
-        month = record.month
-        if month is not None and len(month) != len(checked.t):
-            raise ParameterError(
-                "record", f"{len(month)} months", f"{len(checked.t)}, one a sample"
-            )
-        return dataclasses.replace(checked, height=record.height, name=record.name, month=month)
-    return checked
-
-
-def _calendar_months(hours: int) -> np.ndarray:
-    """The months of ``hours`` hours from 1 January 00:00, years of 365 days."""
-    ends = np.cumsum(DAYS_IN_MONTH) * HOURS_PER_DAY
-    return np.searchsorted(ends, np.arange(hours) % ends[-1], side="right") + 1
-
-
 MOST_WATER = 1e12
 """Largest demand [m^3/day] and tank [m^3] :func:`supply` and :func:`tank_for` take: a hundred
 times the world's daily water use, far past any pump; a year's sums of it stay exact to a litre's
@@ -380,8 +299,6 @@ def _profile(profile) -> np.ndarray:
     allowed = "24 weights (one an hour from midnight), each finite and >= 0, with a sum > 0"
     if profile is None:
         return np.ones(HOURS_PER_DAY)
-    from .validation import real_array
-
     weights = real_array("profile", profile)  # (text, None, ragged lists: a ParameterError)
     if (
         weights.shape != (HOURS_PER_DAY,)
@@ -401,74 +318,9 @@ def _tank(tank: object) -> float:
     return value
 
 
-def _choice(name: str, value: object, allowed: tuple[str, ...]) -> str:
-    if not isinstance(value, str) or value not in allowed:
-        raise ParameterError(name, value, "one of " + ", ".join(map(repr, allowed)))
-    return value
-
-
-@dataclasses.dataclass(frozen=True)
-class _Year:
-    """The pump's year before the tank: hourly winds, months, running hours and water."""
-
-    V: np.ndarray
-    month: np.ndarray
-    running: np.ndarray
-    pumped: np.ndarray
-    V_stop: float
-    V_start: float | None
-    why: str
-
-
-def _quasi_steady_year(design: Design, V: np.ndarray, month: np.ndarray, restart: str) -> _Year:
-    """The hour-by-hour rule (module docstring) and each running hour's water [m^3]."""
-    from ._kernels import supply as kernels
-
-    V_stop, V_start = wind_thresholds(design)
-    attended = restart == "attended"
-    running = np.zeros(V.size, dtype=np.bool_)
-    why = ""
-    if not attended and (V_start is None or math.isinf(V_start)):
-        why = _never_starts(V_start)
-    else:
-        kernels.hysteresis(V, math.inf if V_start is None else V_start, V_stop, attended, running)
-        if not running.any():
-            need = V_stop if attended or V_start is None else V_start  # (V_start: not None)
-            why = _never_reached(need, attended)
-    pumped = np.where(running, steady_flow(design, V) * SECONDS_PER_HOUR, 0.0)
-    return _Year(V, month, running, pumped, V_stop, V_start, why)
-
-
-def _never_starts(V_start: float | None) -> str:
-    """Why a pump that restarts on its own never does, in words a user acts on (a caller adds
-    how its user has someone start it)."""
-    if V_start is None:
-        return (
-            "the windmill has no torque at rest (T_0 = 0), so no wind starts it on its own: "
-            "someone must start it"
-        )
-    return (
-        "the windmill's torque at rest is too small to start the pump in any wind: "
-        "someone must start it"
-    )
-
-
-def _never_reached(need: float, attended: bool) -> str:
-    """Why a pump never runs in this record: the wind it needs never blows."""
-    if attended:
-        return (
-            f"the wind never reaches {need:.3g} m/s (V_stop), the least in which the windmill "
-            "can carry the pump"
-        )
-    return (
-        f"the wind never reaches {need:.3g} m/s (V_start), the least in which the pump starts "
-        "on its own"
-    )
-
-
 def _with_tank(year: _Year, demand: np.ndarray, tank: float, **fields) -> Supply:
     """The tank's books over the periodic year (module docstring)."""
-    from ._kernels import supply as kernels
+    from ._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
 
     hours = year.V.size
     delivered, shortfall, spilled, level = (np.empty(hours) for _ in range(4))
@@ -556,8 +408,6 @@ def supply(
     >>> year.hours, year.totals.running_hours, round(year.lolp, 3), year.dry_days
     (48, 24, 0.25, 1)
     """
-    from .fullyear import full_options
-
     restart = _choice("restart", restart, RESTARTS)
     method = _choice("method", method, METHODS)
     tank = _tank(tank)
@@ -569,8 +419,6 @@ def supply(
     steady = _with_tank(year, demand_h, tank, restart=restart, name=name)
     if method == "quasi-steady":
         return steady
-    from .fullyear import full_year
-
     full = full_year(
         design, record, restart=restart, turbulence=turbulence, seed=seed,
         chunk_days=chunk_days, executor=executor, progress=progress,
@@ -636,8 +484,6 @@ def tank_for(
 
 
 def _lolp(lolp: object) -> float:
-    from .validation import real
-
     value = real("lolp", lolp)
     if not 0.0 <= value < 1.0:
         raise ParameterError("lolp", value, "from 0 to below 1")
@@ -646,7 +492,7 @@ def _lolp(lolp: object) -> float:
 
 def _smallest_tank(pumped: np.ndarray, asked: np.ndarray, lolp: float) -> float:
     """Bisection over whole litres of the periodic year's shortfall."""
-    from ._kernels import supply as kernels
+    from ._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
 
     total = float(asked.sum())
     if total == 0.0:
@@ -765,8 +611,7 @@ def supply_map(
     >>> supply_map(pump, wind, 2.0, [3.0, 4.0], [0.0, 2.0]).lolp.round(3).tolist()
     [[0.5, 0.5], [0.0, 0.0]]
     """
-    from ._kernels import supply as kernels
-    from .validation import finite_array
+    from ._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
 
     restart = _choice("restart", restart, RESTARTS)
     ratios = np.atleast_1d(finite_array("gear_ratios", gear_ratios, minimum=0.0)).ravel()

@@ -44,6 +44,7 @@ NOTE_CSS = TEXT[:1]
 # by side, and the two parts beside each other only where both get that (a pane of ~1,590 px at
 # 1920×1080; at 1366×768 its ~1,000 px hold one)
 PART_BASIS = 700
+LINKAGE_MAX_WIDTH = 920  # [px] the linkage's drawing, under its controls: its part's width
 # Where the two parts stand side by side (1920×1080), each figure takes the screen's height below
 # its top (a bottom margin of FILL_MARGIN px), MECHANISM_SIZE px at least and twice that at most:
 # at 440 px the tab left ~30 % of the screen blank below them. One above the other (1366 px and
@@ -191,6 +192,7 @@ class Mechanisms(Tab):
         )
         self.linkage_figure, linkage_sources = linkage_view(dark)
         self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
+        self.linkage_figure.max_width = LINKAGE_MAX_WIDTH  # under its controls: its part's width
         self.sources = {**self.slider_crank.sources, **linkage_sources}
 
         self.position: dict | None = None  # the linkage's last closed position (rad, m)
@@ -365,6 +367,8 @@ class Mechanisms(Tab):
         # figure's own flex lets the two share a part's width (at their 440 px they wrapped).
         for fig in (crank.crank_figure, crank.travel_figure):
             fig.styles = flex
+        self.second_loop.styles = flex
+        self.second_loop.sizing_mode = "stretch_width"
         slider_crank = pn.Column(
             pn.pane.Markdown(
                 "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
@@ -383,25 +387,29 @@ class Mechanisms(Tab):
                 "### Four-bar and double loop, by Newton-Raphson", stylesheets=NOTE_CSS
             ),
             self.kind,
+            # The controls above the drawing, in columns side by side where they fit: beside it,
+            # at 1920×1080, they left a block ~270 × 420 px blank under them, the drawing
+            # taking the screen's height.
             pn.FlexBox(
                 pn.Column(
                     self.input_angle,
-                    *(self.links[name] for name in FIRST_LOOP),
-                    self.branch,
-                    self.second_loop,
+                    self.links["r1"],
+                    self.links["r2"],
                     styles=flex,
                     sizing_mode="stretch_width",
-                    max_width=460,
                 ),
                 pn.Column(
-                    self.linkage_error,
-                    self.linkage_note,
-                    pn.pane.Bokeh(self.linkage_figure, **figure),
+                    *(self.links[name] for name in ("r3", "r6")),
+                    self.branch,
                     styles=flex,
                     sizing_mode="stretch_width",
                 ),
+                self.second_loop,  # a third column, for the Watt six-bar
                 sizing_mode="stretch_width",
             ),
+            self.linkage_error,
+            self.linkage_note,
+            pn.pane.Bokeh(self.linkage_figure, **{**figure, "max_width": LINKAGE_MAX_WIDTH}),
             **part,
         )
         return pn.Column(

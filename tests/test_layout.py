@@ -672,3 +672,30 @@ def test_the_mechanisms_tab_uses_a_wide_screens_height(browser, url, width, heig
         assert page.problems == []
     finally:
         page.close()
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+def test_the_linkages_controls_leave_no_blank_block_beside_its_drawing(browser, url, width, height):
+    """At 1920×1080 the four-bar's sliders stood in a column beside its drawing, which takes the
+    screen's height there: a block ~270 × 420 px blank under them. The controls stand above the
+    drawing (in columns side by side where they fit) and the drawing spans their width: at
+    every size no control ends below the drawing's top, and the drawing is at least as wide as
+    the controls' row, within its 920 px."""
+    page = open_page(browser, url, width, height, "?tab=mechanisms")
+    try:
+        page.wait_for_function(f"(n) => ({VIEW_BOX})(n) !== null", arg="linkage_figure")
+        time.sleep(2.0)  # laid out, the heights filled
+        drawing = page.evaluate(VIEW_BOX, "linkage_figure")
+        controls = [
+            page.get_by_text(label).first.bounding_box()
+            for label in ("Input angle θ₁", "Ground r₆", "+1: B left of A→D")
+        ]
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / f"linkage_controls_{width}x{height}.png"))
+        for box in controls:
+            assert bottom(box) <= drawing["y"] + 1, (box, drawing)
+        span = max(b["x"] + b["width"] for b in controls) - min(b["x"] for b in controls)
+        assert drawing["width"] >= min(span, 920) - 40, (drawing, span)
+        assert page.problems == []
+    finally:
+        page.close()

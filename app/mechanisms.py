@@ -183,8 +183,18 @@ class Mechanisms(Tab):
         self.second_branch = pn.widgets.RadioButtonGroup(
             options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1, stylesheets=TEXT
         )
+        # The second loop's controls, shown for the Watt six-bar: in two halves, one under each
+        # column of the first loop's (``layout``)
         self.second_loop = pn.Column(
-            *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
+            *(self.links[name] for name in ("r3p", "r4", "r5")),
+            visible=False,
+            sizing_mode="stretch_width",
+        )
+        self.second_loop_rest = pn.Column(
+            *(self.links[name] for name in SECOND_LOOP if name not in ("r3p", "r4", "r5")),
+            self.second_branch,
+            visible=False,
+            sizing_mode="stretch_width",
         )
         self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
         self.linkage_error = pn.pane.Alert(
@@ -227,7 +237,7 @@ class Mechanisms(Tab):
 
     def assemble(self) -> None:
         """New links or branch: close the loops from the compass construction on that branch."""
-        self.second_loop.visible = self.kind.value == SIX_BAR
+        self.second_loop.visible = self.second_loop_rest.visible = self.kind.value == SIX_BAR
         theta1 = math.radians(self.input_angle.value)
         loops = self.loops()
         branches = (self.branch.value, self.second_branch.value)[: len(loops)]
@@ -367,8 +377,6 @@ class Mechanisms(Tab):
         # figure's own flex lets the two share a part's width (at their 440 px they wrapped).
         for fig in (crank.crank_figure, crank.travel_figure):
             fig.styles = flex
-        self.second_loop.styles = flex
-        self.second_loop.sizing_mode = "stretch_width"
         slider_crank = pn.Column(
             pn.pane.Markdown(
                 "### The pump's slider-crank, closed as a vector loop", stylesheets=NOTE_CSS
@@ -395,16 +403,17 @@ class Mechanisms(Tab):
                     self.input_angle,
                     self.links["r1"],
                     self.links["r2"],
+                    self.second_loop,
                     styles=flex,
                     sizing_mode="stretch_width",
                 ),
                 pn.Column(
                     *(self.links[name] for name in ("r3", "r6")),
                     self.branch,
+                    self.second_loop_rest,
                     styles=flex,
                     sizing_mode="stretch_width",
                 ),
-                self.second_loop,  # a third column, for the Watt six-bar
                 sizing_mode="stretch_width",
             ),
             self.linkage_error,

@@ -111,7 +111,10 @@ class Readouts(pn.viewable.Viewer):
             "tau": (TAU_LABEL, f"{seen.tau:.1f} s" if seen.tau and started else "–"),
             "margin": (MARGIN_LABEL, margin_text(seen.margin)),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
-            "ripple": ("Speed ripple", ripple_text(figures.speed_ripple) if figures else "–"),
+            "ripple": (
+                "Speed ripple",
+                html.escape(ripple_text(figures.speed_ripple)) if figures else "–",
+            ),
             "efficiency": efficiency_readout(seen),
             "energy": energy_readout(seen),
         }
@@ -167,11 +170,12 @@ def margin_text(margin: float) -> str:
 
 def ripple_text(ripple: float) -> str:
     """The speed ripple (max - min) / mean [-] as a percentage, to what a reader can use of it:
-    two significant figures (whole percent from 10 %), and below 0.1 % only that it is so (the
-    crank turns steadily; the paper's example read "0.010 %", three decimals of nothing).
+    two significant figures (whole percent from 10 %), and below 0.1 % only that it is so, no
+    wider than a number (the crank turns steadily; the paper's example read "0.010 %", three
+    decimals of nothing; "below 0.1 %" wrapped a projector's readouts onto a third row).
 
     >>> ripple_text(0.0001049), ripple_text(0.001234), ripple_text(0.01234), ripple_text(0.1567)
-    ('below 0.1 %', '0.12 %', '1.2 %', '16 %')
+    ('< 0.1 %', '0.12 %', '1.2 %', '16 %')
     >>> ripple_text(12.34), ripple_text(0.0)
     ('1,234 %', '0 %')
     """
@@ -179,7 +183,7 @@ def ripple_text(ripple: float) -> str:
     if value == 0.0:
         return "0 %"
     if value < 0.1:
-        return "below 0.1 %"
+        return "< 0.1 %"  # escaped where shown: the readout is HTML
     if value >= 10.0:
         return f"{value:,.0f} %"
     decimals = 1 - math.floor(math.log10(value))  # two significant figures

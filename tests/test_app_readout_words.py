@@ -26,7 +26,7 @@ def app():
 def shown(readout) -> str:
     """A readout's value as the page shows it."""
     value = readout.object.split('class="value"', 1)[1].split(">", 1)[1]
-    return re.sub(r"<[^>]+>", "", value.rsplit("</div></div>", 1)[0])
+    return html.unescape(re.sub(r"<[^>]+>", "", value.rsplit("</div></div>", 1)[0]))
 
 
 def tooltip(readout) -> str:
@@ -45,12 +45,12 @@ def two_figures(percent: float) -> float:
 )
 def test_the_speed_ripple_is_shown_to_two_significant_figures(app, preset):
     """It read "0.010 %" and "12.345 %": three decimals whatever the size. Now two significant
-    figures (what a reader can compare), and "below 0.1 %" for a crank that turns steadily."""
+    figures (what a reader can compare), and "< 0.1 %" for a crank that turns steadily."""
     app.set_values(**PRESETS[preset][0])
     ripple = 100 * app.seen.intermittency.speed_ripple  # the core's
     text = shown(app.readouts["ripple"])
     if ripple < 0.1:
-        assert text == "below 0.1 %"
+        assert text == "< 0.1 %"
         return
     number = float(text.removesuffix(" %").replace(",", ""))
     assert number == pytest.approx(two_figures(ripple), rel=1e-12) or (
@@ -62,7 +62,7 @@ def test_the_speed_ripple_is_shown_to_two_significant_figures(app, preset):
 
 def test_the_papers_example_ripple_says_it_is_steady(app):
     assert 100 * app.seen.intermittency.speed_ripple < 0.1  # the seed's heavy rotor
-    assert shown(app.readouts["ripple"]) == "below 0.1 %"
+    assert shown(app.readouts["ripple"]) == "< 0.1 %"
 
 
 def test_r_dagger_t0_is_said_in_words_where_it_is_shown(app):

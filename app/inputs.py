@@ -323,7 +323,8 @@ PRESETS = {
     ),
     "2 cylinders, torque at rest": (
         {"cylinders": 2.0, "T_0": 0.4, "theta_dot0": 0.0},
-        "Two cylinders half a turn apart and a windmill with torque at rest: R†T₀ beats the load "
+        "Two cylinders half a turn apart and a windmill with torque at rest: that torque on the "
+        "crank, R†T₀, beats the load "
         "at every angle, so it starts from rest with no kick, and the flow pulses twice a turn.",
     ),
     "A double-acting pump": (
@@ -348,7 +349,8 @@ PRESETS = {
     ),
     "A leak hole lets it start": (
         {"T_0": 0.25, "theta0": 4.71, "theta_dot0": 0.0, "d_leak_mm": 3.0},
-        "From rest at mid-stroke the windmill's R†T₀ = 1 N·m is less than the tight piston's load "
+        "From rest at mid-stroke the windmill's torque at rest on the crank, R†T₀ = 1 N·m, is less "
+        "than the tight piston's load "
         "(1.48 N·m): with the leak hole set to 0 the pump never moves. Through a 3 mm hole the "
         "water slips back at rest, the load vanishes and the pump starts on its own; at speed the "
         "hole costs about 4 % of the water (over this run, slow while it spins up, about 6 %: the "

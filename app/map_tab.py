@@ -20,6 +20,7 @@ from bokeh.events import Tap
 from bokeh.models import (
     ColorBar,
     ColumnDataSource,
+    CustomJS,
     CustomJSHover,
     FixedTicker,
     HoverTool,
@@ -56,6 +57,26 @@ MAP_HEIGHT = 520  # [px] the figure: its frame ~335 px high on a projector, the 
 # went under the header once scrolled to its foot). Not below 300 px (a frame of ~90 px). Its
 # height and its flex basis: Panel lays it out in a column, where the basis (520 px) rules.
 PHONE_HEIGHT = f"clamp(300px, {pane_height_css()}, {MAP_HEIGHT}px)"
+# On a wide screen (WIDE_PX and wider: 1920×1080) the map took its 520 px and drew a frame ~4 times
+# wider than high over half the screen, the lower half blank: there it takes the screen's height
+# below its top (FILL_MARGIN px left under it), MAP_HEIGHT at least and twice that at most, as the
+# Mechanisms tab's figures do. Narrower screens keep MAP_HEIGHT (a phone: PHONE_CSS).
+WIDE_PX = 1600
+FILL_MARGIN = 24
+FILL_HEIGHT_JS = """
+// after the layout pass that called it (a height set within it is laid out on the next one)
+setTimeout(() => {
+  const view = window.Bokeh?.index?.find_one?.(cb_obj)
+  if (view == null) return
+  const box = view.el.getBoundingClientRect()
+  if (box.width === 0) return  // a hidden tab: laid out when shown
+  const pane = document.querySelector('#main')
+  const scrolled = pane != null ? pane.scrollTop : 0
+  const room = window.innerHeight - margin - (box.top + scrolled)
+  const want = window.innerWidth >= wide ? Math.round(Math.min(2 * least, Math.max(least, room))) : least
+  if (Math.abs(cb_obj.height - want) > 1) cb_obj.setv({height: want}, {sync: false})
+}, 0)
+"""
 PHONE_CSS = (
     f"@media (max-width: 700px) {{ :host {{ height: {PHONE_HEIGHT} !important; "
     f"flex-basis: {PHONE_HEIGHT} !important; }} }}"
@@ -137,11 +158,13 @@ def label_place(
     taken: list[tuple[float, float, float, float]] | None = None,
     size: tuple[float, float] | None = None,
 ) -> tuple[float, float, str, str] | None:
-    """Where a contour's label goes, (x, y, text_align, text_baseline), clear of the labels
+    """Where a contour's label goes, (x, y, text_align, text_baseline, and its
+    nudge right and up [px] off the frame's edges: ``edge_nudge``), clear of the labels
     already placed (``taken``: their boxes, ``label_box``): its middle vertex away from the
     map's edges (where a label would be cut) whose label, aligned as ``label_anchor`` says or
     else extending rightwards, keeps clear of the stall boundary (``stall``: its ratio at heads
-    spanning ``y_range`` evenly; ``label_clearance``); else the placement farthest from it.
+    spanning ``y_range`` evenly; ``label_clearance``); else, while no more than LABELLED_ANYWAY
+    box is ``taken`` (the star: the first line placed), the placement farthest from it.
     None where every place covers a label (the colour bar tells the line's level, as
     Matplotlib's ``clabel`` leaves a label out where it does not fit). ``size``: a label's
     width and height as shares of the map's (``LABEL_SIZE`` by default)."""
@@ -165,6 +188,9 @@ def label_place(
     rightwards = (clearance <= LABEL_MARGIN) & (aligns != "left") & fits
     aligns = np.where(rightwards, "left", aligns)
     boxes = label_box(xs, ys, aligns, baselines, x_range, y_range, size)
+    nudges = edge_nudge(boxes, size)  # [px] each box moved EDGE_PX inside the frame, as drawn
+    shift = nudges * np.divide(size, LABEL_PX)
+    boxes = boxes + np.column_stack([shift[:, 0], shift[:, 1], shift[:, 0], shift[:, 1]])
     clearance = label_clearance(boxes, x_range, y_range, stall)
     clear = finite & (clearance > LABEL_MARGIN)
     free = finite & ~np.any([overlap(boxes, box) for box in taken or []], axis=0)
@@ -175,9 +201,12 @@ def label_place(
     if chosen is not None:
         candidates = np.flatnonzero(chosen)
         at = candidates[len(candidates) // 2]
+    elif len(taken or []) > LABELLED_ANYWAY:
+        return None  # no place clear of the stall boundary, and lines enough labelled
     else:
         at = int(np.argmax(np.where(free, clearance, -np.inf)))
-    return float(xs[at]), float(ys[at]), str(aligns[at]), str(baselines[at])
+    right, up = (float(v) for v in nudges[at])
+    return float(xs[at]), float(ys[at]), str(aligns[at]), str(baselines[at]), right, up
 
 
 # A contour label's size as a share of the map's width and height ("100 m³/day" at 15 px on a
@@ -187,6 +216,11 @@ LABEL_PX = (96.0, 23.0)
 STAR_PX = 28.0  # this design's star (24 px) and its outline: no label under it
 LABEL_SIZE = (0.16, 0.07)
 LABEL_MARGIN = 0.02
+# Where a line has no place clear of the stall boundary its label is left out once this many boxes
+# are taken (this design's star): a tight corner at ~600 x 330 px holds the
+# 100 and 200 m³/day labels only one over the other, one of them across the red line.
+LABELLED_ANYWAY = 1
+EDGE_PX = 6.0  # [px] the least gap between a label's box and the frame's edge
 # The red line's legend: a tight pump's stall boundary, where a leaky one starts lifting water.
 STAR_SWATCH = 32  # the legend's swatches [px]: its star 0.4 of that, ~13 px (24 on the map)
 STALL_LABEL, DELIVERY_LABEL = "stall boundary (margin 1)", "lifts water right of this"
@@ -236,6 +270,24 @@ def overlap(boxes: np.ndarray, box) -> np.ndarray:
     return (
         (boxes[:, 0] < right) & (boxes[:, 2] > left) & (boxes[:, 1] < top) & (boxes[:, 3] > bottom)
     )
+
+
+def edge_nudge(boxes: np.ndarray, size: tuple[float, float]) -> np.ndarray:
+    """How far [px] (right, up) each label's box (rows of left, bottom, right, top, as shares of
+    the map: ``label_box``) moves to keep EDGE_PX from each of the frame's edges: a label placed
+    on its line's vertex at the frame's foot or top had its background flush with the edge, and
+    read as cut. ``size``: a label's width and height as shares of the map (LABEL_PX in pixels).
+
+    >>> edge_nudge(np.array([[0.5, 0.0, 0.6, 0.07], [0.95, 0.5, 1.02, 0.57]]), (0.07, 0.07))
+    array([[  0.     ,   6.     ],
+           [-33.42857,   0.     ]])
+    """
+    per_x, per_y = size[0] / LABEL_PX[0], size[1] / LABEL_PX[1]  # a pixel, as a share
+    edge_x, edge_y = EDGE_PX * per_x, EDGE_PX * per_y
+    left, bottom, right, top = np.asarray(boxes, dtype=float).T
+    dx = np.maximum(edge_x - left, 0.0) - np.maximum(right - (1.0 - edge_x), 0.0)
+    dy = np.maximum(edge_y - bottom, 0.0) - np.maximum(top - (1.0 - edge_y), 0.0)
+    return np.round(np.column_stack([dx / per_x, dy / per_y]), 5) + 0.0
 
 
 def label_anchor(
@@ -363,13 +415,26 @@ class MapTab(Tab):
             "best": empty("ratio", "h"),
             "here": empty("ratio", "h", "flow"),
             "contour_labels": empty(
-                "x", "y", "text", "level", "color", "background", "align", "baseline"
-            ),
+                "x",
+                "y",
+                "text",
+                "level",
+                "color",
+                "background",
+                "align",
+                "baseline",
+                "x_offset",
+                "y_offset",
+            ),  # fmt: skip
         }
         for name, source in self.sources.items():
             source.name = f"maptab_{name}"  # for a browser: get_model_by_name
         self.figure = self._figure()
         self.figure.name = "map_figure"  # a browser test finds it by name
+        fill = CustomJS(
+            args=dict(least=MAP_HEIGHT, margin=FILL_MARGIN, wide=WIDE_PX), code=FILL_HEIGHT_JS
+        )
+        self.figure.js_on_change("outer_width", fill)
         # A tap moves the design and selects nothing: Bokeh's tap tool selected what lay under it
         # (a contour label, a line) and drew the rest of that renderer at a tenth of its alpha
         # (the other labels faded to near invisible). Its Tap event comes all the same.
@@ -432,6 +497,7 @@ class MapTab(Tab):
         fig.text(
             "x", "y", "text", source=s["contour_labels"], text_color="color",
             text_font_size=TICKS, text_align="align", text_baseline="baseline",
+            x_offset="x_offset", y_offset="y_offset",
             background_fill_color="background", background_fill_alpha=0.75,
         )  # fmt: skip
 
@@ -606,8 +672,10 @@ class MapTab(Tab):
         at = label_place(xs, ys, *bounds, np.asarray(stall, dtype=float), taken, size)
         if at is None:
             return None
-        x, y, align, baseline = at
-        taken.append(label_box([x], [y], [align], [baseline], *bounds, size)[0])
+        x, y, align, baseline, right, up = at  # right, up: [px] off the frame's edges
+        box = label_box([x], [y], [align], [baseline], *bounds, size)[0]
+        per_x, per_y = size[0] / LABEL_PX[0], size[1] / LABEL_PX[1]
+        taken.append(box + [right * per_x, up * per_y, right * per_x, up * per_y])  # as drawn
         return {
             "x": x,
             "y": y,
@@ -617,6 +685,8 @@ class MapTab(Tab):
             "background": under,
             "align": align,
             "baseline": baseline,
+            "x_offset": right,
+            "y_offset": -up,  # the canvas's y grows downwards
         }
 
     def resized(self) -> None:

@@ -44,6 +44,7 @@ NOTE_CSS = TEXT[:1]
 # by side, and the two parts beside each other only where both get that (a pane of ~1,590 px at
 # 1920×1080; at 1366×768 its ~1,000 px hold one)
 PART_BASIS = 700
+LINKAGE_MAX_WIDTH = 920  # [px] the linkage's drawing, under its controls: its part's width
 # Where the two parts stand side by side (1920×1080), each figure takes the screen's height below
 # its top (a bottom margin of FILL_MARGIN px), MECHANISM_SIZE px at least and twice that at most:
 # at 440 px the tab left ~30 % of the screen blank below them. One above the other (1366 px and
@@ -182,8 +183,18 @@ class Mechanisms(Tab):
         self.second_branch = pn.widgets.RadioButtonGroup(
             options={"loop 2: +1": 1, "loop 2: −1": -1}, value=1, stylesheets=TEXT
         )
+        # The second loop's controls, shown for the Watt six-bar: in two halves, one under each
+        # column of the first loop's (``layout``)
         self.second_loop = pn.Column(
-            *(self.links[name] for name in SECOND_LOOP), self.second_branch, visible=False
+            *(self.links[name] for name in ("r3p", "r4", "r5")),
+            visible=False,
+            sizing_mode="stretch_width",
+        )
+        self.second_loop_rest = pn.Column(
+            *(self.links[name] for name in SECOND_LOOP if name not in ("r3p", "r4", "r5")),
+            self.second_branch,
+            visible=False,
+            sizing_mode="stretch_width",
         )
         self.linkage_note = pn.pane.HTML("", stylesheets=NOTE_CSS)
         self.linkage_error = pn.pane.Alert(
@@ -191,6 +202,7 @@ class Mechanisms(Tab):
         )
         self.linkage_figure, linkage_sources = linkage_view(dark)
         self.linkage_figure.name = "linkage_figure"  # a browser test finds it by name
+        self.linkage_figure.max_width = LINKAGE_MAX_WIDTH  # under its controls: its part's width
         self.sources = {**self.slider_crank.sources, **linkage_sources}
 
         self.position: dict | None = None  # the linkage's last closed position (rad, m)
@@ -225,7 +237,7 @@ class Mechanisms(Tab):
 
     def assemble(self) -> None:
         """New links or branch: close the loops from the compass construction on that branch."""
-        self.second_loop.visible = self.kind.value == SIX_BAR
+        self.second_loop.visible = self.second_loop_rest.visible = self.kind.value == SIX_BAR
         theta1 = math.radians(self.input_angle.value)
         loops = self.loops()
         branches = (self.branch.value, self.second_branch.value)[: len(loops)]
@@ -383,25 +395,30 @@ class Mechanisms(Tab):
                 "### Four-bar and double loop, by Newton-Raphson", stylesheets=NOTE_CSS
             ),
             self.kind,
+            # The controls above the drawing, in columns side by side where they fit: beside it,
+            # at 1920×1080, they left a block ~270 × 420 px blank under them, the drawing
+            # taking the screen's height.
             pn.FlexBox(
                 pn.Column(
                     self.input_angle,
-                    *(self.links[name] for name in FIRST_LOOP),
-                    self.branch,
+                    self.links["r1"],
+                    self.links["r2"],
                     self.second_loop,
                     styles=flex,
                     sizing_mode="stretch_width",
-                    max_width=460,
                 ),
                 pn.Column(
-                    self.linkage_error,
-                    self.linkage_note,
-                    pn.pane.Bokeh(self.linkage_figure, **figure),
+                    *(self.links[name] for name in ("r3", "r6")),
+                    self.branch,
+                    self.second_loop_rest,
                     styles=flex,
                     sizing_mode="stretch_width",
                 ),
                 sizing_mode="stretch_width",
             ),
+            self.linkage_error,
+            self.linkage_note,
+            pn.pane.Bokeh(self.linkage_figure, **{**figure, "max_width": LINKAGE_MAX_WIDTH}),
             **part,
         )
         return pn.Column(

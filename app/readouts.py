@@ -8,6 +8,7 @@ alone; a change of stylesheets or of an alert's type still goes through Panel's 
 
 from __future__ import annotations
 
+import html
 import math
 
 import panel as pn
@@ -53,11 +54,13 @@ STATUS_STYLE = {
 }
 
 
-def readout_html(label: str, value: str, name: str) -> str:
+def readout_html(label: str, value: str, name: str, tip: str = "") -> str:
     """A label over a value, whose lines break only between its terms (``keep_terms``: never
-    between a number and its unit); ``data-name`` lets a test or a script find the value."""
+    between a number and its unit); ``data-name`` lets a test or a script find the value;
+    ``tip``, if any, is the box's tooltip (what the numbers mean, in words)."""
+    title = f' title="{html.escape(tip, quote=True)}"' if tip else ""
     return (
-        f'<div class="readout"><div class="label">{label}</div>'
+        f'<div class="readout"{title}><div class="label">{label}</div>'
         f'<div class="value" data-name="{name}">{keep_terms(value)}</div></div>'
     )
 
@@ -80,8 +83,8 @@ class Readout(TextOnlyUpdates, pn.pane.HTML):
         super().__init__("", stylesheets=[READOUT_CSS], **params)
         self.readout_name = name
 
-    def show(self, label: str, value: str) -> None:
-        self.object = readout_html(label, value, self.readout_name)
+    def show(self, label: str, value: str, tip: str = "") -> None:
+        self.object = readout_html(label, value, self.readout_name, tip)
 
 
 class Readouts(pn.viewable.Viewer):
@@ -108,15 +111,19 @@ class Readouts(pn.viewable.Viewer):
             "tau": (TAU_LABEL, f"{seen.tau:.1f} s" if seen.tau and started else "–"),
             "margin": (MARGIN_LABEL, margin_text(seen.margin)),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
-            "ripple": ("Speed ripple", f"{100 * figures.speed_ripple:.3f} %" if figures else "–"),
+            "ripple": (
+                "Speed ripple",
+                html.escape(ripple_text(figures.speed_ripple)) if figures else "–",
+            ),
             "efficiency": efficiency_readout(seen),
             "energy": energy_readout(seen),
         }
         # The ideal machine delivers what it sweeps: its efficiencies say little, and a projector's
         # first screen has no row to spare. (Others were hidden while the solver compiled:
         # show_averaged; each set once, as a change of it is sent to the page.)
+        tips = {"efficiency": EFFICIENCY_TIP}
         for name, (label, value) in values.items():
-            self.readouts[name].show(label, value)
+            self.readouts[name].show(label, value, tips.get(name, ""))
             self.readouts[name].visible = name != "efficiency" or not seen.design.is_ideal
         self.status.object, self.status.alert_type = (
             keep_units(f"{status_text(seen)} {start_text(seen)}"),
@@ -159,6 +166,39 @@ def margin_text(margin: float) -> str:
     """The stall margin (Eq. 22) as a class reads it: endless (the core's inf, a leak hole or no
     head: no load at rest) in words."""
     return "∞ (never stalls)" if math.isinf(margin) else f"{margin:.3f}"
+
+
+def ripple_text(ripple: float) -> str:
+    """The speed ripple (max - min) / mean [-] as a percentage, to what a reader can use of it:
+    two significant figures (whole percent from 10 %), and below 0.1 % only that it is so, no
+    wider than a number (the crank turns steadily; the paper's example read "0.010 %", three
+    decimals of nothing; "below 0.1 %" wrapped a projector's readouts onto a third row).
+
+    >>> ripple_text(0.0001049), ripple_text(0.001234), ripple_text(0.01234), ripple_text(0.1567)
+    ('< 0.1 %', '0.12 %', '1.2 %', '16 %')
+    >>> ripple_text(12.34), ripple_text(0.0)
+    ('1,234 %', '0 %')
+    """
+    value = 100.0 * ripple
+    if value == 0.0:
+        return "0 %"
+    if value < 0.1:
+        return "< 0.1 %"  # escaped where shown: the readout is HTML
+    if value >= 10.0:
+        return f"{value:,.0f} %"
+    decimals = 1 - math.floor(math.log10(value))  # two significant figures
+    return f"{value:.{decimals}f} %"
+
+
+# Why the overall efficiency can stand above the volumetric one with a leak hole (the docs' model,
+# Energy): the tooltip of the readout that shows both.
+EFFICIENCY_TIP = (
+    "Volumetric: water delivered over the volume the pistons swept. Overall: the lifted water's "
+    "energy ρ_w g h V over the work spent on the water (the windmill's work less the kinetic and "
+    "potential energy stored). With a leak hole the overall can be the higher: water that slips "
+    "back through the hole while a piston moves slowly (near its dead centres) was pushed at a "
+    "pressure below the head's, so the leak costs less work per litre than lifting does."
+)
 
 
 def percent(value: float) -> str:
@@ -233,12 +273,19 @@ def start_text(seen: windpump.Exploration) -> str:
     peak = windpump.peak_load_torque(d)
     if seen.starts_from_rest and peak == 0.0:  # a leak hole, no reciprocating weight
         return (
-            f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m; at rest the water "
+            f"It starts on its own from any angle (its torque at rest on the crank "
+            f"R†T₀ = {at_rest:.2f} N·m; at rest the water "
             "slips back through the leak hole and the piston carries no load)."
         )
     if seen.starts_from_rest:
-        return f"It starts on its own from any angle (R†T₀ = {at_rest:.2f} N·m > peak load {peak:.2f} N·m)."
-    return f"It does not start on its own from every angle (R†T₀ = {at_rest:.2f} N·m ≤ peak load {peak:.2f} N·m)."
+        return (
+            f"It starts on its own from any angle (its torque at rest on the crank "
+            f"R†T₀ = {at_rest:.2f} N·m > peak load {peak:.2f} N·m)."
+        )
+    return (
+        f"It does not start on its own from every angle (its torque at rest on the crank "
+        f"R†T₀ = {at_rest:.2f} N·m ≤ peak load {peak:.2f} N·m)."
+    )
 
 
 def status_text(seen: windpump.Exploration) -> str:

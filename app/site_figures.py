@@ -69,10 +69,10 @@ def monthly_figure(s: dict, c: dict):
             renderers=[pumped],
             tooltips=[
                 ("month", "@month"),
-                ("pumped", "@pumped{0.0} m³"),
-                ("demand", "@demand{0.0} m³"),
-                ("delivered", "@delivered{0.0} m³"),
-                ("short", "@shortfall{0.0} m³"),
+                ("pumped", "@pumped{0,0.0} m³"),
+                ("demand", "@demand{0,0.0} m³"),
+                ("delivered", "@delivered{0,0.0} m³"),
+                ("short", "@shortfall{0,0.0} m³"),
             ],
         )
     )
@@ -142,8 +142,8 @@ def level_figure(s: dict, c: dict):
             renderers=[edge],
             tooltips=[
                 ("day", "@t{0}"),
-                ("mean", "@mean{0.0} m³"),
-                ("range", "@lower{0.0} to @upper{0.0} m³"),
+                ("mean", "@mean{0,0.0} m³"),
+                ("range", "@lower{0,0.0} to @upper{0,0.0} m³"),
             ],
             mode="vline",
         )
@@ -219,7 +219,7 @@ def lolp_figure(s: dict, c: dict):
     fig.add_tools(
         HoverTool(
             renderers=[curve],
-            tooltips=[("tank", "@tank{0.0} m³"), ("LOLP", "@lolp{0.0} %")],
+            tooltips=[("tank", "@tank{0,0.0} m³"), ("LOLP", "@lolp{0.0} %")],
             mode="vline",
         )
     )

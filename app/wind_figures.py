@@ -106,7 +106,7 @@ def day_figures(s: dict, c: dict):
     litres.add_tools(
         HoverTool(
             renderers=[lifted],
-            tooltips=[("t", "@t{0.00} h"), ("water", "@litres{0} L")],
+            tooltips=[("t", "@t{0.00} h"), ("water", "@litres{0,0} L")],
             mode="vline",
         )
     )

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import logging
+import math
 
 import numpy as np
 import panel as pn
@@ -50,12 +51,48 @@ from .wind_steady import steady_wind
 
 log = logging.getLogger("windpump.app")
 
+# The averaged theory's two bounds (windpump.record_water, water_per_day) are two answers to one
+# question, said as such: the water if the pump must start from rest in each wind, and once
+# running ("0 … 30,098" read as a range of unknown meaning).
+BOUNDS = "from rest · once running"
 WIND_READOUTS = {
     "day_litres": "This day, in full [L/day]",
-    "record_bounds": "Averaged over this day's wind [L/day]",
-    "site_bounds": "Averaged over the site's Weibull wind [L/day]",
+    "record_bounds": f"Averaged over this day's wind [L/day], {BOUNDS}",
+    "site_bounds": f"Averaged over the site's Weibull wind [L/day], {BOUNDS}",
     "thresholds": "V_stop · V_start [m/s]",
 }
+BOUNDS_TIP = (
+    "The averaged theory's water a day. From rest: counting only the winds above V_start, in "
+    "which the pump starts on its own (0 without torque at rest, T₀ = 0). Once running: counting "
+    "every wind above V_stop, in which a turning pump keeps turning. Three significant figures: "
+    "the averaged theory is no closer than that."
+)
+
+
+def three_figures(value: float) -> str:
+    """A number to three significant figures, with the page's thousands separator.
+
+    >>> three_figures(30_098.4), three_figures(1_234_567.0), three_figures(45.67), three_figures(0.0)
+    ('30,100', '1,230,000', '45.7', '0')
+    >>> three_figures(0.012345)
+    '0.0123'
+    """
+    if value == 0.0 or not math.isfinite(value):
+        return f"{value:g}"
+    decimals = 2 - math.floor(math.log10(abs(value)))
+    rounded = round(value, decimals)
+    return f"{rounded:,.{max(decimals, 0)}f}"
+
+
+def bounds_text(low: float, high: float) -> str:
+    """The averaged theory's (from rest, once running) water a day [L/day], as the readout says it.
+
+    >>> bounds_text(0.0, 30_098.4)
+    '0 · 30,100'
+    """
+    return f"{three_figures(low)} · {three_figures(high)}"
+
+
 # An upload's outcome, by the CSS class that scrolls it into view (uploads.Reveal)
 WIND_MESSAGE, WIND_DAY_NOTE = "wind-message", "wind-day-note"
 
@@ -278,7 +315,7 @@ class WindTab(Tab):
             WIND_READOUTS["thresholds"], f"{steady.V_stop:.1f} · {start}"
         )
         self.readouts["site_bounds"].show(
-            WIND_READOUTS["site_bounds"], f"{steady.low:,.0f} … {steady.high:,.0f}"
+            WIND_READOUTS["site_bounds"], bounds_text(steady.low, steady.high), BOUNDS_TIP
         )
 
     def wind(self, inputs) -> windpump.wind.WindRecord | tuple:
@@ -371,8 +408,9 @@ class WindTab(Tab):
         self.readouts["record_bounds"].show(
             WIND_READOUTS["record_bounds"]
             if is_a_day(duration)
-            else "Averaged over this record's wind [L/day]",
-            f"{LITRES_PER_M3 * low:,.0f} … {LITRES_PER_M3 * high:,.0f}",
+            else f"Averaged over this record's wind [L/day], {BOUNDS}",
+            bounds_text(LITRES_PER_M3 * low, LITRES_PER_M3 * high),
+            BOUNDS_TIP,
         )
         if self.measured is not None:
             source += f" ({duration_text(duration)})"
@@ -522,7 +560,8 @@ class WindTab(Tab):
             pn.FlexBox(*day, flex_wrap="wrap", sizing_mode="stretch_width"),
             caption(
                 "The wind's run integrated in full (Eq. 12 with the curve following V(t)), a day's "
-                "or a record's: a pump at rest waits until R†T₀(V/V_ref)² beats the load at its "
+                "or a record's: a pump at rest waits until the windmill's torque at rest on the crank, "
+                "R†T₀(V/V_ref)², beats the load at its "
                 "angle. Red: stops; green: starts."
             ),
             sizing_mode="stretch_width",

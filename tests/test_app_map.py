@@ -374,6 +374,40 @@ def test_once_the_page_says_the_maps_size_every_label_lies_inside_it_clear_of_th
         assert not np.delete(overlap(boxes, box), i).any()
 
 
+@pytest.mark.parametrize("width, height", [(1400, 335), (750, 335), (1400, 700)])
+def test_every_label_keeps_a_gap_from_the_maps_edges(app, width, height):
+    """At 1280×720 and 1920×1080 the paper's example drew "200 m³/day" on the frame's foot and
+    "10 m³/day" against its top (their boxes 0 and 1 px from the edge): a newcomer read them as
+    cut. Every label's box (LABEL_PX, as placed and drawn: its anchor on its line, shifted by its
+    pixel offsets) keeps at least 4 px from each edge of the frame the page reports."""
+    from windpump_app.map_tab import LABEL_PX, label_box
+
+    tab = app.design_map
+    tab.figure.set_from_json("inner_width", width)
+    tab.figure.set_from_json("inner_height", height)
+    labels = tab.sources["contour_labels"].data
+    assert len(labels["x"]) >= 4
+    bounds = (tab.ratios[0], tab.ratios[-1]), (tab.heads[0], tab.heads[-1])
+    size = (LABEL_PX[0] / width, LABEL_PX[1] / height)
+    boxes = label_box(labels["x"], labels["y"], labels["align"], labels["baseline"], *bounds, size)
+    none = [0.0] * len(labels["x"])  # (a label drawn at its anchor)
+    dx = np.asarray(labels.get("x_offset", none), dtype=float)  # [px] right
+    dy = -np.asarray(labels.get("y_offset", none), dtype=float)  # [px] up
+    assert np.all(np.abs(dx) <= 12) and np.all(np.abs(dy) <= 12)  # still on their lines
+    left, bottom = boxes[:, 0] * width + dx, boxes[:, 1] * height + dy
+    right, top = (1 - boxes[:, 2]) * width - dx, (1 - boxes[:, 3]) * height - dy
+    gaps = np.min([left, bottom, right, top], axis=0)
+    assert np.all(gaps >= 4.0), dict(zip(labels["text"], np.round(gaps, 1), strict=True))
+    drawn = np.column_stack([left, bottom, width - right, height - top])  # [px], as drawn
+    for i, box in enumerate(drawn):
+        others = np.delete(drawn, i, axis=0)
+        apart = (
+            (others[:, 2] <= box[0]) | (others[:, 0] >= box[2])
+            | (others[:, 3] <= box[1]) | (others[:, 1] >= box[3])
+        )  # fmt: skip
+        assert apart.all(), (labels["text"][i], drawn)
+
+
 def test_no_label_lies_under_this_designs_star_wherever_it_moves(app):
     """The star marks the design on the map; a label under it could not be read (a phone
     showed "100 m³/d★"): the labels are placed again clear of it each time it moves."""

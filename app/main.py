@@ -16,16 +16,7 @@ from .link import utf8_keys
 from .link_values import link_values_read_safely
 from .pump import ORDER
 from .server.memory import TIDY
-from .server.patches import (
-    fake_roots_forgotten,
-    lighter_components,
-    lighter_patches,
-    lighter_properties,
-    lighter_updates,
-    without_mathjax,
-    without_webgl,
-    writes_not_stranded,
-)
+from .server.patches import apply_all
 from .server.sessions import (
     READOUTS_FIRST,
     SOLVER_READY,
@@ -42,14 +33,7 @@ from .viewport import report_views_seen
 pn.extension(notifications=False)
 document = pn.state.curdoc
 link_values_read_safely()  # before pn.state.location reads the link
-without_mathjax()
-without_webgl()
-lighter_patches()
-lighter_updates()
-writes_not_stranded()
-fake_roots_forgotten()
-lighter_properties()
-lighter_components()
+apply_all()  # Panel's and Bokeh's patches (server.patches), each once per process
 stylesheets_from_this_server(document)
 keyboard_and_screen_readers(document)
 guard_uploads(document, route=page_opened(document))  # a wind or site file by HTTP

@@ -443,6 +443,55 @@ def test_served_a_year_runs_off_the_loop_says_so_and_the_newest_wins(held):
     check_drawn(app, year(site="sand_point", demand=9.0)[1], 5.0)
 
 
+def test_served_the_first_years_readouts_go_before_the_figures(held, monkeypatch):
+    """Served, the tab is sent without its figures while its first year is computed, the year's
+    readouts are sent, and the figures are placed on a later tick, with that year's data: a
+    browser builds a tab's views before it reads the next message, and the readouts waited
+    ~0.7 s for the three figures' views before (the Site tab's first use, issue 37)."""
+    from windpump_app import site_tab
+
+    ticks: list = []
+    monkeypatch.setattr(site_tab, "later", ticks.append, raising=False)
+    app = Explorer()
+    app.main().active = SITE_TAB
+    layout = app.site.__panel__()
+
+    def placed() -> list:
+        return [pane.object for pane in layout.select(pn.pane.Bokeh)]
+
+    assert len(held) == 1 and app.site.computing.visible
+    assert placed() == [] and not ticks  # the controls and readouts alone, until the year comes
+    finish(held.pop())
+    _, supplied = year()
+    assert value(app, "site_lolp") == f"{100 * supplied.lolp:.1f} %"  # the readouts now
+    assert placed() == [] and len(ticks) == 1  # the figures on the next tick
+    ticks.pop()()
+    assert placed() == app.site.figures()
+    check_drawn(app, supplied, 5.0)
+    app.site_inputs.demand = 8.0  # later years: drawn in the figures placed
+    finish(held.pop())
+    assert not ticks and placed() == app.site.figures()
+    check_drawn(app, year(demand=8.0)[1], 5.0)
+
+
+def test_a_first_year_that_cannot_run_still_places_the_figures(held, monkeypatch):
+    """A first year that cannot run says why, and the figures are placed all the same
+    (in-process ``later`` runs at once), with their placeholder ranges."""
+    from windpump_app import site_tab
+
+    def refused(*_args):
+        raise ValueError("hub must be at most 60 m, got 99")
+
+    monkeypatch.setattr(site_tab, "run_year", refused)
+    app = Explorer()
+    app.main().active = SITE_TAB
+    layout = app.site.__panel__()
+    assert [pane.object for pane in layout.select(pn.pane.Bokeh)] == []
+    finish(held.pop())
+    assert app.site.error.visible and "hub must be at most 60 m" in app.site.error.object
+    assert [pane.object for pane in layout.select(pn.pane.Bokeh)] == app.site.figures()
+
+
 def test_served_an_upload_is_read_off_the_loop_and_the_newest_file_wins(held):
     """Served, a weather file is read off the event loop, the tab saying so; of two files chosen
     one after the other, the later one's is the site even when the earlier is read last, and a

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable
 
 import panel as pn
 from bokeh.models import ColumnDataSource
@@ -22,7 +23,7 @@ from .escape import as_text
 from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
-from .server.api import Newest, off_the_loop
+from .server.api import Newest, off_the_loop, served_document
 from .sidebar import PromptSlider
 from .site_figures import (
     level_figure,
@@ -61,6 +62,39 @@ CAPTION = (
 
 
 COMPUTING = "**Computing the water at the site…**"
+# Asked (1), the page answers (2) once it has painted what it was sent before: a frame's callback
+# runs before that frame is painted, a timer set in it after.
+AFTER_PAINT_JS = """
+if (source.value === 1) {
+  requestAnimationFrame(() => setTimeout(() => { source.value = 2 }))
+}
+"""
+FIGURES_AFTER = 5000  # [ms] the figures placed anyway (a page in a hidden browser tab paints none)
+
+
+class AfterPaint(pn.widgets.IntInput):
+    """Hidden; ``ask(then)``: ``then()`` once the page has painted what it was sent before the
+    asking (at once in-process), or after FIGURES_AFTER at the latest."""
+
+    def __init__(self, **params):
+        super().__init__(value=0, visible=False, **params)
+        self._then = None
+        self.jscallback(value=AFTER_PAINT_JS)
+        self.param.watch(self._painted, "value")
+
+    def ask(self, then) -> None:
+        document = served_document()
+        if document is None:
+            then()
+            return
+        self._then = then
+        self.value = 1
+        document.add_timeout_callback(then, FIGURES_AFTER)
+
+    def _painted(self, event) -> None:
+        if event.new == 2 and self._then is not None:
+            then, self._then = self._then, None
+            then()
 
 
 def number_text(value: float, unit: str = "", digits: int = 1) -> str:
@@ -117,6 +151,8 @@ class SiteTab(Tab):
         )
         self.supplied: windpump.Supply | None = None  # the year drawn
         self.figures_due = False  # a year came back (or failed): the figures go in the layout
+        self._placing: Callable[[], None] | None = None  # the tab's content, held for its year
+        self.after_paint = AfterPaint()  # the figures after the readouts are painted
         self._rows: tuple = ()  # the layout's rows that take the figures, once it is built
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
@@ -179,15 +215,31 @@ class SiteTab(Tab):
 
     def _show(self, asked: Asked, outcome) -> None:
         """Draw the year ``outcome`` (a ``Year``) of ``asked`` (the newest asked for); a year
-        that cannot be run says why, the one drawn stays. The first outcome's readouts are
-        sent first, the figures placed on the next tick (``place_figures``)."""
-        self.computing.visible = False
-        try:
-            self._outcome(asked, outcome)
-        finally:
-            if not self.figures_due:
-                self.figures_due = True
-                later(self.place_figures)
+        that cannot be run says why, the one drawn stays. The first one places the tab's
+        content (held by ``when_ready``) with its readouts, and the figures once the page has
+        painted them (``place_figures``, ``AfterPaint``)."""
+        with pn.io.hold():  # one message: the computing note gone, the readouts come
+            self.computing.visible = False
+            try:
+                self._outcome(asked, outcome)
+            finally:
+                if not self.figures_due:
+                    placing, self._placing = self._placing, None
+                    if placing is not None:
+                        placing()
+                    self.figures_due = True
+                    later(lambda: self.after_paint.ask(self.place_figures))
+
+    def when_ready(self, place: Callable[[], None]) -> None:
+        """The tab's content placed once its first year has come (at once if it has): sent
+        with its numbers, the browser lays it out once. Before, a first open's content came
+        with a "computing" note and empty readouts, and each change after it (the note hidden,
+        the readouts, the figures) cost chromium a layout of every built tab: ~0.8 s each
+        with the Mechanisms, Wind and Design map tabs built (a 2-core machine)."""
+        if self.figures_due:
+            place()
+        else:
+            self._placing = place
 
     def _outcome(self, asked: Asked, outcome) -> None:
         if isinstance(outcome, ValueError):
@@ -205,10 +257,10 @@ class SiteTab(Tab):
     def place_figures(self) -> None:
         """The figures into the layout, once the first year has come (or failed), in a message
         after its readouts'. A browser builds a tab's views before it reads the next message:
-        the tab's three figures, sent with its controls, took chromium ~0.6-0.8 s (2 cores, a
-        few tabs open), and the year's readouts, sent meanwhile, waited for that and for the
-        figures' second layout with their data (the tab's first use 1.3-2.1 s, the server's
-        part ~0.35 s). Sent after the readouts, the figures come with their data."""
+        the tab's three figures, sent with its controls, took chromium ~0.6-0.8 s (~2.9 s with
+        three tabs built before it), and the year's readouts, sent meanwhile, waited for that
+        and for the figures' second layout with their data (the server's part ~0.35 s). Sent
+        after the readouts, the figures come with their data."""
         if not self._rows or len(self._rows[1]) > 0:
             return  # the layout is not built yet (it places them), or placed already
         upper, lower, caption = self._rows
@@ -336,6 +388,7 @@ class SiteTab(Tab):
             upper,
             lower,
             caption,
+            self.after_paint,
             sizing_mode="stretch_width",
         )
 

@@ -235,8 +235,9 @@ class SiteTab(Tab):
         with its numbers, the browser lays it out once. Before, a first open's content came
         with a "computing" note and empty readouts, and each change after it (the note hidden,
         the readouts, the figures) cost chromium a layout of every built tab: ~0.8 s each
-        with the Mechanisms, Wind and Design map tabs built (a 2-core machine)."""
-        if self.figures_due:
+        with the Mechanisms, Wind and Design map tabs built (a 2-core machine). While its part
+        of the solver compiles (a first start) it is placed at once, saying how far that is."""
+        if self.figures_due or COMPILE.waiting(SITE_TAB):  # compiling: its progress shown
             place()
         else:
             self._placing = place

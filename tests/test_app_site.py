@@ -479,6 +479,26 @@ def test_served_the_first_year_places_the_tab_with_its_readouts_then_its_figures
     check_drawn(app, year(demand=8.0)[1], 5.0)
 
 
+def test_while_its_part_compiles_the_tab_is_placed_at_once_saying_so(held):
+    """On a first start the year waits for its part of the solver: the tab is placed at once
+    (not held for its year), its note saying that the solver is compiling."""
+    from windpump_app.compiling import COMPILE
+    from windpump_app.compiling import SITE_TAB as PART
+
+    COMPILE.begin([PART])
+    try:
+        app = Explorer()
+        strip = app.main()
+        strip.active = SITE_TAB
+        assert app.site.computing in strip.objects[SITE_TAB].objects
+        assert app.site.computing.visible and "ompiling the solver" in app.site.computing.object
+    finally:
+        COMPILE.done(PART)
+    finish(held.pop())
+    assert not app.site.computing.visible
+    assert value(app, "site_lolp") == f"{100 * year()[1].lolp:.1f} %"
+
+
 def test_served_the_figures_wait_for_the_page_to_paint_the_readouts(monkeypatch):
     """Served, ``AfterPaint`` asks the page (value 1) and runs what waits once the page answers
     (2, set by its script after the next paint), once, or after FIGURES_AFTER at the latest (a

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable
 
 import panel as pn
 from bokeh.models import ColumnDataSource
@@ -22,7 +23,7 @@ from .escape import as_text
 from .figures import palette
 from .keyboard import FOCUS_CSS
 from .readouts import Readout
-from .server.api import Newest, off_the_loop
+from .server.api import Newest, off_the_loop, served_document
 from .sidebar import PromptSlider
 from .site_figures import (
     level_figure,
@@ -36,7 +37,7 @@ from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
 from .site_record import SiteRecords, read_upload, span, supply_status
 from .site_year import Asked, Year, run_year, tank_range
 from .styles import CAPTION_CSS, COMPACT, TEXT
-from .tab import Tab
+from .tab import Tab, later
 from .uploads import Encoded, sending_note
 from .views import refill
 
@@ -61,6 +62,39 @@ CAPTION = (
 
 
 COMPUTING = "**Computing the water at the site…**"
+# Asked (1), the page answers (2) once it has painted what it was sent before: a frame's callback
+# runs before that frame is painted, a timer set in it after.
+AFTER_PAINT_JS = """
+if (source.value === 1) {
+  requestAnimationFrame(() => setTimeout(() => { source.value = 2 }))
+}
+"""
+FIGURES_AFTER = 5000  # [ms] the figures placed anyway (a page in a hidden browser tab paints none)
+
+
+class AfterPaint(pn.widgets.IntInput):
+    """Hidden; ``ask(then)``: ``then()`` once the page has painted what it was sent before the
+    asking (at once in-process), or after FIGURES_AFTER at the latest."""
+
+    def __init__(self, **params):
+        super().__init__(value=0, visible=False, **params)
+        self._then = None
+        self.jscallback(value=AFTER_PAINT_JS)
+        self.param.watch(self._painted, "value")
+
+    def ask(self, then) -> None:
+        document = served_document()
+        if document is None:
+            then()
+            return
+        self._then = then
+        self.value = 1
+        document.add_timeout_callback(then, FIGURES_AFTER)
+
+    def _painted(self, event) -> None:
+        if event.new == 2 and self._then is not None:
+            then, self._then = self._then, None
+            then()
 
 
 def number_text(value: float, unit: str = "", digits: int = 1) -> str:
@@ -116,6 +150,10 @@ class SiteTab(Tab):
             stylesheets=TEXT,
         )
         self.supplied: windpump.Supply | None = None  # the year drawn
+        self.figures_due = False  # a year came back (or failed): the figures go in the layout
+        self._placing: Callable[[], None] | None = None  # the tab's content, held for its year
+        self.after_paint = AfterPaint()  # the figures after the readouts are painted
+        self._rows: tuple = ()  # the layout's rows that take the figures, once it is built
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._drawn: Asked | None = None  # what the year drawn was asked for
@@ -177,8 +215,34 @@ class SiteTab(Tab):
 
     def _show(self, asked: Asked, outcome) -> None:
         """Draw the year ``outcome`` (a ``Year``) of ``asked`` (the newest asked for); a year
-        that cannot be run says why, the one drawn stays."""
-        self.computing.visible = False
+        that cannot be run says why, the one drawn stays. The first one places the tab's
+        content (held by ``when_ready``) with its readouts, and the figures once the page has
+        painted them (``place_figures``, ``AfterPaint``)."""
+        with pn.io.hold():  # one message: the computing note gone, the readouts come
+            self.computing.visible = False
+            try:
+                self._outcome(asked, outcome)
+            finally:
+                if not self.figures_due:
+                    placing, self._placing = self._placing, None
+                    if placing is not None:
+                        placing()
+                    self.figures_due = True
+                    later(lambda: self.after_paint.ask(self.place_figures))
+
+    def when_ready(self, place: Callable[[], None]) -> None:
+        """The tab's content placed once its first year has come (at once if it has): sent
+        with its numbers, the browser lays it out once. Before, a first open's content came
+        with a "computing" note and empty readouts, and each change after it (the note hidden,
+        the readouts, the figures) cost chromium a layout of every built tab: ~0.8 s each
+        with the Mechanisms, Wind and Design map tabs built (a 2-core machine). While its part
+        of the solver compiles (a first start) it is placed at once, saying how far that is."""
+        if self.figures_due or COMPILE.waiting(SITE_TAB):  # compiling: its progress shown
+            place()
+        else:
+            self._placing = place
+
+    def _outcome(self, asked: Asked, outcome) -> None:
         if isinstance(outcome, ValueError):
             self.failed(f"The year cannot be run: {as_text(outcome)}")
             return
@@ -190,6 +254,21 @@ class SiteTab(Tab):
         except Exception as error:  # a bug: say so, log it, keep the session alive
             log.exception("Site update failed")
             self.failed(f"Something went wrong ({type(error).__name__}: {as_text(error)}).")
+
+    def place_figures(self) -> None:
+        """The figures into the layout, once the first year has come (or failed), in a message
+        after its readouts'. A browser builds a tab's views before it reads the next message:
+        the tab's three figures, sent with its controls, took chromium ~0.6-0.8 s (~2.9 s with
+        three tabs built before it), and the year's readouts, sent meanwhile, waited for that
+        and for the figures' second layout with their data (the server's part ~0.35 s). Sent
+        after the readouts, the figures come with their data."""
+        if not self._rows or len(self._rows[1]) > 0:
+            return  # the layout is not built yet (it places them), or placed already
+        upper, lower, caption = self._rows
+        with pn.io.hold():
+            upper.append(self._boxed(self.monthly, 2))
+            lower.extend([self._boxed(self.level), self._boxed(self.lolp)])
+            caption.visible = True
 
     def _draw_year(self, asked: Asked, year: Year) -> None:
         if year.lolp is not None:
@@ -278,10 +357,8 @@ class SiteTab(Tab):
         return [self.monthly, self.level, self.lolp]
 
     def layout(self) -> pn.Column:
-        def caption(text: str):
-            return pn.pane.HTML(f"<p>{text}</p>", stylesheets=CAPTION_CSS)
-
-        flex = {"flex": "1 1 460px", "min-width": "300px"}
+        """The readouts, messages and controls; the figures placed once the first year has come
+        (``place_figures``), at once if it has (in-process, the year is computed at once)."""
         controls = pn.Column(
             self.site_select,
             self.sliders["hub"],
@@ -297,28 +374,31 @@ class SiteTab(Tab):
             sizing_mode="stretch_width",
             styles={"flex": "1 1 300px", "min-width": "280px"},
         )
-
-        def boxed(fig, grow: int = 1):
-            return pn.Column(
-                pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
-                sizing_mode="stretch_width",
-                styles={**flex, "flex": f"{grow} 1 460px"},
-            )
-
+        upper = pn.FlexBox(controls, flex_wrap="wrap", sizing_mode="stretch_width")
+        lower = pn.FlexBox(flex_wrap="wrap", sizing_mode="stretch_width")
+        caption = pn.pane.HTML(f"<p>{CAPTION}</p>", stylesheets=CAPTION_CSS, visible=False)
+        self._rows = (upper, lower, caption)
+        if self.figures_due:
+            self.place_figures()
         return pn.Column(
             pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width"),
             self.computing,
             self.error,
             self.note,
             self.status,
-            pn.FlexBox(
-                controls, boxed(self.monthly, 2), flex_wrap="wrap", sizing_mode="stretch_width"
-            ),
-            pn.FlexBox(
-                boxed(self.level), boxed(self.lolp), flex_wrap="wrap", sizing_mode="stretch_width"
-            ),
-            caption(CAPTION),
+            upper,
+            lower,
+            caption,
+            self.after_paint,
             sizing_mode="stretch_width",
+        )
+
+    @staticmethod
+    def _boxed(fig, grow: int = 1) -> pn.Column:
+        return pn.Column(
+            pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+            sizing_mode="stretch_width",
+            styles={"flex": f"{grow} 1 460px", "min-width": "300px"},
         )
 
 

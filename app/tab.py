@@ -102,6 +102,12 @@ class Tab(pn.viewable.Viewer):
             log.exception("%s update failed", self.title)
             self.failed(f"Something went wrong ({type(error).__name__}: {as_text(error)}).")
 
+    def when_ready(self, place: Callable[[], None]) -> None:
+        """``place()`` puts the tab's content in the page: here at once; a tab whose first
+        drawing runs off the loop may hold it until that is done (``SiteTab``), so that the
+        browser lays the content out once, with its numbers."""
+        place()
+
     def build(self) -> None:
         raise NotImplementedError
 
@@ -148,7 +154,7 @@ class PageTabs:
 
         def place(index: int) -> None:
             tab = self.open(self.tabs[index - 1])  # data first: a figure sent empty warns
-            strip[index] = (tab.title, tab)
+            tab.when_ready(lambda: strip.__setitem__(index, (tab.title, tab)))
 
         def chosen(event) -> None:
             self.shown(event.new)

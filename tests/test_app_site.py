@@ -443,6 +443,107 @@ def test_served_a_year_runs_off_the_loop_says_so_and_the_newest_wins(held):
     check_drawn(app, year(site="sand_point", demand=9.0)[1], 5.0)
 
 
+def test_served_the_first_year_places_the_tab_with_its_readouts_then_its_figures(held, monkeypatch):
+    """Served, a first open's content is held until its year has come and is then placed with
+    its readouts (no "computing" note or empty readouts first), and the figures a tick later,
+    with that year's data. A browser builds a tab's views before it reads the next message, and
+    lays out every built tab at each change: the readouts waited for the three figures' views
+    and for a layout per change, 1.3-2.1 s alone and 7-12 s with three tabs built (issue 37)."""
+    from windpump_app import site_tab
+
+    ticks: list = []
+    monkeypatch.setattr(site_tab, "later", ticks.append, raising=False)
+    app = Explorer()
+    strip = app.main()
+    strip.active = SITE_TAB
+
+    def placed() -> list:
+        return [pane.object for pane in strip.objects[SITE_TAB].select(pn.pane.Bokeh)]
+
+    assert len(held) == 1 and app.site.computing.visible
+    waiting = strip.objects[SITE_TAB]  # the content held for its year
+    assert isinstance(waiting, pn.pane.Markdown) and waiting.object == app.site.waiting
+    finish(held.pop())
+    _, supplied = year()
+    content = strip.objects[SITE_TAB]
+    assert app.site.readouts["site_lolp"] in content.objects[0].objects  # placed, with numbers
+    assert value(app, "site_lolp") == f"{100 * supplied.lolp:.1f} %"
+    assert not app.site.computing.visible
+    assert placed() == [] and len(ticks) == 1  # the figures on the next tick
+    ticks.pop()()
+    assert placed() == app.site.figures()
+    check_drawn(app, supplied, 5.0)
+    app.site_inputs.demand = 8.0  # later years: drawn in the figures placed
+    finish(held.pop())
+    assert not ticks and placed() == app.site.figures()
+    check_drawn(app, year(demand=8.0)[1], 5.0)
+
+
+def test_while_its_part_compiles_the_tab_is_placed_at_once_saying_so(held):
+    """On a first start the year waits for its part of the solver: the tab is placed at once
+    (not held for its year), its note saying that the solver is compiling."""
+    from windpump_app.compiling import COMPILE
+    from windpump_app.compiling import SITE_TAB as PART
+
+    COMPILE.begin([PART])
+    try:
+        app = Explorer()
+        strip = app.main()
+        strip.active = SITE_TAB
+        assert app.site.computing in strip.objects[SITE_TAB].objects
+        assert app.site.computing.visible and "ompiling the solver" in app.site.computing.object
+    finally:
+        COMPILE.done(PART)
+    finish(held.pop())
+    assert not app.site.computing.visible
+    assert value(app, "site_lolp") == f"{100 * year()[1].lolp:.1f} %"
+
+
+def test_served_the_figures_wait_for_the_page_to_paint_the_readouts(monkeypatch):
+    """Served, ``AfterPaint`` asks the page (value 1) and runs what waits once the page answers
+    (2, set by its script after the next paint), once, or after FIGURES_AFTER at the latest (a
+    timeout callback): a message sent behind the readouts kept chromium from painting them
+    until it had built the figures (~2.7 s with three tabs built before, issue 37)."""
+    from windpump_app import site_tab
+
+    timeouts = []
+
+    class Document:
+        def add_timeout_callback(self, callback, ms):
+            timeouts.append((callback, ms))
+
+    monkeypatch.setattr(site_tab, "served_document", Document)
+    ran = []
+    after = site_tab.AfterPaint()
+    assert not after.visible and "requestAnimationFrame" in site_tab.AFTER_PAINT_JS
+    after.ask(lambda: ran.append(1))
+    assert after.value == 1 and ran == [] and timeouts[0][1] == site_tab.FIGURES_AFTER
+    after.value = 2  # the page painted
+    assert ran == [1]
+    after.value = 1
+    after.value = 2  # asked by nobody: nothing runs again
+    assert ran == [1]
+
+
+def test_a_first_year_that_cannot_run_still_places_the_tab_and_its_figures(held, monkeypatch):
+    """A first year that cannot run places the tab all the same, saying why, and its figures
+    (in-process ``later`` runs at once), with their placeholder ranges."""
+    from windpump_app import site_tab
+
+    def refused(*_args):
+        raise ValueError("hub must be at most 60 m, got 99")
+
+    monkeypatch.setattr(site_tab, "run_year", refused)
+    app = Explorer()
+    strip = app.main()
+    strip.active = SITE_TAB
+    finish(held.pop())
+    assert app.site.error.visible and "hub must be at most 60 m" in app.site.error.object
+    assert app.site.error in strip.objects[SITE_TAB].objects
+    figures = [pane.object for pane in strip.objects[SITE_TAB].select(pn.pane.Bokeh)]
+    assert figures == app.site.figures()
+
+
 def test_served_an_upload_is_read_off_the_loop_and_the_newest_file_wins(held):
     """Served, a weather file is read off the event loop, the tab saying so; of two files chosen
     one after the other, the later one's is the site even when the earlier is read last, and a

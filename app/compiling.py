@@ -65,7 +65,7 @@ def first_page_ahead() -> None:
     1.5-3 s shorter, of ~13.5 s of CPU). No page waits for them: not a part."""
     import windpump
     from windpump._kernels.driver import compile_ahead
-    from windpump.dynamics import kernel_machine
+    from windpump.run.dynamics import kernel_machine
 
     compile_ahead(kernel_machine(windpump.Design.seed_example()))
 

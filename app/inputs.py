@@ -48,7 +48,7 @@ FORMATS = {
     "seed": ("0", "wind"),
 }
 
-# The real machine's inputs (windpump.design.REAL_MACHINE, diameters in mm): the ideal machine's
+# The real machine's inputs (windpump.model.design.REAL_MACHINE, diameters in mm): the ideal machine's
 # values by default.
 REAL_MACHINE_INPUTS = tuple(name for name, (_f, place) in FORMATS.items() if place == "real")
 

@@ -106,7 +106,7 @@ class LabData:
         """The page stopped a file over the size limit before sending it: say so, in the
         core's words; a size within the limit (tampered) is ignored."""
         try:
-            windpump.labdata.check_file_size(size)
+            windpump.readers.labdata.check_file_size(size)
         except ValueError as error:
             self.refuse(error)
 

@@ -32,6 +32,7 @@ from bokeh.palettes import Viridis256
 from bokeh.plotting.contour import contour_data
 
 import windpump
+from windpump.study.resampling import COARSE, fine_map
 from windpump.units import SECONDS_PER_DAY
 
 from .escape import as_text
@@ -46,7 +47,7 @@ from .views import refill
 log = logging.getLogger("windpump.app")
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
-LEAKY_GRID = 41  # a leaky pump's map, interpolated onto GRID: ~1.7 s
+LEAKY_GRID = COARSE  # a leaky pump's map, interpolated onto GRID: ~1.7 s
 STALE_ALPHA = (
     0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
 )
@@ -308,67 +309,11 @@ def label_anchor(
 def map_of(key: windpump.Design, ratios: tuple, heads: tuple) -> tuple:
     """(flow [m^3/s], stall (or, with a leak hole, delivery) and best gear ratios by head) of the
     design ``key`` (every input but R₁ and h) over the ``ratios`` and ``heads`` (the page's grid,
-    as (low, high, points)).
-    A leaky pump's averaged theory is a quadrature a point (~1 ms): it is mapped on a coarser
-    grid and interpolated onto the page's (a 160 x 160 map took 25 s; this one ~1.7 s, off the
-    event loop). Kept: the pages of a class mapping one design share it."""
-    ratios_, heads_ = np.linspace(*ratios), np.linspace(*heads)
-    if key.d_leak == 0.0:
-        mapped = windpump.design_map(key, ratios_, heads_)
-        return mapped.mean_flow, mapped.stall_gear_ratio, mapped.best_gear_ratio
-    coarse_ratios = np.linspace(ratios[0], ratios[1], LEAKY_GRID)
-    coarse_heads = np.linspace(heads[0], heads[1], LEAKY_GRID)
-    mapped = windpump.design_map(key, coarse_ratios, coarse_heads)
-    # Where its speed jumps up the flow jumps too: interpolated across the jump, the coarse grid
-    # drew a staircase along it. Each side is interpolated from its own values and the two are
-    # joined at the jump (found to ~2e-4 of the ratio), over the heads within a coarse row of one.
-    jump = mapped.jump_gear_ratio
-    flow_of = np.nan_to_num(mapped.mean_flow)
-    below, above = one_side(flow_of, coarse_ratios, jump)
-    left, right = (
-        bilinear(side, coarse_ratios, coarse_heads, ratios_, heads_) for side in (below, above)
-    )
-    boundary = jump_between(jump, coarse_heads, heads_)
-    flow = np.where(ratios_[np.newaxis, :] < boundary[:, np.newaxis], left, right)
-    return flow, boundary, np.interp(heads_, coarse_heads, mapped.best_gear_ratio)
-
-
-def one_side(flow: np.ndarray, ratios: np.ndarray, jump: np.ndarray) -> tuple:
-    """``flow`` (rows: heads) twice: with each row's values right of its ``jump`` (a ratio, NaN:
-    none) given its last one left of it, and with those left of it given its first one right."""
-    columns = np.arange(len(ratios))[np.newaxis, :]
-    last = np.searchsorted(ratios, np.nan_to_num(jump, nan=np.inf))[:, np.newaxis] - 1
-    last = np.clip(last, 0, len(ratios) - 2)  # a NaN row: last left of a jump never reached
-    rows = np.arange(len(flow))[:, np.newaxis]
-    jumps = np.isfinite(jump)[:, np.newaxis]
-    below = np.where(jumps & (columns > last), flow[rows, last], flow)
-    above = np.where(jumps & (columns <= last), flow[rows, last + 1], flow)
-    return below, above
-
-
-def bilinear(
-    values: np.ndarray, xs: np.ndarray, ys: np.ndarray, at_x: np.ndarray, at_y: np.ndarray
-):
-    """``values`` on (ys, xs) interpolated onto (at_y, at_x): along x, then along y."""
-    rows = np.array([np.interp(at_x, xs, row) for row in values])
-    return np.array([np.interp(at_y, ys, column) for column in rows.T]).T
-
-
-def jump_between(jump: np.ndarray, heads: np.ndarray, at: np.ndarray) -> np.ndarray:
-    """The ``jump`` ratios by ``heads`` interpolated at the heads ``at`` (extrapolated along the
-    line past its ends); NaN at a head neither of whose two rows has one."""
-    known = np.isfinite(jump)
-    if not known.any():
-        return np.full(at.shape, np.nan)
-    ends, jumps = heads[known], jump[known]
-    boundary = np.interp(at, ends, jumps)
-    if len(ends) > 1:  # past the first or last, along the line's end (it leaves the map there)
-        for out, k in ((at < ends[0], 0), (at > ends[-1], -2)):
-            slope = (jumps[k + 1] - jumps[k]) / (ends[k + 1] - ends[k])
-            boundary[out] = jumps[k] + slope * (at[out] - ends[k])
-    row = np.clip(np.searchsorted(heads, at, side="right") - 1, 0, len(heads) - 2)
-    near = known[row] | known[row + 1] | np.isin(at, heads[known])
-    return np.where(near, boundary, np.nan)
+    as (low, high, points)): the core's map for drawing (``windpump.study.resampling``: a leaky
+    pump's on a coarse grid, ~1.7 s, off the event loop). Kept: the pages of a class mapping one
+    design share it."""
+    drawn = fine_map(key, np.linspace(*ratios), np.linspace(*heads))
+    return drawn.mean_flow, drawn.edge_gear_ratio, drawn.best_gear_ratio
 
 
 def marks_of(design: windpump.Design, ratios: tuple) -> tuple[float, float, float]:

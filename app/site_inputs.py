@@ -8,7 +8,7 @@ from urllib.parse import urlencode
 
 import param
 
-from windpump.yearly import DEFAULT_RESTART
+from windpump.sites.yearly import DEFAULT_RESTART
 
 from .inputs import clipped, grid_text, read_slider_number
 
@@ -18,7 +18,7 @@ UPLOADED = "uploaded"  # a file read in this session: not carried by a link
 RESTARTS = {
     "attended": "Attended (V ≥ V_stop)",
     "self": "On its own (V ≥ V_start)",
-}  # the core's restarts (windpump.yearly.RESTARTS), labelled; the default is the core's
+}  # the core's restarts (windpump.sites.yearly.RESTARTS), labelled; the default is the core's
 
 
 class SiteInputs(param.Parameterized):

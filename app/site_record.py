@@ -12,7 +12,7 @@ from pathlib import Path
 import panel as pn
 
 import windpump
-from windpump.labdata import check_file_size
+from windpump.readers.labdata import check_file_size
 
 from .escape import as_text
 from .inputs import clipped

@@ -21,8 +21,8 @@ import panel as pn
 from bokeh.document import Document
 from bokeh.models import CustomJS
 
-from windpump.labdata import MAX_BYTES
-from windpump.wind import MAX_CSV_BYTES
+from windpump.model.wind import MAX_CSV_BYTES
+from windpump.readers.labdata import MAX_BYTES
 
 from .inputs import clipped
 

@@ -11,8 +11,8 @@ import dataclasses
 import numpy as np
 
 import windpump
+from windpump.model.wind import weibull_density, weibull_scale
 from windpump.units import LITRES_PER_M3
-from windpump.wind import weibull_density, weibull_scale
 
 POINTS = 400  # winds on the curve
 

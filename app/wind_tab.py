@@ -18,10 +18,10 @@ import panel as pn
 from bokeh.models import ColumnDataSource
 
 import windpump
-from windpump.labdata import LabDataError, check_file_size
-from windpump.site import kick_in_wind
+from windpump.model.wind import gusty, read_csv
+from windpump.readers.labdata import LabDataError, check_file_size
+from windpump.sites.site import kick_in_wind
 from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY
-from windpump.wind import gusty, read_csv
 
 from .buttons import ActionButton
 from .compiling import COMPILE, REAL_IN_WIND, WIND_TAB
@@ -146,7 +146,7 @@ def record_water_text(litres: float, per_day: float, duration: float) -> tuple[s
     )
 
 
-def read_record(data: bytes | Encoded) -> windpump.wind.WindRecord | str:
+def read_record(data: bytes | Encoded) -> windpump.model.wind.WindRecord | str:
     """A wind CSV read (served, in the file-reading process: ``serving.in_a_process``), or the
     sentence that refuses it (its size, its content, its length)."""
     try:
@@ -171,10 +171,10 @@ def _same_day(a: tuple, b: tuple) -> bool:
     )
 
 
-def wind_of(wind: windpump.wind.WindRecord | tuple) -> windpump.wind.WindRecord:
+def wind_of(wind: windpump.model.wind.WindRecord | tuple) -> windpump.model.wind.WindRecord:
     """The record a day runs in: the measured one, or the gusty day of a key (mean wind, k,
     time scale, seed), made off the event loop (~0.4 s) and kept."""
-    return wind if isinstance(wind, windpump.wind.WindRecord) else gusty_day(*wind)
+    return wind if isinstance(wind, windpump.model.wind.WindRecord) else gusty_day(*wind)
 
 
 def run_day(design, record, theta0: float, kick: float) -> tuple:
@@ -218,7 +218,7 @@ class WindTab(Tab):
 
     def build(self) -> None:
         self.colors = palette(self.dark)
-        self.measured: windpump.wind.WindRecord | None = None
+        self.measured: windpump.model.wind.WindRecord | None = None
         self.measured_name = ""
         self.sources: dict[str, ColumnDataSource] = {}
         self.readouts = {name: Readout(name, css_classes=PAIR) for name in WIND_READOUTS}
@@ -318,7 +318,7 @@ class WindTab(Tab):
             WIND_READOUTS["site_bounds"], bounds_text(steady.low, steady.high), BOUNDS_TIP
         )
 
-    def wind(self, inputs) -> windpump.wind.WindRecord | tuple:
+    def wind(self, inputs) -> windpump.model.wind.WindRecord | tuple:
         """The day's wind: the measured record if one was loaded, else the gusty day's key
         (``wind_of`` makes it)."""
         if self.measured is not None:
@@ -423,7 +423,7 @@ class WindTab(Tab):
 
     # -- a measured record -------------------------------------------------------------------
 
-    def accept(self, record: windpump.wind.WindRecord | str, name: str) -> bool:
+    def accept(self, record: windpump.model.wind.WindRecord | str, name: str) -> bool:
         """``record`` (read by ``read_record``) becomes the day's wind; a refusal is said."""
         self.upload_message.alert_type = "danger"
         if isinstance(record, str):

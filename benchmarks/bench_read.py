@@ -1,4 +1,4 @@
-"""Reading a large wind CSV: the time and the memory of ``windpump.wind.read_csv`` and
+"""Reading a large wind CSV: the time and the memory of ``windpump.model.wind.read_csv`` and
 ``windpump.read_weather`` on a file near the limit (``MAX_CSV_BYTES``, 50 MB).
 
 Run: python benchmarks/bench_read.py [megabytes] [seconds|iso]
@@ -21,8 +21,8 @@ import numpy as np
 
 CHILD = """
 import resource, sys, time
-import windpump, windpump.wind, windpump.weather
-reader = {"read_csv": windpump.wind.read_csv, "read_weather": windpump.read_weather}[sys.argv[2]]
+import windpump, windpump.model.wind, windpump.sites.weather
+reader = {"read_csv": windpump.model.wind.read_csv, "read_weather": windpump.read_weather}[sys.argv[2]]
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 start = time.perf_counter()
 record = reader(sys.argv[1])

@@ -18,7 +18,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 
 import windpump
-from windpump.studies import FIGURES, figures_of
+from windpump.study.studies import FIGURES, figures_of
 
 SEED = windpump.Design.seed_example()
 

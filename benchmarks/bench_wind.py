@@ -26,8 +26,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import windpump
+from windpump.model.wind import gusty
 from windpump.units import SECONDS_PER_DAY
-from windpump.wind import gusty
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from reference import summed_load, wind_reference_run, wind_rhs  # noqa: E402

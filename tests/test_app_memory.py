@@ -180,7 +180,7 @@ def test_a_class_gone_its_designs_are_forgotten(monkeypatch):
     """Once every page has closed the designs the class moved to are forgotten: made among the
     pages' objects, kept, they kept those pages' memory (``serving.forget_the_class``)."""
     import windpump
-    from windpump.dynamics import ideal_of
+    from windpump.run.dynamics import ideal_of
     from windpump_app.server import memory as serving
 
     monkeypatch.setattr(serving, "_LIBC", None)

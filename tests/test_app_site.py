@@ -19,7 +19,7 @@ import param
 import pytest
 
 import windpump
-from windpump.labdata import LabDataError
+from windpump.readers.labdata import LabDataError
 from windpump_app.explorer import Explorer
 from windpump_app.server.threads import SUPERSEDED
 from windpump_app.site_inputs import RESTARTS, SiteInputs
@@ -95,10 +95,10 @@ def test_opening_the_tab_runs_the_year_at_greensboro(app):
 def test_one_default_restart_in_the_core_the_command_and_the_tab():
     """Issue 37: the command line restarted "self" and the Site tab "attended". Now one constant
     is the default of the core's functions, of --restart and of the tab's control."""
-    from windpump.cli import build_parser
-    from windpump.fullyear import full_year
-    from windpump.yearly import DEFAULT_RESTART
-    from windpump.yearly import RESTARTS as CORE_RESTARTS
+    from windpump.command.cli import build_parser
+    from windpump.sites.fullyear import full_year
+    from windpump.sites.yearly import DEFAULT_RESTART
+    from windpump.sites.yearly import RESTARTS as CORE_RESTARTS
 
     assert DEFAULT_RESTART == "attended" and set(RESTARTS) == set(CORE_RESTARTS)
     for function in (windpump.supply, windpump.tank_for, windpump.supply_map, full_year):

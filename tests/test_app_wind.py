@@ -11,8 +11,8 @@ import pytest
 from scipy import special, stats
 
 import windpump
+from windpump.model.wind import gusty, read_csv
 from windpump.units import SECONDS_PER_DAY as DAY
-from windpump.wind import gusty, read_csv
 from windpump_app.explorer import Explorer
 from windpump_app.views import BINS
 
@@ -217,7 +217,7 @@ def test_the_stops_and_starts_legend_lists_only_what_the_day_has(app):
 
 
 def test_the_kick_slider_does_not_rerun_the_day_of_a_windmill_that_starts_on_its_own(app):
-    """Such a windmill is let go from rest (windpump.site.kick_in_wind): the day is the same run."""
+    """Such a windmill is let go from rest (windpump.sites.site.kick_in_wind): the day is the same run."""
     app.set_values(T_0=0.4)
     assert windpump.starts_from_rest(app.inputs.design())
     day = app.wind.last_run

@@ -64,15 +64,29 @@ def test_the_core_never_imports_the_app(path):
 
 
 @pytest.mark.parametrize("path", KERNEL_FILES, ids=lambda p: p.name)
-def test_the_kernels_import_nothing_of_the_package(path):
+def test_the_kernels_import_of_the_package_only_the_model_s_equations(path):
     allowed = KERNEL_LIBRARIES | set(sys.stdlib_module_names)
-    # Inside _kernels/__init__.py a level-1 import is a kernel module; a deeper one leaves _kernels.
+    # A level-1 import is a kernel module; a deeper one leaves _kernels: only for the equations.
     bad = [
         (level, name, line)
         for level, name, line in imports(parsed(path))
-        if level > 1 or (level == 0 and root(name) not in allowed)
+        if (level > 1 and imported_modules(path, parsed_import(path, line)) != [EQUATIONS])
+        or (level == 0 and root(name) not in allowed)
     ]
     assert bad == [], f"_kernels/{path.name} imports outside the kernels: {bad}"
+
+
+EQUATIONS = "windpump.model.equations"
+
+
+def parsed_import(path: Path, line: int) -> ast.ImportFrom:
+    """The ``from ... import`` statement on ``line`` of ``path``."""
+    [node] = [
+        node
+        for node in ast.walk(parsed(path))
+        if isinstance(node, ast.ImportFrom) and node.lineno == line
+    ]
+    return node
 
 
 @pytest.mark.parametrize("path", CORE_FILES, ids=lambda p: str(p.relative_to(CORE)))
@@ -95,13 +109,14 @@ def test_the_rules_see_the_files():
 CIRCLES_LEFT_FOR_LATER: dict[frozenset[str], str] = {}
 
 
-def module_circles() -> list[frozenset[str]]:
-    """The core's import circles: sets of top-level modules that each reach all the others."""
+def module_circles(depth: int | None = 2) -> list[frozenset[str]]:
+    """The core's import circles: sets of sub-packages (``depth`` 2: ``windpump.model``, ...) or of
+    modules (None) that each reach all the others."""
     grimp = pytest.importorskip("grimp")
     graph = grimp.build_graph("windpump")
 
     def top(name: str) -> str:
-        return ".".join(name.split(".")[:2])
+        return ".".join(name.split(".")[:depth])
 
     edges: dict[str, set[str]] = {}
     for module in graph.modules:
@@ -125,8 +140,9 @@ def module_circles() -> list[frozenset[str]]:
     return sorted(circles, key=sorted)
 
 
-def test_no_import_circles_but_those_left_for_later():
-    circles = module_circles()
+@pytest.mark.parametrize("depth", [2, None], ids=["sub-packages", "modules"])
+def test_no_import_circles_but_those_left_for_later(depth):
+    circles = module_circles(depth)
     unexpected = [sorted(c) for c in circles if c not in CIRCLES_LEFT_FOR_LATER]
     assert not unexpected, f"import circles in the core: {unexpected}"
     gone = [sorted(c) for c in CIRCLES_LEFT_FOR_LATER if c not in circles]
@@ -268,15 +284,76 @@ def test_the_core_imports_its_own_modules_at_the_top(path):
 
 def test_the_lazy_import_rule_sees_what_it_should():
     assert loads_numba("windpump._kernels.real") and loads_numba("windpump._kernels.supply")
-    assert not loads_numba("windpump._kernels") and not loads_numba("windpump._kernels.equations")
-    assert not loads_numba("windpump.dynamics") and not loads_numba("windpump")
-    tree = ast.parse("def f():\n    from .site import steady_flow\n    from . import _kernels\n")
+    assert not loads_numba("windpump._kernels") and not loads_numba("windpump.model.equations")
+    assert not loads_numba("windpump.run.dynamics") and not loads_numba("windpump")
+    tree = ast.parse(
+        "def f():\n    from ..sites.site import steady_flow\n    from .. import _kernels\n"
+    )
     function = tree.body[0]
     assert isinstance(function, ast.FunctionDef)
     names = [
         name
         for node in function.body
         if isinstance(node, ast.ImportFrom)
-        for name in imported_modules(CORE / "dynamics.py", node)
+        for name in imported_modules(CORE / "run" / "dynamics.py", node)
     ]
-    assert names == ["windpump.site", "windpump._kernels"]
+    assert names == ["windpump.sites.site", "windpump._kernels"]
+
+
+# -- the folders show the layers (issue 38)
+
+LADDER = [
+    "command",
+    "sites",
+    "study",
+    "run",
+    "averaging",
+    "_kernels",
+    "model",
+    "readers",
+    "linkage",
+]
+
+
+def test_the_core_s_folders_are_its_ladder_and_few_modules_sit_beside_them():
+    """``ls core/windpump`` shows the layers: the sub-packages of the import-linter contract and at
+    most 12 modules directly in the package (issue 38)."""
+    folders = {path.name for path in CORE.iterdir() if (path / "__init__.py").is_file()}
+    assert folders == set(LADDER)
+    modules = sorted(path.name for path in CORE.glob("*.py"))
+    assert len(modules) <= 12, modules
+    import tomllib
+
+    config = tomllib.loads((CORE.parents[1] / "pyproject.toml").read_text())["tool"]
+    [ladder] = [
+        c
+        for c in config["importlinter"]["contracts"]
+        if c["name"] == "The core's sub-packages, from the command line down to errors and units"
+    ]
+    named = {
+        part.strip().removeprefix("windpump.")
+        for line in ladder["layers"]
+        for part in line.split(":")
+    }
+    assert set(LADDER) <= named
+
+
+def test_every_core_module_has_its_place_on_the_module_ladder():
+    """The module-by-module import-linter contract names every module of the sub-packages (but the
+    kernels and the linkage, each kept by its own rule), so a module added later is on it."""
+    import tomllib
+
+    config = tomllib.loads((CORE.parents[1] / "pyproject.toml").read_text())["tool"]
+    [ladder] = [
+        c
+        for c in config["importlinter"]["contracts"]
+        if c["name"] == "The core's modules, from the command line down to errors and units"
+    ]
+    named = {part.strip() for line in ladder["layers"] for part in line.split(":")}
+    modules = {
+        module_name(path)
+        for path in CORE_FILES
+        if path.name != "__init__.py" and path.parent.name not in {"_kernels", "linkage"}
+    }
+    modules -= {"windpump._old_paths"}  # the old paths' finder: imports nothing of the core
+    assert modules <= named, sorted(modules - named)

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import windpump
-from windpump.wind import gusty
+from windpump.model.wind import gusty
 
 from served import (
     DEEP_TEXT,

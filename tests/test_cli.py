@@ -206,7 +206,7 @@ def test_the_map_png_has_a_log_colour_scale_with_labelled_contours():
     from matplotlib.colors import LogNorm
     from matplotlib.contour import ContourSet
 
-    from windpump.cli import map_figure
+    from windpump.command.cli import map_figure
 
     result = windpump.design_map(SEED, np.linspace(0.5, 8, 200), np.linspace(0, 9, 200))
     per_day = result.mean_flow[result.mean_flow > 0] * SECONDS_PER_DAY
@@ -231,7 +231,7 @@ def test_the_map_png_is_not_nearly_all_one_colour(tmp_path):
     one colour and 76 % three)."""
     from matplotlib import image
 
-    from windpump.cli import map_figure
+    from windpump.command.cli import map_figure
 
     png = tmp_path / "map.png"
     done = windpump_command("map", "--csv", str(tmp_path / "map.csv"), "--png", str(png))
@@ -428,7 +428,7 @@ def test_serve_runs_the_readmes_compile_step_before_the_server(monkeypatch, skip
 
 
 def test_serve_help_says_it_compiles_first_and_how_to_skip_it():
-    from windpump.cli import build_parser
+    from windpump.command.cli import build_parser
 
     parser = build_parser()
     serve = parser._subparsers._group_actions[0].choices["serve"]  # type: ignore[union-attr]

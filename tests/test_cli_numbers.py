@@ -1,12 +1,12 @@
 """Every numeric option of the windpump command takes a negative, infinite or NaN value as its
 value and answers in words naming the option (argparse took ``-inf`` or ``-1e-3`` for an option
-and said 'expected one argument'). In-process (:func:`windpump.cli.main`)."""
+and said 'expected one argument'). In-process (:func:`windpump.command.cli.main`)."""
 
 from __future__ import annotations
 
 import pytest
 
-from windpump.cli import build_parser, main, numeric_values
+from windpump.command.cli import build_parser, main, numeric_values
 
 SITE = ["--site", "greensboro", "--demand", "1"]
 CASES = [

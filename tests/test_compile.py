@@ -26,7 +26,7 @@ import json, sys
 import numba
 from numba.core import event
 import windpump
-from windpump.dynamics import solver_is_cached
+from windpump.run.dynamics import solver_is_cached
 
 cached_before = solver_is_cached(windpump.Design.seed_example())
 compiled = []
@@ -103,7 +103,7 @@ COMPILE_AHEAD = """
 import json, sys
 import windpump
 from windpump._kernels import driver, stepping
-from windpump.dynamics import kernel_machine
+from windpump.run.dynamics import kernel_machine
 
 ahead = driver.compile_ahead(kernel_machine(windpump.Design.seed_example()))
 seen = windpump.explore(windpump.Design.seed_example(), 600.0)
@@ -119,7 +119,7 @@ def test_the_first_pages_last_kernels_compiled_ahead_are_the_ones_it_runs(tmp_pa
     all (dp5_step then has compile_ahead's one signature, not two)."""
     from windpump import Design
     from windpump._kernels import driver
-    from windpump.dynamics import kernel_machine
+    from windpump.run.dynamics import kernel_machine
 
     done = subprocess.run(
         [sys.executable, "-c", COMPILE_AHEAD],

@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from windpump import Design, DesignFileError, ParameterError
-from windpump.design import REAL_MACHINE, UNITS
+from windpump.model.design import REAL_MACHINE, UNITS
 
 SEED = Design.seed_example()
 
@@ -113,7 +113,7 @@ def test_the_real_machines_fields_are_written_with_their_units():
 
 def test_the_file_states_its_schema_version_and_units():
     document = json.loads(SEED.to_json())
-    assert document["schema"] == "windpump.design" and document["version"] == 2
+    assert document["schema"] == "windpump.model.design" and document["version"] == 2
     assert document["units"] == UNITS and set(document["fields"]) == set(UNITS)
     assert set(UNITS) == set(VERSION_1_UNITS) | set(REAL_MACHINE)
 
@@ -130,7 +130,7 @@ def version_1_file(**changes) -> str:
     fields = {name: value for name, value in SEED.as_dict().items() if name in VERSION_1_UNITS}
     fields.update(R0=0.05, h=7.5, cylinders=2, **changes)
     document = {
-        "schema": "windpump.design",
+        "schema": "windpump.model.design",
         "version": 1,
         "fields": fields,
         "units": VERSION_1_UNITS,

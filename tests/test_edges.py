@@ -17,7 +17,7 @@ import pytest
 
 import windpump
 from windpump import Design, ParameterError
-from windpump.design import MAX_CYLINDERS, UNITS
+from windpump.model.design import MAX_CYLINDERS, UNITS
 from windpump.validation import LARGEST, SMALLEST
 
 SEED = Design.seed_example()
@@ -173,14 +173,14 @@ CALLS = {
     "points": (lambda v, r: windpump.piston_table(SEED, v), ("points",)),
     "max_frames": (lambda v, r: windpump.playback_frames(r, max_frames=v), ("max_frames",)),
     "max_turn": (lambda v, r: windpump.playback_frames(r, max_turn=v), ("max_turn",)),
-    "gusty mean": (lambda v, r: windpump.wind.gusty(v, 10.0), ("mean_wind",)),
-    "gusty duration": (lambda v, r: windpump.wind.gusty(5.0, v), ("duration", "dt")),
+    "gusty mean": (lambda v, r: windpump.model.wind.gusty(v, 10.0), ("mean_wind",)),
+    "gusty duration": (lambda v, r: windpump.model.wind.gusty(5.0, v), ("duration", "dt")),
     "gusty time_scale": (
-        lambda v, r: windpump.wind.gusty(5.0, 10.0, time_scale=v),
+        lambda v, r: windpump.model.wind.gusty(5.0, 10.0, time_scale=v),
         ("time_scale",),
     ),
-    "gusty dt": (lambda v, r: windpump.wind.gusty(5.0, 10.0, dt=v), ("dt",)),
-    "seed": (lambda v, r: windpump.wind.gusty(5.0, 10.0, seed=v), ("seed",)),
+    "gusty dt": (lambda v, r: windpump.model.wind.gusty(5.0, 10.0, dt=v), ("dt",)),
+    "seed": (lambda v, r: windpump.model.wind.gusty(5.0, 10.0, seed=v), ("seed",)),
     "revolutions": (lambda v, r: r.intermittency(v), ("revolutions",)),
     "last_revolutions": (lambda v, r: r.last_revolutions(v), ("revolutions",)),
     "at_rest": (lambda v, r: windpump.fit_torque_curve(X, Y, at_rest=v), ("at_rest",)),
@@ -235,7 +235,7 @@ def run_case(index: int):
     """A run that tests floating point on its way: a wind record, several cylinders, a stall."""
     design = DESIGNS[index % len(DESIGNS)]
     if index == len(DESIGNS):
-        record = windpump.wind.gusty(5.0, 600.0, seed=7)
+        record = windpump.model.wind.gusty(5.0, 600.0, seed=7)
         return windpump.simulate(SEED.replace(T_0=0.3), 600.0, wind=record, sample_dt=1.0)
     return windpump.simulate(design, 300.0, theta_dot0=3.0)
 

@@ -45,7 +45,7 @@ def assert_one_line_error(code: int, err: str, *words: str) -> None:
 # Reads without bounds --------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("reader", [windpump.read_torque_csv, windpump.wind.read_csv])
+@pytest.mark.parametrize("reader", [windpump.read_torque_csv, windpump.model.wind.read_csv])
 def test_a_device_or_a_pipe_is_refused_before_it_is_read(reader, tmp_path):
     with pytest.raises(LabDataError, match="'/dev/zero' is not a regular file"):
         reader("/dev/zero")  # its size reads as 0: it was read until 8.8 GB
@@ -65,14 +65,14 @@ def test_a_file_is_read_to_the_limit_and_one_byte_no_further(tmp_path, monkeypat
     path = tmp_path / "lab.csv"
     path.write_bytes(b"10,0.2\n50,0.6\n90,0.2\n")
     asked = []
-    real_read = windpump.labdata.os.fstat
+    real_read = windpump.readers.labdata.os.fstat
 
     def fstat_claiming_empty(descriptor):  # a file whose size says less than it holds
         status = real_read(descriptor)
         asked.append(status.st_size)
         return os.stat_result((status.st_mode, *status[1:6], 0, *status[7:]))
 
-    monkeypatch.setattr(windpump.labdata.os, "fstat", fstat_claiming_empty)
+    monkeypatch.setattr(windpump.readers.labdata.os, "fstat", fstat_claiming_empty)
     with pytest.raises(LabDataError, match="more than 10 bytes"):
         windpump.read_torque_csv(path, max_bytes=10)
     assert asked == [21]
@@ -163,8 +163,8 @@ def test_json_nested_too_deeply_is_not_a_design_file(tmp_path, capsys):
         (lambda run: windpump.peak_load_torque(SEED, 0), "samples_per_segment"),
         (lambda run: windpump.playback_frames(run, max_frames=10**12), "max_frames"),
         (lambda run: windpump.piston_table(SEED, 1e10), "points"),
-        (lambda run: windpump.wind.gusty(5.0, 10.0, seed=-1), "seed"),
-        (lambda run: windpump.wind.gusty(5.0, 10.0, seed=1.5), "seed"),
+        (lambda run: windpump.model.wind.gusty(5.0, 10.0, seed=-1), "seed"),
+        (lambda run: windpump.model.wind.gusty(5.0, 10.0, seed=1.5), "seed"),
         (lambda run: windpump.spinup(SEED, ["a"], 3.0), "t"),
         (lambda run: windpump.spinup(SEED, [1.0, math.nan], 3.0), "t"),
         (lambda run: windpump.spinup(SEED, -1.0, 3.0), "t"),
@@ -268,9 +268,9 @@ def test_every_figure_is_finite_anywhere_in_the_range(fields, rod, at_rest, cyli
 
 
 def test_a_record_too_long_to_integrate_is_refused_up_front_with_the_reason(monkeypatch):
-    record = windpump.wind.gusty(5.0, 20_000.0, dt=0.1, seed=1)  # 200,001 samples
+    record = windpump.model.wind.gusty(5.0, 20_000.0, dt=0.1, seed=1)  # 200,001 samples
     done = windpump.simulate(SEED, 20_000.0, wind=record, sample_dt=10.0)
-    estimate = dynamics.estimated_steps(SEED, 20_000.0, windpump.wind.as_record(record, 2e4))
+    estimate = dynamics.estimated_steps(SEED, 20_000.0, windpump.model.wind.as_record(record, 2e4))
     assert 0.5 * done.steps <= estimate <= done.steps  # the work, about (a lower estimate)
     monkeypatch.setattr(dynamics, "MAX_STEPS", done.steps // 4)
     with pytest.raises(ParameterError) as caught:

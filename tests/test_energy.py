@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad, simpson
 
 import windpump
-from windpump.energy import power_budget, startup_power
+from windpump.run.energy import power_budget, startup_power
 
 from conftest import SEED
 from reference import equation_12

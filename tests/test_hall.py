@@ -43,5 +43,5 @@ def test_a_wind_record_is_a_two_column_csv_within_the_size_asked():
 
     data = bench_hall.wind_record(50_000)
     assert len(data) <= 50_000
-    record = windpump.wind.read_csv(data)
+    record = windpump.model.wind.read_csv(data)
     assert len(record.t) == data.count(b"\n")  # every line but the header is a sample

@@ -1,6 +1,6 @@
 """The compiled model and the numpy functions agree to 1e-12 over random designs and angles.
 
-Eq. (1), its derivative and Eq. (11) are one definition (windpump._kernels.equations) that numba
+Eq. (1), its derivative and Eq. (11) are one definition (windpump.model.equations) that numba
 compiles and numpy calls; the compiled copies are checked against the numpy calls here because
 fastmath could still change them. The load's sum over the delivering faces, the flow factor,
 the strokes and the closed-form work are written twice (the kernels pick the faces by segment,
@@ -21,7 +21,7 @@ from scipy.integrate import quad
 import windpump
 from windpump import Design
 from windpump._kernels import equations, model
-from windpump.dynamics import kernel_machine
+from windpump.run.dynamics import kernel_machine
 
 TOLERANCE = 1e-12
 
@@ -45,7 +45,7 @@ def designs(draw):
         T_m=T_m,
         T_0=T_m * draw(between(0.0, 0.99)),
         omega_m=draw(between(1.0, 200.0)),
-        cylinders=draw(st.integers(1, windpump.design.MAX_CYLINDERS)),
+        cylinders=draw(st.integers(1, windpump.model.design.MAX_CYLINDERS)),
         double_acting=draw(st.booleans()),
     )
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from windpump.cli import explorer_folder
+from windpump.command.cli import explorer_folder
 
 tomllib = pytest.importorskip("tomllib")  # Python 3.11+
 

@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 import windpump
 from windpump import Design, ParameterError
-from windpump.dynamics import SMALLEST_KICK
+from windpump.run.dynamics import SMALLEST_KICK
 
 
 def between(low, high):

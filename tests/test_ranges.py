@@ -247,7 +247,7 @@ def test_a_short_run_is_right_or_refused(design, theta_dot0):
 def test_a_supply_and_its_tank_are_right_or_refused(design, demand, tank):
     if design is None:
         return
-    record = windpump.wind.gusty(5.0, 3 * 86_400.0, dt=3600.0, seed=1)
+    record = windpump.model.wind.gusty(5.0, 3 * 86_400.0, dt=3600.0, seed=1)
     try:
         year = quietly(windpump.supply, design, record, demand=demand, tank=tank)
     except ParameterError as error:  # more water than 1e12 m^3/day or m^3
@@ -397,7 +397,7 @@ def test_a_load_at_a_crank_speed_past_any_machine_is_refused_by_name():
 
 @pytest.mark.parametrize("demand", [1e307, 1e308, 1.1e12])
 def test_a_demand_past_any_supply_is_refused_by_name(demand):
-    record = windpump.wind.gusty(5.0, 2 * 86_400.0, dt=3600.0, seed=1)
+    record = windpump.model.wind.gusty(5.0, 2 * 86_400.0, dt=3600.0, seed=1)
     for call in (windpump.supply, windpump.tank_for):
         with pytest.raises(ParameterError) as caught:
             call(SEED, record, demand, 0.0)
@@ -411,8 +411,8 @@ def test_a_rotor_too_light_to_integrate_is_refused_before_any_work_with_the_righ
     message = str(caught.value)
     assert caught.value.name == "design" and "increase I0 or I1" in message
     heavy = SEED.replace(I0=1e12, I1=1e12)  # I_eff 1.6e13: never "increase I0 or I1"
-    advice = windpump.dynamics._stiff_advice(heavy.replace(m_r=1e12))
-    assert "increase I0 or I1" not in windpump.dynamics._stiff_advice(
+    advice = windpump.run.dynamics._stiff_advice(heavy.replace(m_r=1e12))
+    assert "increase I0 or I1" not in windpump.run.dynamics._stiff_advice(
         SEED.replace(L_main=1e6, D_main=1e-3)
     )
     assert advice
@@ -539,14 +539,14 @@ def test_a_design_too_stiff_to_integrate_is_refused_after_a_bounded_work(name):
 def test_a_stiff_start_that_stalls_early_is_still_answered():
     # 141,497 steps in its first 0.16 s, then it stalls: on pace for 60 s it would need 5e7
     run = windpump.simulate(SEED.replace(m_r=1e6), 60.0)
-    assert run.stalled and 0.1 < run.t_stall < 0.2 and run.steps > windpump.dynamics.PACE_STEPS
+    assert run.stalled and 0.1 < run.t_stall < 0.2 and run.steps > windpump.run.dynamics.PACE_STEPS
 
 
 def test_a_wind_record_keeps_the_whole_step_budget():
     # A stormy first minute, then calm for a day: judged on the storm's pace (792,421 steps in a
     # minute) the run would be refused, yet it needs only those
     from windpump import _kernels, dynamics
-    from windpump.wind import as_record
+    from windpump.model.wind import as_record
 
     design = SEED.replace(I0=SEED.I0 / 1e5, I1=SEED.I1 / 1e5)
     record = ([0.0, 60.0, 61.0, 86_400.0], [20.0, 20.0, 0.0, 0.0])
@@ -567,7 +567,7 @@ def windmill_rate(design: Design) -> float:
 @pytest.mark.parametrize("I0, I1", [(1e-9, 1e-9), (1e-12, 1e-7)])
 def test_the_advice_for_a_light_rotor_names_changes_that_slow_it(I0, I1):
     design = SEED.replace(I0=I0, I1=I1)
-    advice = windpump.dynamics._stiff_advice(design, 10.0)
+    advice = windpump.run.dynamics._stiff_advice(design, 10.0)
     assert "increase I0 or I1" in advice
     heavier = design.replace(I0=10 * I0, I1=10 * I1)
     assert windmill_rate(heavier) < windmill_rate(design) / 9
@@ -582,7 +582,7 @@ def test_a_heavy_rotor_is_never_told_to_be_heavier_for_what_its_time_scales_miss
     fields = NOW_OUTSIDE["a crank at 1e-24 rad/s at peak torque, kicked at 3 rad/s"]
     design, t_end = Design(**{**fields, "g": 100.0}), 2.0
     assert design.I_eff > 1e18
-    advice = windpump.dynamics._stiff_advice(design, t_end)
+    advice = windpump.run.dynamics._stiff_advice(design, t_end)
     assert "increase I0 or I1" not in advice and "heavier" not in advice, advice
 
 
@@ -594,13 +594,13 @@ def test_a_heavy_rotor_is_never_told_to_be_heavier_for_what_its_time_scales_miss
       [{"L_main": 1e5}, {"D_main": 2e-3}])],
 )  # fmt: skip
 def test_the_advice_for_a_leak_or_a_main_names_changes_that_slow_it(design, cause, lower):
-    advice = windpump.dynamics._stiff_advice(design, 600.0)
+    advice = windpump.run.dynamics._stiff_advice(design, 600.0)
     assert cause in advice, advice
-    rate = max(windpump.dynamics.stiffness(design)[1:3])
+    rate = max(windpump.run.dynamics.stiffness(design)[1:3])
     for change in lower:
         (field,) = change
         assert field in advice, (field, advice)
-        assert max(windpump.dynamics.stiffness(design.replace(**change))[1:3]) < rate / 1.5
+        assert max(windpump.run.dynamics.stiffness(design.replace(**change))[1:3]) < rate / 1.5
 
 
 def test_a_numeric_map_of_a_light_rotor_is_refused_before_any_run_with_the_advice_that_fits():
@@ -717,7 +717,7 @@ def expected_flow_by_mpmath(design, V_from, c, k):
     ``per_radian (p V / V_ref + g sqrt(V^2 - V_stop^2))`` of theory.CycleMean."""
     import mpmath
 
-    from windpump.site import _stop_wind, cycle_mean
+    from windpump.sites.site import _stop_wind, cycle_mean
 
     mpmath.mp.dps = 30
     V_stop = mpmath.mpf(_stop_wind(design))
@@ -742,7 +742,7 @@ def expected_flow_by_mpmath(design, V_from, c, k):
 def test_the_expected_flow_converges_without_warning_to_the_mpmath_one(k, u_stop):
     from scipy.integrate import IntegrationWarning
 
-    from windpump.site import _expected_flow, _stop_wind
+    from windpump.sites.site import _expected_flow, _stop_wind
 
     V_stop = _stop_wind(FAR_STOP)
     c = V_stop / u_stop ** (1.0 / k)  # (V_stop / c)^k = u_stop
@@ -762,7 +762,7 @@ def test_a_site_far_below_the_stop_wind_is_answered_without_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error", IntegrationWarning)
         low, high = windpump.water_per_day(FAR_STOP, 150.0, 0.5)
-    c = windpump.site.weibull_scale(150.0, 0.5)
+    c = windpump.sites.site.weibull_scale(150.0, 0.5)
     V_stop, _ = windpump.wind_thresholds(FAR_STOP)
     want = 86400.0 * expected_flow_by_mpmath(FAR_STOP, V_stop, c, 0.5)
     assert high == pytest.approx(want, rel=1e-7, abs=0.0)  # (V_stop / c)^k = 560: see above

@@ -1,4 +1,4 @@
-"""One reader guard for every file the core reads (issue 36): ``windpump.files.read_bytes``.
+"""One reader guard for every file the core reads (issue 36): ``windpump.readers.files.read_bytes``.
 
 Every reader of a user's file (a site's weather, a wind CSV, a lab torque file, a design file or a
 table of designs on the command line) takes bytes (the contents) or a path, and goes through the
@@ -26,9 +26,9 @@ from hypothesis import strategies as st
 
 import windpump
 from windpump import LabDataError, ParameterError, cli, cliargs, files
-from windpump.labdata import read_torque_csv
-from windpump.weather import read_weather
-from windpump.wind import read_csv
+from windpump.model.wind import read_csv
+from windpump.readers.labdata import read_torque_csv
+from windpump.sites.weather import read_weather
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="POSIX pipes and devices")
 
@@ -226,7 +226,7 @@ def test_every_reader_refuses_a_file_over_its_limit(tmp_path, monkeypatch):
         read_csv(path, max_bytes=100)
     with pytest.raises(LabDataError, match=r"at most 100 are read"):
         read_torque_csv(path, max_bytes=100)
-    monkeypatch.setattr(windpump.weather, "MAX_CSV_BYTES", 100)
+    monkeypatch.setattr(windpump.sites.weather, "MAX_CSV_BYTES", 100)
     with pytest.raises(LabDataError, match=r"at most 100 are read"):
         read_weather(path)
     with pytest.raises(LabDataError, match=r"at most 100 are read"):
@@ -317,7 +317,7 @@ def test_a_record_read_in_small_pieces_is_the_record_read_whole(text, monkeypatc
 
     def outcome():
         try:
-            samples = windpump.wind.read_samples(text.encode(), lines=True)
+            samples = windpump.readers.wind_samples.read_samples(text.encode(), lines=True)
         except LabDataError as error:
             return str(error)
         month = None if samples.month is None else samples.month.tolist()
@@ -325,15 +325,15 @@ def test_a_record_read_in_small_pieces_is_the_record_read_whole(text, monkeypatc
 
     whole = outcome()
     for size in (1, 5, 7, 13):
-        monkeypatch.setattr(windpump.wind, "CHUNK", size)
+        monkeypatch.setattr(windpump.readers.wind_samples, "CHUNK", size)
         assert outcome() == whole, size
 
 
 SECOND = datetime.timedelta(seconds=1)
 MEMORY = """
 import resource, sys
-import windpump, windpump.wind, windpump.weather
-reader = {"read_csv": windpump.wind.read_csv, "read_weather": windpump.read_weather}[sys.argv[2]]
+import windpump, windpump.model.wind, windpump.readers.wind_samples, windpump.sites.weather
+reader = {"read_csv": windpump.model.wind.read_csv, "read_weather": windpump.read_weather}[sys.argv[2]]
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 record = reader(sys.argv[1])
 after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss

@@ -16,7 +16,7 @@ from real_reference import real_reference_run
 
 import windpump
 from windpump import _kernels, reciprocating
-from windpump.dynamics import kernel_machine
+from windpump.run.dynamics import kernel_machine
 
 SEED = windpump.Design.seed_example()
 
@@ -124,7 +124,7 @@ def test_the_kernels_masses_are_the_numpy_sides(theta, m_r, cylinders, ratio):
     j = real._inertia_ratio(theta, machine) * design.I_eff
     assert j == pytest.approx(float(reciprocating.crank_inertia(design, theta)), rel=1e-12)
     torque = real._weight_torque(theta, machine)
-    expected = float(windpump.loads.weight_torque(design, theta))
+    expected = float(windpump.model.loads.weight_torque(design, theta))
     assert torque == pytest.approx(expected, rel=1e-12, abs=1e-12 * m_r * design.g * design.R)
 
 
@@ -188,7 +188,7 @@ def test_in_a_lull_a_leaky_pump_rests_and_starts_again_by_its_torque_at_rest():
 
 def test_a_design_maps_simulated_points_run_the_real_machine():
     from windpump._kernels.grid import steady_runs
-    from windpump.dynamics import MAX_STEPS, PACE_STEPS, RTOL, kernel_real_base
+    from windpump.run.dynamics import MAX_STEPS, PACE_STEPS, RTOL, kernel_real_base
 
     design = DESIGNS["every effect"]
     base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
@@ -243,7 +243,7 @@ def test_each_power_of_the_budget_integrates_to_its_work():
     D_main=st.floats(0.01, 0.1),
 )
 def test_the_kernels_face_loads_are_the_numpy_sides(levers, theta_dot, leak, L_main, D_main):
-    """The compiled twin of windpump.loads.faces_load (kept for speed) gives its numbers."""
+    """The compiled twin of windpump.model.loads.faces_load (kept for speed) gives its numbers."""
     from windpump._kernels import real
 
     design = SEED.replace(
@@ -254,7 +254,7 @@ def test_the_kernels_face_loads_are_the_numpy_sides(levers, theta_dot, leak, L_m
     row = np.zeros(real.ROW)
     row[1 : 1 + len(levers)] = levers
     load, Q, _, arms = real._face_loads(theta_dot, row, machine)
-    expected_load, expected_Q = windpump.loads.faces_load(
+    expected_load, expected_Q = windpump.model.loads.faces_load(
         np.array(levers)[:, None], theta_dot, design
     )
     scale = design.load_torque * max(sum(levers), 1.0)
@@ -268,8 +268,8 @@ def _numpy_frozen_friction(design, theta, e):
     is e, from the numpy side: faces_load's load less the static head's (no hole)."""
     J = float(reciprocating.crank_inertia(design, theta))
     theta_dot = math.sqrt(2.0 * e * design.I_eff / J)
-    levers = windpump.kinematics.face_levers(np.array([theta]), design)
-    load, _ = windpump.loads.faces_load(levers, theta_dot, design)
+    levers = windpump.model.kinematics.face_levers(np.array([theta]), design)
+    load, _ = windpump.model.loads.faces_load(levers, theta_dot, design)
     static = design.load_torque * levers.sum()
     return float(load[0]) - static
 
@@ -315,13 +315,15 @@ def test_with_a_hole_the_frozen_friction_is_the_continued_loads_friction(design,
     from windpump._kernels import model, real
 
     design = design.replace(d_leak=hole * design.bore)
-    angles = np.mod(windpump.kinematics.cylinder_angles(np.array([theta]), design.cylinders), np.pi)
+    angles = np.mod(
+        windpump.model.kinematics.cylinder_angles(np.array([theta]), design.cylinders), np.pi
+    )
     assume(np.all(np.minimum(angles, np.pi - angles) > 1e-9))  # no face at a dead centre
     machine = kernel_machine(design)
     segment = model.segment_at(theta, machine)
     first, second, third = real.friction_density(theta, segment, machine)
     compiled = (first * e + second * math.sqrt(e) + third) * design.I_eff
-    levers = windpump.kinematics.face_levers(np.array([theta]), design)[:, 0]
+    levers = windpump.model.kinematics.face_levers(np.array([theta]), design)[:, 0]
     J = float(reciprocating.crank_inertia(design, theta))
     theta_dot = math.sqrt(2.0 * e * design.I_eff / J)
     q = design.A * design.R * float(levers.sum())
@@ -360,7 +362,7 @@ def test_the_frozen_frictions_integral_is_a_quadrature_of_the_numpy_friction(des
         return _numpy_frozen_friction(design, theta, 1.0) / design.I_eff
 
     def static_density(theta):
-        levers = windpump.kinematics.face_levers(np.array([theta]), design)
+        levers = windpump.model.kinematics.face_levers(np.array([theta]), design)
         return design.load_torque * float(levers.sum()) / design.I_eff
 
     expected, _ = quad(density, a, b, epsabs=0.0, epsrel=1e-13, limit=200)
@@ -495,7 +497,7 @@ def test_the_continued_loads_are_the_face_loads_where_every_face_delivers(
     swept = design.A * design.R * np.array(levers) * theta_dot
     q_L = machine.real.q_L
     load, Q, h_f, arms = real._continued_loads(theta_dot, row, float(len(levers)), machine)
-    expected_load, expected_Q = windpump.loads.faces_load(
+    expected_load, expected_Q = windpump.model.loads.faces_load(
         np.array(levers)[:, None], theta_dot, design
     )
     assert Q == pytest.approx(float(np.sum(swept - q_L)), rel=1e-12, abs=1e-18)
@@ -613,7 +615,7 @@ def test_the_arm_squareds_closed_form_integral_is_a_quadrature(phi, ratio):
     """int_0^phi (lever arm)^2 (the masses' frozen ripple in the time) against scipy's quad."""
     from scipy.integrate import quad
 
-    from windpump._kernels.equations import lever_arm, lever_arm_squared_integral
+    from windpump.model.equations import lever_arm, lever_arm_squared_integral
 
     # on quarter turns (near L/R = 1 the arm peaks sharply at pi/2 + k pi)
     edges = np.append(np.arange(0.0, abs(phi), 0.5 * math.pi), abs(phi)) * math.copysign(1, phi)

@@ -20,9 +20,9 @@ from scipy import integrate, optimize
 
 import windpump
 from windpump import ParameterError
-from windpump.loads import rest_torque, weight_torque
-from windpump.revolution import mean_load, reciprocating_inertia
-from windpump.theory import cycle_mean, running_speeds
+from windpump.averaging.revolution import mean_load, reciprocating_inertia
+from windpump.averaging.theory import cycle_mean, running_speeds
+from windpump.model.loads import rest_torque, weight_torque
 
 SEED = windpump.Design.seed_example()
 HOLE = 0.004  # m: passes 0.106 L/s against 3 m
@@ -450,7 +450,7 @@ def test_stall_sides_keep_the_margin_as_their_ratio(design):
 def test_a_leaky_pumps_flow_over_a_records_many_winds_is_its_flow_at_each():
     """More distinct winds than site.LEAK_TABLE are interpolated on a table (a quadrature per
     wind took 79 s for a day): within 1e-3 of the largest flow of the one-by-one values."""
-    from windpump.site import LEAK_TABLE
+    from windpump.sites.site import LEAK_TABLE
 
     design = windpump.Design.seed_example().replace(T_0=0.25, d_leak=0.003)
     winds = np.linspace(0.05, 12.0, 3 * LEAK_TABLE)

@@ -146,7 +146,7 @@ def test_a_leaky_runs_deferred_fields_are_frozen_arrays_that_pickle():
         np.testing.assert_array_equal(other.leak_loss, leak)
     # What it is: what the face delivers past its hole (one single-acting cylinder: its exhaust)
     d = run.design
-    arms = np.abs(windpump.kinematics.lever_arm(run.theta, d.L_over_R))
+    arms = np.abs(windpump.model.kinematics.lever_arm(run.theta, d.L_over_R))
     delivering = np.sin(run.theta) < 0.0
     swept = d.A * d.R * arms * run.theta_dot
     expected = np.where(delivering, np.maximum(swept - d.leak_capacity, 0.0), 0.0)

@@ -467,7 +467,7 @@ def test_an_upload_is_read_in_a_process_of_its_own_as_the_core_reads_it():
     import numpy as np
 
     import windpump
-    from windpump.wind import read_csv
+    from windpump.model.wind import read_csv
     from windpump_app.server import threads as serving
 
     data = b"time,speed\n0,4.5\n10,6\n20,5.25\n"
@@ -502,7 +502,7 @@ def test_files_read_at_once_by_several_pages_are_all_read():
 
     import numpy as np
 
-    from windpump.wind import read_csv
+    from windpump.model.wind import read_csv
     from windpump_app.server import threads as serving
 
     files = [f"time,speed\n0,{v}\n10,6\n".encode() for v in (1.5, 2.5, 3.5, 4.5)]

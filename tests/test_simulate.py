@@ -72,7 +72,7 @@ def test_samples_include_every_dead_centre_and_are_ordered():
     run = windpump.simulate(SEED, 20.0)
     assert np.all(np.diff(run.t) > 0)
     assert np.all(np.diff(run.theta) > 0)
-    grid = run.theta[1:-1] / (math.pi / windpump.dynamics.SAMPLES_PER_STROKE)
+    grid = run.theta[1:-1] / (math.pi / windpump.run.dynamics.SAMPLES_PER_STROKE)
     np.testing.assert_allclose(grid, np.round(grid), atol=1e-9)
     dead_centres = np.arange(math.ceil(run.theta[0] / math.pi), math.floor(run.theta[-1] / math.pi))
     sampled = np.round(run.theta / math.pi, 9)
@@ -159,7 +159,7 @@ def test_a_stretch_in_time_lands_on_the_grid():
     assert ref.stalled and run.stalled
     assert relative(run.t_stall, ref.t_stall) < 1e-8
     assert relative(run.theta[-1], ref.theta) < 1e-8
-    grid_index = run.theta[1] / (math.pi / windpump.dynamics.SAMPLES_PER_STROKE)
+    grid_index = run.theta[1] / (math.pi / windpump.run.dynamics.SAMPLES_PER_STROKE)
     assert grid_index == pytest.approx(round(grid_index), abs=1e-9)
     landing = reference_run(design, run.t[1], 4.3, 1.0)
     assert relative(run.theta[1], landing.theta) < 1e-9

@@ -10,7 +10,7 @@ import pytest
 
 import windpump
 from windpump import Design, ParameterError, sweep
-from windpump.studies import FIGURES
+from windpump.study.studies import FIGURES
 
 SEED = Design.seed_example()
 DESIGNS = [

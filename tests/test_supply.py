@@ -366,8 +366,8 @@ def test_any_bad_demand_is_named(demand):
 
 
 def test_the_full_years_chunks_are_cut_to_what_a_run_may_do():
-    from windpump.dynamics import MAX_STEPS, estimated_steps
-    from windpump.fullyear import _spans
+    from windpump.run.dynamics import MAX_STEPS, estimated_steps
+    from windpump.sites.fullyear import _spans
 
     V = np.full(24 * 120, 14.0)  # 120 days of strong wind in one chunk
     spans = _spans(SELF_STARTING, V, V.size, False)

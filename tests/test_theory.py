@@ -1,4 +1,4 @@
-"""The averaged theory written once (windpump.theory) against the averaged equation built here
+"""The averaged theory written once (windpump.averaging.theory) against the averaged equation built here
 from its parts: Eq. (12)'s load averaged over a revolution by quadrature, the windmill curve of
 Eq. (11) with T_0 scaled by similarity, I_eff from the inertias; roots by brentq, tau by a
 central difference. Every caller (averaged, maps, site) gives the same numbers on the same points.

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 import windpump
 from windpump import Design, ParameterError, cli
-from windpump.wind import WindRecord
+from windpump.model.wind import WindRecord
 
 SEED = Design.seed_example()
 SELF_STARTING = SEED.replace(T_0=0.3)
@@ -416,7 +416,7 @@ TAKE_A_NUMBER = {
     "WindRecord V": lambda x: WindRecord(HOURS, [*[5.0] * 47, x]),
     "WindRecord month": lambda x: WindRecord(HOURS, np.full(48, 5.0), 10.0, "", [1] * 47 + [x]),
     "at_height": lambda x: RECORD.at_height(x),
-    "simulate's wind": lambda x: windpump.wind.as_record((HOURS, [*[5.0] * 47, x]), 2.0),
+    "simulate's wind": lambda x: windpump.model.wind.as_record((HOURS, [*[5.0] * 47, x]), 2.0),
     "supply demand": lambda x: windpump.supply(SELF_STARTING, RECORD, x, 1.0),
     "supply tank": lambda x: windpump.supply(SELF_STARTING, RECORD, 1.0, x),
     "supply profile": lambda x: windpump.supply(SELF_STARTING, RECORD, 1.0, 1.0, profile=[x] * 24),
@@ -431,7 +431,7 @@ TAKE_A_NUMBER = {
     "steady_flow": lambda x: windpump.steady_flow(SELF_STARTING, [1.0, x]),
     "record_water": lambda x: windpump.record_water(SELF_STARTING, (HOURS, [*[5.0] * 47, x])),
     "run_in_wind kick": lambda x: windpump.run_in_wind(SELF_STARTING, RECORD, kick=x),
-    "gusty": lambda x: windpump.wind.gusty(x, 3600.0),
+    "gusty": lambda x: windpump.model.wind.gusty(x, 3600.0),
     "linkage known": lambda x: windpump.linkage.assembly_guess(LOOPS, {"theta9": x}, (1, -1)),
     "linkage guess": lambda x: windpump.linkage.solve_loop(LOOPS[0], {"theta1": 1.0}, {"a": x}),
 }
@@ -476,7 +476,7 @@ def test_a_kick_past_1e12_rad_s_is_refused_by_its_name_at_once(kick):
 def test_too_many_samples_names_the_argument_and_a_finite_bound(t_end, options, name):
     """A run that would make more than MAX_SAMPLES samples names t_end, or sample_dt when one is
     given, with a finite bound (t_end 1e308 said "t_end must be <= nan s")."""
-    from windpump.dynamics import MAX_SAMPLES
+    from windpump.run.dynamics import MAX_SAMPLES
 
     seed = windpump.Design.seed_example()
     with pytest.raises(windpump.ParameterError) as refused:

@@ -380,7 +380,7 @@ def test_a_records_refused_number_is_written_as_a_number():
     t = np.arange(3, dtype=float)
     for V, says in (([1.0, np.nan, 2.0], "speeds[1] = nan"), ([1.0, -2.5, 2.0], "V[1] = -2.5 m/s")):
         with pytest.raises(ParameterError) as error:
-            windpump.wind.as_record((t, np.asarray(V)), 2.0)
+            windpump.model.wind.as_record((t, np.asarray(V)), 2.0)
         assert says in str(error.value) and "np." not in str(error.value), str(error.value)
     with pytest.raises(ParameterError) as error:
         windpump.supply(windpump.Design.seed_example(), (np.array([0.0, 7200.0]), [3, 3]), 1, 0)

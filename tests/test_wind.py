@@ -14,9 +14,9 @@ from scipy import integrate, special, stats
 
 import windpump
 from windpump import Design, ParameterError, simulate
-from windpump.labdata import LabDataError
+from windpump.model.wind import gusty, read_csv, weibull_density, weibull_scale
+from windpump.readers.labdata import LabDataError
 from windpump.units import SECONDS_PER_DAY
-from windpump.wind import gusty, read_csv, weibull_density, weibull_scale
 
 from reference import wind_reference_run
 

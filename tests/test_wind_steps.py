@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from windpump import Design, ParameterError, simulate
-from windpump.wind import MIN_STEP, WindRecord, read_csv
+from windpump.model.wind import MIN_STEP, WindRecord, read_csv
 
 SHORT = [
     [0.0, 1e-300],  # a span of 1e-300 s

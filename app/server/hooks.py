@@ -17,7 +17,7 @@ from tornado.httpserver import HTTPServer
 from tornado.web import GZipContentEncoding
 
 import windpump
-from windpump.dynamics import solver_is_cached
+from windpump.run.dynamics import solver_is_cached
 
 from ..compiling import (
     COMPILE,

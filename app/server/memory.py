@@ -93,7 +93,7 @@ def forget_the_class() -> None:
     arena back to the system only once every object in it is freed, and after a hall of 30
     they were in nearly every arena it had added (docs/known-issues.rst). The next class
     fills it again (35 us a design)."""
-    from windpump.dynamics import ideal_of
+    from windpump.run.dynamics import ideal_of
 
     ideal_of.cache_clear()
 

@@ -5,7 +5,7 @@ two sprockets, a slider-crank and a single-acting piston lifting water by a head
 in the docstrings are that paper's. Beyond it: several cylinders with their phase lags,
 double-acting pistons and a windmill with torque at rest (``Design.cylinders``, ``double_acting``,
 ``T_0``), the real machine's reciprocating mass, lossy chain, rising main and leak hole
-(``Design.m_r``, ``eta_t``, ``L_main``, ``d_leak``, ...), the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.wind`,
+(``Design.m_r``, ``eta_t``, ``L_main``, ``d_leak``, ...), the rotor in a site's wind (``Design.V_ref``, :mod:`windpump.model.wind`,
 :func:`water_per_day`), and studies: the design map over gear ratio and head (:func:`design_map`)
 and many runs on any executor, a dask cluster's included (:func:`sweep`).
 
@@ -16,19 +16,11 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 (78.6, False)
 """
 
-from . import (
-    energy,
-    files,
-    labdata,
-    linkage,
-    playback,
-    reciprocating,
-    theory,
-    units,
-    weather,
-    wind,
-)
-from .averaged import (
+import importlib
+
+from . import _old_paths, linkage, units
+from .averaging import theory
+from .averaging.averaged import (
     averaged_stall_time,
     mean_lever_arm,
     spinup,
@@ -37,12 +29,11 @@ from .averaged import (
     steady_speeds,
     time_constant,
 )
-from .design import Design
-from .dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
-from .energy import EnergyTotals, PowerBudget, StartupPower, power_budget, startup_power
+from .averaging.operating import OperatingPoint, load_power, operating_point
 from .errors import DesignFileError, LabDataError, NoClosure, ParameterError, StallError
-from .exploration import Exploration, NotStarted, Status, explore
-from .kinematics import (
+from .model import reciprocating, wind
+from .model.design import Design
+from .model.kinematics import (
     delivering_faces,
     f2,
     face_flows,
@@ -51,11 +42,18 @@ from .kinematics import (
     rod_angle,
     swept_strokes,
 )
-from .labdata import TorqueTable, read_torque_csv
-from .loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
-from .maps import DesignMap, design_map
-from .playback import CrankTable, Playback, crank_table, piston_table, playback_frames
-from .site import (
+from .model.loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
+from .model.wind import WindRecord
+from .model.windmill import TorqueFit, fit_torque_curve, windmill_power, windmill_torque
+from .readers import files, labdata
+from .readers.labdata import TorqueTable, read_torque_csv
+from .run import energy, playback
+from .run.dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
+from .run.energy import EnergyTotals, PowerBudget, StartupPower, power_budget, startup_power
+from .run.exploration import Exploration, NotStarted, Status, explore
+from .run.playback import CrankTable, Playback, crank_table, piston_table, playback_frames
+from .sites import weather
+from .sites.site import (
     WindEvents,
     WindRun,
     record_water,
@@ -64,19 +62,20 @@ from .site import (
     water_per_day,
     wind_thresholds,
 )
-from .studies import Sweep, sweep
-from .weather import read_weather, sample_site
-from .wind import WindRecord
-from .windmill import (
-    OperatingPoint,
-    TorqueFit,
-    fit_torque_curve,
-    load_power,
-    operating_point,
-    windmill_power,
-    windmill_torque,
-)
-from .yearly import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
+from .sites.weather import read_weather, sample_site
+from .sites.yearly import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
+from .study.maps import DesignMap, design_map
+from .study.studies import Sweep, sweep
+
+_old_paths.install()  # windpump.run.dynamics etc., the paths before the sub-packages, keep working
+
+
+def __getattr__(name: str):
+    """``windpump.run.dynamics`` and the other old paths (:mod:`windpump._old_paths`) as attributes."""
+    if name in _old_paths.MOVED:
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 # The public names by topic, as the API reference (docs/api/index.rst) groups them.
 __all__ = [

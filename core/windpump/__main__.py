@@ -1,7 +1,7 @@
-"""``python -m windpump``: the ``windpump`` command (:mod:`windpump.cli`)."""
+"""``python -m windpump``: the ``windpump`` command (:mod:`windpump.command.cli`)."""
 
 import sys
 
-from .cli import main
+from .command.cli import main
 
 sys.exit(main())

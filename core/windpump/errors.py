@@ -119,7 +119,7 @@ class DesignFileError(ValueError):
 
 class LabDataError(ValueError):
     """A file that cannot be used (a lab torque file, a wind record, a weather file, or one
-    :func:`windpump.files.read_bytes` refuses), with where: ``line`` and ``column`` (1-based) or
+    :func:`windpump.readers.files.read_bytes` refuses), with where: ``line`` and ``column`` (1-based) or
     None.
 
     Examples

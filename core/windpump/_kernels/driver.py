@@ -956,7 +956,7 @@ def compile_ahead(machine: Machine) -> list[str]:
     Examples
     --------
     >>> from windpump import Design
-    >>> from windpump.dynamics import kernel_machine
+    >>> from windpump.run.dynamics import kernel_machine
     >>> compile_ahead(kernel_machine(Design.seed_example()))[0]  # doctest: +SKIP
     'advance_in_time'
     """

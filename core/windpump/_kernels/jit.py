@@ -10,11 +10,13 @@ from numba.core import caching
 from numba.core.registry import CPUDispatcher
 
 KERNELS = Path(__file__).resolve().parent
+# The pointwise equations the kernels compile (the model's, windpump.model.equations)
+EQUATIONS = KERNELS.parent / "model" / "equations.py"
 
 
 class KernelsStamp:
     """A cache locator's source stamp for a kernel of this folder: every kernel module's size and
-    modification time, not its own file's only.
+    modification time, and the model's pointwise equations', not its own file's only.
 
     numba stamps a cached kernel with its own source file, yet the code it caches holds its
     callees' from other modules: a change to ``stepping.py`` alone left ``driver.integrate``
@@ -24,13 +26,13 @@ class KernelsStamp:
 
     @classmethod
     def from_function(cls, py_func, py_file):
-        if Path(py_file).resolve().parent != KERNELS:
+        if Path(py_file).resolve().parent != KERNELS and Path(py_file).resolve() != EQUATIONS:
             return None  # another folder's function: numba's own locators
         return super().from_function(py_func, py_file)
 
     def get_source_stamp(self):
         stamps = []
-        for path in sorted(KERNELS.glob("*.py")):
+        for path in [*sorted(KERNELS.glob("*.py")), EQUATIONS]:
             status = os.stat(path)
             stamps.append((path.name, status.st_mtime, status.st_size))
         return tuple(stamps)

@@ -1,9 +1,9 @@
 """The model the kernels integrate: Eq. (1), the loads of every delivering face, Eq. (11) with T_0.
 
 Eq. (1), its derivative (the lever arm) and Eq. (11) are :mod:`.equations`' functions, compiled:
-the numpy side (:mod:`windpump.kinematics`, :mod:`windpump.windmill`) calls the same definitions.
+the numpy side (:mod:`windpump.model.kinematics`, :mod:`windpump.model.windmill`) calls the same definitions.
 What is only here (which faces deliver in a segment, their sums, the closed-form work) has a numpy
-twin in :mod:`windpump.kinematics` and :mod:`windpump.loads`; tests/test_kernel_twins.py holds
+twin in :mod:`windpump.model.kinematics` and :mod:`windpump.model.loads`; tests/test_kernel_twins.py holds
 each pair together to 1e-12.
 
 Crank angles are split into *segments* of width ``pi / cylinders`` between consecutive switches:
@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import typing
 
-from . import equations
+from ..model import equations
 from .jit import kernel
 from .wind import Wind
 

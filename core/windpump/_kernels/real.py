@@ -23,9 +23,9 @@ the excess, less the water lifted and the friction (:func:`windpump.power_budget
 
 The pointwise equations (Eq. 1 and its derivatives, the hole's flow, the face's pressure) are
 :mod:`.equations`' functions, shared with the numpy side. The sums over faces and cylinders are
-twins of :func:`windpump.loads.faces_load` (and its friction at a frozen energy,
-:func:`friction_density`), :func:`windpump.loads.weight_torque` and
-:func:`windpump.reciprocating.crank_inertia`, kept for speed; tests/test_real_machine.py holds
+twins of :func:`windpump.model.loads.faces_load` (and its friction at a frozen energy,
+:func:`friction_density`), :func:`windpump.model.loads.weight_torque` and
+:func:`windpump.model.reciprocating.crank_inertia`, kept for speed; tests/test_real_machine.py holds
 each pair together to 1e-11 or closer.
 """
 
@@ -39,7 +39,7 @@ import numpy as np
 from numba import types
 from numba.extending import overload
 
-from . import equations
+from ..model import equations
 from .dopri5 import (
     B1,
     B3,
@@ -665,7 +665,7 @@ def _frozen_parts(arms, j, held, machine):
     ``arms`` and whose holes pass ``held`` (faces q_L), at the speed theta_dot^2 = 2 e_ref / j,
     as three parts of weights (e_ref, sqrt(e_ref), 1) (:func:`frozen_energy`): the continued
     loads' friction ``rho_w g K A R arms (A R arms theta_dot - held)^2``
-    (:func:`_continued_friction`; without a hole :func:`windpump.loads.faces_load`'s)."""
+    (:func:`_continued_friction`; without a hole :func:`windpump.model.loads.faces_load`'s)."""
     real = machine.real
     q = real.AR * arms
     k = real.rho_g * real.friction

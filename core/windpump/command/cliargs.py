@@ -1,0 +1,124 @@
+"""The command line's shared arguments: ``--workers``, ``--design`` and ``--set``, and the one
+reader of the files a command line names; :mod:`windpump.command.cli` and :mod:`windpump.command.sitecli` both use
+them (here, so that neither imports the other back; issue 38).
+"""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from ..errors import LabDataError, cut, shown
+from ..model.design import UNITS, Design
+from ..readers import files
+
+RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
+# The explorer's link gives these fields in millimetres (?d_leak_mm=3); --set takes metres.
+LINK_MILLIMETRES = {"d_leak_mm": "d_leak", "D_main_mm": "D_main"}
+MAX_FILE_BYTES = 50_000_000
+
+MAX_WORKERS = 1024
+"""Most processes ``--workers`` may ask for."""
+
+
+def workers(text: str) -> int:
+    """``--workers N``: a whole number from 1 to ``MAX_WORKERS``, else a usage error (exit 2).
+    0 and -1 are refused, not taken as 1 or as every core.
+
+    Examples
+    --------
+    >>> workers("4")
+    4
+    >>> workers("0")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: '0' is not allowed: it must be a whole number from 1 to 1024
+    """
+    allowed = f"it must be a whole number from 1 to {MAX_WORKERS}"
+    try:
+        count = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{cut(text)!r} is not allowed: {allowed}") from None
+    if not 1 <= count <= MAX_WORKERS:
+        raise argparse.ArgumentTypeError(f"{cut(text)!r} is not allowed: {allowed}")
+    return count
+
+
+def chosen_design(args: argparse.Namespace) -> Design:
+    """The design of --design and --set."""
+    design = Design.seed_example()
+    if args.design:
+        text = read_text(args.design, "--design")
+        try:
+            design = Design.from_json(text)
+        except ValueError as error:  # which file, as sweep says it
+            raise ValueError(f"{cut(args.design)}: {error}") from None
+    changes: dict[str, Any] = dict(parse_setting(text) for text in args.set)
+    ratios = {name: changes.pop(name) for name in RATIOS if name in changes}
+    return design.with_ratios(**ratios, **changes)
+
+
+def parse_setting(text: str) -> tuple[str, object]:
+    """``NAME=VALUE`` as (name, value), the value typed as the field is."""
+    name, equals, value = text.partition("=")
+    name, value = name.strip(), value.strip()
+    known = ", ".join((*UNITS, *RATIOS))
+    if not equals:
+        raise ValueError(f"--set {shown(text)}: expected NAME=VALUE with NAME one of {known}")
+    if name in LINK_MILLIMETRES:  # a name copied from the explorer's link
+        field = LINK_MILLIMETRES[name]
+        try:
+            hint = f"--set {field}={float(value) / 1000:g}"
+        except ValueError:
+            hint = f"--set {field}=VALUE"
+        raise ValueError(
+            f"--set {shown(text)}: {name} is the explorer's link name: use {field}, "
+            f"{hint} (in metres)"
+        )
+    if name not in (*UNITS, *RATIOS):
+        raise ValueError(
+            f"--set {shown(text)}: {cut(name)} is not a field of the design; one of {known}"
+        )
+    return name, typed(name, value)
+
+
+def typed(name: str, value: str) -> float | int | bool:
+    """A field's value from text: double_acting true/false, cylinders whole, else a float."""
+    if name == "double_acting":
+        if value.lower() in ("true", "1", "yes"):
+            return True
+        if value.lower() in ("false", "0", "no"):
+            return False
+        raise ValueError(f"double_acting = {shown(value)} is not allowed: it must be true or false")
+    try:
+        number = float(value)
+    except ValueError:
+        raise ValueError(
+            f"{name} = {shown(value)} is not allowed: {name} must be a number"
+        ) from None
+    if name == "cylinders" and number.is_integer():  # (inf and NaN are refused by name later)
+        return int(number)
+    return number
+
+
+def read_text(path: str, option: str = "--design") -> str:
+    """The text of the file a command line names (``--design FILE``, ``sweep FILE``), read
+    through the one guard (:func:`windpump.readers.files.read_bytes`): a regular file only, never waiting
+    on a pipe, at most ``MAX_FILE_BYTES``; a path that cannot be one (a NUL byte, over
+    ``files.MAX_PATH`` characters) refused naming ``option``.
+
+    Examples
+    --------
+    >>> read_text("lab\\x00.json", "--design")
+    Traceback (most recent call last):
+    ...
+    windpump.errors.ParameterError: --design = 'lab\\x00.json' is not allowed: --design must be a file's path, without a NUL byte
+    """
+    try:
+        data = files.read_bytes(path, MAX_FILE_BYTES, name=option)
+    except LabDataError as error:  # which option named the file
+        raise LabDataError(f"{option}: {error}") from None
+    try:
+        return data.decode("utf-8-sig")  # a spreadsheet's byte-order mark is not a column name
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{cut(path)}: not UTF-8 text (byte {error.start + 1})") from None

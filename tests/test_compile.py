@@ -77,7 +77,7 @@ def test_every_kernel_is_compiled_once(first_start):
     """A constant argument (record(out, 0, ...), final=True) compiles no copy of its own."""
     signatures = first_start["signatures"]
     assert signatures["windpump._kernels.driver.integrate"] == 1
-    assert signatures["windpump._kernels.driver.record"] == 1
+    assert signatures["windpump._kernels.samples.record"] == 1
     assert signatures["windpump._kernels.grid.steady_runs"] == 0  # the Map tab's, not this page's
     twice = {name: count for name, count in signatures.items() if count > 1}
     assert set(twice) <= BY_DOMAIN

@@ -16,22 +16,17 @@ import typing
 
 import numpy as np
 
-from .dopri5 import dense_value, step_factor
+from .dopri5 import step_factor
 from .jit import inline_kernel, kernel
-from .model import Machine, delivered_strokes, flow_factor, segment_at, segment_start
+from .model import Machine, segment_at, segment_start
 from .real import (
     C_PARTS,
     M_PARTS,
     ROW,
     add_integrals,
-    at_time,
-    conservative_torque,
     conservative_work,
-    end_works,
     energy_slope,
-    fill_friction,
     fill_row,
-    fill_stages,
     friction_at,
     friction_parts,
     friction_since,
@@ -39,15 +34,9 @@ from .real import (
     frozen_record,
     frozen_start,
     frozen_work,
-    grid_aux,
-    grid_inertia,
-    grid_inertias,
-    grid_time,
-    grid_works,
     inertia_at,
     inertia_ratio,
     inertia_since,
-    inertia_table,
     jump_work,
     leak_scale,
     less_frozen,
@@ -56,17 +45,27 @@ from .real import (
     no_integrals,
     not_known,
     open_windows,
-    set_grid_inertia,
     split_sizes_by_parity,
     step_rows,
     time_back,
     time_frozen,
     window_edges,
     window_jump,
-    work_at,
     work_rows,
-    write_work,
     zero_work,
+)
+from .samples import FLOW_FACTOR as FLOW_FACTOR  # read by the typed front (__init__)
+from .samples import ROWS as ROWS
+from .samples import (
+    note_event,
+    record,
+    record_anywhere,
+    record_end,
+    record_grid_angles,
+    record_in_step,
+    record_rest,
+    time_of_sample,
+    with_room,
 )
 from .stepping import (
     ANGLE,
@@ -84,14 +83,11 @@ from .stepping import (
     off_pace,
     rates,
 )
+from .tables import grid_tables, stage_values, stage_work, tabulate_segment, without_wind
 from .wind import has_record, next_kink
 
-# Rows of the output array, one per sampled quantity; the work quadratures last (the real
-# machine's four from WORK on: shaft work, delivered volume, friction loss, leak loss).
-T, THETA, THETA_DOT, STROKES, FLOW_FACTOR, WORK = range(6)
 C1, C2, C3 = C_PARTS  # the rows' columns of the real machine's C
 M1, M2, M3 = M_PARTS  # and of its moment over a sub-step
-ROWS = 6  # the ideal machine's
 
 # The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's
 # duration. At 10 rtol it leaves running designs to the u test and still guards slow starts.
@@ -108,115 +104,6 @@ def faces(machine):
 
 
 @kernel
-def grid_tables(n_per_stroke, machine):
-    """At the grid angles g pi / n_per_stroke of one revolution: strokes delivered since theta = 0,
-    the flow factor, the conservative work since the segment began, and J / I_eff (for the real
-    machine with C since the segment began: :func:`~.real.grid_inertias`)."""
-    rows = 2 * n_per_stroke
-    delta = math.pi / n_per_stroke
-    strokes, flows, works = np.empty(rows), np.empty(rows), np.empty(rows)
-    inertias = inertia_table(rows, machine)
-    for row in range(rows):
-        theta = row * delta
-        segment = (row * machine.cylinders) // n_per_stroke
-        strokes[row] = delivered_strokes(theta, machine)
-        flows[row] = flow_factor(theta, segment, machine)
-        if (row * machine.cylinders) % n_per_stroke == 0:
-            # On a switch the faces that start or stop sit at a dead centre and deliver nothing;
-            # the side without them keeps round-off (sin pi = 1.2e-16) out of the flow.
-            flows[row] = min(flows[row], flow_factor(theta, segment - 1, machine))
-        works[row] = conservative_work(theta, segment, machine)
-        set_grid_inertia(inertias, row, grid_inertias(theta, segment, machine))
-    return strokes, flows, works, inertias
-
-
-@kernel
-def tabulate_segment(parity, m, machine, tables, rows, built):
-    """For each of m equal sub-steps of a segment of this parity: the conservative work at its 7
-    stage nodes and (column 7) the conservative torque at its start [N m]; and the real machine's
-    rows at the nodes (C since the segment began in their C_PARTS columns, exact at the inner
-    nodes: :func:`~.real.fill_friction`)."""
-    start = segment_start(parity, machine)
-    h = (segment_start(parity + 1, machine) - start) / m
-    c_at = no_friction(machine)
-    for i in range(m):
-        sub_rows = rows[parity, m, i]
-        stage_values(
-            start + i * h, h, parity, machine, tables[parity, m, i], sub_rows, c_at,
-            not_known(machine), True,
-        )  # fmt: skip
-        c_at = friction_at(sub_rows[6, C1], sub_rows[6, C2], sub_rows[6, C3], machine)
-    built[parity, m] = True
-
-
-@kernel
-def stage_values(theta, h, segment, machine, aux, rows, c_at, known, exact):
-    """Fill a sub-step's stage values from theta, of length h: ``aux`` (the conservative work
-    at its nodes, then the conservative torque at theta) and the real machine's ``rows`` (with
-    C from c_at = C(theta) in their C_PARTS columns, or from ``known``; ``exact`` for a table's:
-    :func:`~.real.fill_friction`)."""
-    fill_stages(aux, rows, theta, h, segment, machine)
-    aux[7] = conservative_torque(theta, segment, machine)
-    fill_friction(rows, theta, h, c_at, known, exact, segment, without_wind(machine))
-
-
-@inline_kernel
-def stage_work(aux):
-    """The conservative work at a sub-step's 7 stage nodes, ``aux[:7]``, as the 7 numbers
-    :func:`~.stepping.dp5_step` takes: the real machine's step is called, not inlined, and an
-    array handed to it costs an atomic reference pair every step (4,393 pairs in the seed
-    example's 600 s with every effect on); the ideal machine's, inlined, reads the same numbers."""
-    return aux[0], aux[1], aux[2], aux[3], aux[4], aux[5], aux[6]
-
-
-@kernel
-def copy_columns(target, source, n):
-    """``target[:, :n] = source[:, :n]``, element by element: numba compiles a slice assignment
-    with the string formatting of its shape-mismatch error, 4 of the 13 s a first start spent
-    compiling the seed example's kernels."""
-    for row in range(source.shape[0]):
-        for i in range(n):
-            target[row, i] = source[row, i]
-
-
-@kernel
-def with_room(out, n, more):
-    """``out``, or a copy with twice the room, so that ``more`` samples fit after the first n."""
-    if n + more <= out.shape[1]:
-        return out
-    bigger = np.empty((out.shape[0], max(2 * out.shape[1], n + more)))
-    copy_columns(bigger, out, n)
-    return bigger
-
-
-@kernel
-def record(out, n, t, theta, theta_dot, W, strokes, flow, final):
-    """Write sample n (``out`` has room for it); return the sample count. A sample no later than
-    the last one (the crank moved less than time can resolve) replaces it, but the initial state
-    stays as given."""
-    if n > 0 and t <= out[T, n - 1]:
-        if n > 1:
-            n -= 1
-        elif not final:
-            return n
-    out[T, n] = t
-    out[THETA, n] = theta
-    out[THETA_DOT, n] = theta_dot
-    write_work(out, WORK, n, W)
-    out[STROKES, n] = strokes
-    out[FLOW_FACTOR, n] = flow
-    return n + 1
-
-
-@kernel
-def record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, final):
-    """Write a sample off the grid (the start or the end of the run); ``out`` has room."""
-    strokes = delivered_strokes(theta, machine)
-    flow = flow_factor(theta, segment, machine)
-    return record(out, n, t, theta, theta_dot, W, strokes, flow, final)
-
-
-@kernel
 def kinetic(theta, theta_dot, machine):
     """Kinetic energy per unit I_eff, J theta_dot^2 / (2 I_eff) [rad^2/s^2]."""
     return 0.5 * inertia_ratio(theta, machine) * theta_dot * theta_dot
@@ -229,92 +116,6 @@ def first_segment(theta, machine):
     if segment_start(segment + 1, machine) <= theta:
         segment += 1
     return segment
-
-
-@kernel
-def time_of_sample(target, t, t_end_step, rate_start, rate_end, dense, h):
-    """The fraction sigma of a step at which its continuous extension of t reaches ``target``.
-
-    t(sigma) rises through the step (dt/dtheta = 1/theta_dot > 0): Newton's method on the
-    extension's polynomial (:func:`~.dopri5.dense_value`), inside a shrinking bracket.
-    """
-    lo, hi = 0.0, 1.0
-    rise = t_end_step - t
-    back = h * rate_start - rise
-    c = rise - h * rate_end - back
-    sigma = (target - t) / rise
-    for _ in range(60):
-        p = back + sigma * (c + (1.0 - sigma) * dense)
-        q = rise + (1.0 - sigma) * p
-        residual = t + sigma * q - target
-        if residual == 0.0:
-            break
-        if residual < 0.0:
-            lo = sigma
-        else:
-            hi = sigma
-        slope = q + sigma * ((1.0 - sigma) * (c + dense - 2.0 * dense * sigma) - p)
-        step = sigma - residual / slope if slope > 0.0 else -1.0
-        if not lo < step < hi:
-            step = 0.5 * (lo + hi)
-        if hi - lo <= 1e-15 or step == sigma:
-            return step
-        sigma = step
-    return sigma
-
-
-@kernel
-def record_in_step(
-    out, n, j, sample_dt, theta_i, h, t, W, u_free, y, k1, k7, dense, frozen, segment, machine
-):
-    """Samples at the times j sample_dt that an ANGLE sub-step from (theta_i, t, W) to y passed,
-    from its continuous extension (the real machine's frozen friction's :func:`~.real.frozen_record`
-    in ``frozen``). Returns (out, n, the next j)."""
-    more = int(y[2] / sample_dt) - j + 2
-    if more > 0 and n + more > out.shape[1]:
-        out = with_room(out, n, more)
-    while j * sample_dt <= y[2]:
-        target = j * sample_dt
-        sigma = time_of_sample(target, t, y[2], k1[2], k7[2], dense[1], h)
-        theta = theta_i + sigma * h
-        aux, W_j = at_time(
-            conservative_work(theta, segment, machine),
-            work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h), frozen, theta_i, theta, segment,
-            machine,
-        )  # fmt: skip
-        u = aux + dense_value(sigma, u_free, y[0], k1[0], k7[0], dense[0], h)
-        theta_dot = math.sqrt(2.0 * max(u, 0.0) / inertia_ratio(theta, machine))
-        n = record_anywhere(out, n, target, theta, theta_dot, W_j, segment, machine, False)
-        j += 1
-    return out, n, j
-
-
-@kernel
-def record_rest(out, n, j, sample_dt, t_from, t_to, theta, W, segment, machine):
-    """Samples of a crank resting at theta from t_from to t_to: at both ends, and at the times
-    j sample_dt between them on a time grid; returns (out, n, the next j)."""
-    more = 2 + (int(t_to / sample_dt) - j + 1 if sample_dt is not None else 0)
-    out = with_room(out, n, max(more, 2))
-    n = record_anywhere(out, n, t_from, theta, 0.0, W, segment, machine, False)
-    if sample_dt is not None:
-        while j * sample_dt <= t_to:
-            if j * sample_dt > t_from:
-                n = record_anywhere(out, n, j * sample_dt, theta, 0.0, W, segment, machine, False)
-            j += 1
-    n = record_anywhere(out, n, t_to, theta, 0.0, W, segment, machine, False)
-    return out, n, j
-
-
-@kernel
-def note_event(events, count, t, kind):
-    """Append (t, kind) to the events (STOP or START), growing them; returns (events, count)."""
-    if count == events.shape[1]:
-        bigger = np.empty((2, 2 * count))
-        copy_columns(bigger, events, count)
-        events = bigger
-    events[0, count] = t
-    events[1, count] = kind
-    return events, count + 1
 
 
 class Run(typing.NamedTuple):
@@ -468,41 +269,6 @@ def sub_step_end(last, end, end_work, theta_i, h_step, at_table, tabled, segment
     return theta_new, work
 
 
-@kernel
-def record_grid_angles(out, n, g, last, end_grid, grid, strokes_table, flow_table, work_table,
-                       inertia_table, theta_i, h_step, theta_new, u_new, u_free, t, W, y, k1, k7,
-                       dense, frozen, t_new):  # fmt: skip
-    """Samples at the grid angles g delta a sub-step from (theta_i, t, W) to (theta_new, y)
-    passed, from its continuous extension (the real machine's frozen friction's
-    :func:`~.real.frozen_record` in ``frozen``); the segment's end is a grid angle by index,
-    whatever the round-off in g delta, of the :class:`Grid` (``at_grid`` holds
-    :func:`grid_tables`); the segment's end sample at (theta_new, u_new, t_new) (t_new is y's
-    time but after a leak hole's window: :func:`~.real.window_jump`). Returns (out, n, the next
-    g)."""
-    delta, period, per_revolution = grid
-    while (last and g == end_grid) or (g != end_grid and g * delta <= theta_new):
-        row = g % period
-        if g == end_grid:
-            u_g, t_g, W_g = u_new, t_new, end_works(y, frozen)
-        else:
-            sigma = (g * delta - theta_i) / h_step
-            u_g = grid_aux(work_table[row], frozen, inertia_table, row) + dense_value(
-                sigma, u_free, y[0], k1[0], k7[0], dense[0], h_step
-            )
-            t_g = grid_time(
-                dense_value(sigma, t, y[2], k1[2], k7[2], dense[1], h_step), frozen, inertia_table,
-                row,
-            )  # fmt: skip
-            W_g = grid_works(
-                work_at(sigma, W, y[3], k1[3], k7[3], dense[2], h_step), frozen, inertia_table, row
-            )
-        strokes = (g // period) * per_revolution + strokes_table[row]
-        theta_dot_g = math.sqrt(2.0 * u_g / grid_inertia(inertia_table, row))
-        n = record(out, n, t_g, g * delta, theta_dot_g, W_g, strokes, flow_table[row], False)
-        g += 1
-    return n, g
-
-
 @inline_kernel
 def wait_for_wind(out, n, j, sample_dt, t, theta, W, t_end, segment, machine, events, count):
     """A crank that stalled at t in a wind record rests until the wind can turn it again (or to
@@ -569,27 +335,6 @@ def time_stretch(out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, end
             g += 1
     return (outcome, out, n, j, g, steps, kink, t, theta, theta_dot, W, u, full, segment,
             events, count)  # fmt: skip
-
-
-@inline_kernel
-def record_end(out, n, t, theta, theta_dot, W, segment, machine):
-    """The last sample, at the end of a run that reached t_end on a switch (unless the grid put
-    one there). Returns (out, n)."""
-    out = with_room(out, n, 1)
-    if out[T, n - 1] < t:
-        n = record_anywhere(out, n, t, theta, theta_dot, W, segment, machine, True)
-    return out, n
-
-
-@inline_kernel
-def without_wind(machine):
-    """The machine without its wind record: what the loads, masses and tolerances need, with no
-    arrays (an array passed to an inlined kernel is one more reference, counted on every call)."""
-    return Machine(
-        machine.R_dagger, machine.T_m, machine.T_0, machine.omega_m, machine.inv_I_eff,
-        machine.load_torque, machine.L_over_R, machine.cylinders, machine.double_acting, None,
-        machine.real,
-    )  # fmt: skip
 
 
 @inline_kernel

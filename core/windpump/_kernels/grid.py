@@ -7,11 +7,12 @@ import math
 import numpy as np
 from numba import prange
 
-from .driver import STROKES, THETA, integrate
-from .driver import T as TIME
+from .driver import integrate
 from .jit import parallel_kernel
 from .model import Machine
 from .real import real_at
+from .samples import STROKES, THETA
+from .samples import T as TIME
 from .stepping import REACHED_T_END
 
 

@@ -19,6 +19,7 @@ from sphinx.ext import autosummary
 ROOT = Path(__file__).resolve().parents[1]
 # Document this checkout's core, whichever windpump happens to be installed.
 sys.path.insert(0, str(ROOT / "core"))
+sys.path.insert(0, str(Path(__file__).resolve().parent / "_ext"))  # layers: the layers' picture
 
 import windpump  # noqa: E402
 
@@ -33,6 +34,7 @@ extensions = [
     "sphinx.ext.doctest",
     "sphinx.ext.mathjax",
     "numpydoc",
+    "layers",
 ]
 
 templates_path = ["_templates"]

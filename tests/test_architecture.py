@@ -357,3 +357,42 @@ def test_every_core_module_has_its_place_on_the_module_ladder():
     }
     modules -= {"windpump._old_paths"}  # the old paths' finder: imports nothing of the core
     assert modules <= named, sorted(modules - named)
+
+
+LONGEST_MODULE = 800  # lines (issue 38)
+
+
+@pytest.mark.parametrize(
+    "path",
+    sorted([*CORE.rglob("*.py"), *APP.rglob("*.py")]),
+    ids=lambda p: str(p.relative_to(CORE.parents[1])),
+)
+def test_no_module_is_too_long_to_hold_in_the_head(path):
+    assert len(path.read_text(encoding="utf-8").splitlines()) <= LONGEST_MODULE
+
+
+def test_the_layers_picture_is_drawn_from_the_imports_and_follows_the_ladder():
+    """docs/_ext/layers.py (the picture on docs/architecture.rst): every import it draws goes down
+    the sub-packages' import-linter ladder, and it draws every sub-package."""
+    sys.path.insert(0, str(CORE.parents[1] / "docs" / "_ext"))
+    try:
+        import layers
+    finally:
+        sys.path.pop(0)
+    import tomllib
+
+    config = tomllib.loads((CORE.parents[1] / "pyproject.toml").read_text())["tool"]
+    [ladder] = [
+        c
+        for c in config["importlinter"]["contracts"]
+        if c["name"] == "The core's sub-packages, from the command line down to errors and units"
+    ]
+    rung = {
+        part.strip().removeprefix("windpump."): -level
+        for level, line in enumerate(ladder["layers"])
+        for part in line.split(":")
+    }
+    edges = layers.layer_edges()
+    assert {node for edge in edges for node in edge} >= set(LADDER)
+    assert all(rung[a] > rung[b] for a, b in edges), sorted(edges)
+    assert "<svg" in layers.svg(edges) and all(f">{name}<" in layers.svg(edges) for name in LADDER)

@@ -10,7 +10,7 @@ WIDTH, HEIGHT = 900, 330  # WIDTH: the widest a view is drawn, so bins of 2 px: 
 ZOOM = "pan,box_zoom,wheel_zoom,reset,save"
 TITLE, LABEL, TICKS = "16px", "15px", "14px"  # nothing a student must read below 14 px
 # Each theme's colours: every drawn line, marker and label stands out from its plot's background
-# by at least 3:1 (WCAG's non-text contrast; tests/test_app_colours.py), white in the light theme,
+# by at least 3:1 (WCAG's non-text contrast; tests/app/test_app_colours.py), white in the light theme,
 # the dark theme's #2b3035. Views pick theirs with palette(dark).
 LIGHT = {
     "integrated": "#1f77b4",

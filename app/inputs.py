@@ -292,7 +292,7 @@ IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab", "r
 
 # name: (values, one sentence saying what to look at). A name fits the sidebar's select box in
 # presentation mode's text (~26 characters: a select shows its choice on one line and cuts it at
-# its edge; tests/test_layout.py measures them).
+# its edge; tests/browser/test_layout.py measures them).
 PRESETS = {
     "The paper's example": (
         {},

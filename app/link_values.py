@@ -20,7 +20,7 @@ LONGEST_PARSED = 300  # [characters] a longer value stays text
 def link_values_read_safely() -> None:
     """Panel's ``Location`` parses a link's query with ``safe_parse_query`` (a second call does
     nothing). Raises ``AttributeError`` if Panel no longer reads the query through
-    ``panel.io.location.parse_query`` (tests/test_text_is_text.py holds it)."""
+    ``panel.io.location.parse_query`` (tests/app/test_text_is_text.py holds it)."""
     from panel.io import location
 
     if getattr(location.parse_query, "safe", False):

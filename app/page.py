@@ -45,10 +45,10 @@ CITATION_CSS = [
 # scrolling (the sidebar once stacked ~900 px of controls above the readouts). The controls' pane
 # is a fifth of the screen (158 px at 390×844: the preset menu and a slider), so that the first
 # screen holds the readouts, the status and the crank speed's whole chart above it, its plot as
-# high as elsewhere (at 0.42 the chart's lower half was under the controls; tests/test_layout.py).
+# high as elsewhere (at 0.42 the chart's lower half was under the controls; tests/browser/test_layout.py).
 CONTROLS_SHARE = 0.2  # of the screen below the header: the controls' pane on a phone
 PANE_PADDING = (4, 12)  # [px] the tabs' pane's padding on a phone, above and below its content
-HEADER_AT_MOST = 70  # [px] a phone's header, one line (~54 px; tests/test_layout.py)
+HEADER_AT_MOST = 70  # [px] a phone's header, one line (~54 px; tests/browser/test_layout.py)
 NARROW_CSS = f"""
 #header .title {{ white-space: normal; }}
 @media (max-width: 700px) {{

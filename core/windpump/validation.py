@@ -131,7 +131,7 @@ def flag(name: str, value: object) -> bool:
 SMALLEST, LARGEST = 1e-12, 1e12
 """The magnitudes a design's numbers may take [their SI units]: far past any machine, and where
 every figure of the model stays finite with every field anywhere in the range (the load
-rho_w g h A R multiplies five of them; tests/test_edges.py probes the corners). At 1e100 the load
+rho_w g h A R multiplies five of them; tests/whole_core/test_edges.py probes the corners). At 1e100 the load
 overflowed to inf and the wind thresholds divided by zero."""
 
 

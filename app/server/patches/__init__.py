@@ -1,6 +1,6 @@
 """The app's patches to Panel, Bokeh and param internals, one module per thing patched, each
 named for it and saying the versions it was made for (``pyproject.toml`` bounds panel, bokeh and
-param to them; ``tests/test_app_patches.py`` fails when a patched internal changes shape).
+param to them; ``tests/app/test_app_patches.py`` fails when a patched internal changes shape).
 
 Each patch is applied by a function that does nothing a second time, nor on a version other than
 the one it was checked against: ``apply_all`` applies every one, and ``applied`` says which are

@@ -5,7 +5,7 @@
 Made for bokeh 3.9.2 (applied on bokeh 3.9 only): it replaces the classmethod ``create(events,
 **metadata)`` and relies on ``Serializer.__init__(*, references=..., deferred=...)``,
 ``DocumentModelManager.flush_synced(is_still_new)``, ``_models`` and ``_new_models``;
-``tests/test_app_patches.py`` fails when those change shape.
+``tests/app/test_app_patches.py`` fails when those change shape.
 """
 
 from __future__ import annotations

@@ -38,7 +38,7 @@ name, theme_overrides, *, no_eval=False)``, ``PropertyDescriptor.has_unstable_de
 descriptor)``, ``HasProps.__init__(self, **properties)`` (with Bokeh 3.9's body),
 ``HasProps.query_properties_with_values(self, query, *, include_defaults=True,
 include_undefined=False)`` and ``bokeh.model.util.visit_immediate_value_references(value,
-visitor)`` (and Panel 1.9's copy of it); ``tests/test_app_patches.py`` fails when any of them
+visitor)`` (and Panel 1.9's copy of it); ``tests/app/test_app_patches.py`` fails when any of them
 changes shape.
 """
 

@@ -3,7 +3,7 @@
 
 Made for panel 1.9.4 (bokeh 3.9.2): it wraps ``bundle_resources(roots, resources, notebook=False,
 reloading=False, enable_mathjax='auto')`` and drops ``/bokeh-gl`` from the bundle's ``js_files``;
-``tests/test_app_patches.py`` fails when that function's signature changes.
+``tests/app/test_app_patches.py`` fails when that function's signature changes.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 
 Made for panel 1.9.4 (applied on panel 1.9 only): it wraps the coroutine ``_dispatch_msgs(doc)``
 and reads ``_WRITE_MSGS``, ``_WRITE_BLOCK`` and ``_dispatch_write_task(doc, func, *args, **kwargs)``;
-``tests/test_app_patches.py`` fails when those change shape.
+``tests/app/test_app_patches.py`` fails when those change shape.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Panel's MathJax left out of every page (``panel.io.resources._panel_use_mathjax``).
 
 Made for panel 1.9.4 (bokeh 3.9.2, param 2.4.2): it replaces a private function of Panel's
-resource bundler, ``_panel_use_mathjax(roots)``; ``tests/test_app_patches.py`` fails when it is
+resource bundler, ``_panel_use_mathjax(roots)``; ``tests/app/test_app_patches.py`` fails when it is
 gone or takes other arguments.
 """
 

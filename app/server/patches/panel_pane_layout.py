@@ -12,7 +12,7 @@ first time something asks for it: what a page shows and sends is the same.
 
 Made for panel 1.9.4 (applied on panel 1.9 only): it replaces ``PaneBase.__init__(self,
 object=None, **params)`` with Panel 1.9.4's body but for the layout, and gives ``HTMLBasePane``
-a lazy ``layout`` property; ``tests/test_app_patches.py`` fails when that signature changes.
+a lazy ``layout`` property; ``tests/app/test_app_patches.py`` fails when that signature changes.
 """
 
 from __future__ import annotations

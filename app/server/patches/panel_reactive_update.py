@@ -2,7 +2,7 @@
 (``panel.reactive.Reactive._update_properties``).
 
 Made for panel 1.9.4 (applied on panel 1.9 only): it replaces ``Reactive._update_properties(self,
-*events, doc)``; ``tests/test_app_patches.py`` fails when its signature changes.
+*events, doc)``; ``tests/app/test_app_patches.py`` fails when its signature changes.
 """
 
 from __future__ import annotations

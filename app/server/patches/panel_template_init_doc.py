@@ -3,7 +3,7 @@
 
 Made for panel 1.9.4 (applied on panel 1.9 only): it wraps ``BaseTemplate._init_doc(self,
 doc=None, comm=None, title=None, notebook=False, location=True)`` and reads ``state._fake_roots``
-and the template's ``_refs``; ``tests/test_app_patches.py`` fails when those change shape.
+and the template's ``_refs``; ``tests/app/test_app_patches.py`` fails when those change shape.
 """
 
 from __future__ import annotations

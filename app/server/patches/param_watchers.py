@@ -7,7 +7,7 @@ which answers as that dict too (``ValueWatchers``): the same watchers, called in
 
 Made for param 2.4.2 (applied on param 2.4 only): it wraps ``_InstancePrivate.__init__(self,
 initialized=False, parameters_state=None, dynamic_watchers=None, refs=None, params=None,
-watchers=None, values=None, explicit_no_refs=None)`` and replaces the ``watchers`` dict it made; ``tests/test_app_patches.py`` fails when that changes.
+watchers=None, values=None, explicit_no_refs=None)`` and replaces the ``watchers`` dict it made; ``tests/app/test_app_patches.py`` fails when that changes.
 """
 
 from __future__ import annotations

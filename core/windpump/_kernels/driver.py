@@ -696,7 +696,7 @@ def compile_ahead(machine: Machine) -> list[str]:
     A second process compiling the last ones while the first compiles ``integrate`` leaves them
     in numba's cache, and the first loads them when it comes to them instead of compiling them
     (app/compiling.py). The signatures are the ones ``integrate``'s calls type on the grid of
-    angles: tests/test_compile.py checks that ``integrate`` compiles none of them again.
+    angles: tests/kernels/test_compile.py checks that ``integrate`` compiles none of them again.
 
     Examples
     --------

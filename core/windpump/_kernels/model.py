@@ -3,7 +3,7 @@
 Eq. (1), its derivative (the lever arm) and Eq. (11) are :mod:`.equations`' functions, compiled:
 the numpy side (:mod:`windpump.model.kinematics`, :mod:`windpump.model.windmill`) calls the same definitions.
 What is only here (which faces deliver in a segment, their sums, the closed-form work) has a numpy
-twin in :mod:`windpump.model.kinematics` and :mod:`windpump.model.loads`; tests/test_kernel_twins.py holds
+twin in :mod:`windpump.model.kinematics` and :mod:`windpump.model.loads`; tests/kernels/test_kernel_twins.py holds
 each pair together to 1e-12.
 
 Crank angles are split into *segments* of width ``pi / cylinders`` between consecutive switches:

@@ -25,7 +25,7 @@ The pointwise equations (Eq. 1 and its derivatives, the hole's flow, the face's 
 :mod:`.equations`' functions, shared with the numpy side. The sums over faces and cylinders are
 twins of :func:`windpump.model.loads.faces_load` (and its friction at a frozen energy,
 :func:`friction_density`), :func:`windpump.model.loads.weight_torque` and
-:func:`windpump.model.reciprocating.crank_inertia`, kept for speed; tests/test_real_machine.py holds
+:func:`windpump.model.reciprocating.crank_inertia`, kept for speed; tests/run/test_real_machine.py holds
 each pair together to 1e-11 or closer.
 """
 

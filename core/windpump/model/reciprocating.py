@@ -11,7 +11,7 @@ The weights' torque is :func:`windpump.model.loads.weight_torque` (the torque at
 revolution-mean inertia is :func:`windpump.averaging.revolution.reciprocating_inertia`.
 
 The compiled integrator keeps its own copy of these sums for speed (``_kernels.real``);
-tests/test_real_machine.py holds the two together.
+tests/run/test_real_machine.py holds the two together.
 """
 
 from __future__ import annotations

@@ -19,7 +19,7 @@ import pytest
 
 from windpump_app.server import proxy
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_hall  # noqa: E402
 
 STUDENTS = 6

@@ -18,7 +18,7 @@ from bokeh.themes import Theme
 
 from windpump_app.server.patches.bokeh_properties import immutable, lighter_properties
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_page_memory  # noqa: E402
 
 pytestmark = pytest.mark.skipif(

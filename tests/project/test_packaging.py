@@ -12,7 +12,7 @@ from windpump.command.cli import explorer_folder
 
 tomllib = pytest.importorskip("tomllib")  # Python 3.11+
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_every_package_of_the_checkout_is_installed():

@@ -306,7 +306,7 @@ def test_sweep_reads_and_writes_the_real_machines_columns(tmp_path):
 
 
 def test_the_docs_designs_csv_is_what_sweep_reads():
-    docs = Path(__file__).resolve().parents[1] / "docs"
+    docs = Path(__file__).resolve().parents[2] / "docs"
     table = docs / "examples" / "designs.csv"
     # the designers' guide shows this very file
     assert ".. literalinclude:: examples/designs.csv" in (docs / "designers.rst").read_text("utf-8")

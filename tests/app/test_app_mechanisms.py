@@ -8,7 +8,7 @@ import re
 
 import numpy as np
 import pytest
-from test_linkage import half_angle
+from linkage_reference import half_angle
 
 import windpump
 from windpump_app.explorer import Explorer

@@ -14,7 +14,7 @@ from test_browser import open_page
 pytestmark = pytest.mark.browser
 
 # Each sets window.ran if it runs; each is short enough (40 characters) to be echoed whole in a
-# notice (tests/test_text_is_text.py has srcdoc and longer ones, in-process).
+# notice (tests/app/test_text_is_text.py has srcdoc and longer ones, in-process).
 RUNNING = (
     "<script>window.ran=1</script>",
     '<img src=x onerror="window.ran=1">',

@@ -24,7 +24,7 @@ from windpump_app.uploads import SESSION_HEADER, WIND_MAX_BYTES
 from panes import shown
 from served import served_app, server_log
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_hall  # noqa: E402
 
 LIMIT = 10_000_000  # [bytes] the page's limit for a wind or weather file, as the docs say
@@ -696,7 +696,7 @@ def test_the_words_for_the_upload_rules_are_the_rules_numbers():
     from windpump_app.server.hooks import CHECK_UNUSED_SESSIONS, UNCONNECTED_SESSION_LIFETIME
     from windpump_app.server.upload_route import LIFETIME, MAX_HELD, MAX_ITEMS, dropped_text
 
-    docs = Path(__file__).resolve().parents[1] / "docs"
+    docs = Path(__file__).resolve().parents[2] / "docs"
     issues = " ".join((docs / "known-issues.rst").read_text(encoding="utf-8").split())
     instructors = " ".join((docs / "instructors.rst").read_text(encoding="utf-8").split())
     assert f"The store holds {MAX_ITEMS} files or {MAX_HELD // 1_000_000} MB" in issues

@@ -976,7 +976,7 @@ def test_a_value_off_its_sliders_step_is_taken_exactly_and_float_noise_is_droppe
     assert not old.notices.visible and old.inputs.values() == PumpInputs().values()
 
 
-TORQUE_CSV = Path(__file__).parents[1] / "docs" / "examples" / "torque.csv"
+TORQUE_CSV = Path(__file__).parents[2] / "docs" / "examples" / "torque.csv"
 
 
 def test_a_fitted_design_travels_through_the_link_to_the_bit():

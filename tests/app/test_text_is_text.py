@@ -1,5 +1,5 @@
 """Text from a link or a file is shown as text, never run nor read as markup (in-process: what
-the panes hold, rendered as the browser gets it; tests/test_browser_text.py opens the pages)."""
+the panes hold, rendered as the browser gets it; tests/browser/test_browser_text.py opens the pages)."""
 
 from __future__ import annotations
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-CORE = Path(__file__).resolve().parents[1] / "core" / "windpump"
+CORE = Path(__file__).resolve().parents[2] / "core" / "windpump"
 KERNELS = CORE / "_kernels"
 APP_LIBRARIES = {"panel", "bokeh", "param", "app"}
 STUDY_EXTRAS = {"pandas", "tqdm", "matplotlib", "dask", "distributed", "pvlib"}
@@ -396,3 +396,20 @@ def test_the_layers_picture_is_drawn_from_the_imports_and_follows_the_ladder():
     assert {node for edge in edges for node in edge} >= set(LADDER)
     assert all(rung[a] > rung[b] for a, b in edges), sorted(edges)
     assert "<svg" in layers.svg(edges) and all(f">{name}<" in layers.svg(edges) for name in LADDER)
+
+
+TESTS = CORE.parents[1] / "tests"
+TEST_FOLDERS_BEYOND_THE_CORE = {"whole_core", "app", "server", "browser", "project"}
+
+
+def test_the_tests_are_grouped_by_the_same_layers():
+    """A folder of tests per sub-package of the core (``tests/model`` for ``windpump.model``, ...),
+    then the core as a whole, the app's page, its server, the browser and the project: no test
+    file sits loose in ``tests/`` (only the references and helpers the folders share)."""
+    loose = sorted(path.name for path in TESTS.glob("test_*.py"))
+    assert loose == []
+    folders = {
+        path.name for path in TESTS.iterdir() if path.is_dir() and any(path.glob("test_*.py"))
+    }
+    core_layers = set(LADDER) - {"_kernels"} | {"kernels"}
+    assert folders == core_layers | TEST_FOLDERS_BEYOND_THE_CORE

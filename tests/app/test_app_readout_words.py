@@ -94,7 +94,7 @@ def test_with_a_leak_hole_the_overall_efficiency_above_the_volumetric_is_explain
 def test_the_model_docs_say_why_the_overall_can_exceed_the_volumetric():
     from pathlib import Path
 
-    text = (Path(__file__).resolve().parents[1] / "docs" / "model.rst").read_text()
+    text = (Path(__file__).resolve().parents[2] / "docs" / "model.rst").read_text()
     text = " ".join(text.split())
     assert "overall efficiency can exceed the volumetric one" in text
 

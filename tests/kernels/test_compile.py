@@ -57,7 +57,7 @@ BY_DOMAIN = {"windpump._kernels.stepping.rates", "windpump._kernels.stepping.dp5
 @pytest.fixture(scope="module")
 def first_start(tmp_path_factory):
     """The seed example run as the first page runs it, in a fresh process and numba cache."""
-    core = Path(__file__).resolve().parents[1] / "core"
+    core = Path(__file__).resolve().parents[2] / "core"
     environment = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path_factory.mktemp("numba_cache")))
     environment["PYTHONPATH"] = os.pathsep.join(
         [str(core), *filter(None, [os.environ.get("PYTHONPATH")])]
@@ -475,7 +475,7 @@ def test_a_change_to_a_callees_module_alone_recompiles_its_caller(tmp_path):
     caller's answer changes with it, on the same cache."""
     core = tmp_path / "core"
     shutil.copytree(
-        Path(__file__).resolve().parents[1] / "core" / "windpump",
+        Path(__file__).resolve().parents[2] / "core" / "windpump",
         core / "windpump",
         ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"),
     )

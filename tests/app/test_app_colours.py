@@ -40,7 +40,7 @@ from windpump_app.explorer import Explorer
 from windpump_app.figures import present
 from windpump_app.mechanisms import SIX_BAR
 
-APP = Path(__file__).resolve().parents[1] / "app"
+APP = Path(__file__).resolve().parents[2] / "app"
 MINIMUM = 3.0
 AREAS = (VArea, HArea, Patch, Patches)
 

@@ -19,7 +19,7 @@ import tomllib
 
 from served import served_app, server_log
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _internal(path: str):

@@ -134,7 +134,7 @@ def epw_text(rows, city="Testville"):
         "TYPICAL/EXTREME PERIODS,0",
         "GROUND TEMPERATURES,0",
         "HOLIDAYS/DAYLIGHT SAVINGS,No,0,0,0",
-        "COMMENTS 1,written by tests/test_weather.py",
+        "COMMENTS 1,written by tests/sites/test_weather.py",
         "COMMENTS 2,",
         "DATA PERIODS,1,1,Data,Sunday, 1/ 1,12/31",
     ]

@@ -25,7 +25,7 @@ from served import (
 pytestmark = pytest.mark.browser
 
 ARTIFACTS = Path(
-    os.environ.get("WINDPUMP_ARTIFACTS", Path(__file__).resolve().parents[1] / "artifacts")
+    os.environ.get("WINDPUMP_ARTIFACTS", Path(__file__).resolve().parents[2] / "artifacts")
 )
 SEED = windpump.Design.seed_example()
 MAIN_SLIDERS = [
@@ -430,7 +430,7 @@ def test_a_tampered_link_is_ignored_with_a_notice(browser, url):
         page.close()
 
 
-TORQUE_CSV = Path(__file__).parents[1] / "docs" / "examples" / "torque.csv"
+TORQUE_CSV = Path(__file__).parents[2] / "docs" / "examples" / "torque.csv"
 
 
 def readouts_text(page) -> dict[str, str]:

@@ -1,6 +1,6 @@
 """What the README promises: its example runs, its commands are CI's, its links and picture exist.
 
-Everything else the README used to carry lives in the documentation (docs/); tests/test_docs.py
+Everything else the README used to carry lives in the documentation (docs/); tests/project/test_docs.py
 runs the pages' examples and checks that they still say what a user needs.
 """
 
@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 CI = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
 BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)

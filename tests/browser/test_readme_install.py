@@ -16,7 +16,7 @@ from served import DEEP_TEXT, served_app, server_log
 
 pytestmark = pytest.mark.browser
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 INSTALL = 'pip install -e ".[app]"'  # the README's serve command's install
 COMPILE = "python -m windpump_app.compiling"  # and its compile step
 

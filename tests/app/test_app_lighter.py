@@ -18,7 +18,7 @@ from param.parameterized import _InstancePrivate
 from windpump_app.server.patches import lighter_components
 from windpump_app.server.patches.param_watchers import ValueWatchers
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_page_memory  # noqa: E402
 
 pytestmark = pytest.mark.skipif(

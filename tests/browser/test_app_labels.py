@@ -84,7 +84,7 @@ def test_every_sidebar_slider_keeps_its_value_on_its_titles_line():
     too_long = {}
     # presentation mode: the text a quarter larger in the same sidebar (a wider one pushed the
     # machine under the crank speed at 1280 px); the main sliders' titles still fit, the cards'
-    # may wrap (tests/test_layout.py)
+    # may wrap (tests/browser/test_layout.py)
     for zoom, places in ((1.0, ("main", "more", "real")), (PRESENTATION_ZOOM, ("main",))):
         font, bold = dejavu(15 * zoom), dejavu(15 * zoom, bold=True)
         for name, (fmt, place) in FORMATS.items():

@@ -18,63 +18,117 @@ and many runs on any executor, a dask cluster's included (:func:`sweep`).
 
 import importlib
 
-from . import _old_paths, linkage, units
-from .averaging import theory
-from .averaging.averaged import (
-    averaged_stall_time,
-    mean_lever_arm,
-    spinup,
-    stall_margin,
-    stall_sides,
-    steady_speeds,
-    time_constant,
-)
-from .averaging.operating import OperatingPoint, load_power, operating_point
-from .errors import DesignFileError, LabDataError, NoClosure, ParameterError, StallError
-from .model import reciprocating, wind
-from .model.design import Design
-from .model.kinematics import (
-    delivering_faces,
-    f2,
-    face_flows,
-    lever_arm,
-    piston_position,
-    rod_angle,
-    swept_strokes,
-)
-from .model.loads import load_torque_on_crank, peak_load_torque, rest_torque, starts_from_rest
-from .model.wind import WindRecord
-from .model.windmill import TorqueFit, fit_torque_curve, windmill_power, windmill_torque
-from .readers import files, labdata
-from .readers.labdata import TorqueTable, read_torque_csv
-from .run import energy, playback
-from .run.dynamics import MAX_SAMPLES, Intermittency, SimulationResult, revolution_marks, simulate
-from .run.energy import EnergyTotals, PowerBudget, StartupPower, power_budget, startup_power
-from .run.exploration import Exploration, NotStarted, Status, explore
-from .run.playback import CrankTable, Playback, crank_table, piston_table, playback_frames
-from .sites import weather
-from .sites.site import (
-    WindEvents,
-    WindRun,
-    record_water,
-    run_in_wind,
-    steady_flow,
-    water_per_day,
-    wind_thresholds,
-)
-from .sites.weather import read_weather, sample_site
-from .sites.yearly import MonthTable, Supply, SupplyMap, Totals, supply, supply_map, tank_for
-from .study.maps import DesignMap, design_map
-from .study.studies import Sweep, sweep
+from . import _old_paths
 
-_old_paths.install()  # windpump.run.dynamics etc., the paths before the sub-packages, keep working
+# Each public name -> where it lives ("module:name", or a module): imported on first use, so that
+# `import windpump` loads neither numba nor a module a script does not use (the full run loads
+# numba at its top; the averaged theory never does).
+PUBLIC = {
+    "averaged_stall_time": "averaging.averaged:averaged_stall_time",
+    "mean_lever_arm": "averaging.averaged:mean_lever_arm",
+    "spinup": "averaging.averaged:spinup",
+    "stall_margin": "averaging.averaged:stall_margin",
+    "stall_sides": "averaging.averaged:stall_sides",
+    "steady_speeds": "averaging.averaged:steady_speeds",
+    "time_constant": "averaging.averaged:time_constant",
+    "OperatingPoint": "averaging.operating:OperatingPoint",
+    "load_power": "averaging.operating:load_power",
+    "operating_point": "averaging.operating:operating_point",
+    "theory": "averaging.theory",
+    "DesignFileError": "errors:DesignFileError",
+    "LabDataError": "errors:LabDataError",
+    "NoClosure": "errors:NoClosure",
+    "ParameterError": "errors:ParameterError",
+    "StallError": "errors:StallError",
+    "linkage": "linkage",
+    "Design": "model.design:Design",
+    "delivering_faces": "model.kinematics:delivering_faces",
+    "f2": "model.kinematics:f2",
+    "face_flows": "model.kinematics:face_flows",
+    "lever_arm": "model.kinematics:lever_arm",
+    "piston_position": "model.kinematics:piston_position",
+    "rod_angle": "model.kinematics:rod_angle",
+    "swept_strokes": "model.kinematics:swept_strokes",
+    "load_torque_on_crank": "model.loads:load_torque_on_crank",
+    "peak_load_torque": "model.loads:peak_load_torque",
+    "rest_torque": "model.loads:rest_torque",
+    "starts_from_rest": "model.loads:starts_from_rest",
+    "reciprocating": "model.reciprocating",
+    "WindRecord": "model.wind:WindRecord",
+    "wind": "model.wind",
+    "TorqueFit": "model.windmill:TorqueFit",
+    "fit_torque_curve": "model.windmill:fit_torque_curve",
+    "windmill_power": "model.windmill:windmill_power",
+    "windmill_torque": "model.windmill:windmill_torque",
+    "files": "readers.files",
+    "TorqueTable": "readers.labdata:TorqueTable",
+    "labdata": "readers.labdata",
+    "read_torque_csv": "readers.labdata:read_torque_csv",
+    "Intermittency": "run.dynamics:Intermittency",
+    "MAX_SAMPLES": "run.dynamics:MAX_SAMPLES",
+    "SimulationResult": "run.dynamics:SimulationResult",
+    "revolution_marks": "run.dynamics:revolution_marks",
+    "simulate": "run.dynamics:simulate",
+    "EnergyTotals": "run.energy:EnergyTotals",
+    "PowerBudget": "run.energy:PowerBudget",
+    "StartupPower": "run.energy:StartupPower",
+    "energy": "run.energy",
+    "power_budget": "run.energy:power_budget",
+    "startup_power": "run.energy:startup_power",
+    "Exploration": "run.exploration:Exploration",
+    "NotStarted": "run.exploration:NotStarted",
+    "Status": "run.exploration:Status",
+    "explore": "run.exploration:explore",
+    "CrankTable": "run.playback:CrankTable",
+    "Playback": "run.playback:Playback",
+    "crank_table": "run.playback:crank_table",
+    "piston_table": "run.playback:piston_table",
+    "playback": "run.playback",
+    "playback_frames": "run.playback:playback_frames",
+    "WindEvents": "sites.site:WindEvents",
+    "WindRun": "sites.site:WindRun",
+    "record_water": "sites.site:record_water",
+    "run_in_wind": "sites.site:run_in_wind",
+    "steady_flow": "averaging.theory:steady_flow",
+    "water_per_day": "sites.site:water_per_day",
+    "wind_thresholds": "sites.site:wind_thresholds",
+    "read_weather": "sites.weather:read_weather",
+    "sample_site": "sites.weather:sample_site",
+    "weather": "sites.weather",
+    "MonthTable": "sites.yearly:MonthTable",
+    "Supply": "sites.yearly:Supply",
+    "SupplyMap": "sites.yearly:SupplyMap",
+    "Totals": "sites.yearly:Totals",
+    "supply": "sites.yearly:supply",
+    "supply_map": "sites.yearly:supply_map",
+    "tank_for": "sites.yearly:tank_for",
+    "DesignMap": "study.maps:DesignMap",
+    "design_map": "study.maps:design_map",
+    "Sweep": "study.studies:Sweep",
+    "sweep": "study.studies:sweep",
+    "units": "units",
+}  # fmt: skip
+
+_old_paths.install()  # windpump.dynamics etc., the paths before the sub-packages, keep working
 
 
 def __getattr__(name: str):
-    """``windpump.run.dynamics`` and the other old paths (:mod:`windpump._old_paths`) as attributes."""
+    """A public name (:data:`PUBLIC`), imported on first use; or an old module path
+    (``windpump.dynamics``: :mod:`windpump._old_paths`)."""
+    if name in PUBLIC:
+        module, _, attribute = PUBLIC[name].partition(":")
+        value = importlib.import_module(f"{__name__}.{module}")
+        if attribute:
+            value = getattr(value, attribute)
+        globals()[name] = value  # found once
+        return value
     if name in _old_paths.MOVED:
         return importlib.import_module(f"{__name__}.{name}")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *PUBLIC})
 
 
 # The public names by topic, as the API reference (docs/api/index.rst) groups them.

@@ -23,33 +23,25 @@ continuous extension. Near rest and for the stretch that ends at ``t_end`` the s
 integrates in time, with state ``(theta, theta_dot)``; a stop is located by Newton's method on the
 step length.
 
-Importing this package loads no numba: the numpy side imports :mod:`.equations` (the pointwise
-equations both sides share) without the compiler; the names below load it on first use.
+Importing this package loads numba and the kernels (not compiling them: numba compiles each on
+its first call, or loads it from its cache). ``import windpump`` does not import it: the package's
+public names are imported on first use, and only the full run's (:mod:`windpump.run`), a site's
+year's and a study's modules import the kernels.
 """
 
 from __future__ import annotations
 
 import functools
-import importlib
 import typing
 
+import numba
 import numpy as np
 
-if typing.TYPE_CHECKING:
-    from .model import Machine, Real
-    from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED
-    from .wind import Wind
-
-# name -> the module that defines it, imported (with numba) on first use.
-LAZY = {
-    "Machine": "model",
-    "Real": "model",
-    "Wind": "wind",
-    "OVER_BUDGET": "stepping",
-    "REACHED_T_END": "stepping",
-    "RESTING": "stepping",
-    "STALLED": "stepping",
-}
+from . import driver
+from .model import Machine, Real
+from .real import leaky_flow_factors
+from .stepping import OVER_BUDGET, REACHED_T_END, RESTING, STALLED, START, STOP
+from .wind import Wind
 
 __all__ = [
     "OVER_BUDGET",
@@ -86,12 +78,6 @@ class KernelRun(typing.NamedTuple):
     leak_loss: np.ndarray | None = None  # the rest of the load's work: the leak hole's [J]
 
 
-def __getattr__(name: str) -> typing.Any:
-    if name in LAZY:
-        return getattr(importlib.import_module(f".{LAZY[name]}", __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 def run(
     machine: Machine,
     theta0: float,
@@ -111,9 +97,6 @@ def run(
     (doubling) past it. Past ``pace`` steps the run ends OVER_BUDGET as soon as it is on pace to
     pass max_steps by t_end (None: only at max_steps).
     """
-    from . import driver
-    from .stepping import START, STOP
-
     ran = driver.integrate(
         machine,
         theta0,
@@ -133,8 +116,6 @@ def run(
         for row in range(driver.ROWS)
     )  # (a leak hole's flow factor is the delivered flow's, not the driver's: not copied)
     if leaky:  # worked out when the flow is first read (:class:`KernelRun`)
-        from .real import leaky_flow_factors
-
         flow = functools.partial(
             leaky_flow_factors, theta.view(), theta_dot.view(), samples_per_stroke, machine
         )  # (views: the arrays are made read-only, which numba would compile again for)
@@ -161,10 +142,6 @@ def is_cached(machine: Machine, sample_dt: float | None) -> bool:
     """Whether numba's on-disk cache holds :func:`run`'s driver compiled for these argument types
     (the machine's, and a sample_dt or None), from the cache's index alone; False when it does
     not, or when caching is off or numba's private cache API has changed."""
-    import numba
-
-    from . import driver
-
     dispatcher = driver.integrate
     arguments = (machine, 0.0, 0.0, 1.0, 1, sample_dt, 1e-8, 1, 1, 1)  # typed as run() passes them
     try:

@@ -11,9 +11,7 @@ import math
 
 import numpy as np
 
-from .. import (
-    _kernels,  # light: its names load numba on first use (_kernels.LAZY), on the first run
-)
+from .. import _kernels
 from ..averaging.averaged import stall_margin
 from ..averaging.revolution import friction_load, reciprocating_inertia
 from ..averaging.theory import steady_flow

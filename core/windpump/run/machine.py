@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from .. import _kernels  # light: its names load numba on first use (_kernels.LAZY)
+from .. import _kernels
+from .._kernels.real import RealBase, real_at
 from ..averaging.averaged import steady_speeds
 from ..errors import StallError
 from ..model.design import REAL_MACHINE, Design
@@ -50,8 +51,6 @@ def kernel_machine(design: Design, record: WindRecord | None = None):
 
 def kernel_real(design: Design):
     """The real machine's terms as the compiled integrator takes them (``_kernels.Real``)."""
-    from .._kernels.real import real_at  # lazy: _kernels.real imports numba at its top
-
     return real_at(kernel_real_base(design), 1.0 / design.I_eff, design.load_torque)
 
 
@@ -60,8 +59,6 @@ def kernel_real_base(design: Design):
     None for the ideal machine."""
     if design.is_ideal:
         return None
-    from .._kernels.real import RealBase  # lazy: _kernels.real imports numba at its top
-
     return RealBase(
         eta_t=design.eta_t,
         weight_torque=design.m_r * design.g * design.R,

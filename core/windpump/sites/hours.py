@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from .._kernels import supply as kernels
 from ..errors import ParameterError, shown
 from ..model.design import Design
 from ..model.wind import WindRecord, as_record
@@ -124,8 +125,6 @@ class _Year:
 
 def _quasi_steady_year(design: Design, V: np.ndarray, month: np.ndarray, restart: str) -> _Year:
     """The hour-by-hour rule (module docstring) and each running hour's water [m^3]."""
-    from .._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
-
     V_stop, V_start = wind_thresholds(design)
     attended = restart == "attended"
     running = np.zeros(V.size, dtype=np.bool_)

@@ -29,6 +29,7 @@ import typing
 
 import numpy as np
 
+from .._kernels import supply as kernels
 from ..errors import ParameterError
 from ..model.design import Design
 from ..model.wind import WindRecord
@@ -320,8 +321,6 @@ def _tank(tank: object) -> float:
 
 def _with_tank(year: _Year, demand: np.ndarray, tank: float, **fields) -> Supply:
     """The tank's books over the periodic year (module docstring)."""
-    from .._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
-
     hours = year.V.size
     delivered, shortfall, spilled, level = (np.empty(hours) for _ in range(4))
     passes = kernels.periodic(
@@ -492,8 +491,6 @@ def _lolp(lolp: object) -> float:
 
 def _smallest_tank(pumped: np.ndarray, asked: np.ndarray, lolp: float) -> float:
     """Bisection over whole litres of the periodic year's shortfall."""
-    from .._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
-
     total = float(asked.sum())
     if total == 0.0:
         return 0.0
@@ -611,8 +608,6 @@ def supply_map(
     >>> supply_map(pump, wind, 2.0, [3.0, 4.0], [0.0, 2.0]).lolp.round(3).tolist()
     [[0.5, 0.5], [0.0, 0.0]]
     """
-    from .._kernels import supply as kernels  # lazy: _kernels.supply imports numba at its top
-
     restart = _choice("restart", restart, RESTARTS)
     ratios = np.atleast_1d(finite_array("gear_ratios", gear_ratios, minimum=0.0)).ravel()
     capacities = np.atleast_1d(finite_array("tanks", tanks, "m^3", minimum=0.0)).ravel()

@@ -21,7 +21,8 @@ import math
 
 import numpy as np
 
-from .. import _kernels  # light: _kernels.OVER_BUDGET loads numba on first use
+from .. import _kernels
+from .._kernels.grid import steady_runs
 from ..averaging.theory import cycle_mean, effective_inertia, load_torque, running_speeds
 from ..errors import ParameterError
 from ..model.design import WIDEST_RATIO, Design
@@ -341,8 +342,6 @@ def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarr
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
     """alpha+ measured in full simulations of every running point, and tau where they ran."""
-    from .._kernels.grid import steady_runs  # lazy: _kernels.grid imports numba at its top
-
     shape = alpha_plus.shape
     x = np.broadcast_to(ratios[np.newaxis, :], shape).ravel()
     loads = load_torque(design.rho_w, design.g, heads, design.A, design.R)

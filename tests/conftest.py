@@ -6,6 +6,8 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -46,6 +48,17 @@ def pytest_configure(config):
     if hasattr(config, "workerinput") or not config.getoption("numprocesses", None):
         return  # a worker, or no workers
     subprocess.run([sys.executable, "-c", WARM_UP], check=True)
+
+
+@pytest.fixture
+def short_tmp_path():
+    """A fresh empty folder with a short path (``/tmp/wp-xxxxxxxx``), removed after the test.
+
+    For tests whose error messages show a file's path in full: messages cut what they echo to
+    ~80 characters (``windpump.errors.SHOWN``), and ``tmp_path`` (~60 characters) grows by the
+    worker's folder under pytest-xdist (``popen-gw0/``), which cut the file's name off them."""
+    with tempfile.TemporaryDirectory(prefix="wp-") as folder:
+        yield Path(folder)
 
 
 @pytest.fixture(scope="session")

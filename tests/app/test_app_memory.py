@@ -35,12 +35,33 @@ def a_page_dropped() -> None:
     explorer.template()
 
 
-def test_a_dropped_page_leaves_none_of_its_components_alive():
+def in_a_process_of_its_own(check: str) -> None:
+    """Run this module's function ``check`` in a fresh interpreter, and fail as it fails. For the
+    checks that count what lives in the whole process: there no other test's pages or threads
+    are alive, or let go meanwhile (under pytest-xdist a worker's earlier tests vary)."""
+    from pathlib import Path
+
+    here = Path(__file__).resolve()
+    script = (
+        f"import sys; sys.path.insert(0, {str(here.parent)!r})\n"
+        f"import {here.stem}\n{here.stem}.{check}()"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
+def dropped_pages_leave_no_component_alive() -> None:
     a_page_dropped()  # what the first page imports and caches is not the page's
     before = components_alive()
     for _ in range(2):
         a_page_dropped()
     assert components_alive() == before
+
+
+def test_a_dropped_page_leaves_none_of_its_components_alive():
+    in_a_process_of_its_own("dropped_pages_leave_no_component_alive")
 
 
 def buttons_of_a_dropped_page() -> list[weakref.ref]:
@@ -58,6 +79,10 @@ def buttons_of_a_dropped_page() -> list[weakref.ref]:
 
 
 def test_panels_link_registry_forgets_a_dropped_pages_buttons():
+    in_a_process_of_its_own("link_registry_forgets_a_dropped_pages_buttons")
+
+
+def link_registry_forgets_a_dropped_pages_buttons() -> None:
     """Panel's ``Callback.registry`` holds a component weakly and its JavaScript callbacks
     strongly: a callback whose ``args`` hold the component keeps it (and its page's design).
     Only this page's buttons are looked at: other tests' pages, alive, keep theirs. (Built

@@ -132,11 +132,11 @@ def test_errors_are_one_line_and_exit_1(args, words):
     ids=["empty", "no-schema", "negative-m_r"],
 )
 @pytest.mark.parametrize("command", ["simulate", "map", "tank"])
-def test_a_bad_design_file_is_named_in_its_error(tmp_path, text, words, command):
+def test_a_bad_design_file_is_named_in_its_error(short_tmp_path, text, words, command):
     """Every command's --design names the file it could not read, as ``sweep`` does."""
-    (tmp_path / "pump.json").write_text(text)
+    (short_tmp_path / "pump.json").write_text(text)
     site = ["--site", "greensboro", "--demand", "2"] if command == "tank" else []
-    done = windpump_command(command, "--design", str(tmp_path / "pump.json"), *site)
+    done = windpump_command(command, "--design", str(short_tmp_path / "pump.json"), *site)
     assert done.returncode == 1 and done.stdout == ""
     lines = done.stderr.strip().splitlines()
     assert len(lines) == 1 and words in lines[0], done.stderr
@@ -318,14 +318,14 @@ def test_the_docs_designs_csv_is_what_sweep_reads():
     assert [float(row["volume [m^3]"]) for row in rows] == pytest.approx(expected.volume, rel=1e-11)
 
 
-def test_a_bad_row_names_its_line(tmp_path):
-    table = tmp_path / "designs.csv"
+def test_a_bad_row_names_its_line(short_tmp_path):
+    table = short_tmp_path / "designs.csv"
     table.write_text("h,T_m\n1,0.6\n2,-0.6\n")
     done = windpump_command("sweep", str(table))
     assert done.returncode == 1 and "line 3" in done.stderr and "T_m" in done.stderr
     table.write_text("h,colour\n1,red\n")
     assert "unknown column(s) ['colour']" in windpump_command("sweep", str(table)).stderr
-    designs = tmp_path / "designs.json"
+    designs = short_tmp_path / "designs.json"
     designs.write_text(f'[{SEED.to_json()}, {{"schema": "other"}}]')
     done = windpump_command("sweep", str(designs))
     assert done.returncode == 1 and "designs.json, design 2: not a design file" in done.stderr

@@ -202,8 +202,8 @@ def test_failures_are_one_line_and_exit_1(args, message):
     assert done.stderr.startswith(f"windpump {args[0]}: error:")
 
 
-def test_a_weather_files_error_names_the_file(tmp_path):
-    path = tmp_path / "gappy.csv"
+def test_a_weather_files_error_names_the_file(short_tmp_path):
+    path = short_tmp_path / "gappy.csv"
     path.write_text("time,speed\n0,4\n3600,5\n10800,6\n")
     done = windpump_command("supply", "--weather", str(path), "--demand", "1")
     assert done.returncode == 1

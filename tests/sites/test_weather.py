@@ -348,8 +348,8 @@ def test_a_weather_files_header_without_a_field_says_which_in_words(tmp_path, ki
     assert str(error.value) == says
 
 
-def test_the_command_line_says_a_weather_files_missing_altitude_in_words(tmp_path):
-    path = tmp_path / "greensboro.csv"
+def test_the_command_line_says_a_weather_files_missing_altitude_in_words(short_tmp_path):
+    path = short_tmp_path / "greensboro.csv"
     path.write_text("\n".join([",".join(STATION[:6]), *tmy3_lines()[1:30]]) + "\n")
     done = subprocess.run(
         [sys.executable, "-m", "windpump", "supply", "--weather", str(path), "--demand", "1"],

@@ -145,11 +145,11 @@ def test_integers_beyond_double_precision_are_refused_by_name(tmp_path, capsys):
         assert_one_line_error(code, err, "line 2", f"{column} = inf")
 
 
-def test_json_nested_too_deeply_is_not_a_design_file(tmp_path, capsys):
+def test_json_nested_too_deeply_is_not_a_design_file(short_tmp_path, capsys):
     deep = "[" * 100_000 + "]" * 100_000
     with pytest.raises(DesignFileError, match="nested too deeply"):
         Design.from_json(deep)
-    path = tmp_path / "deep.json"
+    path = short_tmp_path / "deep.json"
     path.write_text(deep)
     code, _, err = command(capsys, "sweep", str(path))
     assert_one_line_error(code, err, "deep.json: not a design file: its JSON is nested too deeply")

@@ -38,12 +38,17 @@ def session_closed(session_context) -> None:  # Bokeh requires exactly this sign
 # sent by Chromium, Firefox and Safari; not by a script or most link checkers): its session is
 # kept this long unconnected; a bare GET's still goes after 30-35 s.
 BROWSER_CONNECT_WINDOW = 180.0  # [s]
+CONNECTED_POLL = 0.5  # [s] how often a held page's session is asked whether its browser is in
 
 
-def wait_for_the_browser(document, window: float = BROWSER_CONNECT_WINDOW) -> None:
-    """Keep ``document``'s session for ``window`` seconds while its browser, whose navigation
-    asked for the page, loads it and connects (a session connected is kept while connected,
-    and lingers as Bokeh's lifetime says once closed). A request that is no browser's
+def wait_for_the_browser(
+    document, window: float = BROWSER_CONNECT_WINDOW, poll: float = CONNECTED_POLL
+) -> None:
+    """Keep ``document``'s session for up to ``window`` seconds while its browser, whose
+    navigation asked for the page, loads it and connects; once it has connected, Bokeh keeps
+    it while connected, and once closed it lingers as Bokeh's lifetime says (the hold ends as
+    the page connects, not ``window`` seconds after it was served: a class's closed pages are
+    dropped, and their memory handed back, within the lifetime). A request that is no browser's
     navigation leaves the session to Bokeh's lifetime alone.
 
     Examples
@@ -57,15 +62,29 @@ def wait_for_the_browser(document, window: float = BROWSER_CONNECT_WINDOW) -> No
     headers = getattr(request, "headers", None) or {}
     if headers.get("Sec-Fetch-Dest", "").lower() != "document":
         return
+    loop = IOLoop.current()
+
+    def release_once_connected(session, held_at: float) -> None:
+        if session.destroyed:
+            return
+        held_ms = (time.monotonic() - held_at) * 1000.0
+        # connected now, or connected and gone between two looks (it left after the hold began)
+        connected = session.connection_count > 0 or (
+            session.milliseconds_since_last_unsubscribe < held_ms - 1.0
+        )
+        if connected or held_ms >= window * 1000.0:
+            session.unblock_expiration()
+        else:
+            loop.call_later(poll, release_once_connected, session, held_at)
 
     def block() -> None:  # once Bokeh has made the session (just after this document is built)
         session = getattr(context, "_session", None)
         if session is None or session.destroyed:
             return
         session.block_expiration()
-        IOLoop.current().call_later(window, session.unblock_expiration)
+        loop.call_later(poll, release_once_connected, session, time.monotonic())
 
-    IOLoop.current().add_callback(block)
+    loop.add_callback(block)
 
 
 def stylesheets_from_this_server(document) -> None:

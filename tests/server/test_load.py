@@ -37,9 +37,8 @@ EXPECTED_READOUT = {
     steps: f"{1e3 * windpump.explore(windpump.Design.seed_example().replace(h=3 + steps / 10), 600.0).mean_flow:.4f} L/s"
     for steps in range(1, 5)
 }
-# s allowed for the server to drop closed sessions. NB (measured at fb64641): a browser-opened
-# page's session is kept 180 s from its load even once closed (sessions.wait_for_the_browser,
-# block_expiration), so no class is dropped within SETTLE and both waits run to their end.
+# s allowed for the server to drop closed sessions (a browser's page is held only until it connects:
+# sessions.wait_for_the_browser; closed, it goes after the lifetime like any other).
 SETTLE = 60.0
 POLL = 0.25  # [s] how often the server's memory and collections are read
 # [s] after a class's last page closed, for the server to drop its session (lifetime and check,

@@ -740,3 +740,18 @@ def test_served_a_page_whose_browser_connects_late_is_built_once_and_works():
             roots = connected_root_ids(url, session_id)
             # the same document: the one built when the page was served (a rebuilt one has new ids)
             assert (page_roots <= roots) is kept, (kept, page_roots, roots)
+
+
+@pytest.mark.timeout(600)
+def test_served_a_browser_s_page_once_connected_and_closed_goes_after_the_lifetime():
+    """The hold on a browser's page ends as it connects: closed, it goes after Bokeh's lifetime
+    (2 s here), as any closed page does, not 180 s after it was served (the hold kept a class's
+    closed pages, and their memory, for three minutes)."""
+    args = ("--unused-session-lifetime", str(LIFETIME_MS), "--check-unused-sessions", "500")
+    with served_app(*args) as (url, _process):
+        session_id, html = page_visit(url, browser=True)
+        page_roots = set(re.findall(r'data-root-id="([^"]+)"', html))
+        assert page_roots <= connected_root_ids(url, session_id)  # connects, then closes
+        time.sleep(LATE)  # past the lifetime and a check after the close
+        roots = connected_root_ids(url, session_id)
+        assert not page_roots & roots, (page_roots, roots)  # a new document: the old one went

@@ -36,8 +36,9 @@ def test_the_site_tab_shows_the_year_and_follows_the_demand(browser, url):
         page.get_by_role("tab", name="Site").click()
         for name, shown in site_readouts(12.0).items():
             wait_for_readout(page, name, shown)
-        bars = "() => window.Bokeh.documents[0].get_model_by_name('sitetab_monthly').data.pumped"
-        assert len(page.evaluate(bars)) == 12
+        # the figures follow the readouts, once the page has painted them (site_tab.AfterPaint)
+        bars = "() => window.Bokeh.documents[0].get_model_by_name('sitetab_monthly')?.data.pumped"
+        page.wait_for_function(f"() => ({bars})()?.length === 12", timeout=60_000)
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(ARTIFACTS / "site_1280x720.png"))
         before = text(page, "site_lolp")

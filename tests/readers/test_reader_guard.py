@@ -50,8 +50,8 @@ def reader(request):
 
 
 @pytest.fixture
-def fifo(tmp_path) -> Path:
-    path = tmp_path / "pipe.csv"
+def fifo(short_tmp_path) -> Path:
+    path = short_tmp_path / "pipe.csv"  # a short path: the messages show it whole
     os.mkfifo(path)
     return path
 
@@ -131,11 +131,11 @@ def test_the_guard_names_the_parameter_it_is_given():
         files.read_bytes("a\x00b", 100, name="--weather")
 
 
-def test_a_missing_file_and_one_that_cannot_be_read_are_named(tmp_path):
+def test_a_missing_file_and_one_that_cannot_be_read_are_named(short_tmp_path):
     with pytest.raises(LabDataError, match="there is no file '.*nowhere.csv'"):
-        files.read_bytes(tmp_path / "nowhere.csv", 100)
+        files.read_bytes(short_tmp_path / "nowhere.csv", 100)
     with pytest.raises(LabDataError, match="cannot be read: File name too long"):
-        files.read_bytes(tmp_path / ("y" * 300), 100)  # a name longer than a folder holds
+        files.read_bytes(short_tmp_path / ("y" * 300), 100)  # a name longer than a folder holds
 
 
 @given(st.text(max_size=300) | st.text(max_size=5000, alphabet="/ab.\n\x00"))

@@ -9,7 +9,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from windpump import Design, DesignFileError, ParameterError
-from windpump.model.design import REAL_MACHINE, UNITS
+from windpump.model.design import LEAKY_RATIO, REAL_MACHINE, UNITS
 
 SEED = Design.seed_example()
 
@@ -63,6 +63,7 @@ def real_machines(draw):
     just below the bore)."""
     design = draw(designs())
     return design.replace(
+        L=max(design.L, LEAKY_RATIO * design.R),  # (a leak hole's shortest rod)
         m_r=draw(st.floats(0.0, 1e3)),
         eta_t=draw(st.floats(0.1, 1.0)),
         L_main=draw(st.floats(0.0, 1e4)),

@@ -76,7 +76,7 @@ def designs(draw, real: bool = True):
     fields["h"] = draw(optional(*RANGES["h"]))
     ratio = draw(anywhere(SMALL, LARGE))  # R1 / R0 where R1 stays in range
     fields["R1"] = min(max(fields["R0"] * ratio, SMALL), LARGE)
-    rod = draw(st.sampled_from([1.0 + 1e-9, 1.5, 3.75, 1e3, 1e50]))
+    rod = draw(st.sampled_from([1.0 + 1e-9, 1.05, 1.5, 3.75, 1e3, 1e50]))  # (1.05: LEAKY_RATIO)
     fields["L"] = min(fields["R"] * rod, RANGES["L"][1])
     fields["T_0"] = fields["T_m"] * draw(st.sampled_from([0.0, 5e-324, 1e-20, 0.5, 0.999]))
     fields["cylinders"] = draw(st.integers(1, 6))
@@ -359,11 +359,35 @@ def test_a_leaky_run_delivers_a_volume_that_never_falls_nor_goes_negative():
 
 
 # Found by --hypothesis-seed=1 (issue 36): a hole as wide as a 1e-8 m^2 bore under a 1e12 m head
-# passes 7e7 times what the face sweeps; the rod 1e-6 longer than the crank (Eq. 1's near-toggle)
-THIN_CORNER = SEED.replace(
-    R=1e-4, L=1.0000000001e-4, A=1e-8, d_leak=1.128e-4, Cd_leak=0.05, h=1e12, g=0.1, rho_w=1.0,
+# passes 7e7 times what the face sweeps; on a rod 1e-10 R longer than the crank (Eq. 1's
+# near-toggle) its budget closed to 3.4e-3 against 7.4e-7, and such a rod is now refused with a
+# hole (design.LEAKY_RATIO): the corner is taken at the shortest rod a leaky design may have
+THIN_ROD = 1.0000000001e-4
+THIN_FIELDS = dict(
+    R=1e-4, A=1e-8, d_leak=1.128e-4, Cd_leak=0.05, h=1e12, g=0.1, rho_w=1.0,
     I0=1e-12, I1=1e-12, T_m=1e-12, omega_m=1.0, V_ref=1e-12, eta_t=0.1,
 )  # fmt: skip
+THIN_CORNER = SEED.replace(L=1.05e-4, **THIN_FIELDS)
+
+
+def test_a_leaky_design_on_a_rod_nearly_as_short_as_its_crank_is_refused_by_name():
+    """Nearer L = R than 1.05 R the lever arm jumps from 2 to 0 at mid-stroke and the kernel
+    integrated a hole's losses wrong across it (a budget closing 4,600 times over tolerance):
+    refused, naming L, its value and the allowed range; a tight piston there is right."""
+    with pytest.raises(ParameterError) as caught:
+        SEED.replace(L=THIN_ROD, **THIN_FIELDS)
+    assert caught.value.name == "L" and ">= 1.05 R = 0.000105 m" in str(caught.value)
+    assert "L = 0.00010000000001 m" in str(caught.value)
+    tight = SEED.replace(L=THIN_ROD, **{**THIN_FIELDS, "d_leak": 0.0})
+    budget = windpump.power_budget(windpump.simulate(tight, 2.0, theta_dot0=3.0))
+    assert budget.closure <= budget.tolerance, (budget.closure, budget.tolerance)
+
+
+def test_a_hole_passing_all_the_sweep_closes_its_budget_at_the_shortest_rod_allowed():
+    """THIN_CORNER kicked to 3 rad/s for 2 s: the budget closes to its tolerance (2.0e-7 against
+    5.2e-7; 1.1e-5 at L = 1.01 R)."""
+    budget = windpump.power_budget(windpump.simulate(THIN_CORNER, 2.0, theta_dot0=3.0))
+    assert budget.closure <= budget.tolerance, (budget.closure, budget.tolerance)
 
 
 @pytest.mark.parametrize(

@@ -20,7 +20,6 @@ from .dopri5 import step_factor
 from .jit import inline_kernel, kernel
 from .model import Machine, segment_at, segment_start
 from .real import (
-    C_PARTS,
     M_PARTS,
     ROW,
     add_integrals,
@@ -83,10 +82,18 @@ from .stepping import (
     off_pace,
     rates,
 )
-from .tables import grid_tables, stage_values, stage_work, tabulate_segment, without_wind
+from .tables import (
+    C1,
+    C2,
+    C3,
+    grid_tables,
+    stage_values,
+    stage_work,
+    tabulate_segment,
+    without_wind,
+)
 from .wind import has_record, next_kink
 
-C1, C2, C3 = C_PARTS  # the rows' columns of the real machine's C
 M1, M2, M3 = M_PARTS  # and of its moment over a sub-step
 
 # The time per step is a quadrature of 1/theta_dot: its error matters relative to the step's

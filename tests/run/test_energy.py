@@ -62,6 +62,29 @@ def test_startup_power_names_a_bad_argument(arguments, name):
     assert caught.value.name == name
 
 
+@pytest.mark.parametrize(
+    "arguments, name",
+    [((1e300, 1e300, 1e-300, 1.0, 1e300), "mass"), ((1.0, 1e300, 1.0, 0.1), "speed"),
+     ((1.0, 1.0, 1e-300, 0.1), "duration"), ((1.0, 1.0, 1.0, 0.1, 1e300), "g"),
+     ((1e-300, 1.0, 1.0, 0.1), "mass")],
+)  # fmt: skip
+def test_startup_power_refuses_what_overflows_by_name_and_range(arguments, name):
+    # issue 36's re-probe: (1e300, 1e300, 1e-300, 1, g=1e300) raised a bare OverflowError
+    with pytest.raises(windpump.ParameterError) as caught:
+        startup_power(*arguments)
+    lowest = "0" if name == "speed" else "1e-12"
+    assert caught.value.name == name and f"from {lowest} to 1e+12" in str(caught.value)
+
+
+def test_startup_power_is_finite_and_right_at_the_ends_of_its_ranges():
+    # the closed forms m v^2 / (2 T) and m g grade v / 2 at the largest and smallest values
+    power = startup_power(1e12, 1e12, 1e-12, -1.0, g=1e12)
+    assert power.accelerate == pytest.approx(0.5 * 1e12 * 1e24 / 1e-12, rel=1e-15)
+    assert power.lift == pytest.approx(-0.5 * 1e12 * 1e12 * 1e12, rel=1e-15)
+    tiny = startup_power(1e-12, 0.0, 1e12, 1.0, g=1e-12)
+    assert tiny == (0.0, 0.0, 0.0)
+
+
 # -- the wind pump's budget -------------------------------------------------------------------
 
 

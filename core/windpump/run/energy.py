@@ -17,7 +17,7 @@ from ..errors import ParameterError
 from ..model.loads import load_at_speed, weight_torque
 from ..model.reciprocating import weight_potential
 from ..model.windmill import shaft_power as _shaft_power
-from ..validation import non_negative, positive, real
+from ..validation import magnitude, real
 from .dynamics import RTOL, SimulationResult, revolution_marks
 
 __all__ = [
@@ -56,15 +56,19 @@ def startup_power(
     Parameters
     ----------
     mass : float
-        Moving mass [kg], > 0.
+        Moving mass [kg], 1e-12 to 1e12.
     speed : float
-        Final speed along the slope [m/s], >= 0.
+        Final speed along the slope [m/s], 0 to 1e12.
     duration : float
-        Time to reach it [s], > 0.
+        Time to reach it [s], 1e-12 to 1e12.
     grade : float
         Rise over length along the slope [-], in [-1, 1] (the sine of the slope's angle).
     g : float, default 9.81
-        Gravity [m/s^2], > 0.
+        Gravity [m/s^2], 1e-12 to 1e12.
+
+    The ranges are the design fields' (``SMALLEST`` to ``LARGEST``): inside them both powers are
+    finite (at most 5e47 W); past them they overflowed (issue 36: a bare ``OverflowError`` for
+    ``speed = 1e300``).
 
     Returns
     -------
@@ -80,13 +84,13 @@ def startup_power(
     >>> [round(p / WATTS_PER_KW, 1) for p in power]  # kW: accelerate, lift, total
     [9.6, 34.1, 43.7]
     """
-    mass = positive("mass", mass, "kg")
-    speed = non_negative("speed", speed, "m/s")
-    duration = positive("duration", duration, "s")
+    mass = magnitude("mass", mass, "kg")
+    speed = magnitude("speed", speed, "m/s", zero=True)
+    duration = magnitude("duration", duration, "s")
     grade = real("grade", grade)
     if abs(grade) > 1.0:
         raise ParameterError("grade", grade, "in [-1, 1]", why="rise over length along the slope")
-    g = positive("g", g, "m/s^2")
+    g = magnitude("g", g, "m/s^2")
     accelerate = 0.5 * mass * speed**2 / duration
     lift = mass * g * grade * (0.5 * speed * duration) / duration
     return StartupPower(accelerate, lift, accelerate + lift)

@@ -3,8 +3,8 @@ field's documented range, ends included, and every answer either right (finite w
 promised, tau > 0, steady speeds ordered, 0 <= LOLP <= 1, volumes never falling nor negative, the
 power budget closing) or refused with a ParameterError / StallError naming the cause.
 
-The ranges below are written from the Design docstring and docs/model.rst ("The documented
-ranges"), not read from the code that checks them; ``test_the_ranges_are_the_documented_ones``
+The ranges below are written from the Design docstring and docs/designers.rst (a design's
+numbers, "between 1e-12 and 1e12 in SI units"), not read from the code that checks them; ``test_the_ranges_are_the_documented_ones``
 holds the two together.
 """
 

@@ -1,4 +1,5 @@
-"""The windpump command, run as a subprocess: its outputs, files, errors and exit codes."""
+"""The windpump command: its outputs, files, errors and exit codes (in this process, and as a
+process of its own where only a process shows it: tests/command_line.py)."""
 
 from __future__ import annotations
 
@@ -15,22 +16,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from command_line import windpump_command
 
 import windpump
 from windpump import Design
 from windpump.units import SECONDS_PER_DAY
 
 SEED = Design.seed_example()
-
-
-def windpump_command(*args, cwd=None) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "windpump", *args],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        cwd=cwd,
-    )
 
 
 def test_the_console_script_is_installed():
@@ -148,7 +140,7 @@ def test_every_commands_help_says_what_it_does(command):
     list of options (a newcomer's ``windpump supply --help`` had none)."""
     if command == "serve":  # its help is panel serve's, after its own
         pytest.importorskip("panel")
-    done = windpump_command(command, "--help")
+    done = windpump_command(command, "--help", process=command == "serve")
     assert done.returncode == 0
     before_options = done.stdout.split("\noptions:")[0].split("\n\n")
     assert len(before_options) >= 2 and before_options[1].strip()[:1].isupper(), done.stdout
@@ -158,6 +150,22 @@ def test_a_command_line_argparse_cannot_read_exits_2():
     done = windpump_command("simulate", "--t-end", "soon")
     assert done.returncode == 2 and "--t-end" in done.stderr
     assert windpump_command("fly").returncode == 2
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["simulate", "--set", "h=-1"], ["simulate", "--t-end", "soon"], ["map", "--help"],
+     ["simulate", "--t-end", "30"]],
+    ids=["refused", "unreadable", "help", "run"],
+)  # fmt: skip
+def test_a_process_says_and_exits_as_the_command_run_here(args):
+    """What the other tests read in this process is what ``python -m windpump`` prints and
+    exits with: the same code, the same stdout, the same stderr, and no traceback."""
+    here, process = windpump_command(*args), windpump_command(*args, process=True)
+    assert (process.returncode, process.stdout, process.stderr) == (
+        here.returncode, here.stdout, here.stderr,
+    )  # fmt: skip
+    assert "Traceback" not in process.stderr
 
 
 def test_map_writes_the_design_maps_csv_and_png(tmp_path):
@@ -195,7 +203,7 @@ def test_the_map_is_drawn_in_the_file_named_and_a_folder_is_refused_before_the_w
 
 @pytest.mark.parametrize("port", ["99999999", "-1", "abc"])
 def test_serve_refuses_a_port_that_is_not_one_in_words(port):
-    done = windpump_command("serve", f"--port={port}")
+    done = windpump_command("serve", f"--port={port}", process=True)
     assert done.returncode == 1
     assert done.stderr.strip() == (
         f"windpump serve: error: --port '{port}': a port must be a whole number from 0 to 65535"
@@ -249,7 +257,7 @@ def test_the_map_png_is_not_nearly_all_one_colour(tmp_path):
 
 
 def test_serve_help_lists_the_panel_options_it_passes_on():
-    done = windpump_command("serve", "--help")
+    done = windpump_command("serve", "--help", process=True)
     assert done.returncode == 0, done.stderr
     for option in ("--port", "--address", "--show", "--allow-websocket-origin", "--num-procs"):
         assert option in done.stdout.split("usage: panel serve")[0]  # described in ours
@@ -267,7 +275,7 @@ def test_sweep_runs_a_table_of_designs_on_two_workers(tmp_path):
     table = tmp_path / "designs.csv"
     table.write_text("h [m],R_dagger,t_end\n1,4,100\n3,6,100\n20,4,90\n")
     out = tmp_path / "out.csv"
-    done = windpump_command("sweep", str(table), "--workers", "2", "--csv", str(out))
+    done = windpump_command("sweep", str(table), "--workers", "2", "--csv", str(out), process=True)
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(io.StringIO(out.read_text())))
     designs = [SEED.replace(h=1.0), SEED.with_ratios(R_dagger=6.0, h=3.0), SEED.replace(h=20.0)]
@@ -371,7 +379,7 @@ def test_sweep_goes_to_a_dask_scheduler_by_its_address(tmp_path):
     ) as cluster:
         done = windpump_command(
             "sweep", str(table), "--scheduler", cluster.scheduler_address, "--csv", str(out),
-            "--t-end", "120",
+            "--t-end", "120", process=True,
         )  # fmt: skip
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(io.StringIO(out.read_text())))

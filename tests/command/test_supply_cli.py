@@ -1,26 +1,19 @@
-"""``windpump supply`` and ``windpump tank``, run as subprocesses: their tables, figures, files and
+"""``windpump supply`` and ``windpump tank``, run as tests/command_line.py runs the command: their tables, figures, files and
 one-line failures (exit 1)."""
 
 from __future__ import annotations
 
 import csv
 import io
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from command_line import windpump_command
 
 import windpump
 
 pytest.importorskip("pvlib")
 DESIGN = windpump.Design.seed_example().replace(T_0=0.3)
-
-
-def windpump_command(*args) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "windpump", *args], capture_output=True, text=True, timeout=300
-    )
 
 
 def test_supply_prints_the_months_and_the_figures(tmp_path):

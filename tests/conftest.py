@@ -50,6 +50,37 @@ def pytest_configure(config):
     subprocess.run([sys.executable, "-c", WARM_UP], check=True)
 
 
+# The test modules that take longest, longest first (their seconds in a CI log's --durations=0
+# under two workers, rounded). pytest-xdist's --dist loadscope gives a worker a whole module at a
+# time, and with --no-loadscope-reorder in the order collected: these first, the many short ones
+# after them fill the gaps, so that neither worker is left running a long module alone at the end
+# (longest processing time first). Every other module keeps its place after them.
+SLOW_FIRST = (
+    "tests/browser/test_layout.py",  # 317 s
+    "tests/browser/test_browser.py",  # 314
+    "tests/run/test_real_machine.py",  # 237
+    "tests/browser/test_browser_text.py",  # 192
+    "tests/server/test_serving.py",  # 188, mostly the server's clocks
+    "tests/server/test_upload_route.py",  # 176
+    "tests/kernels/test_compile.py",  # 162
+    "tests/app/test_app.py",  # 152
+    "tests/server/test_load.py",  # 131
+    "tests/app/test_app_map.py",  # 108
+    "tests/app/test_text_is_text.py",  # 105
+    "tests/app/test_app_site.py",  # 103
+    "tests/model/test_wind.py",  # 102
+    "tests/app/test_app_wind.py",  # 85
+    "tests/browser/test_browser_site.py",  # 78
+    "tests/browser/test_browser_views.py",  # 61
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The modules of SLOW_FIRST first, in its order; the rest as collected (a stable sort)."""
+    rank = {path: k for k, path in enumerate(SLOW_FIRST)}
+    items.sort(key=lambda item: rank.get(item.nodeid.split("::")[0], len(rank)))
+
+
 @pytest.fixture
 def short_tmp_path():
     """A fresh empty folder with a short path (``/tmp/wp-xxxxxxxx``), removed after the test.

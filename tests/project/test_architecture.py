@@ -416,3 +416,15 @@ def test_the_tests_are_grouped_by_the_same_layers():
     }
     core_layers = set(LADDER) - {"_kernels"} | {"kernels"}
     assert folders == core_layers | TEST_FOLDERS_BEYOND_THE_CORE
+
+
+def test_the_modules_run_first_are_test_modules_that_exist():
+    """tests/conftest.py's SLOW_FIRST names modules by path: a module moved or renamed would
+    silently lose its place at the front of the workers' queue."""
+    from conftest import SLOW_FIRST
+
+    root = TESTS.parent
+    assert len(set(SLOW_FIRST)) == len(SLOW_FIRST)
+    assert [
+        p for p in SLOW_FIRST if not (root / p).is_file() or not Path(p).name.startswith("test_")
+    ] == []

@@ -39,6 +39,7 @@ from .site_year import Asked, Year, run_year, tank_range
 from .styles import CAPTION_CSS, COMPACT, TEXT
 from .tab import Tab, later
 from .uploads import Encoded, sending_note
+from .viewport import PLACEHOLDER_CSS
 from .views import refill
 
 log = logging.getLogger("windpump.app")
@@ -70,6 +71,8 @@ if (source.value === 1) {
 }
 """
 FIGURES_AFTER = 5000  # [ms] the figures placed anyway (a page in a hidden browser tab paints none)
+CONTROLS_CLASS, SLOT_CLASS = "site-controls", "site-figure-slot"  # for a browser test
+SLOT_TITLES = ("the water each month", "the tank over the year", "the loss-of-load curve")
 
 
 class AfterPaint(pn.widgets.IntInput):
@@ -153,7 +156,7 @@ class SiteTab(Tab):
         self.figures_due = False  # a year came back (or failed): the figures go in the layout
         self._placing: Callable[[], None] | None = None  # the tab's content, held for its year
         self.after_paint = AfterPaint()  # the figures after the readouts are painted
-        self._rows: tuple = ()  # the layout's rows that take the figures, once it is built
+        self._slots: tuple = ()  # the layout's places for the figures, once it is built
         self._curve: tuple = ()  # what the curve drawn is for: design, record, demand, rule, top
         self.tank_5 = math.inf  # [m³] the smallest tank for 5 % (inf: none is enough)
         self._drawn: Asked | None = None  # what the year drawn was asked for
@@ -261,14 +264,13 @@ class SiteTab(Tab):
         the tab's three figures, sent with its controls, took chromium ~0.6-0.8 s (~2.9 s with
         three tabs built before it), and the year's readouts, sent meanwhile, waited for that
         and for the figures' second layout with their data (the server's part ~0.35 s). Sent
-        after the readouts, the figures come with their data."""
-        if not self._rows or len(self._rows[1]) > 0:
+        after the readouts, the figures come with their data, each in its placeholder's place
+        (``_slot``): nothing on the tab moves."""
+        if not self._slots or isinstance(self._slots[0][0], pn.pane.Bokeh):
             return  # the layout is not built yet (it places them), or placed already
-        upper, lower, caption = self._rows
         with pn.io.hold():
-            upper.append(self._boxed(self.monthly, 2))
-            lower.extend([self._boxed(self.level), self._boxed(self.lolp)])
-            caption.visible = True
+            for slot, fig in zip(self._slots, self.figures(), strict=True):
+                slot.objects = [pn.pane.Bokeh(fig, sizing_mode="stretch_width")]
 
     def _draw_year(self, asked: Asked, year: Year) -> None:
         if year.lolp is not None:
@@ -357,8 +359,9 @@ class SiteTab(Tab):
         return [self.monthly, self.level, self.lolp]
 
     def layout(self) -> pn.Column:
-        """The readouts, messages and controls; the figures placed once the first year has come
-        (``place_figures``), at once if it has (in-process, the year is computed at once)."""
+        """The readouts, messages and controls, and a placeholder in each figure's place; the
+        figures placed once the first year has come (``place_figures``), at once if it has
+        (in-process, the year is computed at once)."""
         controls = pn.Column(
             self.site_select,
             self.sliders["hub"],
@@ -373,11 +376,15 @@ class SiteTab(Tab):
             self.upload_message,
             sizing_mode="stretch_width",
             styles={"flex": "1 1 300px", "min-width": "280px"},
+            css_classes=[CONTROLS_CLASS],
         )
-        upper = pn.FlexBox(controls, flex_wrap="wrap", sizing_mode="stretch_width")
-        lower = pn.FlexBox(flex_wrap="wrap", sizing_mode="stretch_width")
-        caption = pn.pane.HTML(f"<p>{CAPTION}</p>", stylesheets=CAPTION_CSS, visible=False)
-        self._rows = (upper, lower, caption)
+        self._slots = tuple(
+            self._slot(fig, title, grow)
+            for fig, title, grow in zip(self.figures(), SLOT_TITLES, (2, 1, 1), strict=True)
+        )
+        upper = pn.FlexBox(controls, self._slots[0], flex_wrap="wrap", sizing_mode="stretch_width")
+        lower = pn.FlexBox(*self._slots[1:], flex_wrap="wrap", sizing_mode="stretch_width")
+        caption = pn.pane.HTML(f"<p>{CAPTION}</p>", stylesheets=CAPTION_CSS)
         if self.figures_due:
             self.place_figures()
         return pn.Column(
@@ -394,11 +401,22 @@ class SiteTab(Tab):
         )
 
     @staticmethod
-    def _boxed(fig, grow: int = 1) -> pn.Column:
+    def _slot(fig, title: str, grow: int) -> pn.Column:
+        """A figure's place in the layout from the tab's first paint: a placeholder of the
+        figure's height, which ``place_figures`` replaces with the figure. Before,
+        the figures' boxes came with them: the controls, laid out across the tab, were then
+        squeezed into a column beside the first figure (920 px wide to 353 at 1280×720)."""
+        held = pn.pane.HTML(
+            f'<div class="placeholder" style="height: {fig.height}px">Drawing {title}…</div>',
+            sizing_mode="stretch_width",
+            margin=0,  # as the figure's: a Bokeh pane's margin is not drawn in its slot
+            stylesheets=PLACEHOLDER_CSS,
+        )
         return pn.Column(
-            pn.pane.Bokeh(fig, sizing_mode="stretch_width"),
+            held,
             sizing_mode="stretch_width",
             styles={"flex": f"{grow} 1 460px", "min-width": "300px"},
+            css_classes=[SLOT_CLASS],
         )
 
 

@@ -24,11 +24,13 @@ PLACEHOLDER_CLASS = "view-placeholder"  # and view-<name>, which names the view 
 MARGIN = 0.0  # [screens] a view this close below (or above) the viewport is built already
 
 # The placeholder's box, then the view's caption as its own pane (styles.CAPTION_CSS) sets it.
+# Without a fill: Bootstrap's own ".placeholder" (a block of the text's colour, a "wait" cursor)
+# reaches a pane the page adds later (the Site tab's), which showed a dark block, its words hidden.
 PLACEHOLDER_CSS = [
     f""":host {{ font-size: {px(16)}; }}
 .placeholder {{ box-sizing: border-box; display: flex; align-items: center;
   justify-content: center; border: 1px dashed rgba(128, 128, 128, 0.5); border-radius: 4px;
-  color: inherit; opacity: 0.7; }}
+  color: inherit; opacity: 0.7; background-color: transparent; cursor: auto; }}
 .caption {{ font-size: {px(15)}; margin: 0 8px; }}
 .caption p {{ margin: 2px 0; }}"""
 ]

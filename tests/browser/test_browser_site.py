@@ -96,6 +96,10 @@ def test_a_weather_file_over_the_limit_is_refused_in_the_page(browser, url):
         page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
         hours = "".join(f"{3600 * h},{5 + (h % 7) / 3:.2f}\n" for h in range(3 * 24))
         three = {"name": "three.csv", "mimeType": "text/csv", "buffer": ("t,V\n" + hours).encode()}
+        # Focused first, as a person's click or Tab focuses it: uploads.js guards a file input
+        # drawn later on its focus (or pointerdown, dragenter), or on timers after the tab is
+        # chosen; set at once, the file sometimes beat the timers and went over the websocket.
+        page.locator(".site-upload input[type=file]").focus()
         page.locator(".site-upload input[type=file]").set_input_files(files=[three])
         page.get_by_text("the uploaded file three").first.wait_for(timeout=60_000)
         assert any("/app/upload?" in post for post in page.posts)
@@ -125,6 +129,79 @@ def test_the_site_tab_fits_every_screen(browser, url, width, height, query):
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
         theme = "dark" if "dark" in query else "light"
         page.screenshot(path=str(ARTIFACTS / f"site_{theme}_{width}x{height}.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
+# Boxes [x, y, width, height] of the Site tab's controls and of each figure's slot (its
+# placeholder, then the figure), through the shadow roots, by CSS class (site_tab.CONTROLS_CLASS,
+# site_tab.SLOT_CLASS); and the fill of each placeholder on the page (viewport.PLACEHOLDER_CSS).
+SITE_BOXES = """() => {
+  const found = (root, selector, out) => {
+    out.push(...root.querySelectorAll(selector));
+    for (const el of root.querySelectorAll('*')) if (el.shadowRoot) found(el.shadowRoot, selector, out);
+    return out;
+  };
+  const box = (el) => {
+    const b = el.getBoundingClientRect();
+    return [b.x, b.y, b.width, b.height].map(Math.round);
+  };
+  return {
+    controls: found(document, '.site-controls', []).map(box),
+    slots: found(document, '.site-figure-slot', []).map(box),
+    fills: found(document, 'div.placeholder', []).map(el => getComputedStyle(el).backgroundColor),
+  };
+}"""
+
+# Installed before the tab is chosen: the boxes in the first frame whose page holds the year's
+# readouts (the tab's first paint), before that frame is painted.
+BOXES_AT_FIRST_PAINT = (
+    """() => {
+  window.__siteFirst = null;
+  const boxes = """
+    + SITE_BOXES
+    + """;
+  const readout = () => ("""
+    + DEEP_TEXT
+    + """)('[data-name=site_lolp]') || '';
+  const look = () => {
+    if (/%/.test(readout())) window.__siteFirst = boxes();
+    else requestAnimationFrame(look);
+  };
+  requestAnimationFrame(look);
+}"""
+)
+
+FIGURES_DRAWN = """(names) => names.every(name => {
+  const model = window.Bokeh.documents[0].get_model_by_name(`site_${name}_figure`);
+  const view = model && window.Bokeh.index.find_one(model);
+  return view != null && view.el.isConnected && view.el.getBoundingClientRect().height > 0;
+})"""
+
+
+@pytest.mark.parametrize("width, height", SIZES)
+@pytest.mark.parametrize("query", ["", "?presentation=true&theme=dark"])
+def test_nothing_moves_when_the_site_figures_arrive(browser, url, width, height, query):
+    """The figures come after the year's readouts (site_tab.AfterPaint), in the place kept for
+    them from the tab's first paint (placeholders, their words readable on no fill): the
+    controls and the figures' slots do not move. Before, the controls were laid out across the
+    tab, then squeezed into a column beside the water each month (1006 px wide to 382 at
+    1366×768, 23 px taller) (issue 37)."""
+    page = open_page(browser, url, width, height, query)
+    try:
+        page.evaluate(BOXES_AT_FIRST_PAINT)
+        page.get_by_role("tab", name="Site").click()
+        page.wait_for_function("() => window.__siteFirst !== null", timeout=120_000)
+        first = page.evaluate("() => window.__siteFirst")
+        fills = first.pop("fills")  # the Site tab's placeholders' and the pump's views' below
+        assert len(fills) >= len(SITE_FIGURES) and set(fills) == {"rgba(0, 0, 0, 0)"}, fills
+        page.wait_for_function(FIGURES_DRAWN, arg=list(SITE_FIGURES), timeout=60_000)
+        time.sleep(1.0)  # the figures' layout settles after their data
+        after = page.evaluate(SITE_BOXES)
+        after.pop("fills")
+        assert len(after["controls"]) == 1 and len(after["slots"]) == len(SITE_FIGURES)
+        assert first == after, f"the Site tab moved at {width}×{height}{query}: {first} -> {after}"
         assert page.problems == []
     finally:
         page.close()

@@ -16,10 +16,14 @@ import re
 # (emphasis, code, links, images, tables, escapes), an e-mail autolink's '@', and line breaks: no
 # block can start inside a message.
 MARKUP = '&<>"`*_~[]#|\\@\n\r'
-CONTROLS = (*range(0x20), *range(0x7F, 0xA0))  # C0, DEL and C1
+# C0, DEL and C1, and Unicode's bidirectional formatting characters (the Arabic letter mark,
+# left-to-right and right-to-left marks, embeddings, overrides, isolates): one of those in an
+# echoed value reordered the rest of its line on screen (U+202E showed the notice backwards).
+CONTROLS = (*range(0x20), *range(0x7F, 0xA0), 0x61C, 0x200E, 0x200F, *range(0x202A, 0x202F))
+CONTROLS += tuple(range(0x2066, 0x206A))
 _REFERENCES = str.maketrans(
     {character: f"&#{ord(character)};" for character in MARKUP}
-    # other control characters show as the replacement character, as a browser shows a NUL
+    # other controls show as the replacement character, as a browser shows a NUL
     | {code: "\ufffd" for code in CONTROLS if chr(code) not in MARKUP + "\t"}
 )
 # A dot before a letter would make a bare domain a link (lab.csv, www.example.org), and a colon
@@ -35,7 +39,8 @@ def as_text(raw: object) -> str:
     for a Markdown or HTML pane (an element's content or a double-quoted attribute): every
     character that either reads as markup written as its numeric character reference, which
     both show as the character itself. Letters, digits, spaces, a number's sign and decimal
-    point pass as they are; other control characters become U+FFFD.
+    point pass as they are; other control characters, and the bidirectional formatting
+    characters, become U+FFFD.
 
     Examples
     --------

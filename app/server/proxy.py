@@ -5,8 +5,9 @@ class larger than one process carries.
 
 starts ``--processes`` servers on free loopback ports and nginx (Debian's ``/usr/sbin/nginx``, as
 a child process, its configuration ``app/server/nginx.conf`` filled in and written to a temporary
-directory) listening on ``--address:--port``; students open ``http://NAME:PORT/app``. Ctrl-C stops
-them all. See docs/instructors.rst, "More students than one process carries".
+directory) listening on ``--address:--port``; students open ``http://NAME:PORT/app``. Ctrl-C (or a
+SIGTERM: ``kill``, systemd, docker) stops them all. See docs/instructors.rst, "More students
+than one process carries".
 
 Each server starts with jemalloc as its allocator (``--allocator jemalloc``, the default; see
 ``allocator_env``): after a class it hands back what the class took. Without the library (not
@@ -204,6 +205,9 @@ def main(argv: list[str] | None = None) -> int:
         help="the servers' memory allocator (default jemalloc, if installed)",
     )
     args, extra = parser.parse_known_args(argv)
+    # `kill`, systemd and docker stop it with SIGTERM: stop the servers and nginx as Ctrl-C does
+    # (Python's default ended this process at once, and they ran on, orphaned, on their ports)
+    signal.signal(signal.SIGTERM, _interrupted)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     origins = args.host or [f"{name}:{args.port}" for name in _names()]
     listen = f"{args.address}:{args.port}"
@@ -215,6 +219,10 @@ def main(argv: list[str] | None = None) -> int:
             while all(p.poll() is None for p in (*servers, proxy)):
                 time.sleep(1.0)
     return 0
+
+
+def _interrupted(signum: int, _frame) -> None:
+    raise KeyboardInterrupt(f"signal {signum}")
 
 
 def _names() -> list[str]:

@@ -228,3 +228,17 @@ def test_a_unicode_link_key_is_named_as_typed():
     tornado = {"café".encode().decode("latin-1"): [b"1"], "h": [b"3"]}
     app = Explorer(query=utf8_keys(tornado))
     assert "“café” is not a parameter of this page" in shown(app.notices)
+
+
+# Unicode's bidirectional formatting characters (embeddings, overrides, isolates, marks): in an
+# echoed value, U+202E reversed the rest of the notice's line on screen ("?h=%E2%80%AEfdp.exe"
+# showed "“exe.pdf” ignored: ..." as ".03 ot 0 morf rebmun a eb tsum ti :derongi ”exe.pdf").
+BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
+
+
+@pytest.mark.parametrize("mark", BIDI)
+def test_a_bidi_control_in_a_value_cannot_reorder_the_notice_around_it(mark):
+    app = Explorer(query={"h": [f"{mark}fdp.exe".encode()]})
+    notices = shown(app.notices)
+    assert "“\ufffdfdp.exe” ignored" in notices
+    assert not set(BIDI) & set(app.notices.object)

@@ -240,3 +240,21 @@ def test_any_edit_of_the_fields_loads_as_written_or_raises_a_value_error(changes
         return
     for name, value in changes.items():
         assert getattr(design, name) == value
+
+
+def test_a_field_given_twice_is_refused_naming_it():
+    """JSON leaves a repeated name's meaning open; Python's reader kept the last one silently (a
+    file edited by hand with "h": 3.0 and a later "h": 40 ran at 40 m)."""
+    text = SEED.to_json().replace('"h": 3.0', '"h": 3.0, "h": 40', 1)
+    with pytest.raises(DesignFileError) as caught:
+        Design.from_json(text)
+    assert "'h' is given twice" in str(caught.value)
+
+
+def test_a_number_of_thousands_of_digits_is_refused_in_a_designers_words():
+    """Python's own words were for a programmer ("use sys.set_int_max_str_digits()")."""
+    text = SEED.to_json().replace('"h": 3.0', '"h": ' + "9" * 5_000, 1)
+    with pytest.raises(DesignFileError) as caught:
+        Design.from_json(text)
+    assert "more than 4,300 digits" in str(caught.value)
+    assert "sys." not in str(caught.value)

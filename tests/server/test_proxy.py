@@ -80,6 +80,40 @@ def test_each_process_of_the_hall_gets_the_allocator(monkeypatch):
     assert env["PYTHONMALLOC"] == "malloc" and env["MALLOC_CONF"] == proxy.JEMALLOC_CONF
 
 
+# The proxy's main() with hall() replaced by one that says when it stops its processes; its wait
+# sends the proxy itself a SIGTERM, as `kill`, systemd or docker stop it.
+STOPPED_BY_SIGTERM = """
+import contextlib, os, signal, sys
+from windpump_app.server import proxy
+
+class Running:
+    def poll(self):
+        return None
+
+@contextlib.contextmanager
+def hall(*args, **kwargs):
+    try:
+        yield [Running()], Running(), [1]
+    finally:
+        print("servers and nginx stopped", flush=True)
+
+proxy.hall = hall
+proxy._names = lambda: ["localhost"]
+proxy.time.sleep = lambda seconds: os.kill(os.getpid(), signal.SIGTERM)
+sys.exit(proxy.main(["--processes", "1", "--port", "1"]))
+"""
+
+
+def test_a_sigterm_stops_the_servers_and_nginx_as_ctrl_c_does():
+    """Python's default for SIGTERM ended the proxy at once: its panel servers and nginx
+    ran on, orphaned, holding their ports."""
+    done = subprocess.run(
+        [sys.executable, "-c", STOPPED_BY_SIGTERM], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    assert "servers and nginx stopped" in done.stdout
+
+
 def test_a_process_started_so_runs_on_jemalloc():
     from served import require_jemalloc
 

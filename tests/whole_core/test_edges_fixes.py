@@ -134,7 +134,9 @@ def test_integers_beyond_double_precision_are_refused_by_name(tmp_path, capsys):
     text = SEED.to_json().replace('"h": 3.0', '"h": 1' + "0" * 400)
     with pytest.raises(ParameterError, match="^h = an integer of 401 digits"):
         Design.from_json(text)
-    with pytest.raises(DesignFileError, match="not a design file: Exceeds the limit"):
+    with pytest.raises(
+        DesignFileError, match="not a design file: a number in it has more than 4,300 digits"
+    ):
         Design.from_json(SEED.to_json().replace('"h": 3.0', '"h": 1' + "0" * 5000))
     code, _, err = command(capsys, "simulate", "--set", "cylinders=inf")
     assert_one_line_error(code, err, "cylinders = inf is not allowed")

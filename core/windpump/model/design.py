@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import sys
 import typing
 
 from ..errors import DesignFileError, ParameterError, shown
@@ -514,13 +515,31 @@ def read_json(text: str | bytes) -> object:
             f"a design file is JSON text (str or bytes), not a {type(text).__name__}"
         )
     try:
-        return json.loads(text)
+        return json.loads(text, object_pairs_hook=_once_each)
     except (json.JSONDecodeError, UnicodeDecodeError) as error:
         raise DesignFileError(f"not JSON: {error}") from None
-    except ValueError as error:  # an integer of more digits than Python converts (4300)
-        raise DesignFileError(f"not a design file: {error}") from None
+    except DesignFileError:
+        raise
+    except ValueError:  # an integer of more digits than Python converts
+        raise DesignFileError(
+            f"not a design file: a number in it has more than {sys.get_int_max_str_digits():,} "
+            "digits"
+        ) from None
     except RecursionError:
         raise DesignFileError("not a design file: its JSON is nested too deeply to read") from None
+
+
+def _once_each(pairs: list[tuple[str, object]]) -> dict[str, object]:
+    """A JSON object's names and values, each name once: JSON leaves a repeated one's meaning
+    open, and Python's reader would keep its last value silently."""
+    document = dict(pairs)
+    if len(document) < len(pairs):
+        seen: set[str] = set()
+        for name, _ in pairs:
+            if name in seen:
+                raise DesignFileError(f"not a design file: {shown(name)} is given twice")
+            seen.add(name)
+    return document
 
 
 def _design_fields(document: object) -> dict[str, typing.Any]:

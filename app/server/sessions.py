@@ -39,6 +39,11 @@ def session_closed(session_context) -> None:  # Bokeh requires exactly this sign
 # kept this long unconnected; a bare GET's still goes after 30-35 s.
 BROWSER_CONNECT_WINDOW = 180.0  # [s]
 CONNECTED_POLL = 0.5  # [s] how often a held page's session is asked whether its browser is in
+# A script can send that header too: at most this many pages are held at once (a hall of 100
+# opening together fits), so forged navigations hold at most as many pages' memory for the
+# window; past it a navigation's page goes after the lifetime, as a bare GET's does.
+MAX_HELD = 150
+HELD: set[str] = set()  # the ids of the sessions held now
 
 
 def wait_for_the_browser(
@@ -49,7 +54,8 @@ def wait_for_the_browser(
     it while connected, and once closed it lingers as Bokeh's lifetime says (the hold ends as
     the page connects, not ``window`` seconds after it was served: a class's closed pages are
     dropped, and their memory handed back, within the lifetime). A request that is no browser's
-    navigation leaves the session to Bokeh's lifetime alone.
+    navigation leaves the session to Bokeh's lifetime alone, and so does a navigation while
+    ``MAX_HELD`` pages are held (the header can be forged).
 
     Examples
     --------
@@ -66,6 +72,7 @@ def wait_for_the_browser(
 
     def release_once_connected(session, held_at: float) -> None:
         if session.destroyed:
+            HELD.discard(session.id)
             return
         held_ms = (time.monotonic() - held_at) * 1000.0
         # connected now, or connected and gone between two looks (it left after the hold began)
@@ -73,14 +80,16 @@ def wait_for_the_browser(
             session.milliseconds_since_last_unsubscribe < held_ms - 1.0
         )
         if connected or held_ms >= window * 1000.0:
+            HELD.discard(session.id)
             session.unblock_expiration()
         else:
             loop.call_later(poll, release_once_connected, session, held_at)
 
     def block() -> None:  # once Bokeh has made the session (just after this document is built)
         session = getattr(context, "_session", None)
-        if session is None or session.destroyed:
+        if session is None or session.destroyed or len(HELD) >= MAX_HELD:
             return
+        HELD.add(session.id)
         session.block_expiration()
         loop.call_later(poll, release_once_connected, session, time.monotonic())
 

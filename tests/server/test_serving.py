@@ -755,3 +755,54 @@ def test_served_a_browser_s_page_once_connected_and_closed_goes_after_the_lifeti
         time.sleep(LATE)  # past the lifetime and a check after the close
         roots = connected_root_ids(url, session_id)
         assert not page_roots & roots, (page_roots, roots)  # a new document: the old one went
+
+
+def test_forged_navigations_hold_at_most_max_held_pages_and_each_goes_when_it_may(monkeypatch):
+    """A script can send ``Sec-Fetch-Dest: document`` with every GET: each held its page for
+    BROWSER_CONNECT_WINDOW (180 s) instead of the 30 s of a bare GET. At most MAX_HELD are held
+    at once; a held page frees its place when it connects or its window ends."""
+    import asyncio
+    from types import SimpleNamespace
+
+    from windpump_app.server import sessions
+
+    monkeypatch.setattr(sessions, "MAX_HELD", 3)
+    monkeypatch.setattr(sessions, "HELD", set())
+
+    class Session:
+        def __init__(self, k):
+            self.id, self.destroyed, self.connection_count = f"s{k}", False, 0
+            self.milliseconds_since_last_unsubscribe = 1e12  # never connected
+            self.blocked = False
+
+        def block_expiration(self):
+            self.blocked = True
+
+        def unblock_expiration(self):
+            self.blocked = False
+
+    def navigation(k):
+        context = SimpleNamespace(
+            request=SimpleNamespace(headers={"Sec-Fetch-Dest": "document"}), _session=Session(k)
+        )
+        return SimpleNamespace(session_context=context), context._session
+
+    async def visits():
+        pages = [navigation(k) for k in range(5)]
+        for document, _ in pages:
+            sessions.wait_for_the_browser(document, window=1.0, poll=0.02)
+        await asyncio.sleep(0.2)
+        held = [session.blocked for _, session in pages]
+        pages[0][1].connection_count = 1  # its browser connects: its place is free
+        await asyncio.sleep(0.2)
+        late, _ = navigation(5)
+        sessions.wait_for_the_browser(late, window=1.0, poll=0.02)
+        await asyncio.sleep(0.2)
+        after_connect = (pages[0][1].blocked, late.session_context._session.blocked)
+        await asyncio.sleep(1.5)  # every window over
+        return held, after_connect, [s.blocked for _, s in pages], set(sessions.HELD)
+
+    held, after_connect, at_the_end, still = asyncio.run(visits())
+    assert held == [True, True, True, False, False]
+    assert after_connect == (False, True)
+    assert at_the_end == [False] * 5 and still == set()

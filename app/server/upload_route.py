@@ -33,6 +33,7 @@ from collections.abc import Callable
 from functools import partial
 
 from tornado import web
+from tornado.ioloop import IOLoop
 
 from ..inputs import clipped
 from ..uploads import KINDS, SESSION_HEADER, WIND_MAX_BYTES, refused_size
@@ -46,6 +47,10 @@ LIFETIME = 120.0  # [s] bytes not taken by then are dropped (the page's referenc
 # store's bounds, for every session of the server, hold at least one share.
 MAX_ITEMS = 8  # files held at once
 MAX_HELD = 4 * WIND_MAX_BYTES  # [bytes] held at once
+# A post still arriving after this long is cut off and its bytes let go (a 10 MB file at ~270
+# kbit/s): Tornado waits an hour for a body, so a page that began posts and stalled held their
+# bytes (up to one file of each upload a page) that long.
+POST_DEADLINE = 300.0  # [s]
 
 # Why a post is refused: (HTTP status, what the page is told).
 REFUSALS = {
@@ -321,6 +326,7 @@ class UploadHandler(web.RequestHandler):
         self.size = 0
         self.refusal = ""
         self.receipt: Receiving | None = None  # the page's share and its bytes, as they arrive
+        self.deadline: object | None = None  # the IOLoop's handle of ``too_slow``
 
     def check_xsrf_cookie(self) -> None:
         """The page's session id is the credential (it is what opens the session's websocket),
@@ -341,6 +347,15 @@ class UploadHandler(web.RequestHandler):
             self.refusal = "size"
         else:  # its bytes count against the page's share as they arrive
             self.receipt = self.uploads.receiving(self.session_id, self.kind)
+            self.deadline = IOLoop.current().call_later(POST_DEADLINE, self.too_slow)
+
+    def too_slow(self) -> None:
+        """POST_DEADLINE has passed and the body is still arriving: cut it off (the page says
+        the file could not be sent)."""
+        if self.receipt is not None:
+            log.info("upload: a post still arriving after %.0f s was cut off", POST_DEADLINE)
+            self.release()
+            self.request.connection.close()
 
     def data_received(self, chunk: bytes) -> None:
         if not self.size:
@@ -366,6 +381,9 @@ class UploadHandler(web.RequestHandler):
 
     def release(self) -> None:
         """The post has ended: its share and its bytes go."""
+        if self.deadline is not None:
+            IOLoop.current().remove_timeout(self.deadline)
+            self.deadline = None
         if self.receipt is not None:
             self.receipt.chunks.clear()
             self.uploads.done(self.receipt)

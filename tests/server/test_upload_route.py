@@ -270,6 +270,66 @@ def test_a_post_still_arriving_when_a_later_one_is_kept_is_refused_and_the_later
     assert store.take("s", json.loads(late.body)["id"]).name == "late.csv"
 
 
+def test_a_post_still_arriving_past_its_deadline_is_cut_off_and_its_bytes_let_go(monkeypatch):
+    """Through the route, in-process: a post whose body stalls (a page, or a script with a
+    connected page's id) held its bytes as long as Tornado waits for a body, an hour; past
+    POST_DEADLINE (0.5 s here) it is cut off, its share and bytes let go."""
+    from tornado.httpclient import AsyncHTTPClient, HTTPRequest
+    from tornado.httpserver import HTTPServer
+    from tornado.netutil import bind_sockets
+    from tornado.web import Application
+
+    from windpump_app.server import upload_route
+
+    monkeypatch.setattr(upload_route, "POST_DEADLINE", 0.5)
+    store = Uploads()
+    store.opened("s")
+
+    async def stalled_post() -> tuple:
+        sockets = bind_sockets(0, "127.0.0.1")
+        port = sockets[0].getsockname()[1]
+        app = Application([(r"/upload", upload_route.UploadHandler, {"uploads": store})])
+        server = HTTPServer(app)
+        server.add_sockets(sockets)
+        never = asyncio.Event()
+
+        async def stalls(write) -> None:
+            await write(b"0,5\n" * 1000)
+            await never.wait()
+
+        client = AsyncHTTPClient(force_instance=True)
+        try:
+            post = asyncio.ensure_future(
+                client.fetch(
+                    HTTPRequest(
+                        f"http://127.0.0.1:{port}/upload?kind=wind&name=slow.csv",
+                        method="POST",
+                        headers={SESSION_HEADER: "s"},
+                        body_producer=stalls,
+                        request_timeout=60,
+                    ),
+                    raise_error=False,
+                )
+            )
+            while store.in_flight() == 0:  # its first piece read
+                await asyncio.sleep(0.01)
+            seen = store.in_flight()
+            for _ in range(500):  # up to 5 s
+                if store.in_flight() == 0:
+                    break
+                await asyncio.sleep(0.01)
+            gone = store.in_flight()
+            post.cancel()
+            return seen, gone
+        finally:
+            client.close()
+            server.stop()
+
+    seen, gone = asyncio.run(stalled_post())
+    assert (seen, gone) == (1, 0)
+    assert store.held() == 0
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     st.lists(

@@ -836,7 +836,11 @@ def open_wind_tab(page):
         f"() => /^[0-9,]+$/.test(({DEEP_TEXT})('[data-name=day_litres]') || '')",
         timeout=120_000,
     )
-    return page.locator("input[type=file]").nth(1)
+    upload = page.locator("input[type=file]").nth(1)
+    # Focused, as a person's click or Tab focuses it: uploads.js guards a file input drawn
+    # later on its focus (or on timers after the tab is chosen, which a file set at once can beat)
+    upload.focus()
+    return upload
 
 
 def a_day_of_wind(name: str, step: float = 1.0) -> dict:

@@ -121,7 +121,10 @@ def test_the_site_tab_fits_every_screen(browser, url, width, height, query):
     try:
         page.get_by_role("tab", name="Site").click()
         page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
-        time.sleep(1.0)  # the figures' layout settles after their data
+        # the figures come after the readouts (a busy machine: seconds after); then their
+        # layout settles after their data
+        page.wait_for_function(FIGURES_DRAWN, arg=list(SITE_FIGURES), timeout=60_000)
+        time.sleep(1.0)
         sideways = [(s, extra) for s, extra in page.evaluate(SCROLLS) if extra > 0]
         assert sideways == [], f"sideways scrolling at {width}×{height}{query}: {sideways}"
         cut = {n: page.evaluate(CANVAS_TEXT, f"site_{n}_figure") for n in SITE_FIGURES}

@@ -53,6 +53,10 @@ def startup_power(
 
     Both grow linearly during the start-up: the power at its end is twice these means.
 
+    The ranges are the design fields' (``SMALLEST`` to ``LARGEST``): inside them both powers are
+    finite (at most 5e47 W); past them they overflowed (a bare ``OverflowError`` for
+    ``speed = 1e300``), and now each is refused by name.
+
     Parameters
     ----------
     mass : float
@@ -65,10 +69,6 @@ def startup_power(
         Rise over length along the slope [-], in [-1, 1] (the sine of the slope's angle).
     g : float, default 9.81
         Gravity [m/s^2], 1e-12 to 1e12.
-
-    The ranges are the design fields' (``SMALLEST`` to ``LARGEST``): inside them both powers are
-    finite (at most 5e47 W); past them they overflowed (issue 36: a bare ``OverflowError`` for
-    ``speed = 1e300``).
 
     Returns
     -------

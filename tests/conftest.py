@@ -50,8 +50,8 @@ def pytest_configure(config):
     subprocess.run([sys.executable, "-c", WARM_UP], check=True)
 
 
-# The test modules that take longest, longest first (their seconds in a CI log's --durations=0
-# under two workers, rounded). pytest-xdist's --dist loadscope gives a worker a whole module at a
+# The test modules that take longest, longest first (their seconds in a --durations=0 log
+# under two workers on a busy machine, rounded). pytest-xdist's --dist loadscope gives a worker a whole module at a
 # time, and with --no-loadscope-reorder in the order collected: these first, the many short ones
 # after them fill the gaps, so that neither worker is left running a long module alone at the end
 # (longest processing time first). Every other module keeps its place after them.

@@ -114,7 +114,8 @@ def test_the_real_machines_fields_are_written_with_their_units():
 
 def test_the_file_states_its_schema_version_and_units():
     document = json.loads(SEED.to_json())
-    assert document["schema"] == "windpump.model.design" and document["version"] == 2
+    assert document["schema"] == "windpump.model.design" and document["version"] == 3
+    assert "rotor" not in document  # the paper's Eq. (11): no rotor to write
     assert document["units"] == UNITS and set(document["fields"]) == set(UNITS)
     assert set(UNITS) == set(VERSION_1_UNITS) | set(REAL_MACHINE)
 
@@ -202,7 +203,7 @@ def edited(change) -> str:
         ("{not json", "not JSON"),
         ("[]", "not a design file"),
         (edited(lambda d: d.update(schema="other")), "not a design file"),
-        (edited(lambda d: d.update(version=3)), "newer windpump"),
+        (edited(lambda d: d.update(version=4)), "newer windpump"),
         (edited(lambda d: d.update(version="1")), '"version"'),
         (edited(lambda d: d["fields"].update(bore=0.04)), "unknown field(s) ['bore']"),
         (edited(lambda d: d["fields"].pop("h")), "missing field(s) ['h']"),

@@ -19,14 +19,15 @@ from .stepping import REACHED_T_END
 @parallel_kernel
 def steady_runs(
     R_dagger, inv_I_eff, load_torque, theta_dot0, t_end, base, cylinders, double_acting, turns,
-    rtol, max_steps, pace, real_base=None,
+    rtol, max_steps, pace, real_base=None, rotor=None,
 ):  # fmt: skip
     """Run every point from theta = 0 at its theta_dot0 to its t_end; return the cycle-mean crank
     speed [rad/s] and the strokes delivered per second [1/s] over its last ``turns`` revolutions,
     and how each run ended (the integrator's outcome; -1 for a point not run).
 
     ``base`` holds (T_m, T_0, omega_m, L_over_R), the fields every point shares, and
-    ``real_base`` the real machine's (:class:`~.real.RealBase`; None: the ideal machine). A point with
+    ``real_base`` the real machine's (:class:`~.real.RealBase`; None: the ideal machine), ``rotor``
+    the windmill's C_Q table (:class:`~.rotor.RotorTable`; None: Eq. 11). A point with
     theta_dot0 = 0, or that stalls, or that does not complete ``turns`` revolutions, gets NaN.
     """
     points = R_dagger.size
@@ -39,7 +40,7 @@ def steady_runs(
             continue
         machine = Machine(
             R_dagger[i], T_m, T_0, omega_m, inv_I_eff[i], load_torque[i], L_over_R, cylinders,
-            double_acting, None, real_at(real_base, inv_I_eff[i], load_torque[i]),
+            double_acting, None, real_at(real_base, inv_I_eff[i], load_torque[i]), rotor,
         )  # fmt: skip
         capacity = int(1.1 * theta_dot0[i] * t_end[i] / math.pi) + 64
         ran = integrate(

@@ -19,6 +19,7 @@ import typing
 
 from ..model import equations
 from .jit import kernel
+from .rotor import RotorTable, wheel_torque
 from .wind import Wind
 
 
@@ -36,6 +37,7 @@ class Machine(typing.NamedTuple):
     double_acting: bool  # both faces of every piston deliver
     wind: Wind | None  # a wind record, or None: V = V_ref throughout
     real: Real | None  # the real machine's terms (:mod:`.real`), or None: the ideal machine
+    rotor: RotorTable | None  # a rotor's C_Q table (:mod:`.rotor`), or None: Eq. (11)
 
 
 class Real(typing.NamedTuple):
@@ -57,7 +59,6 @@ TOP, BOTTOM, NEITHER = 1, -1, 0  # which face of a cylinder delivers in a segmen
 
 piston_over_R = kernel(equations.piston_over_R)  # x/R, Eq. (1) [-]
 lever_arm = kernel(equations.lever_arm)  # (dx/dphi)/R = sin(phi + theta_c)/cos(theta_c) [-]
-windmill_torque = kernel(equations.windmill_torque)  # Eq. (11) with T_0, in the wind s [N m]
 
 
 @kernel
@@ -124,13 +125,15 @@ def load_work(theta, segment, machine):
 @kernel
 def windmill_torque_on_crank(theta_dot, s, machine):
     """R+ T(R+ theta_dot) [N m] in a wind s = V/V_ref: T = s^2 T_0 + (T_m - T_0) x (2 s - x),
-    x = omega/omega_m.
+    x = omega/omega_m, or a rotor's ``1/2 rho_air pi r^3 V_s^2 C_Q(lambda)`` (:mod:`.rotor`).
 
     The curve T_0 + (T_m - T_0) x (2 - x) (Eq. 11 at T_0 = 0) scaled by similarity, torques by
     s^2 and speeds by s; at s = 1 it is that curve to the last bit. Reflected to the crank.
     """
-    x = machine.R_dagger * theta_dot / machine.omega_m
-    return machine.R_dagger * windmill_torque(x, s, machine.T_m, machine.T_0)
+    omega = machine.R_dagger * theta_dot
+    return machine.R_dagger * wheel_torque(
+        omega, s, machine.rotor, machine.T_m, machine.T_0, machine.omega_m
+    )
 
 
 @kernel

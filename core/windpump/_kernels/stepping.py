@@ -64,6 +64,7 @@ from .real import (
     torque_at_rest,
     transmitted,
 )
+from .rotor import furl_scale, unfurled_rest_torque
 from .wind import rise_above, wind_scale
 
 ANGLE = 0
@@ -203,11 +204,14 @@ def next_start(t, theta, segment, machine):
     round-off."""
     if moves_from_rest(t, theta, segment, machine):
         return t
-    if machine.T_0 == 0.0:
+    rest_torque = unfurled_rest_torque(machine.rotor, machine.T_0)
+    if rest_torque == 0.0:
         return math.inf
     load = -torque_at_rest(theta, segment, machine)
-    rest = transmitted(machine.R_dagger * machine.T_0, machine)
+    rest = transmitted(machine.R_dagger * rest_torque, machine)
     threshold = math.sqrt(max(load, 1e-300) / rest)  # V/V_ref to exceed (above 0: calm air never)
+    if threshold > furl_scale(machine.rotor):  # the furled wheel's torque stops growing there
+        return math.inf
     while True:
         crossing = rise_above(t, threshold, machine.wind)
         if crossing == math.inf:

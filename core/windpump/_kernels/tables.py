@@ -95,5 +95,5 @@ def without_wind(machine):
     return Machine(
         machine.R_dagger, machine.T_m, machine.T_0, machine.omega_m, machine.inv_I_eff,
         machine.load_torque, machine.L_over_R, machine.cylinders, machine.double_acting, None,
-        machine.real,
+        machine.real, machine.rotor,
     )  # fmt: skip

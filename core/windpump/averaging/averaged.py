@@ -25,7 +25,7 @@ from ..errors import StallError
 from ..model.design import Design
 from ..model.kinematics import lever_arm
 from ..validation import finite_array, non_negative, rod_ratio
-from .revolution import leaky_spinup
+from .revolution import Points, largest_ratio, largest_roots, leaky_spinup, stall_time
 from .theory import cycle_mean, running_speeds
 
 
@@ -108,7 +108,7 @@ def stall_sides(design: Design) -> tuple[float, float]:
     0.0
     """
     load = design.deliveries * design.R_dagger * design.L_dagger / math.pi
-    if design.d_leak == 0.0 and design.friction_coefficient == 0.0:
+    if design.d_leak == 0.0 and design.friction_coefficient == 0.0 and design.rotor is None:
         return design.eta_t * design.Tm_dagger, load
     windmill = design.eta_t * design.Tm_dagger
     return windmill, windmill / stall_margin(design)
@@ -152,7 +152,7 @@ def steady_speeds(design: Design) -> tuple[float, float | None]:
     if not speeds.runs:
         raise StallError(float(speeds.margin), "a steady speed")
     alpha_minus = float(speeds.alpha_minus)
-    if design.d_leak > 0.0 and math.isnan(alpha_minus):
+    if (design.d_leak > 0.0 or design.rotor is not None) and math.isnan(alpha_minus):
         return float(speeds.alpha_plus), None
     return float(speeds.alpha_plus), alpha_minus
 
@@ -210,6 +210,8 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     if design.d_leak > 0.0:  # F > 0 just above rest: only a crank at rest with T_0 = 0 stays
         return 0.0 if theta_dot0 == 0.0 and design.T_0 == 0.0 else None
+    if design.rotor is not None:
+        return _rotor_stall_time(design, theta_dot0)
     k, p, delta2 = _riccati(design)
     if delta2 > 0.0:  # from the roots (p^2 - delta^2 cancels when they lie decades apart)
         mean = cycle_mean(design)
@@ -227,6 +229,20 @@ def averaged_stall_time(design: Design, theta_dot0: float) -> float | None:
         q = math.sqrt(-delta2)
         return math.atan(q * g_star) / (k * q)
     return g_star / k
+
+
+def _rotor_stall_time(design: Design, theta_dot0: float) -> float | None:
+    """:func:`averaged_stall_time` of a rotor's pump: it settles where F falls through 0 above
+    or below the kick (alpha+ from above alpha-, or a lower falling root), else it decays to
+    rest after ``I-bar int_0^theta_dot0 dalpha / -F``."""
+    points = Points(design, None, None, None)
+    falling, rising, lower = (float(r[0]) for r in largest_roots(points, points.runaway, True))
+    runs = float(largest_ratio(points)[0]) > 1.0
+    if runs and (math.isnan(rising) or theta_dot0 >= rising):
+        return None
+    if runs and not math.isnan(lower):  # F > 0 near rest: a slower steady speed, no stall
+        return None
+    return stall_time(points, theta_dot0)
 
 
 def spinup(design: Design, t, theta_dot0: float):
@@ -258,7 +274,7 @@ def spinup(design: Design, t, theta_dot0: float):
     """
     theta_dot0 = non_negative("theta_dot0", theta_dot0, "rad/s")
     t = finite_array("t", t, "s", minimum=0.0)
-    if design.d_leak > 0.0:
+    if design.d_leak > 0.0 or design.rotor is not None:
         return leaky_spinup(design, t, theta_dot0)
     k, p, delta2 = _riccati(design)
     t_stall = averaged_stall_time(design, theta_dot0)

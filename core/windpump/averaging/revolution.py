@@ -18,9 +18,10 @@ import math
 import numpy as np
 
 from ..model.equations import lever_arm, lever_arm_slope, windmill_torque
-from ..model.groups import RunningSpeeds, effective_inertia
+from ..model.groups import RunningSpeeds, effective_inertia, load_torque, mean_load_torque
 from ..model.kinematics import face_levers
 from ..model.loads import faces_load, leak_capacity_at
+from ..model.torque import runaway_in_wind, torque_in_wind
 
 GAUSS_NODES, PANELS = 12, 2
 """Gauss-Legendre nodes per panel, and panels per smooth piece of a period."""
@@ -223,8 +224,17 @@ class Points:
         self.R_dagger, self.h, self.s = R_dagger.ravel(), h.ravel(), s.ravel()
         I_eff = effective_inertia(design.I1, design.I0, self.R_dagger)
         self.I_bar = I_eff + reciprocating_inertia(design)
-        runaway = design.runaway_speed / design.omega_m  # x where T vanishes at V_ref
-        self.runaway = self.s * design.omega_m * runaway / self.R_dagger  # crank [rad/s]
+        if design.rotor is None:
+            runaway = design.runaway_speed / design.omega_m  # x where T vanishes at V_ref
+            self.runaway = self.s * design.omega_m * runaway / self.R_dagger  # crank [rad/s]
+        else:
+            self.runaway = runaway_in_wind(design, self.s) / self.R_dagger
+        # Without a leak hole the mean load is M + c alpha^2 exactly (friction_load): no quadrature
+        self.tight = design.d_leak == 0.0
+        self.friction = friction_load(design) if self.tight else 0.0
+        self.M = mean_load_torque(
+            design.deliveries, load_torque(design.rho_w, design.g, self.h, design.A, design.R)
+        )
 
     def net_torque(self, alpha, which=slice(None)):
         """F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha) [N m] of the points ``which``."""
@@ -234,32 +244,95 @@ class Points:
             R_dagger = R_dagger[:, None]
         s = self.s[which].reshape(np.shape(R_dagger))
         h = self.h[which].reshape(np.shape(R_dagger))
-        torque = windmill_torque(R_dagger * alpha / d.omega_m, s, d.T_m, d.T_0)
-        load, _ = mean_load(d, alpha, h)
+        if d.rotor is None:
+            torque = windmill_torque(R_dagger * alpha / d.omega_m, s, d.T_m, d.T_0)
+        else:
+            torque = torque_in_wind(d, R_dagger * alpha, s)
+        if self.tight:
+            load = self.M[which].reshape(np.shape(R_dagger)) + self.friction * np.square(alpha)
+        else:
+            load, _ = mean_load(d, alpha, h)
         return d.eta_t * R_dagger * torque - load
 
+    def ratio(self, alpha, which=slice(None)):
+        """The stall criterion's ratio eta_t R+ T(R+ alpha) / L-bar(alpha) [-] (tight pumps)."""
+        d = self.design
+        R_dagger = self.R_dagger[which]
+        if np.ndim(alpha) > np.ndim(R_dagger):
+            R_dagger = R_dagger[:, None]
+        s = self.s[which].reshape(np.shape(R_dagger))
+        load = self.M[which].reshape(np.shape(R_dagger)) + self.friction * np.square(alpha)
+        drive = d.eta_t * R_dagger * torque_in_wind(d, R_dagger * alpha, s)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(load > 0.0, drive / load, np.where(drive > 0.0, math.inf, 0.0))
 
-def leaky_running_speeds(design, *, gear_ratio=None, head=None, V=None):
-    """:func:`windpump.averaging.theory.running_speeds` of a pump with a leak hole: F scanned from rest to
-    the runaway speed, its largest falling root (alpha+) and the rising root below it (alpha-)
-    refined, tau from a central difference, the mean flow by quadrature at alpha+."""
+
+def numeric_running_speeds(design, *, gear_ratio=None, head=None, V=None):
+    """:func:`windpump.averaging.theory.running_speeds` with no closed form (a leak hole, or a
+    rotor's torque curve): F scanned from rest to the runaway speed, its largest falling root
+    (alpha+) and the rising root below it (alpha-) refined, tau from a central difference, the
+    mean flow by quadrature at alpha+ (with a hole) or ``m 2 R A alpha+ / 2 pi``. The stall
+    margin is inf with a hole, else the largest ratio of :meth:`Points.ratio` over the crank
+    speeds up to the runaway (:func:`largest_ratio`); where it is 1 or less the pump cannot run
+    (alpha+ NaN)."""
     points = Points(design, gear_ratio, head, V)
     alpha_plus, alpha_minus = largest_roots(points, points.runaway)
+    if points.tight:
+        margin = largest_ratio(points)
+        alpha_plus = np.where(margin > 1.0, alpha_plus, math.nan)
+        alpha_minus = np.where(margin > 1.0, alpha_minus, math.nan)
+    else:
+        margin = np.full(alpha_plus.shape, math.inf)
     runs = ~np.isnan(alpha_plus)
     rate = slope(points, alpha_plus, runs)
     with np.errstate(divide="ignore", invalid="ignore"):
         tau = np.where(runs, points.I_bar / -rate, math.nan)
     flow = np.full(alpha_plus.shape, math.nan)
-    flow[runs] = mean_load(design, alpha_plus[runs], points.h[runs])[1]
+    if points.tight:
+        flow[runs] = design.volume_per_revolution * alpha_plus[runs] / (2 * math.pi)
+    else:
+        flow[runs] = mean_load(design, alpha_plus[runs], points.h[runs])[1]
     shape = points.shape
     return RunningSpeeds(
-        margin=np.full(shape, math.inf),
+        margin=margin.reshape(shape),
         alpha_plus=alpha_plus.reshape(shape),
         alpha_minus=alpha_minus.reshape(shape),
         tau=tau.reshape(shape),
         mean_flow=flow.reshape(shape),
         I_bar=np.broadcast_to(points.I_bar, alpha_plus.shape).reshape(shape),
     )
+
+
+GOLDEN_STEPS = 40
+"""Golden-section steps that refine the stall margin's largest ratio: 0.618^40 ~ 4e-9 of the
+scan's spacing, and the ratio is flat at its peak (an error of ~1e-17 there)."""
+
+
+def largest_ratio(points: Points):
+    """The stall margin of every (tight) point: the largest ``eta_t R+ T(R+ alpha) / L-bar``
+    over crank speeds from rest to the runaway [-], sampled on the scan's speeds and refined by
+    golden-section search around the best sample (inf with no load)."""
+    grid = np.linspace(0.0, 1.0, SCAN_POINTS + 1)
+    alpha = points.runaway[:, None] * grid
+    ratios = points.ratio(alpha)
+    best = np.argmax(ratios, axis=1)
+    rows = np.arange(alpha.shape[0])
+    lo = alpha[rows, np.maximum(best - 1, 0)]
+    hi = alpha[rows, np.minimum(best + 1, grid.size - 1)]
+    golden = (math.sqrt(5.0) - 1.0) / 2.0
+    a, b = lo.copy(), hi.copy()
+    c, d = b - golden * (b - a), a + golden * (b - a)
+    fc, fd = points.ratio(c[:, None])[:, 0], points.ratio(d[:, None])[:, 0]
+    for _ in range(GOLDEN_STEPS):
+        left = fc >= fd  # the peak lies in [a, d]: d becomes c's; else in [c, b]: c becomes d's
+        a, b = np.where(left, a, c), np.where(left, d, b)
+        kept = np.where(left, fc, fd)  # the inner point that stays inside, and its ratio
+        c, d = np.where(left, b - golden * (b - a), d), np.where(left, c, a + golden * (b - a))
+        fc, fd = kept, kept
+        new = np.where(left, c, d)
+        value = points.ratio(new[:, None])[:, 0]
+        fc, fd = np.where(left, value, fc), np.where(left, fd, value)
+    return np.maximum(ratios.max(axis=1), np.maximum(fc, fd))
 
 
 def largest_roots(points: Points, upper, crawl: bool = False):
@@ -408,6 +481,8 @@ def leaky_spinup(design, t: np.ndarray, theta_dot0: float) -> np.ndarray:
     """
     points = Points(design, None, None, None)
     target = leaky_target(points, theta_dot0)
+    if not np.isfinite(target) and points.tight and theta_dot0 > 0.0:  # a rotor's pump stalls
+        return _decay(points, t, theta_dot0)
     gap = target - theta_dot0
     if gap == 0.0 or not np.isfinite(target):
         return np.full(t.shape, theta_dot0)
@@ -434,6 +509,40 @@ def leaky_spinup(design, t: np.ndarray, theta_dot0: float) -> np.ndarray:
     inside = _invert(t[~tail], edges, ends, integral, coefficients)
     result[~tail] = target - gap * np.exp(-inside)
     return result
+
+
+DECAY_NODES = 129
+"""Crank speeds from the kick down to rest on which a stalling spin-up's time is integrated."""
+
+
+def stall_time(points: Points, theta_dot0: float) -> float:
+    """When ``I-bar alpha' = F(alpha) < 0`` from theta_dot0 reaches rest [s]: ``I-bar int_0^theta_dot0
+    dalpha / -F(alpha)`` (one point; F < 0 there), by adaptive quadrature."""
+    if theta_dot0 == 0.0:
+        return 0.0
+    from scipy import integrate  # here, not at import: scipy.integrate takes ~0.5 s to load
+
+    I_bar = float(points.I_bar[0])
+    value, _ = integrate.quad(
+        lambda a: I_bar / -float(points.net_torque(np.array([a]))[0]), 0.0, theta_dot0,
+        epsabs=0.0, epsrel=1e-10, limit=200,
+    )  # fmt: skip
+    return float(value)
+
+
+def _decay(points: Points, t: np.ndarray, theta_dot0: float) -> np.ndarray:
+    """The speed [rad/s] of a spin-up that decays to rest (F < 0 from the kick down), 0 after:
+    ``t(alpha) = I-bar int_alpha^theta_dot0 dalpha' / -F`` on Chebyshev nodes, integrated as
+    their PCHIP interpolant and inverted by another."""
+    from scipy.interpolate import PchipInterpolator  # (as scipy.integrate, above)
+
+    x = 0.5 * (1.0 - np.cos(np.linspace(0.0, math.pi, DECAY_NODES)))  # 0 .. 1, dense at both ends
+    alpha = theta_dot0 * x
+    rate = points.I_bar[0] / -points.net_torque(alpha[None, :])[0]  # dt/d(-alpha) [s s/rad]
+    elapsed = PchipInterpolator(alpha, rate).antiderivative()
+    times = elapsed(theta_dot0) - elapsed(alpha)  # from the kick: decreasing in alpha
+    speed = PchipInterpolator(times[::-1], alpha[::-1])(np.minimum(t, times[0]))
+    return np.where(t < times[0], np.maximum(speed, 0.0), 0.0)
 
 
 def _panel_edges(design, theta_dot0: float, target: float, far: float) -> np.ndarray:

@@ -55,7 +55,7 @@ from ..model.groups import (
 )
 from ..model.wind import MAX_WIND
 from ..validation import finite_array
-from .revolution import friction_load, leaky_running_speeds, reciprocating_inertia
+from .revolution import friction_load, numeric_running_speeds, reciprocating_inertia
 
 __all__ = [
     "CycleMean",
@@ -311,6 +311,11 @@ def cycle_mean(
             "d_leak", design.d_leak, "0 (no leak hole) for the closed forms", "m",
             why="with a leak hole the averaged equation is solved by quadrature: running_speeds",
         )  # fmt: skip
+    if design.rotor is not None:
+        raise ParameterError(
+            "rotor", "a Rotor", "None (the paper's Eq. 11) for the closed forms",
+            why="a rotor's averaged equation is solved numerically: running_speeds",
+        )  # fmt: skip
     R_dagger = design.R_dagger if gear_ratio is None else np.asarray(gear_ratio, dtype=float)
     h = design.h if head is None else np.asarray(head, dtype=float)
     load = load_torque(design.rho_w, design.g, h, design.A, design.R)
@@ -338,8 +343,11 @@ def running_speeds(
     """Stall margin, steady speeds, time constant and mean flow of the averaged equation
     ``I-bar alpha' = F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha)``, broadcasting.
 
-    Without a leak hole in closed form (:func:`cycle_mean`, the paper's Riccati equation with
-    the real machine's eta_t, I-bar and pipe). With a hole L-bar is a quadrature
+    Without a leak hole and with the paper's Eq. (11), in closed form (:func:`cycle_mean`, the
+    paper's Riccati equation with the real machine's eta_t, I-bar and pipe). A rotor's torque
+    curve (:class:`~windpump.Rotor`) has no closed form: its roots are found as a hole's are
+    below, and its stall margin is the largest ratio ``eta_t R+ T(R+ alpha) / L-bar(alpha)``
+    over the crank speeds. With a hole L-bar is a quadrature
     (:func:`windpump.averaging.revolution.mean_load`): F is scanned on a grid of crank speeds up to the
     windmill's runaway speed and its roots refined by the Illinois method to round-off; tau
     from a central difference of F. Such a pump never stalls (margin inf): F > 0 just above
@@ -365,7 +373,7 @@ def running_speeds(
     >>> float(holed.margin), round(float(holed.alpha_plus), 2), bool(np.isnan(holed.alpha_minus))
     (inf, 23.71, True)
     """
-    if design.d_leak == 0.0:
+    if design.d_leak == 0.0 and design.rotor is None:
         mean = cycle_mean(design, gear_ratio=gear_ratio, head=head, V=V)
         runs = mean.runs
         alpha_plus = np.where(runs, mean.alpha_plus, math.nan)
@@ -377,7 +385,7 @@ def running_speeds(
             mean_flow=design.volume_per_revolution * alpha_plus / (2 * math.pi),
             I_bar=mean.I_bar,
         )
-    return leaky_running_speeds(design, gear_ratio=gear_ratio, head=head, V=V)
+    return numeric_running_speeds(design, gear_ratio=gear_ratio, head=head, V=V)
 
 
 LEAK_TABLE = 257
@@ -418,7 +426,7 @@ def steady_flow(design: Design, V):
     speeds = finite_array("V", V, "m/s", minimum=0.0)
     if speeds.size and speeds.max() > MAX_WIND:  # as a record's (a flow of inf, otherwise)
         raise ParameterError("V", float(speeds.max()), f"wind speeds from 0 to {MAX_WIND:g}", "m/s")
-    if design.d_leak > 0.0:  # a quadrature per wind speed: each distinct one once
+    if design.d_leak > 0.0 or design.rotor is not None:  # roots per wind: each distinct once
         values, where = np.unique(speeds, return_inverse=True)
         if values.size > LEAK_TABLE:  # a record's winds: interpolated on a table of them
             table = np.linspace(values[0], values[-1], LEAK_TABLE)

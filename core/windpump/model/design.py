@@ -13,6 +13,7 @@ from ..validation import LARGEST as LARGEST
 from ..validation import SMALLEST as SMALLEST
 from ..validation import flag, magnitude, positive, rod_ratio, whole
 from . import equations, groups
+from .rotor import Rotor
 from .wind import MAX_WIND
 
 # Field name -> unit, in the order of the paper's symbols (docs/model.rst, "Symbols").
@@ -51,10 +52,14 @@ MAX_FRICTION_FACTOR = 0.2
 MAX_CYLINDERS = 6
 
 SCHEMA = "windpump.model.design"
-SCHEMA_VERSION = 2
+SCHEMA_VERSION = 3
 """What a design file says it is, and the version of its layout (:meth:`Design.to_json`).
-Version 2 added the real machine's fields (``REAL_MACHINE``); a version 1 file is still read (its
-design is the ideal machine)."""
+Version 2 added the real machine's fields (``REAL_MACHINE``), version 3 a rotor (``"rotor"``:
+its diameter, C_Q table, air density, furling wind and source, beside ``"fields"``); files of
+versions 1 and 2 are still read (the ideal machine; the paper's curve)."""
+
+ROTOR_FIELDS = ("T_m", "omega_m", "T_0")
+"""The fields a rotor sets (:meth:`Design.from_rotor`): its curve at V_ref, not the caller's."""
 
 NARROWER = {
     "R": (1e-4, 1e3),
@@ -166,6 +171,12 @@ class Design:
         delivers nothing and loads the crank little (the pump can start).
     Cd_leak : float, default 0.6
         The leak hole's discharge coefficient [-], 0.05 <= Cd_leak <= 1.
+    rotor : Rotor or None, default None
+        The windmill by its aerodynamics (:class:`~windpump.Rotor`), or None for the paper's
+        Eq. (11). With a rotor, T_0, omega_m and T_m are its curve's at V_ref (set on
+        construction, whatever was passed: build one with :meth:`from_rotor`): T_0 the torque at
+        rest, omega_m half the runaway speed and T_m the torque there, as Eq. (11) has them when
+        T_0 = 0; every function of the package then uses the rotor's torque.
 
     Examples
     --------
@@ -200,10 +211,10 @@ class Design:
     f_main: float = 0.02
     d_leak: float = 0.0
     Cd_leak: float = 0.6
+    rotor: Rotor | None = None
 
     def __post_init__(self) -> None:
-        for field in dataclasses.fields(self):
-            name = field.name
+        for name in UNITS:
             value = getattr(self, name)
             if name == "cylinders":
                 value = whole(name, value, 1, MAX_CYLINDERS)
@@ -221,6 +232,8 @@ class Design:
             else:
                 value = magnitude(name, value, UNITS[name])
             object.__setattr__(self, name, value)
+        if self.rotor is not None:
+            self._set_rotor_curve()
         if self.L <= self.R:
             raise ParameterError(
                 "L", self.L, f"> R = {shown(self.R)} m", "m", why="the rod cannot reach the crank"
@@ -236,7 +249,7 @@ class Design:
             raise ParameterError(
                 "R1", self.R1, f"from {1 / WIDEST_RATIO:g} to {WIDEST_RATIO:g} R0", "m"
             )
-        if self.T_0 >= self.T_m:
+        if self.T_0 >= self.T_m and self.rotor is None:
             raise ParameterError(
                 "T_0",
                 self.T_0,
@@ -252,6 +265,117 @@ class Design:
                 "m",
                 why="the leak hole goes through the piston",
             )
+
+    def _set_rotor_curve(self) -> None:
+        """T_0, omega_m and T_m from the rotor at V_ref (see the ``rotor`` parameter)."""
+        rotor = self.rotor
+        if not isinstance(rotor, Rotor):
+            raise ParameterError("rotor", rotor, "a windpump.Rotor or None")
+        V_s = float(rotor.wind_at_rotor(self.V_ref))
+        omega_m = 0.5 * rotor.runaway_tsr * V_s / rotor.radius
+        curve = {
+            "T_0": float(rotor.torque(0.0, self.V_ref)),
+            "omega_m": omega_m,
+            "T_m": float(rotor.torque(omega_m, self.V_ref)),
+        }
+        for name, value in curve.items():
+            zero = name == "T_0"
+            object.__setattr__(self, name, magnitude(name, value, UNITS[name], zero=zero))
+
+    @classmethod
+    def from_rotor(cls, rotor: Rotor, *, V_ref: float, **fields: typing.Any) -> Design:
+        """A design whose windmill is ``rotor`` [:class:`~windpump.Rotor`] at the wind V_ref [m/s]:
+        ``T = 1/2 rho_air pi r^3 V_s^2 C_Q(omega r / V_s)`` in place of Eq. (11).
+
+        ``fields`` are :class:`Design`'s other fields by name (R0, R1, R, L, A, I0, I1, h and any
+        with a default); T_m, omega_m and T_0 come from the rotor (naming one is refused).
+
+        Examples
+        --------
+        >>> seed = Design.seed_example()
+        >>> wheel = Rotor.multiblade(1.5)
+        >>> d = Design.from_rotor(wheel, V_ref=5.0, **seed.geometry())
+        >>> d.rotor is wheel, round(d.T_0, 4), round(d.omega_m, 4)
+        (True, 9.0197, 6.6667)
+        """
+        given = sorted(set(fields) & set(ROTOR_FIELDS))
+        if given:
+            raise TypeError(f"from_rotor takes no {given}: the rotor's curve sets them")
+        return cls(T_m=1.0, omega_m=1.0, V_ref=V_ref, rotor=rotor, **fields)
+
+    @classmethod
+    def from_machine(
+        cls,
+        rotor: Rotor,
+        *,
+        V_ref: float,
+        gear_ratio: float,
+        stroke: float,
+        bore: float,
+        head: float,
+        wheel_inertia: float,
+        crank_inertia: float = 1.0,
+        L_over_R: float = 5.0,
+        pinion_radius: float = 0.05,
+        **fields: typing.Any,
+    ) -> Design:
+        """A design in a builder's terms: the wheel, its back gear, the pump's stroke and bore.
+
+        Parameters
+        ----------
+        rotor : Rotor
+            The wheel (:meth:`Rotor.multiblade` for a farm windmill).
+        V_ref : float
+            The wind the design is stated at [m/s].
+        gear_ratio : float
+            Wheel turns per crank turn [-] (the back gear's ratio; 1 for a direct-stroke mill):
+            R1/R0 = R-dagger (Eq. 13).
+        stroke : float
+            The pump's stroke [m], twice the crank radius: R = stroke / 2.
+        bore : float
+            The cylinder's bore [m]: A = pi bore^2 / 4.
+        head : float
+            The lift from the water's surface in the well to the outlet [m]: h.
+        wheel_inertia : float
+            The wheel's moment of inertia about its shaft, with the pinion's [kg m^2]: I0.
+        crank_inertia : float, default 1.0
+            The large gear's and crank's [kg m^2]: I1 (a 0.5 m cast gear of ~30 kg has ~1).
+        L_over_R : float, default 5.0
+            The pitman's length over the crank radius, L/R [-].
+        pinion_radius : float, default 0.05
+            The pinion's (small gear's) pitch radius [m]: R0; only the ratio R1/R0 enters the
+            model.
+        **fields
+            Any other field of :class:`Design` (the real machine's m_r, eta_t, L_main, ...).
+
+        Examples
+        --------
+        >>> d = Design.from_machine(Rotor.multiblade(8 * 0.3048), V_ref=6.7, gear_ratio=3.3,
+        ...                         stroke=0.1905, bore=0.0635, head=53.3, wheel_inertia=25.0)
+        >>> round(d.R_dagger, 6), round(d.R, 5), round(d.bore, 6), d.h
+        (3.3, 0.09525, 0.0635, 53.3)
+        """
+        R = 0.5 * positive("stroke", stroke, "m")
+        A = math.pi / 4.0 * positive("bore", bore, "m") ** 2
+        R0 = positive("pinion_radius", pinion_radius, "m")
+        return cls.from_rotor(
+            rotor,
+            V_ref=V_ref,
+            R0=R0,
+            R1=R0 * positive("gear_ratio", gear_ratio),
+            R=R,
+            L=R * rod_ratio(L_over_R),
+            A=A,
+            I0=wheel_inertia,
+            I1=crank_inertia,
+            h=head,
+            **fields,
+        )
+
+    def geometry(self) -> dict[str, float]:
+        """The pump's fields without the windmill's curve: R0, R1, R, L, A, I0, I1 and h [SI],
+        what :meth:`from_rotor` takes beside a rotor."""
+        return {name: getattr(self, name) for name in ("R0", "R1", "R", "L", "A", "I0", "I1", "h")}
 
     @classmethod
     def seed_example(cls) -> Design:
@@ -288,6 +412,14 @@ class Design:
             raise TypeError(
                 f"Design has no parameter(s) {shown(sorted(unknown))}; fields: {list(UNITS)}"
             )
+        rotor = changes.get("rotor", self.rotor)
+        set_by_rotor = sorted(set(changes) & set(ROTOR_FIELDS)) if rotor is not None else []
+        if set_by_rotor:
+            name = set_by_rotor[0]
+            raise ParameterError(
+                name, changes[name], "the rotor's own (set by the rotor at V_ref)", UNITS[name],
+                why="this design's windmill is a rotor: change the rotor or V_ref",
+            )  # fmt: skip
         return dataclasses.replace(self, **changes)
 
     def with_ratios(
@@ -349,6 +481,8 @@ class Design:
             raise ParameterError("V", V, allowed, "m/s", why=why)
         s = V / self.V_ref
         try:
+            if self.rotor is not None:  # the rotor's curve at V: similarity, and the furl
+                return self.replace(V_ref=V)
             return self.replace(
                 T_m=self.T_m * s**2, omega_m=self.omega_m * s, T_0=self.T_0 * s**2, V_ref=V
             )
@@ -383,14 +517,16 @@ class Design:
         >>> import json
         >>> file = json.loads(d.to_json())
         >>> file["schema"], file["version"], file["fields"]["h"], file["units"]["h"]
-        ('windpump.model.design', 2, 3.0, 'm')
+        ('windpump.model.design', 3, 3.0, 'm')
         """
-        document = {
+        document: dict[str, typing.Any] = {
             "schema": SCHEMA,
             "version": SCHEMA_VERSION,
             "fields": self.as_dict(),
             "units": dict(UNITS),
         }
+        if self.rotor is not None:
+            document["rotor"] = dataclasses.asdict(self.rotor)
         return json.dumps(document, indent=2) + "\n"
 
     @classmethod
@@ -409,12 +545,16 @@ class Design:
         ParameterError
             For a field out of range, as the constructor.
         """
-        fields = _design_fields(read_json(text))
-        return cls(**fields)
+        document = read_json(text)
+        fields = _design_fields(document)
+        rotor = _rotor(typing.cast(dict, document))
+        if rotor is None:
+            return cls(**fields)
+        return cls.from_rotor(rotor, **{n: v for n, v in fields.items() if n not in ROTOR_FIELDS})
 
     def as_dict(self) -> dict[str, float | int | bool]:
-        """The fields as a plain dict [SI units]."""
-        return dataclasses.asdict(self)
+        """The numeric fields as a plain dict [SI units] (a rotor's table is :meth:`to_json`'s)."""
+        return {name: getattr(self, name) for name in UNITS}
 
     @property
     def L_over_R(self) -> float:
@@ -475,7 +615,9 @@ class Design:
     @property
     def runaway_speed(self) -> float:
         """Windmill speed where its torque falls to zero, omega_m (1 + sqrt(T_m/(T_m - T_0)))
-        [rad/s]: 2 omega_m when T_0 = 0 (Eq. 11)."""
+        [rad/s]: 2 omega_m when T_0 = 0 (Eq. 11), and with a rotor (omega_m is half of it)."""
+        if self.rotor is not None:
+            return 2.0 * self.omega_m
         return self.omega_m * (1.0 + math.sqrt(self.T_m / (self.T_m - self.T_0)))
 
     @property
@@ -578,6 +720,30 @@ def _design_fields(document: object) -> dict[str, typing.Any]:
                 f'the unit of {name} is {_quoted(unit)}; design files use SI units: "{UNITS[name]}"'
             )
     return fields
+
+
+def _rotor(document: dict) -> Rotor | None:
+    """The rotor of a version 3 design document, or None (the paper's curve)."""
+    rotor = document.get("rotor")
+    if rotor is None:
+        return None
+    if document.get("version", 1) < 3 or not isinstance(rotor, dict):
+        raise DesignFileError(
+            '"rotor" must be an object (diameter, table_tsr, table_cq, ...) in version 3'
+        )
+    known = [f.name for f in dataclasses.fields(Rotor)]
+    unknown = sorted(set(rotor) - set(known))
+    missing = [name for name in ("diameter", "table_tsr", "table_cq") if name not in rotor]
+    if unknown or missing:
+        raise DesignFileError(
+            f"the rotor's field(s) {shown(unknown or missing)} are "
+            + ("unknown" if unknown else "missing")
+            + f"; a rotor has {known}"
+        )
+    return Rotor.from_cq(
+        rotor["diameter"], rotor["table_tsr"], rotor["table_cq"],
+        **{name: rotor[name] for name in ("rho_air", "V_furl", "source") if name in rotor},
+    )  # fmt: skip
 
 
 def _quoted(text: object) -> str:

@@ -25,6 +25,7 @@ from .design import Design
 from .equations import delivered_flow, face_pressure, leak_capacity
 from .equations import lever_arm as _lever
 from .kinematics import cylinder_angles, face_levers
+from .torque import rest_torque_in_wind
 from .wind import MAX_WIND
 
 
@@ -214,6 +215,9 @@ def rest_torque(design: Design, theta, V=None):
     """
     theta = finite_array("theta", theta, "rad")
     s = 1.0 if V is None else finite_array("V", V, "m/s", 0.0, MAX_WIND) / design.V_ref
+    if design.rotor is not None:  # (a furling wheel's torque stops growing with the wind)
+        at_rest = design.R_dagger * rest_torque_in_wind(design, s)
+        return design.eta_t * at_rest - _load_at_rest(design, theta)
     return design.eta_t * design.rest_torque_on_crank * s**2 - _load_at_rest(design, theta)
 
 

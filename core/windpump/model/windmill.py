@@ -13,10 +13,12 @@ from ..errors import ParameterError, shown
 from ..validation import LARGEST, finite_array, flag, real_array
 from .design import Design
 from .equations import windmill_torque as _torque_curve
+from .torque import torque_in_wind
 
 
 def windmill_torque(design: Design, omega):
-    """Windmill torque T [N m] at windmill speed omega [rad/s] (Eq. 11, with torque at rest).
+    """Windmill torque T [N m] at windmill speed omega [rad/s] (Eq. 11, with torque at rest), or
+    the design's rotor's (:class:`~windpump.Rotor`) at V_ref.
 
     ``T = T_0 + (T_m - T_0) x (2 - x)`` with ``x = omega/omega_m``: Eq. (11) when T_0 = 0; T_0 at
     rest, peak ``T_m`` at ``omega_m``, zero at the runaway speed
@@ -32,8 +34,10 @@ def windmill_torque(design: Design, omega):
     >>> float(windmill_torque(d.replace(T_0=0.2), 0.0))
     0.2
     """
-    x = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST) / design.omega_m
-    return _torque_curve(x, 1.0, design.T_m, design.T_0)
+    omega = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST)
+    if design.rotor is not None:
+        return torque_in_wind(design, omega)
+    return _torque_curve(omega / design.omega_m, 1.0, design.T_m, design.T_0)
 
 
 def windmill_power(design: Design, omega):
@@ -54,6 +58,8 @@ def shaft_power(design: Design, omega):
     """:func:`windmill_power` at windmill speeds omega [rad/s] >= 0, unchecked: for speeds the
     model worked out itself (a run's, an operating point's), which may pass the 1e12 rad/s a
     caller may ask about (omega_m is up to 1e12, and the runaway speed beyond it) [W]."""
+    if design.rotor is not None:
+        return torque_in_wind(design, omega) * omega
     return _torque_curve(omega / design.omega_m, 1.0, design.T_m, design.T_0) * omega
 
 

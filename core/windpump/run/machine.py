@@ -13,6 +13,7 @@ import numpy as np
 
 from .. import _kernels
 from .._kernels.real import RealBase, real_at
+from .._kernels.rotor import RotorTable
 from ..averaging.averaged import steady_speeds
 from ..errors import StallError
 from ..model.design import REAL_MACHINE, Design
@@ -46,6 +47,26 @@ def kernel_machine(design: Design, record: WindRecord | None = None):
         double_acting=design.double_acting,
         wind=None if record is None else kernel_wind(record, design.V_ref),
         real=None if design.is_ideal else kernel_real(design),
+        rotor=kernel_rotor(design),
+    )
+
+
+def kernel_rotor(design: Design):
+    """The design's rotor as the compiled integrator takes it (``_kernels.RotorTable``), or
+    None for the paper's Eq. (11)."""
+    rotor = design.rotor
+    if rotor is None:
+        return None
+    tsr, coefficients, end_slope = rotor.kernel_table()
+    return RotorTable(
+        tsr=tsr,
+        coefficients=coefficients,
+        end_value=rotor.table_cq[-1],
+        end_slope=end_slope,
+        radius=rotor.radius,
+        torque_scale=rotor.torque_scale,
+        V_ref=design.V_ref,
+        V_furl=math.inf if rotor.V_furl is None else rotor.V_furl,
     )
 
 

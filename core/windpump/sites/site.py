@@ -21,12 +21,13 @@ from ..averaging.revolution import mean_load
 from ..averaging.theory import (
     LEAK_TABLE as LEAK_TABLE,  # re-exported: steady_flow moved below the run
 )
-from ..averaging.theory import cycle_mean
+from ..averaging.theory import cycle_mean, running_speeds
 from ..averaging.theory import steady_flow as steady_flow
 from ..errors import ParameterError, shown
 from ..model.design import Design
 from ..model.loads import peak_load_torque, starts_from_rest
-from ..model.wind import WindRecord, as_record, shape, weibull_scale
+from ..model.torque import furls_below, wind_at_rotor
+from ..model.wind import MAX_WIND, WindRecord, as_record, shape, weibull_scale
 from ..run.dynamics import SimulationResult, checked_kick, simulate
 from ..units import SECONDS_PER_DAY
 from ..validation import non_negative
@@ -58,7 +59,44 @@ def wind_thresholds(design: Design) -> tuple[float, float | None]:
     at_rest = design.eta_t * design.rest_torque_on_crank  # 0 when a tiny T_0 underflows
     if not at_rest:
         return V_stop, math.inf
-    return V_stop, design.V_ref * math.sqrt(peak_load_torque(design) / at_rest)
+    V_start = design.V_ref * math.sqrt(peak_load_torque(design) / at_rest)
+    if design.rotor is not None:  # a rotor's T_0 is its unfurled torque at V_ref when V_ref
+        V_start *= math.sqrt(at_rest / _unfurled_rest(design))  # lies above the furl
+        if V_start > furls_below(design) * design.V_ref:
+            return V_stop, math.inf  # furled, the wheel's torque at rest stops growing
+    return V_stop, V_start
+
+
+def _unfurled_rest(design: Design) -> float:
+    """eta_t R+ times the rotor's torque at rest in V_ref were it not furled [N m]."""
+    rotor = design.rotor
+    assert rotor is not None
+    return design.eta_t * design.R_dagger * rotor.torque_scale * design.V_ref**2 * rotor.table_cq[0]
+
+
+STOP_ROUNDS, STOP_WINDS = 6, 32
+"""A rotor's pump with a rising main: V_stop found on STOP_WINDS winds at a time, narrowing the
+bracket STOP_ROUNDS times (by 31^6 ~ 1e9)."""
+
+
+def _rotor_stop_wind(design: Design) -> float:
+    """V_stop [m/s] of a rotor's pump: where the stall margin reaches 1. Without a rising main
+    the margin grows as V_s^2 (the rotor's similarity; V_s the wind capped at V_furl), so
+    ``V_stop = V_s(V_ref) / sqrt(margin)``; with one, bracketed on winds up to the furl (or
+    150 m/s). inf where the margin stays at or below 1 in every wind."""
+    top = min(furls_below(design) * design.V_ref, MAX_WIND)
+    if design.friction_coefficient == 0.0:
+        V_s = float(wind_at_rotor(design)) / math.sqrt(stall_margin(design))
+        return V_s if V_s < top else math.inf
+    if float(running_speeds(design, V=top).margin) <= 1.0:
+        return math.inf
+    lo, hi = 0.0, top
+    for _ in range(STOP_ROUNDS):
+        winds = np.linspace(lo, hi, STOP_WINDS)
+        runs = running_speeds(design, V=winds).margin > 1.0
+        first = int(np.argmax(runs))  # runs[-1] is True: hi runs
+        lo, hi = winds[max(first - 1, 0)], winds[first]
+    return float(hi)
 
 
 def _stop_wind(design: Design) -> float:
@@ -68,6 +106,8 @@ def _stop_wind(design: Design) -> float:
     both underflow, and their ratio was NaN)."""
     if design.d_leak > 0.0 or design.mean_load_torque == 0.0:
         return 0.0
+    if design.rotor is not None:
+        return _rotor_stop_wind(design)
     if design.friction_coefficient == 0.0:
         return design.V_ref / math.sqrt(stall_margin(design))
     return design.V_ref * float(cycle_mean(design).s_stop)
@@ -110,9 +150,12 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
     expected: typing.Callable[[float, float, float], float] = functools.partial(
         _expected_flow, design
     )
-    if design.d_leak > 0.0:  # one table of the running flow against the wind, for both bounds
-        V_far = c * 50.0 ** (1.0 / k)  # beyond it the density is below exp(-50)
-        flows = _leaky_flows(design, V_far)
+    if design.d_leak > 0.0 or design.rotor is not None:  # one table of the running flow
+        V_far = c * 50.0 ** (1.0 / k)  # against the wind, for both bounds; beyond V_far the
+        if design.d_leak > 0.0:  # density is below exp(-50)
+            flows = _leaky_flows(design, V_far)
+        else:
+            flows = _rotor_flows(design, V_stop, V_far)
         expected = functools.partial(_expected_leaky_flow, flows, V_far=V_far)
 
     high = expected(V_stop, c, k) if _ever_blows(V_stop, c, k) else 0.0
@@ -194,6 +237,14 @@ def _leaky_flows(design: Design, V_far: float) -> tuple[np.ndarray, np.ndarray]:
     need = load / (design.eta_t * design.R_dagger) + spread * x * x
     s = need / (spread * x + np.sqrt((spread * x) ** 2 + design.T_0 * need))  # the root > 0
     return design.V_ref * np.minimum.accumulate(s[::-1])[::-1], flow
+
+
+def _rotor_flows(design: Design, V_stop: float, V_far: float) -> tuple[np.ndarray, np.ndarray]:
+    """The running flow [m^3/s] of a rotor's pump against the wind [m/s] from V_stop to V_far,
+    on LEAKY_SPEEDS winds (:func:`steady_flow` in each: no closed form)."""
+    top = max(min(V_far, MAX_WIND), V_stop) if math.isfinite(V_stop) else 0.0
+    V = np.linspace(V_stop if math.isfinite(V_stop) else 0.0, top, LEAKY_SPEEDS + 1)
+    return V, np.asarray(steady_flow(design, V * (1.0 + 1e-12)))
 
 
 def _expected_leaky_flow(flows, V_from: float, c: float, k: float, *, V_far: float) -> float:

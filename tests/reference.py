@@ -31,8 +31,10 @@ class Reference:
     t_stall: float | None
 
 
-def equation_12(design: Design, exhaust: bool):
-    """d(theta, theta_dot, V, W)/dt for one stroke, from Eqs. (11), (12) and (16)."""
+def equation_12(design: Design, exhaust: bool, windmill=None):
+    """d(theta, theta_dot, V, W)/dt for one stroke, from Eqs. (11), (12) and (16); with
+    ``windmill`` (a function of the windmill's speed [rad/s] giving its torque [N m]) in place
+    of Eq. (11)."""
     Rd, I_eff = design.R1 / design.R0, design.I1 + design.I0 * (design.R1 / design.R0) ** 2
     ratio = design.L / design.R
     piston_force = -design.rho_w * design.g * design.h * design.A if exhaust else 0.0  # F
@@ -49,6 +51,9 @@ def equation_12(design: Design, exhaust: bool):
             * (theta_dot / design.omega_m)
             * (2 - Rd * theta_dot / design.omega_m)
         )
+        if windmill is not None:
+            torque = windmill(omega)
+            drive = Rd * torque
         theta_ddot = (drive - piston_force * design.R * lever) / I_eff  # Eq. (12)
         flow = -design.A * design.R * lever * theta_dot if exhaust else 0.0  # -A dx/dt
         return [theta_dot, theta_ddot, flow, torque * omega]
@@ -73,8 +78,11 @@ def solve_to_switch(rhs, t, t_end, y, end, atol):
     )
 
 
-def reference_run(design: Design, t_end: float, theta0: float, theta_dot0: float) -> Reference:
-    """The state at t_end, or at the stall if theta_dot reaches 0 first."""
+def reference_run(
+    design: Design, t_end: float, theta0: float, theta_dot0: float, windmill=None
+) -> Reference:
+    """The state at t_end, or at the stall if theta_dot reaches 0 first (``windmill``: as
+    :func:`equation_12`)."""
     t, y = 0.0, np.array([theta0, theta_dot0, 0.0, 0.0])
     if theta_dot0 == 0.0:
         return Reference(0.0, theta0, 0.0, 0.0, 0.0, True, 0.0)
@@ -87,7 +95,8 @@ def reference_run(design: Design, t_end: float, theta0: float, theta_dot0: float
             stroke += 1
         dead_centre = (stroke + 1) * math.pi
 
-        sol = solve_to_switch(equation_12(design, stroke % 2 == 1), t, t_end, y, dead_centre, atol)
+        rhs = equation_12(design, stroke % 2 == 1, windmill)
+        sol = solve_to_switch(rhs, t, t_end, y, dead_centre, atol)
         t, y = sol.t[-1], sol.y[:, -1].copy()
         if sol.t_events[1].size:
             return Reference(t, y[0], 0.0, y[2], y[3], True, t)

@@ -17,6 +17,7 @@ that one form, written once (broadcasting over gear ratios, heads and winds) in
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -26,7 +27,7 @@ from ..model.design import Design
 from ..model.kinematics import lever_arm
 from ..validation import finite_array, non_negative, rod_ratio
 from .revolution import Points, largest_ratio, largest_roots, leaky_spinup, stall_time
-from .theory import cycle_mean, running_speeds
+from .theory import RunningSpeeds, cycle_mean, running_speeds
 
 
 def mean_lever_arm(L_over_R: float) -> float:
@@ -60,6 +61,14 @@ def mean_lever_arm(L_over_R: float) -> float:
     return value / (2 * math.pi)
 
 
+@functools.lru_cache(maxsize=64)
+def own_speeds(design: Design) -> RunningSpeeds:
+    """:func:`~windpump.averaging.theory.running_speeds` of the design as it is, remembered
+    for the last designs (a frozen design is its own key): a run asks it up to three times (its
+    sample count, its step count, whether it moves), and a rotor's takes ~0.7 ms."""
+    return running_speeds(design)
+
+
 def stall_margin(design: Design) -> float:
     """Stall margin [-]: above 1 the windmill can carry the load (Eq. 22 when m = 1).
 
@@ -86,7 +95,7 @@ def stall_margin(design: Design) -> float:
         return math.inf
     # One ratio of dimensional torques (equal to the groups' form), so that a tiny head cannot
     # underflow L+ to zero on the way.
-    return float(running_speeds(design).margin)
+    return float(own_speeds(design).margin)
 
 
 def stall_sides(design: Design) -> tuple[float, float]:
@@ -148,7 +157,7 @@ def steady_speeds(design: Design) -> tuple[float, float | None]:
     >>> round(a_plus, 2), a_minus
     (23.71, None)
     """
-    speeds = running_speeds(design)
+    speeds = own_speeds(design)
     if not speeds.runs:
         raise StallError(float(speeds.margin), "a steady speed")
     alpha_minus = float(speeds.alpha_minus)
@@ -176,7 +185,7 @@ def time_constant(design: Design) -> float:
     >>> round(time_constant(Design.seed_example()), 1)
     78.6
     """
-    speeds = running_speeds(design)
+    speeds = own_speeds(design)
     if not speeds.runs:
         raise StallError(float(speeds.margin), "a spin-up time constant")
     return float(speeds.tau)

@@ -21,7 +21,7 @@ from ..model.equations import lever_arm, lever_arm_slope, windmill_torque
 from ..model.groups import RunningSpeeds, effective_inertia, load_torque, mean_load_torque
 from ..model.kinematics import face_levers
 from ..model.loads import faces_load, leak_capacity_at
-from ..model.torque import runaway_in_wind, torque_in_wind
+from ..model.torque import peak_torque, runaway_in_wind, torque_in_wind
 
 GAUSS_NODES, PANELS = 12, 2
 """Gauss-Legendre nodes per panel, and panels per smooth piece of a period."""
@@ -277,7 +277,10 @@ def numeric_running_speeds(design, *, gear_ratio=None, head=None, V=None):
     (alpha+ NaN)."""
     points = Points(design, gear_ratio, head, V)
     alpha_plus, alpha_minus = largest_roots(points, points.runaway)
-    if points.tight:
+    if points.tight and points.friction == 0.0:  # the largest torque over the mean load
+        with np.errstate(divide="ignore"):
+            margin = design.eta_t * points.R_dagger * peak_torque(design, points.s) / points.M
+    elif points.tight:
         margin = largest_ratio(points)
         alpha_plus = np.where(margin > 1.0, alpha_plus, math.nan)
         alpha_minus = np.where(margin > 1.0, alpha_minus, math.nan)

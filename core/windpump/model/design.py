@@ -296,7 +296,7 @@ class Design:
         >>> wheel = Rotor.multiblade(1.5)
         >>> d = Design.from_rotor(wheel, V_ref=5.0, **seed.geometry())
         >>> d.rotor is wheel, round(d.T_0, 4), round(d.omega_m, 4)
-        (True, 9.0197, 6.6667)
+        (True, 10.1473, 6.6667)
         """
         given = sorted(set(fields) & set(ROTOR_FIELDS))
         if given:

@@ -26,13 +26,13 @@ import typing
 import numpy as np
 
 from ..errors import ParameterError, shown
-from ..validation import LARGEST, SMALLEST, finite_array, magnitude, real_array
+from ..validation import LARGEST, finite_array, magnitude, real_array
 
 RHO_AIR = 1.225
 """Air's density at sea level, 15 degC (the ISO standard atmosphere) [kg/m^3]."""
 
-MAX_TABLE = 200
-"""Most points a C_Q table holds (a measured curve has tens)."""
+MAX_TABLE = 2000
+"""Most points a C_Q table holds (a measured curve has tens; a digitised one hundreds)."""
 
 MULTIBLADE_TSR = (0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0)
 MULTIBLADE_CQ = (0.50, 0.47, 0.43, 0.375, 0.30, 0.22, 0.14, 0.065, 0.0)
@@ -56,7 +56,7 @@ class Rotor:
         The wheel's diameter D [m], 1e-3 to 1e3 (r = D/2).
     table_tsr : tuple of float
         Tip-speed ratios lambda [-] of the table: starting at 0, strictly increasing, finite,
-        2 to 200 points.
+        2 to 2000 points.
     table_cq : tuple of float
         Torque coefficients C_Q [-] at those ratios: finite, ``C_Q(0) >= 0``, positive somewhere,
         and falling to 0 (the runaway) inside the table or on its straight continuation.
@@ -195,6 +195,19 @@ class Rotor:
         """The tip-speed ratio where C_Q first falls to 0 [-]: the unloaded wheel's speed."""
         return runaway_tsr(self.table_tsr, self.table_cq)
 
+    @property
+    def steepest_cq_slope(self) -> float:
+        """The largest ``|dC_Q/dlambda|`` from rest to the runaway [-] (on 1,001 ratios)."""
+        lam = np.linspace(0.0, self.runaway_tsr, 1001)
+        return float(np.abs(_cq_curve(self.table_tsr, self.table_cq).pchip.derivative()(lam)).max())
+
+    @property
+    def peak_cq(self) -> float:
+        """The largest C_Q from rest to the runaway [-]: the largest of the table's values there
+        (PCHIP has no extremum between its points)."""
+        inside = np.asarray(self.table_tsr) <= self.runaway_tsr
+        return float(np.max(np.asarray(self.table_cq)[inside]))
+
     def cq(self, tsr):
         """Torque coefficient C_Q [-] at tip-speed ratios ``tsr`` [-] >= 0: PCHIP through the
         table, a straight line past its last point (negative past the runaway: a brake)."""
@@ -268,13 +281,15 @@ def rotor_torque(rotor: Rotor, omega, V_s):
     limit: past the runaway C_Q is linear in lambda, so V_s^2 C_Q falls as V_s)."""
     omega, V_s = np.broadcast_arrays(np.asarray(omega, dtype=float), np.asarray(V_s, dtype=float))
     curve = _cq_curve(rotor.table_tsr, rotor.table_cq)
-    calm = V_s <= 0.0
-    lam = np.where(calm, 0.0, omega * rotor.radius / np.where(calm, 1.0, V_s))
-    torque = rotor.torque_scale * V_s**2 * curve(lam)
-    if not calm.any():
-        return torque
-    # V_s -> 0 at omega > 0: V_s^2 (C_Q,last + slope (omega r / V_s - lambda_last)) -> 0
-    return np.where(calm, 0.0, torque)
+    tip_speed = omega * rotor.radius
+    past = tip_speed >= curve.last * V_s  # (calm air included)
+    lam = np.where(past, 0.0, tip_speed / np.where(past, 1.0, V_s))
+    inside = rotor.torque_scale * V_s**2 * curve(lam)
+    # Past the table C_Q is linear in lambda: V_s^2 C_Q written without omega r / V_s, which
+    # overflows in a near-calm wind (there the torque tends to 0, as slope omega r V_s)
+    rest = curve.end_value - curve.end_slope * curve.last
+    beyond = rotor.torque_scale * V_s * (V_s * rest + curve.end_slope * tip_speed)
+    return np.where(past, beyond, inside)
 
 
 def runaway_tsr(tsr: tuple[float, ...], cq: tuple[float, ...]) -> float:
@@ -306,7 +321,7 @@ def runaway_tsr(tsr: tuple[float, ...], cq: tuple[float, ...]) -> float:
 def _bracketed_root(function, lo: float, hi: float) -> float:
     from scipy.optimize import brentq  # (as above)
 
-    return float(brentq(function, lo, hi, xtol=1e-15, rtol=4e-16))
+    return float(brentq(function, lo, hi, xtol=1e-300, rtol=1e-15))
 
 
 def _as_tuple(name: str, values) -> tuple[float, ...]:
@@ -334,10 +349,9 @@ def _checked_table(tsr, cq) -> tuple[np.ndarray, np.ndarray]:
         raise ParameterError("tsr", float(lam[-1]), "ratios up to 1000")
     if coefficient[0] < 0.0:
         raise ParameterError("cq", float(coefficient[0]), "C_Q at rest >= 0", why="cq[0] < 0")
-    if np.abs(coefficient).max() > 1e3 or (
-        0 < np.abs(coefficient[coefficient != 0]).min() < SMALLEST
-    ):
+    if np.abs(coefficient).max() > 1e3:
+        i = int(np.argmax(np.abs(coefficient)))
         raise ParameterError(
-            "cq", shown(coefficient.tolist()), "coefficients from 1e-12 to 1000 in size, or 0"
+            "cq", f"cq[{i}] = {coefficient[i]:.6g}", "coefficients from -1000 to 1000"
         )
     return lam, coefficient

@@ -92,3 +92,32 @@ def furls_below(design: Design) -> float:
     if rotor is None or rotor.V_furl is None:
         return math.inf
     return rotor.V_furl / design.V_ref
+
+
+def steepest_fall(design: Design) -> float:
+    """How fast the windmill's torque can fall with its speed at V_ref, ``max |dT/domega|``
+    [N m s]: ``2 (T_m - T_0) / omega_m`` for Eq. (11) (its slope at rest, the steepest), and
+    ``1/2 rho_air pi r^3 V_s r max |dC_Q/dlambda|`` for a rotor (over its table up to the
+    runaway). A step-size scale for the integrator's stiffness."""
+    rotor = design.rotor
+    if rotor is None:
+        return 2.0 * (design.T_m - design.T_0) / design.omega_m
+    V_s = float(wind_at_rotor(design))
+    return rotor.torque_scale * V_s * rotor.radius * rotor.steepest_cq_slope
+
+
+def peak_torque(design: Design, s=1.0):
+    """The windmill's largest torque over its speeds up to the runaway [N m] in the winds
+    ``s V_ref``: T_m s^2 for Eq. (11) (T_0 < T_m), ``1/2 rho_air pi r^3 V_s^2`` times the
+    rotor's largest C_Q.
+
+    Examples
+    --------
+    >>> from windpump import Design
+    >>> float(peak_torque(Design.seed_example(), 2.0))
+    2.4
+    """
+    rotor = design.rotor
+    if rotor is None:
+        return design.T_m * np.square(s)
+    return rotor.torque_scale * np.square(wind_at_rotor(design, s)) * rotor.peak_cq

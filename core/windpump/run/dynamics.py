@@ -12,11 +12,12 @@ import math
 import numpy as np
 
 from .. import _kernels
-from ..averaging.averaged import stall_margin
+from ..averaging.averaged import own_speeds, stall_margin
 from ..averaging.revolution import friction_load, reciprocating_inertia
 from ..averaging.theory import steady_flow
 from ..errors import ParameterError
 from ..model.design import Design
+from ..model.torque import steepest_fall
 from ..model.wind import WindRecord, as_record
 from ..validation import LARGEST, non_negative, positive, real, whole
 
@@ -80,6 +81,9 @@ def estimated_steps(design: Design, t_end: float, record: WindRecord | None = No
         return REAL_STEPS_PER_SWITCH * estimated_steps(ideal_of(design), t_end, record)
     per_speed = design.volume_per_revolution / (2 * math.pi)  # flow per crank speed [m^3/rad]
     switches_per_radian = design.cylinders / math.pi
+    if record is None and design.rotor is not None:  # (remembered: no closed form)
+        flow = float(np.nan_to_num(own_speeds(design).mean_flow))  # 0 where it cannot run
+        return switches_per_radian * flow / per_speed * t_end
     if record is None:
         return switches_per_radian * steady_flow(design, design.V_ref) / per_speed * t_end
     t, V = record.t, record.V
@@ -132,9 +136,12 @@ def stiffness(design: Design) -> tuple[float, float, float, float]:
 
 def _windmill_slope(design: Design, gear_ratio=None):
     """a1 = 2 eta_t R+^2 (T_m - T_0) / omega_m [N m s]: how fast the windmill's torque on the
-    crank falls with the crank's speed, at rest (Eq. 11 through the chain); at the design's
+    crank falls with the crank's speed, at rest (Eq. 11 through the chain; a rotor's steepest
+    fall, :func:`windpump.model.torque.steepest_fall`); at the design's
     R+ = R1/R0, or at the gear ratios given (an array: a design map's)."""
     ratio = design.R_dagger if gear_ratio is None else gear_ratio
+    if design.rotor is not None:  # its steepest fall, wherever on its curve
+        return design.eta_t * ratio**2 * steepest_fall(design)
     return 2.0 * design.eta_t * ratio**2 * (design.T_m - design.T_0) / design.omega_m
 
 

@@ -17,6 +17,7 @@ from .._kernels.rotor import RotorTable
 from ..averaging.averaged import steady_speeds
 from ..errors import StallError
 from ..model.design import REAL_MACHINE, Design
+from ..model.rotor import Rotor
 from ..model.wind import WindRecord
 from .result import SAMPLES_PER_STROKE
 
@@ -57,17 +58,35 @@ def kernel_rotor(design: Design):
     rotor = design.rotor
     if rotor is None:
         return None
-    tsr, coefficients, end_slope = rotor.kernel_table()
+    table = rotor_table(rotor.table_tsr, rotor.table_cq)
     return RotorTable(
-        tsr=tsr,
-        coefficients=coefficients,
+        address=table.ctypes.data,
+        intervals=len(rotor.table_tsr) - 1,
         end_value=rotor.table_cq[-1],
-        end_slope=end_slope,
+        end_slope=rotor.kernel_table()[2],
         radius=rotor.radius,
         torque_scale=rotor.torque_scale,
         V_ref=design.V_ref,
         V_furl=math.inf if rotor.V_furl is None else rotor.V_furl,
     )
+
+
+TABLES: dict[tuple, np.ndarray] = {}
+"""Every rotor table the kernels were given, by its points: kept for good, since a run (in any
+thread) reads its numbers by address (``_kernels.rotor.RotorTable``). A process sees a handful
+(the multiblade wheel, a catalogue's, a user's): ~8 bytes x 5 a point each."""
+
+
+def rotor_table(tsr: tuple[float, ...], cq: tuple[float, ...]) -> np.ndarray:
+    """The numbers of :class:`~windpump._kernels.rotor.RotorTable` for a C_Q table: its n + 1
+    ratios, then the PCHIP's c3, c2, c1 and c0 of its n intervals."""
+    key = (tsr, cq)
+    if key not in TABLES:
+        _, coefficients, _ = Rotor.from_cq(1.0, tsr, cq).kernel_table()
+        table = np.concatenate([np.asarray(tsr, dtype=float), coefficients.T.ravel()])
+        table.setflags(write=False)
+        return TABLES.setdefault(key, table)  # one table a key, whichever thread came first
+    return TABLES[key]
 
 
 def kernel_real(design: Design):

@@ -23,9 +23,16 @@ import numpy as np
 
 from .. import _kernels
 from .._kernels.grid import steady_runs
-from ..averaging.theory import cycle_mean, effective_inertia, load_torque, running_speeds
+from ..averaging.theory import (
+    cycle_mean,
+    effective_inertia,
+    load_torque,
+    mean_load_torque,
+    running_speeds,
+)
 from ..errors import ParameterError
 from ..model.design import WIDEST_RATIO, Design
+from ..model.torque import peak_torque
 from ..progress import Progress, reporter
 from ..run import dynamics  # dynamics.MAX_STEPS read at each map (a test lowers it)
 from ..run.dynamics import (
@@ -36,6 +43,7 @@ from ..run.dynamics import (
     _windmill_slope,
     kernel_real_base,
 )
+from ..run.machine import kernel_rotor
 from ..validation import LARGEST, SMALLEST, real_array
 
 MAX_POINTS = 4_000_000
@@ -105,6 +113,12 @@ class DesignMap:
         d = self.design
         if d.d_leak > 0.0:  # a leak hole never stalls
             return np.zeros(self.heads.shape)
+        if d.rotor is not None:  # the margin is R+ eta_t T_peak / M without a pipe
+            M = mean_load_torque(d.deliveries, load_torque(d.rho_w, d.g, self.heads, d.A, d.R))
+            pipeless = M / (d.eta_t * float(peak_torque(d)))
+            if d.friction_coefficient == 0.0:
+                return pipeless
+            return _stall_ratio_with_pipe(d, self.heads, pipeless)
         mean_load = cycle_mean(d, head=self.heads).mean_load
         if d.friction_coefficient == 0.0:
             return mean_load / (d.eta_t * d.T_m)
@@ -229,7 +243,7 @@ def design_map(
     if numeric:
         alpha_plus, tau = _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress)
         mean_flow = design.volume_per_revolution * alpha_plus / (2 * math.pi)
-    if numeric or design.d_leak > 0.0 or design.friction_coefficient > 0.0:
+    if numeric or design.d_leak > 0.0 or design.friction_coefficient > 0.0 or design.rotor:
         best_ratio, best_flow = _refined_best(ratios, mean_flow)
     else:
         best_ratio = _best_gear_ratio(design, ratios, heads)
@@ -328,16 +342,27 @@ def _stall_ratio_with_pipe(design: Design, heads: np.ndarray, pipeless: np.ndarr
     any ratio where the margin exceeds 1."""
     low = np.where(pipeless > 0.0, pipeless, np.nan)
     high = low.copy()
+    closed = design.rotor is None
     for _ in range(200):  # the first ratio above the boundary, doubling
-        short = cycle_mean(design, gear_ratio=high, head=heads).margin <= 1.0
+        short = _margin(design, high, heads, closed) <= 1.0
         if not short.any():
             break
         high = np.where(short, 2.0 * high, high)
-    for _ in range(100):
+    for _ in range(100 if closed else 60):  # (60 halvings of a factor 2 in log R+: 1e-18)
         middle = np.sqrt(low * high)
-        short = cycle_mean(design, gear_ratio=middle, head=heads).margin <= 1.0
+        short = _margin(design, middle, heads, closed) <= 1.0
         low, high = np.where(short, middle, low), np.where(short, high, middle)
     return np.where(pipeless > 0.0, high, 0.0)
+
+
+def _margin(design: Design, gear_ratio, heads, closed: bool):
+    """The stall margin at these gear ratios and heads: in closed form (Eq. 11) or not (a rotor;
+    NaN ratios, from heads with no load, give NaN)."""
+    if closed:
+        return cycle_mean(design, gear_ratio=gear_ratio, head=heads).margin
+    ratio = np.where(np.isfinite(gear_ratio), gear_ratio, 1.0)
+    margin = running_speeds(design, gear_ratio=ratio, head=heads).margin
+    return np.where(np.isfinite(gear_ratio), margin, np.nan)
 
 
 def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
@@ -365,7 +390,7 @@ def _simulated_speeds(design, ratios, heads, alpha_plus, tau, progress):
         measured, _, outcomes = steady_runs(
             x[chunk], inv_I_eff[chunk], load[chunk], kick[chunk], t_end[chunk], base,
             design.cylinders, design.double_acting, MEASURED_TURNS, RTOL, dynamics.MAX_STEPS, PACE_STEPS,
-            kernel_real_base(design),
+            kernel_real_base(design), kernel_rotor(design),
         )  # fmt: skip
         speed[chunk] = measured
         _refuse_stiff(

@@ -14,6 +14,7 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.interpolate import PchipInterpolator
 
 from windpump import Design
 
@@ -281,3 +282,21 @@ def wind_reference_run(design: Design, t_end, theta0, theta_dot0, wind_t, wind_V
             y[0] = end
         elif t >= t_end:
             return Reference(t, y[0], y[1], y[2], y[3], False, None), stops, starts
+
+
+def rotor_law(rotor, V: float):
+    """A rotor's torque [N m] against its speed [rad/s] in the steady wind V [m/s], written from
+    its table as issue 39 states the law: ``1/2 rho_air pi r^3 V_s^2 C_Q(omega r / V_s)``,
+    V_s = min(V, V_furl), C_Q scipy's PCHIP through the table, continued past it by its end
+    slope."""
+    curve = PchipInterpolator(rotor.table_tsr, rotor.table_cq)
+    last, slope = rotor.table_tsr[-1], float(curve.derivative()(rotor.table_tsr[-1]))
+    r = rotor.diameter / 2
+    V_s = V if rotor.V_furl is None else min(V, rotor.V_furl)
+
+    def torque(omega):
+        lam = omega * r / V_s
+        cq = float(curve(lam)) if lam <= last else rotor.table_cq[-1] + slope * (lam - last)
+        return 0.5 * rotor.rho_air * math.pi * r**3 * V_s**2 * cq
+
+    return torque

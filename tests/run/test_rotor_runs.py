@@ -8,30 +8,14 @@ import math
 
 import numpy as np
 import pytest
-from scipy.interpolate import PchipInterpolator
 
 import windpump as wp
 from windpump import Design, Rotor
 
 from reference import reference_run
+from reference import rotor_law as law
 
 SEED = Design.seed_example()
-
-
-def law(rotor: Rotor, V: float):
-    """The windmill's torque [N m] against its speed [rad/s] in the steady wind V, written from
-    the rotor's table with scipy's PCHIP (continued by its end slope)."""
-    curve = PchipInterpolator(rotor.table_tsr, rotor.table_cq)
-    last, slope = rotor.table_tsr[-1], float(curve.derivative()(rotor.table_tsr[-1]))
-    r = rotor.diameter / 2
-    V_s = V if rotor.V_furl is None else min(V, rotor.V_furl)
-
-    def torque(omega):
-        lam = omega * r / V_s
-        cq = float(curve(lam)) if lam <= last else rotor.table_cq[-1] + slope * (lam - last)
-        return 0.5 * rotor.rho_air * math.pi * r**3 * V_s**2 * cq
-
-    return torque
 
 
 def relative(a, b):

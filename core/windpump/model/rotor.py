@@ -193,13 +193,12 @@ class Rotor:
     @property
     def runaway_tsr(self) -> float:
         """The tip-speed ratio where C_Q first falls to 0 [-]: the unloaded wheel's speed."""
-        return runaway_tsr(self.table_tsr, self.table_cq)
+        return _runaway(self.table_tsr, self.table_cq)
 
     @property
     def steepest_cq_slope(self) -> float:
         """The largest ``|dC_Q/dlambda|`` from rest to the runaway [-] (on 1,001 ratios)."""
-        lam = np.linspace(0.0, self.runaway_tsr, 1001)
-        return float(np.abs(_cq_curve(self.table_tsr, self.table_cq).pchip.derivative()(lam)).max())
+        return _steepest_slope(self.table_tsr, self.table_cq)
 
     @property
     def peak_cq(self) -> float:
@@ -207,6 +206,11 @@ class Rotor:
         (PCHIP has no extremum between its points)."""
         inside = np.asarray(self.table_tsr) <= self.runaway_tsr
         return float(np.max(np.asarray(self.table_cq)[inside]))
+
+    @property
+    def end_slope(self) -> float:
+        """dC_Q/dlambda past the table's last point [-]: PCHIP's slope there."""
+        return _cq_curve(self.table_tsr, self.table_cq).end_slope
 
     def cq(self, tsr):
         """Torque coefficient C_Q [-] at tip-speed ratios ``tsr`` [-] >= 0: PCHIP through the
@@ -290,6 +294,18 @@ def rotor_torque(rotor: Rotor, omega, V_s):
     rest = curve.end_value - curve.end_slope * curve.last
     beyond = rotor.torque_scale * V_s * (V_s * rest + curve.end_slope * tip_speed)
     return np.where(past, beyond, inside)
+
+
+@functools.lru_cache(maxsize=32)
+def _runaway(tsr: tuple[float, ...], cq: tuple[float, ...]) -> float:
+    """:func:`runaway_tsr`, remembered for the last tables (a run asks it several times)."""
+    return runaway_tsr(tsr, cq)
+
+
+@functools.lru_cache(maxsize=32)
+def _steepest_slope(tsr: tuple[float, ...], cq: tuple[float, ...]) -> float:
+    lam = np.linspace(0.0, _runaway(tsr, cq), 1001)
+    return float(np.abs(_cq_curve(tsr, cq).pchip.derivative()(lam)).max())
 
 
 def runaway_tsr(tsr: tuple[float, ...], cq: tuple[float, ...]) -> float:

@@ -63,7 +63,7 @@ def kernel_rotor(design: Design):
         address=table.ctypes.data,
         intervals=len(rotor.table_tsr) - 1,
         end_value=rotor.table_cq[-1],
-        end_slope=rotor.kernel_table()[2],
+        end_slope=rotor.end_slope,
         radius=rotor.radius,
         torque_scale=rotor.torque_scale,
         V_ref=design.V_ref,

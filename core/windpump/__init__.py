@@ -136,7 +136,8 @@ def __dir__() -> list[str]:
 # The public names by topic, as the API reference (docs/api/index.rst) groups them.
 __all__ = [
     # designs and errors
-    "Design", "ParameterError", "StallError", "DesignFileError", "NoClosure", "LabDataError",
+    "Design", "Rotor", "ParameterError", "StallError", "DesignFileError", "NoClosure",
+    "LabDataError",
     # the full equation of motion (Eq. 12) and what is read off a run
     "simulate", "SimulationResult", "Intermittency", "revolution_marks", "MAX_SAMPLES",
     "explore", "Exploration", "Status", "NotStarted",
@@ -146,8 +147,9 @@ __all__ = [
     # kinematics (Eq. 1) and loads
     "piston_position", "rod_angle", "f2", "lever_arm", "delivering_faces", "face_flows",
     "swept_strokes", "load_torque_on_crank", "peak_load_torque", "starts_from_rest", "rest_torque",
-    # the windmill (Eq. 11) and lab data
+    # the windmill (Eq. 11, or a rotor), ratings and lab data
     "windmill_torque", "windmill_power", "load_power", "operating_point", "OperatingPoint",
+    "max_head",
     "fit_torque_curve", "TorqueFit", "read_torque_csv", "TorqueTable",
     # wind and site
     "wind_thresholds", "steady_flow", "water_per_day", "record_water", "run_in_wind",

@@ -209,7 +209,7 @@ class Rotor:
 
     @property
     def end_slope(self) -> float:
-        """dC_Q/dlambda past the table's last point [-]: PCHIP's slope there."""
+        """The slope dC_Q/dlambda past the table's last point [-]: PCHIP's slope there."""
         return _cq_curve(self.table_tsr, self.table_cq).end_slope
 
     def cq(self, tsr):

@@ -164,7 +164,6 @@ class CatalogueRow:
         return self.lift_ft * METRES_PER_FOOT
 
 
-@functools.cache
 def aermotor_702_table() -> tuple[CatalogueRow, ...]:
     """The Aermotor 702's pumping table as published, one row per wheel, cylinder and stroke.
 
@@ -186,6 +185,12 @@ def aermotor_702_table() -> tuple[CatalogueRow, ...]:
     >>> round(eight[0].lift, 2), round(eight[0].capacity * 1e3, 4)  # [m], [L/s]
     (53.34, 0.1893)
     """
+    return _read_table()
+
+
+@functools.cache
+def _read_table() -> tuple[CatalogueRow, ...]:
+    """The package's ``aermotor_702.csv``, read once."""
     text = resources.files(__package__).joinpath(TABLE_FILE).read_text(encoding="utf-8")
     lines = [line for line in text.splitlines() if line and not line.startswith("#")]
     return tuple(

@@ -2,20 +2,5 @@
 mill in the model's terms (:mod:`.aermotor`). Imports only the model and below.
 """
 
-from .aermotor import (
-    CatalogueRow,
-    MillParts,
-    aermotor_702,
-    aermotor_702_parts,
-    aermotor_702_table,
-    wheel_inertia,
-)
-
-__all__ = [
-    "CatalogueRow",
-    "MillParts",
-    "aermotor_702",
-    "aermotor_702_parts",
-    "aermotor_702_table",
-    "wheel_inertia",
-]
+from .aermotor import *  # noqa: F403 (its __all__: aermotor_702, aermotor_702_table, ...)
+from .aermotor import __all__ as __all__

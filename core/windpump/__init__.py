@@ -36,6 +36,7 @@ PUBLIC = {
     "operating_point": "averaging.operating:operating_point",
     "max_head": "averaging.ratings:max_head",
     "theory": "averaging.theory",
+    "catalogue": "catalogue",
     "DesignFileError": "errors:DesignFileError",
     "LabDataError": "errors:LabDataError",
     "NoClosure": "errors:NoClosure",
@@ -164,6 +165,6 @@ __all__ = [
     "playback_frames",
     "Playback", "piston_table", "crank_table", "CrankTable",
     # modules of their own
-    "energy", "files", "labdata", "linkage", "playback", "reciprocating", "theory", "units",
-    "weather", "wind",
+    "catalogue", "energy", "files", "labdata", "linkage", "playback", "reciprocating", "theory",
+    "units", "weather", "wind",
 ]  # fmt: skip

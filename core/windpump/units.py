@@ -15,7 +15,11 @@ from __future__ import annotations
 
 __all__ = [
     "LITRES_PER_M3",
+    "METRES_PER_FOOT",
+    "METRES_PER_INCH",
     "MM_PER_M",
+    "M3_PER_US_GALLON",
+    "M_S_PER_MPH",
     "SECONDS_PER_DAY",
     "SECONDS_PER_HOUR",
     "WATTS_PER_KW",
@@ -36,3 +40,18 @@ MM_PER_M = 1_000.0
 
 WATTS_PER_KW = 1_000.0
 """[W/kW]"""
+
+# US customary units, exact by definition (the international yard and pound agreement, 1959; the
+# US gallon is 231 cubic inches): what a US maker's catalogue is printed in.
+
+METRES_PER_FOOT = 0.3048
+"""[m/ft]: feet times this is metres."""
+
+METRES_PER_INCH = 0.0254
+"""[m/in]: inches times this is metres."""
+
+M3_PER_US_GALLON = 231 * METRES_PER_INCH**3
+"""[m^3/gal]: US gallons times this is m^3 (231 in^3, 3.785411784 L)."""
+
+M_S_PER_MPH = 1609.344 / 3600.0
+"""[(m/s)/mph]: miles per hour times this is m/s (0.44704)."""

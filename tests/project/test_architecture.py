@@ -312,6 +312,7 @@ LADDER = [
     "run",
     "averaging",
     "_kernels",
+    "catalogue",
     "model",
     "readers",
     "linkage",

@@ -154,9 +154,9 @@ def water_per_day(design: Design, mean_wind: float, k: float = 2.0) -> tuple[flo
         V_far = c * 50.0 ** (1.0 / k)  # against the wind, for both bounds; beyond V_far the
         if design.d_leak > 0.0:  # density is below exp(-50)
             flows = _leaky_flows(design, V_far)
+            expected = functools.partial(_expected_leaky_flow, flows, V_far=V_far)
         else:
-            flows = _rotor_flows(design, V_stop, V_far)
-        expected = functools.partial(_expected_leaky_flow, flows, V_far=V_far)
+            expected = functools.partial(_expected_rotor_flow, design)
 
     high = expected(V_stop, c, k) if _ever_blows(V_stop, c, k) else 0.0
     low = 0.0
@@ -239,12 +239,32 @@ def _leaky_flows(design: Design, V_far: float) -> tuple[np.ndarray, np.ndarray]:
     return design.V_ref * np.minimum.accumulate(s[::-1])[::-1], flow
 
 
-def _rotor_flows(design: Design, V_stop: float, V_far: float) -> tuple[np.ndarray, np.ndarray]:
-    """The running flow [m^3/s] of a rotor's pump against the wind [m/s] from V_stop to V_far,
-    on LEAKY_SPEEDS winds (:func:`steady_flow` in each: no closed form)."""
-    top = max(min(V_far, MAX_WIND), V_stop) if math.isfinite(V_stop) else 0.0
-    V = np.linspace(V_stop if math.isfinite(V_stop) else 0.0, top, LEAKY_SPEEDS + 1)
-    return V, np.asarray(steady_flow(design, V * (1.0 + 1e-12)))
+ROTOR_PANELS, ROTOR_NODES = 24, 8
+"""A rotor's expected flow at a Weibull site: Gauss-Legendre panels (and nodes each) over the
+winds it runs in (no closed form for its running speed)."""
+
+
+def _expected_rotor_flow(design: Design, V_from: float, c: float, k: float) -> float:
+    """E[flow(V); V > V_from] [m^3/s] for Weibull(c, k) winds, a rotor's pump (V_from >=
+    V_stop): Gauss-Legendre panels in ``t = sqrt(V - V_from)`` (the running speed rises as the
+    square root of V - V_stop from the stall's fold: smooth in t) up to where the density has
+    fallen by exp(-50), cut at the furl (a kink of the flow), the running speeds of every node
+    found at once (:func:`windpump.averaging.theory.running_speeds`)."""
+    if not math.isfinite(V_from):
+        return 0.0
+    V_far = c * ((V_from / c) ** k + 50.0) ** (1.0 / k)
+    edges = list(np.linspace(0.0, math.sqrt(V_far - V_from), ROTOR_PANELS + 1))
+    V_furl = furls_below(design) * design.V_ref
+    if V_from < V_furl < V_far:
+        edges = sorted(edges + [math.sqrt(V_furl - V_from)])
+    x, w = np.polynomial.legendre.leggauss(ROTOR_NODES)
+    starts, widths = np.array(edges[:-1])[:, None], np.diff(edges)[:, None]
+    t = (starts + 0.5 * widths * (x + 1.0)).ravel()
+    V = V_from + t * t
+    density = k / c * (V / c) ** (k - 1.0) * np.exp(-((V / c) ** k))
+    weights = (0.5 * widths * w).ravel() * density * 2.0 * t  # dV = 2 t dt
+    speeds = running_speeds(design, V=np.minimum(V, MAX_WIND) * (1.0 + 1e-12))
+    return float(np.sum(np.nan_to_num(speeds.mean_flow) * weights))
 
 
 def _expected_leaky_flow(flows, V_from: float, c: float, k: float, *, V_far: float) -> float:

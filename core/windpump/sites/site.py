@@ -239,7 +239,7 @@ def _leaky_flows(design: Design, V_far: float) -> tuple[np.ndarray, np.ndarray]:
     return design.V_ref * np.minimum.accumulate(s[::-1])[::-1], flow
 
 
-ROTOR_PANELS, ROTOR_NODES = 24, 8
+ROTOR_PANELS, ROTOR_NODES = 16, 8
 """A rotor's expected flow at a Weibull site: Gauss-Legendre panels (and nodes each) over the
 winds it runs in (no closed form for its running speed)."""
 

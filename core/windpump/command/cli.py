@@ -30,10 +30,11 @@ from ..averaging.averaged import stall_margin, steady_speeds, time_constant
 from ..errors import StallError, cut, shown
 from ..model.design import UNITS, Design, read_json
 from ..progress import Progress, reporter
+from ..readers.quantities import format_quantity
 from ..run.dynamics import simulate
 from ..study.maps import MAX_POINTS, DesignMap, design_map
 from ..study.studies import FIGURES, INPUTS, sweep
-from ..units import LITRES_PER_M3, SECONDS_PER_DAY
+from ..units import SECONDS_PER_DAY
 from .cliargs import (  # noqa: F401 (cli.NAME keeps working)
     LINK_MILLIMETRES,
     MAX_FILE_BYTES,
@@ -43,6 +44,7 @@ from .cliargs import (  # noqa: F401 (cli.NAME keeps working)
     parse_setting,
     read_text,
     typed,
+    units_option,
     workers,
 )
 from .sitecli import add_commands, check_writable
@@ -159,6 +161,7 @@ def build_parser() -> argparse.ArgumentParser:
     run_options(simulate)
     simulate.add_argument("--csv", metavar="FILE", help="write the run's samples here")
     simulate.add_argument("--litres", action="store_true", help="volume and flow in L in the CSV")
+    units_option(simulate)
     simulate.set_defaults(run=simulate_command)
 
     mapping = commands.add_parser(
@@ -242,7 +245,7 @@ def simulate_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump simulate``: a summary on stdout, the samples in --csv."""
     design = chosen_design(args)
     run = simulate(design, args.t_end, args.theta0, args.theta_dot0)
-    for line in summary(design, run):
+    for line in summary(design, run, args.units):
         print(line)
     if args.csv:
         run.to_csv(args.csv, litres=args.litres)
@@ -250,8 +253,9 @@ def simulate_command(args: argparse.Namespace, extra: list[str]) -> int:
     return 0
 
 
-def summary(design: Design, run) -> list[str]:
-    """The lines ``windpump simulate`` prints: the averaged theory, then the run."""
+def summary(design: Design, run, units: str = "si") -> list[str]:
+    """The lines ``windpump simulate`` prints: the averaged theory, then the run; its water in
+    litres and L/s (``units`` ``"si"``) or US gallons and gal/h (``"us"``)."""
     margin = stall_margin(design)
     lines = [f"stall margin (Eq. 22)        {margin:.6g}"]
     try:
@@ -270,11 +274,11 @@ def summary(design: Design, run) -> list[str]:
     if not run.stalled and turns >= 1.0:
         flow = run.intermittency(10).mean_flow
         lines.append(
-            f"mean flow, last revolutions  {flow * LITRES_PER_M3:.6g} L/s "
-            f"({flow * SECONDS_PER_DAY:.4g} m^3/day)"
+            f"mean flow, last revolutions  {format_quantity(flow, 'flow', units, 6)} "
+            f"({format_quantity(flow * SECONDS_PER_DAY, 'daily flow', units)})"
         )
-    litres = run.volume[-1] * LITRES_PER_M3
-    lines.append(f"volume pumped                {litres:.6g} L in {run.t[-1]:.6g} s")
+    volume = format_quantity(run.volume[-1], "volume", units, 6)
+    lines.append(f"volume pumped                {volume} in {run.t[-1]:.6g} s")
     if run.stalled:
         lines.append(f"stalled                      at t = {run.t_stall:.6g} s")
     else:

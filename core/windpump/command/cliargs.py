@@ -1,4 +1,5 @@
-"""The command line's shared arguments: ``--workers``, ``--design`` and ``--set``, and the one
+"""The command line's shared arguments: ``--workers``, ``--design`` and ``--set``, the quantities
+typed with their units (``--set h='175 ft'``, ``--demand '500 gal/day'``) and ``--units``, and the one
 reader of the files a command line names; :mod:`windpump.command.cli` and :mod:`windpump.command.sitecli` both use
 them (here, so that neither imports the other back; issue 38).
 """
@@ -11,6 +12,7 @@ from typing import Any
 from ..errors import LabDataError, cut, shown
 from ..model.design import UNITS, Design
 from ..readers import files
+from ..readers.quantities import SYSTEMS, parse_quantity
 
 RATIOS = ("L_over_R", "R_dagger")  # what --set takes besides the fields, through with_ratios
 # The explorer's link gives these fields in millimetres (?d_leak_mm=3); --set takes metres.
@@ -42,6 +44,45 @@ def workers(text: str) -> int:
     if not 1 <= count <= MAX_WORKERS:
         raise argparse.ArgumentTypeError(f"{cut(text)!r} is not allowed: {allowed}")
     return count
+
+
+def quantity(unit: str, option: str):
+    """An argparse ``type`` for ``option``, whose number is in ``unit`` [e.g. ``"m"``,
+    ``"m^3/day"``]: a number as ``float`` reads it (as before: ``-inf`` and ``nan`` too, refused
+    by the command in words), else a quantity with its unit (:func:`parse_quantity`); a text that
+    is neither is a usage error (exit 2) naming the option and what it takes.
+
+    Examples
+    --------
+    >>> quantity("m", "--hub-height")("12")
+    12.0
+    >>> quantity("m", "--hub-height")("40 ft")
+    12.192
+    """
+
+    def read(text: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            pass
+        try:
+            return parse_quantity(option, text, unit)
+        except ValueError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+
+    read.__name__ = f"quantity in {unit}"
+    return read
+
+
+def units_option(parser: argparse.ArgumentParser) -> None:
+    """``--units si|us``: the units a command shows its answers in."""
+    parser.add_argument(
+        "--units",
+        choices=SYSTEMS,
+        default="si",
+        help="show the answers in SI units (m, L, L/s, m/s: the default) or US units "
+        "(ft, in, gal, gal/h, mph)",
+    )
 
 
 def chosen_design(args: argparse.Namespace) -> Design:
@@ -83,7 +124,15 @@ def parse_setting(text: str) -> tuple[str, object]:
 
 
 def typed(name: str, value: str) -> float | int | bool:
-    """A field's value from text: double_acting true/false, cylinders whole, else a float."""
+    """A field's value from text: double_acting true/false, cylinders whole, else a float; a
+    field with a unit also a quantity with its unit (``h=175 ft``, ``V_ref=15 mph``,
+    ``A=2.76 in^2``: :func:`windpump.readers.quantities.parse_quantity`), in the field's SI unit.
+
+    Examples
+    --------
+    >>> typed("h", "5"), typed("h", "175 ft"), typed("V_ref", "15 mph")
+    (5.0, 53.34, 6.7056)
+    """
     if name == "double_acting":
         if value.lower() in ("true", "1", "yes"):
             return True
@@ -93,6 +142,8 @@ def typed(name: str, value: str) -> float | int | bool:
     try:
         number = float(value)
     except ValueError:
+        if UNITS.get(name):  # a quantity with its unit, or what the field takes in words
+            return parse_quantity(name, value, UNITS[name])
         raise ValueError(
             f"{name} = {shown(value)} is not allowed: {name} must be a number"
         ) from None

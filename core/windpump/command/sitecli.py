@@ -19,10 +19,11 @@ import numpy as np
 from ..errors import ParameterError, cut
 from ..model.wind import WindRecord
 from ..readers.labdata import LabDataError
+from ..readers.quantities import display_unit
 from ..sites.weather import read_weather, sample_site
 from ..sites.yearly import DEFAULT_RESTART, MONTH_NAMES, RESTARTS, Supply, supply, tank_for
 from ..units import LITRES_PER_M3
-from .cliargs import MAX_WORKERS, chosen_design, workers
+from .cliargs import MAX_WORKERS, chosen_design, quantity, units_option, workers
 
 
 def add_commands(commands, design_options) -> None:
@@ -35,7 +36,12 @@ def add_commands(commands, design_options) -> None:
         "loss-of-load probability and the dry days. Exit code 0, 1 on an error.",
     )
     _site_options(year, design_options)
-    year.add_argument("--tank", type=float, default=0.0, help="tank capacity [m^3] (0: none)")
+    year.add_argument(
+        "--tank",
+        type=quantity("m^3", "--tank"),
+        default=0.0,
+        help="tank capacity [m^3, or with its unit: '500 gal'] (0: none)",
+    )
     year.add_argument("--full", action="store_true", help="integrate the year in full (minutes)")
     year.add_argument(
         "--turbulence", type=float, default=None, help="--full: gusts' turbulence intensity (0)"
@@ -65,12 +71,23 @@ def _site_options(parser: argparse.ArgumentParser, design_options) -> None:
     where = parser.add_mutually_exclusive_group(required=True)
     where.add_argument("--site", choices=("greensboro", "sand_point"), help="pvlib's sample year")
     where.add_argument("--weather", metavar="FILE", help="TMY3, EPW or a wind CSV")
-    parser.add_argument("--height", type=float, help="anemometer height of a CSV's winds [m] (10)")
     parser.add_argument(
-        "--hub-height", type=float, help="the rotor's height [m] (the anemometer's)"
+        "--height",
+        type=quantity("m", "--height"),
+        help="anemometer height of a CSV's winds [m, or with its unit: '33 ft'] (10 m)",
+    )
+    parser.add_argument(
+        "--hub-height",
+        type=quantity("m", "--hub-height"),
+        help="the rotor's height [m, or with its unit: '40 ft'] (the anemometer's)",
     )
     parser.add_argument("--shear", type=float, default=1 / 7, help="wind shear exponent (1/7)")
-    parser.add_argument("--demand", type=float, required=True, help="water asked for [m^3/day]")
+    parser.add_argument(
+        "--demand",
+        type=quantity("m^3/day", "--demand"),
+        required=True,
+        help="water asked for [m^3/day, or with its unit: '500 gal/day', '0.5 gpm']",
+    )
     parser.add_argument(
         "--restart",
         choices=RESTARTS,
@@ -80,6 +97,7 @@ def _site_options(parser: argparse.ArgumentParser, design_options) -> None:
         "Site tab",
     )
     parser.add_argument("--profile", metavar="W1,...,W24", help="the demand's hourly weights")
+    units_option(parser)
 
 
 RESTART_WORDS = {
@@ -159,7 +177,7 @@ def supply_command(args: argparse.Namespace, extra: list[str]) -> int:
         alone = supply(
             design, record, args.demand, args.tank, restart="self", profile=options["profile"]
         )
-    for line in report(year, record, alone):
+    for line in report(year, record, alone, args.units):
         print(line)
     if args.csv:
         try:
@@ -214,22 +232,34 @@ def attended_hint(year: Supply) -> str:
     return ""
 
 
-def site_line(year: Supply, record: WindRecord) -> str:
+def site_line(year: Supply, record: WindRecord, units: str = "si") -> str:
+    """Where the year is, the anemometer's height and the mean wind, in ``units``."""
+    metres, length = display_unit("height", units)
+    per_second, speed = display_unit("wind speed", units)
     return (
-        f"site                 {record.name or 'the record'} at {record.height:g} m, "
-        f"mean wind {float(year.V.mean()):.3g} m/s over {year.hours} h"
+        f"site                 {record.name or 'the record'} at {record.height * metres:g} "
+        f"{length}, mean wind {float(year.V.mean()) * per_second:.3g} {speed} over {year.hours} h"
     )
 
 
-def report(year: Supply, record: WindRecord, alone: Supply | None = None) -> list[str]:
+def report(
+    year: Supply, record: WindRecord, alone: Supply | None = None, units: str = "si"
+) -> list[str]:
     """The lines ``windpump supply`` prints: the site, the restart, the month table, the
     figures; and, when the pump restarting on its own (``alone``, the quasi-steady year of
-    ``--restart self``) runs other hours, what that year would be."""
+    ``--restart self``) runs other hours, what that year would be. Water in m^3 (``units``
+    ``"si"``) or US gallons (``"us"``), winds in m/s or mph."""
     totals = year.totals
+    per_second, speed = display_unit("wind speed", units)
+    w, water = display_unit("tank", units)  # [m^3 or gal per m^3]
+    starting = (
+        "none (no torque at rest)"
+        if year.V_start is None
+        else f"{year.V_start * per_second:.3g} {speed}"
+    )
     lines = [
-        site_line(year, record),
-        f"V_stop, V_start      {year.V_stop:.3g} m/s, "
-        + ("none (no torque at rest)" if year.V_start is None else f"{year.V_start:.3g} m/s"),
+        site_line(year, record, units),
+        f"V_stop, V_start      {year.V_stop * per_second:.3g} {speed}, {starting}",
         restart_line(year.restart),
     ]
     if alone is not None and self_differs(year, alone):
@@ -238,8 +268,8 @@ def report(year: Supply, record: WindRecord, alone: Supply | None = None) -> lis
             " " * 21
             + self_sentence(
                 alone,
-                f"it would pump {totals_alone.pumped:.1f} m^3 and deliver "
-                f"{totals_alone.delivered:.1f} m^3 (loss-of-load prob. {alone.lolp:.4g}"
+                f"it would pump {totals_alone.pumped * w:.1f} {water} and deliver "
+                f"{totals_alone.delivered * w:.1f} {water} (loss-of-load prob. {alone.lolp:.4g}"
                 + (", quasi-steady)" if year.quasi_steady is not None else ")"),
             )
         )
@@ -250,18 +280,19 @@ def report(year: Supply, record: WindRecord, alone: Supply | None = None) -> lis
     table = year.monthly
     for i, month in enumerate(table.month):
         lines.append(
-            f"{MONTH_NAMES[month - 1]:<5}{table.pumped[i]:>12.1f}{table.demand[i]:>10.1f}"
-            f"{table.delivered[i]:>10.1f}{table.shortfall[i]:>10.1f}"
+            f"{MONTH_NAMES[month - 1]:<5}{table.pumped[i] * w:>12.1f}{table.demand[i] * w:>10.1f}"
+            f"{table.delivered[i] * w:>10.1f}{table.shortfall[i] * w:>10.1f}"
             f"{table.running_hours[i]:>8d}{table.starts[i]:>8d}"
         )
     lines += [
-        f"{'year':<5}{totals.pumped:>12.1f}{totals.demand:>10.1f}{totals.delivered:>10.1f}"
-        f"{totals.shortfall:>10.1f}{totals.running_hours:>8d}{totals.starts:>8d}",
-        "(water in m^3)",
+        f"{'year':<5}{totals.pumped * w:>12.1f}{totals.demand * w:>10.1f}"
+        f"{totals.delivered * w:>10.1f}{totals.shortfall * w:>10.1f}"
+        f"{totals.running_hours:>8d}{totals.starts:>8d}",
+        f"(water in {water})",
         "",
         f"loss-of-load prob.   {year.lolp:.4g}",
         f"dry days             {year.dry_days} (longest spell {year.longest_dry_spell} days)",
-        f"spilled              {totals.spilled:.1f} m^3 (tank {year.tank:g} m^3, "
+        f"spilled              {totals.spilled * w:.1f} {water} (tank {year.tank * w:g} {water}, "
         f"{year.passes} pass{'' if year.passes == 1 else 'es'})",
     ]
     if year.why:
@@ -269,7 +300,8 @@ def report(year: Supply, record: WindRecord, alone: Supply | None = None) -> lis
     if year.quasi_steady is not None:
         gap = year.quasi_steady_gap
         shown = "n/a" if math.isnan(gap) else f"{gap:+.2%}"
-        lines.append(f"quasi-steady year    {year.quasi_steady.totals.pumped:.1f} m^3 ({shown})")
+        pumped = year.quasi_steady.totals.pumped * w
+        lines.append(f"quasi-steady year    {pumped:.1f} {water} ({shown})")
     return lines
 
 
@@ -293,8 +325,13 @@ def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
     options: dict = {"restart": args.restart, "profile": profile(args.profile)}
     size = tank_for(design, record, args.demand, args.lolp, **options)
     year = supply(design, record, args.demand, 0.0, **options)  # quasi-steady: quick
-    print(site_line(year, record))
-    print(f"demand               {args.demand:g} m^3/day, loss of load at most {args.lolp:g}")
+    w, water = display_unit("tank", args.units)  # [m^3 or gal per m^3]
+    daily, per_day = display_unit("daily flow", args.units)
+    print(site_line(year, record, args.units))
+    print(
+        f"demand               {args.demand * daily:g} {per_day}, "
+        f"loss of load at most {args.lolp:g}"
+    )
     print(restart_line(args.restart))
     if args.restart != "self":
         alone_options = {**options, "restart": "self"}
@@ -305,22 +342,25 @@ def tank_command(args: argparse.Namespace, extra: list[str]) -> int:
                 needs = (
                     "no tank would be enough"
                     if math.isinf(alone_size)
-                    else f"it would need a tank of {alone_size:.6g} m^3"
+                    else f"it would need a tank of {alone_size * w:.6g} {water}"
                 )
                 print(" " * 21 + self_sentence(alone, needs))
     if math.isinf(size):
-        print(f"tank                 no tank is enough: {no_tank_why(year, args.lolp)}")
+        print(f"tank                 no tank is enough: {no_tank_why(year, args.lolp, args.units)}")
         return 0
-    print(f"tank                 {size:.6g} m^3 ({size * LITRES_PER_M3:.0f} L)")
+    litres = "" if args.units == "us" else f" ({size * LITRES_PER_M3:.0f} L)"
+    print(f"tank                 {size * w:.6g} {water}{litres}")
     return 0
 
 
-def no_tank_why(year: Supply, lolp: float) -> str:
-    """Why no tank meets the target: the pump never runs, or it pumps too little."""
+def no_tank_why(year: Supply, lolp: float, units: str = "si") -> str:
+    """Why no tank meets the target: the pump never runs, or it pumps too little (water in
+    m^3 or US gallons, as ``units`` says)."""
     if year.why:
         return f"the pump never runs: {year.why}{attended_hint(year)}"
     totals = year.totals
+    w, water = display_unit("tank", units)
     return (
-        f"the year pumps {totals.pumped:.1f} m^3 of the {totals.demand:.1f} m^3 asked for, "
-        f"less than {1 - lolp:.4g} of it"
+        f"the year pumps {totals.pumped * w:.1f} {water} of the {totals.demand * w:.1f} {water} "
+        f"asked for, less than {1 - lolp:.4g} of it"
     )

@@ -137,3 +137,18 @@ def test_an_options_wrong_unit_is_a_usage_error_naming_it(option, typed, words):
         args[0] = "supply"
     done = windpump_command(*args, option, typed)
     assert done.returncode == 2 and words in done.stderr, done.stderr
+
+
+def test_a_sweeps_cells_take_units_too(tmp_path):
+    (tmp_path / "units.csv").write_text("h,V_ref\n10 ft,15 mph\n")
+    (tmp_path / "si.csv").write_text(f"h,V_ref\n{10 * FT!r},{15 * MPH!r}\n")
+    with_units = windpump_command("sweep", str(tmp_path / "units.csv"), "--t-end", "30")
+    in_si = windpump_command("sweep", str(tmp_path / "si.csv"), "--t-end", "30")
+    assert with_units.returncode == 0 == in_si.returncode, with_units.stderr + in_si.stderr
+    assert with_units.stdout == in_si.stdout
+
+
+def test_the_links_millimetres_are_suggested_with_their_unit():
+    done = windpump_command("simulate", "--set", "D_main_mm=25")
+    assert "--set D_main=0.025 (in metres) or --set 'D_main=25 mm'" in done.stderr
+    assert windpump_command("simulate", "--set", "D_main=25 mm", "--t-end", "10").returncode == 0

@@ -109,12 +109,16 @@ def parse_setting(text: str) -> tuple[str, object]:
     if name in LINK_MILLIMETRES:  # a name copied from the explorer's link
         field = LINK_MILLIMETRES[name]
         try:
-            hint = f"--set {field}={float(value) / 1000:g}"
+            millimetres = float(value)
         except ValueError:
-            hint = f"--set {field}=VALUE"
+            hint = f"--set {field}=VALUE (in metres, or with its unit: '{field}=25 mm')"
+        else:
+            hint = (
+                f"--set {field}={millimetres / 1000:g} (in metres) "
+                f"or --set '{field}={millimetres:g} mm'"
+            )
         raise ValueError(
-            f"--set {shown(text)}: {name} is the explorer's link name: use {field}, "
-            f"{hint} (in metres)"
+            f"--set {shown(text)}: {name} is the explorer's link name: use {field}, {hint}"
         )
     if name not in (*UNITS, *RATIOS):
         raise ValueError(

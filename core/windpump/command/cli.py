@@ -1,5 +1,6 @@
 """The ``windpump`` command: simulate a design, map it, sweep a table of designs, a year of water at
-a site (``supply``, ``tank``: :mod:`windpump.command.sitecli`), serve the explorer.
+a site (``supply``, ``tank``: :mod:`windpump.command.sitecli`), a mill's ratings (``rate``:
+:mod:`windpump.command.ratecli`), serve the explorer.
 
 Every command starts from the paper's example (``Design.seed_example``), or a design file
 (``--design FILE.json``, :meth:`Design.to_json`), with fields changed by ``--set NAME=VALUE``
@@ -47,6 +48,7 @@ from .cliargs import (  # noqa: F401 (cli.NAME keeps working)
     units_option,
     workers,
 )
+from .ratecli import add_rate_command
 from .sitecli import add_commands, check_writable
 
 SERVE_OPTIONS = """\
@@ -196,6 +198,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweeping.set_defaults(run=sweep_command)
 
     add_commands(commands, design_options)
+    add_rate_command(commands, design_options)
 
     serve = commands.add_parser(
         "serve",

@@ -85,9 +85,9 @@ def units_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def chosen_design(args: argparse.Namespace) -> Design:
-    """The design of --design and --set."""
-    design = Design.seed_example()
+def chosen_design(args: argparse.Namespace, base: Design | None = None) -> Design:
+    """The design of --design (or ``base``, else the paper's example) and --set."""
+    design = Design.seed_example() if base is None else base
     if args.design:
         text = read_text(args.design, "--design")
         try:

@@ -34,7 +34,15 @@ from typing import Any
 
 from ..errors import ParameterError
 
-__all__ = ["KINDS", "SYSTEMS", "Kind", "display_unit", "format_quantity", "parse_quantity"]
+__all__ = [
+    "KINDS",
+    "SYSTEMS",
+    "Kind",
+    "display_unit",
+    "format_quantity",
+    "parse_quantity",
+    "unit_of",
+]
 
 SYSTEMS = ("si", "us")
 """The systems :func:`format_quantity` shows in: SI (m, mm, L, L/s, m/s) and US customary (ft, in,
@@ -257,6 +265,19 @@ def parse_quantity(name: str, text: str, unit: str) -> float:
     if unit == "m" and result < 0:
         raise refuse("a negative length")
     return result
+
+
+def unit_of(text: str) -> str:
+    """The unit a typed quantity ends with, as typed (``""`` for a bare number or a text that is
+    no quantity): what a list of quantities lends the bare numbers before its last.
+
+    Examples
+    --------
+    >>> unit_of("17.5 mph"), unit_of("1 7/8 in"), unit_of("15"), unit_of("mph")
+    ('mph', 'in', '', '')
+    """
+    match = _QUANTITY.fullmatch(_normal(text)) if len(text) <= MAX_TEXT else None
+    return match["unit"] if match is not None else ""
 
 
 def shown_unit(text: str) -> str:

@@ -74,6 +74,16 @@ def test_the_defined_factors_are_exact():
     assert parse_quantity("h", "175 ft", "m") == 175 * 0.3048
 
 
+def test_pint_agrees_with_the_packages_own_us_units():
+    """windpump.units holds the same definitions as constants (the catalogue's): one truth."""
+    from windpump import units
+
+    assert parse_quantity("h", "1 ft", "m") == units.METRES_PER_FOOT
+    assert parse_quantity("h", "1 in", "m") == units.METRES_PER_INCH
+    assert parse_quantity("V", "1 mph", "m/s") == pytest.approx(units.M_S_PER_MPH, rel=1e-15)
+    assert parse_quantity("v", "1 gal", "m^3") == pytest.approx(units.M3_PER_US_GALLON, rel=1e-15)
+
+
 REFUSED = [
     ("3 kg", "m", "kg is a mass"),
     ("3 gal", "m", "gal is a volume"),

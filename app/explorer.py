@@ -18,7 +18,7 @@ import param
 
 import windpump
 
-from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE
+from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE, WHEEL
 from .figures import present
 from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
 from .link import (
@@ -55,6 +55,13 @@ T = TypeVar("T", bound=Tab)
 
 STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 WORKING = "**Running the new design…**"
+
+
+def parts_of(design: windpump.Design) -> list[str]:
+    """The parts of the solver a run of ``design`` needs beyond the first page's: the real
+    machine's (its losses), the wheel's (a rotor's C_Q table)."""
+    return [part for part, needs in ((REAL_MACHINE, not design.is_ideal), (WHEEL, design.rotor))
+            if needs]  # fmt: skip
 
 
 class Explorer(pn.viewable.Viewer):
@@ -159,15 +166,15 @@ class Explorer(pn.viewable.Viewer):
     def part_awaited(self) -> str | None:
         """The part of the solver this page's first run waits for while a first start compiles
         it, or None once it is ready: the first page's; then, for a page whose link opens a real
-        machine (a deep well), the real machine's, compiled in a worker (waited for off the
-        event loop: on it every page stood still)."""
+        machine (a deep well), the real machine's, or a wheel, the wheel's, compiled in a worker
+        (waited for off the event loop: on it every page stood still)."""
         if not (SOLVER_READY.is_set() and COMPILE.ready[FIRST_PAGE].is_set()):
             return FIRST_PAGE
         try:
-            ideal = self.inputs.design().is_ideal
+            design = self.inputs.design()
         except Exception:  # refused: its first run says why, and compiles nothing
             return None
-        return None if ideal or COMPILE.ready[REAL_MACHINE].is_set() else REAL_MACHINE
+        return next((p for p in parts_of(design) if not COMPILE.ready[p].is_set()), None)
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
@@ -308,7 +315,8 @@ class Explorer(pn.viewable.Viewer):
         status = self.readouts.status
         if working:
             self._status_before = (status.object, status.alert_type)
-            compiling = "" if self.inputs.design().is_ideal else COMPILE.waiting(REAL_MACHINE)
+            parts = parts_of(self.inputs.design())
+            compiling = next((said for said in map(COMPILE.waiting, parts) if said), "")
             status.object, status.alert_type = compiling or WORKING, "info"
             self._mark_stale(True)
             return

@@ -44,7 +44,9 @@ PAIR = ["pair"]
 # 16 px, the label at 14) put two or three in a row, and the three fit its first screen.
 READOUTS = (
     "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",
+    "tsr", "strokes", "cp", "max_head",
 )  # fmt: skip
+ROTOR_READOUTS = ("tsr", "strokes", "cp", "max_head")  # a wheel's: shown for a rotor design
 TAU_LABEL, MARGIN_LABEL = "Spin-up time τ, Eq. (25)", "Stall margin, Eq. (22)"
 STATUS_STYLE = {
     Status.RUNNING: "success",
@@ -121,10 +123,17 @@ class Readouts(pn.viewable.Viewer):
         # The ideal machine delivers what it sweeps: its efficiencies say little, and a projector's
         # first screen has no row to spare. (Others were hidden while the solver compiled:
         # show_averaged; each set once, as a change of it is sent to the page.)
-        tips = {"efficiency": EFFICIENCY_TIP}
-        for name, (label, value) in values.items():
-            self.readouts[name].show(label, value, tips.get(name, ""))
-            self.readouts[name].visible = name != "efficiency" or not seen.design.is_ideal
+        rotor = seen.design.rotor is not None
+        if rotor:
+            values.update(rotor_readouts(seen))
+        tips = {"efficiency": EFFICIENCY_TIP, "max_head": MAX_HEAD_TIP}
+        for name, readout in self.readouts.items():
+            if name in values:
+                label, value = values[name]
+                readout.show(label, value, tips.get(name, ""))
+            readout.visible = (name != "efficiency" or not seen.design.is_ideal) and (
+                rotor or name not in ROTOR_READOUTS
+            )
         self.status.object, self.status.alert_type = (
             keep_units(f"{status_text(seen)} {start_text(seen)}"),
             STATUS_STYLE[seen.status],
@@ -262,6 +271,42 @@ def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
     # "Work" on a phone: the label keeps one line there (page.NARROW_CSS: the first screen)
     work = '<span class="not-phone">Windmill\'s work</span><span class="phone">Work</span>'
     return f"{work}{back} = {losses}{gained}lifted water", words
+
+
+def running_tsr(design: windpump.Design, omega: float) -> float:
+    """A rotor design's tip-speed ratio λ = ω r / V_s [-] at its windmill's speed ``omega``
+    [rad/s] in its wind V_ref (V_s: the wind the wheel turns in, capped where it furls); NaN
+    where it does not run (``omega`` None or NaN)."""
+    rotor = design.rotor
+    if rotor is None or omega is None:
+        return math.nan
+    return omega * rotor.radius / float(rotor.wind_at_rotor(design.V_ref))
+
+
+MAX_HEAD_TIP = (
+    "The largest head at which it keeps running in this steady wind (its stall margin falls to "
+    "1), and the largest at which it starts on its own from rest at any crank angle "
+    "(windpump.max_head): what a catalogue's maximum lift answers."
+)
+
+
+def rotor_readouts(seen: windpump.Exploration) -> dict[str, tuple[str, str]]:
+    """A rotor design's readouts where it runs (the averaged running speed α₊: the windmill at
+    ω = R† α₊): its tip-speed ratio λ, the pump's strokes a minute, the wheel's power coefficient
+    C_P there; and its maximum heads running and starting in its wind (``windpump.max_head``)."""
+    design, op = seen.design, seen.operating_point
+    tsr = running_tsr(design, op.omega if op is not None else None)
+    running = op is not None and math.isfinite(tsr)
+    strokes = f"{op.crank_speed * 60.0 / (2.0 * math.pi):.1f} /min" if running else "–"
+    cp = f"{float(design.rotor.cp(tsr)):.3f}" if running else "–"
+    heads = [windpump.max_head(design), windpump.max_head(design, start=True)]
+    shown = ", ".join("∞" if math.isinf(h) else f"{h:,.1f} m" for h in heads)
+    return {
+        "tsr": ("Tip-speed ratio λ where it runs", f"{tsr:.2f}" if running else "–"),
+        "strokes": ("Strokes a minute", strokes),
+        "cp": ("Power coefficient C_P there", cp),
+        "max_head": ("Max head: running, starting", shown),
+    }
 
 
 def start_text(seen: windpump.Exploration) -> str:

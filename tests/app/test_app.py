@@ -370,8 +370,8 @@ def _query_pairs(query: str):
 @pytest.mark.parametrize(
     "key, raw, words",
     [
-        ("h", b"banana", "Head h [m] (h) = “banana” ignored: it must be a number from 0 to 30."),
-        ("h", b"1e9", "from 0 to 30"),
+        ("h", b"banana", "Head h [m] (h) = “banana” ignored: it must be a number from 0 to 300."),
+        ("h", b"1e9", "from 0 to 300"),
         ("L_over_R", b"nan", "L/R, rod / crank (L_over_R) = “nan” ignored"),
         ("T_m", b"-1", "from 0.05 to 5"),
         ("bogus", b"1", "“bogus” is not a parameter of this page"),

@@ -67,8 +67,8 @@ WINDMILLS = {
 }
 # The Aermotor's sizes as the catalogue prints them: wheels [ft], cylinders [in] ("1 7/8"),
 # strokes; in the link as their numbers (``wheel_ft=8``, ``cylinder_in=1.875``, ``stroke=long``).
-CYLINDER_LABELS = {inches: f"{label} in" for label, inches in CYLINDERS.items()}
-STROKES = {"long": "Long", "short": "Short (¾)"}
+CYLINDER_LABELS = {inches: label for label, inches in CYLINDERS.items()}
+STROKES = {"long": "Long", "short": "Short"}
 # Choices (select boxes), by name: their values as the link writes them.
 CHOICES = ("windmill", "wheel_ft", "cylinder_in", "stroke")
 # The inputs each windmill uses beside the pump's: the others are set by the windmill, and their
@@ -100,7 +100,9 @@ class PumpInputs(param.Parameterized):
         2.4, bounds=(1.5, 6.0), step=0.1, label="Wheel diameter D [m] (8 ft = 2.4 m)"
     )
     wheel_ft = param.Selector(objects=list(WHEELS_FT), default=8, label="Wheel [ft]")
-    cylinder_in = param.Selector(objects=list(CYLINDERS.values()), default=1.875, label="Cylinder")
+    cylinder_in = param.Selector(
+        objects=list(CYLINDERS.values()), default=1.875, label="Cylinder bore [in]"
+    )
     stroke = param.Selector(objects=list(STROKES), default="long", label="Stroke")
     T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Peak torque Tₘ [N·m]")
     omega_m = param.Number(

@@ -302,9 +302,9 @@ def rotor_readouts(seen: windpump.Exploration) -> dict[str, tuple[str, str]]:
     heads = [windpump.max_head(design), windpump.max_head(design, start=True)]
     shown = ", ".join("∞" if math.isinf(h) else f"{h:,.1f} m" for h in heads)
     return {
-        "tsr": ("Tip-speed ratio λ where it runs", f"{tsr:.2f}" if running else "–"),
+        "tsr": ("Tip-speed ratio λ", f"{tsr:.2f}" if running else "–"),
         "strokes": ("Strokes a minute", strokes),
-        "cp": ("Power coefficient C_P there", cp),
+        "cp": ("C_P where it runs", cp),
         "max_head": ("Max head: running, starting", shown),
     }
 

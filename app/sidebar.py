@@ -196,10 +196,12 @@ class WindmillChoice(pn.viewable.Viewer):
             label="Windmill", options={label: key for key, label in WINDMILLS.items()}, **look
         )
         self.wheel = pn.widgets.Select(
-            label="Wheel", options={f"{ft} ft": ft for ft in inputs.param.wheel_ft.objects}, **look
+            label="Wheel [ft]",
+            options={f"{ft}": ft for ft in inputs.param.wheel_ft.objects},
+            **look,
         )
         self.cylinder = pn.widgets.Select(
-            label="Cylinder",
+            label="Bore [in]",
             options={
                 CYLINDER_LABELS[inches]: inches for inches in inputs.param.cylinder_in.objects
             },
@@ -208,6 +210,7 @@ class WindmillChoice(pn.viewable.Viewer):
         self.stroke = pn.widgets.Select(
             label="Stroke", options={label: key for key, label in STROKES.items()}, **look
         )
+
         for widget, name in (
             (self.select, "windmill"),
             (self.wheel, "wheel_ft"),
@@ -217,7 +220,10 @@ class WindmillChoice(pn.viewable.Viewer):
             widget.value = getattr(inputs, name)
             widget.link(inputs, value=name, bidirectional=True)
         self.diameter = sliders["diameter"]
-        self.aermotor = pn.Row(self.wheel, self.cylinder, self.stroke, sizing_mode="stretch_width")
+        # a third of the sidebar's width each
+        self.aermotor = pn.GridBox(
+            self.wheel, self.cylinder, self.stroke, ncols=3, sizing_mode="stretch_width"
+        )
         self.note = pn.pane.HTML("", stylesheets=CARD_NOTE_CSS, sizing_mode="stretch_width")
         self.show(inputs.windmill)
         inputs.param.watch(lambda event: self.show(event.new), "windmill")

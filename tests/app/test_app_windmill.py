@@ -112,7 +112,7 @@ def test_a_link_keeps_the_windmill_and_reopens_the_same_readouts(query):
         ({"windmill": "aermotor", "wheel_ft": "7"}, "Wheel [ft] (wheel_ft) = “7” ignored: one of "
          "6, 8, 10, 12, 14, 16."),
         # a cylinder the table has, but not on this wheel: the core refuses it with the others
-        ({"windmill": "aermotor", "cylinder_in": "3.75"}, "Cylinder (cylinder_in) = “3.75” "
+        ({"windmill": "aermotor", "cylinder_in": "3.75"}, "Cylinder bore [in] (cylinder_in) = “3.75” "
          "ignored: "),
     ],
 )  # fmt: skip

@@ -32,6 +32,8 @@ from .link import (
     restored_from,
     tab_from,
     tab_query,
+    units_from,
+    units_query,
 )
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
@@ -76,6 +78,9 @@ class Explorer(pn.viewable.Viewer):
 
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
+    units = param.Selector(
+        objects=["si", "us"], default="si", doc="The readouts' units: SI or US (?units=us)."
+    )
 
     def __init__(
         self,
@@ -91,6 +96,7 @@ class Explorer(pn.viewable.Viewer):
         query, notices = readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
         self.dark = dark_from(query, notices)
+        self.units = units_from(query, notices)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)
@@ -98,7 +104,7 @@ class Explorer(pn.viewable.Viewer):
         self.lazy_views = lazy_views  # each view built once the page says it is seen
         self._views_shown = False
         self.sidebar = Sidebar(self.inputs, self.dark, self._csv, self._show_lab_points)
-        self.readouts = Readouts()
+        self.readouts = Readouts(system=self.units)
         self._build_messages(restored_from(query))
         self._build_tabs()
         self._wire()
@@ -193,6 +199,7 @@ class Explorer(pn.viewable.Viewer):
         reveal = self.sidebar.reveal
         self.mechanisms_tab = Mechanisms(slider, self.dark)
         self.wind_tab = WindTab(self.inputs, self.sidebar.sliders, self.bins, reveal, self.dark)
+        self.wind_tab.system = self.units
         self.map_tab = MapTab(self.inputs, self.dark)
         self.site_inputs = SiteInputs()  # the Site tab's own inputs, in the link
         self.site_tab = SiteTab(self.inputs, self.site_inputs, reveal, self.dark)
@@ -208,6 +215,9 @@ class Explorer(pn.viewable.Viewer):
         bar.pin_button.on_click(lambda _e: self.pin())
         bar.clear_button.on_click(lambda _e: self.clear_pinned())
         bar.present_toggle.link(self, value="presentation", bidirectional=True)
+        bar.units_switch.value = self.units
+        bar.units_switch.link(self, value="units", bidirectional=True)
+        self.param.watch(self._units_chosen, "units")
         bar.refused_upload.param.watch(self._on_refused_upload, "value")
         self.pump.channel.param.watch(self._on_views_seen, "value")
         self.param.watch(self._restyle, "presentation")
@@ -454,6 +464,14 @@ class Explorer(pn.viewable.Viewer):
     def _csv(self) -> io.StringIO:
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
+    def _units_chosen(self, event) -> None:
+        """The readouts in the units chosen, the pump's and the Wind tab's (a mode of the page,
+        as presentation mode: Reset and the presets keep it)."""
+        self.readouts.system = event.new
+        if self.seen is not None:
+            self.readouts.show(self.seen)
+        self.wind_tab.show_units(event.new)
+
     def _restyle(self, event) -> None:
         self._restyle_views(event.new)  # the readouts follow the page's zoom (styles.px)
 
@@ -482,6 +500,7 @@ class Explorer(pn.viewable.Viewer):
             self.bins is None,
             self.site_inputs.query(),
             tab_query(shown),
+            units_query(self.units),
         )
 
     def follow_in_link(self, location) -> None:
@@ -489,7 +508,7 @@ class Explorer(pn.viewable.Viewer):
         self._location = PageLink(location, self.link_query)
         self.inputs.param.watch(self._location.write_later, self.inputs.names())  # after a move's
         self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
-        self.param.watch(self._location.write, "presentation")
+        self.param.watch(self._location.write, ["presentation", "units"])
         if hasattr(self, "tabs"):
             self.tabs.param.watch(self._location.write, "active")
 

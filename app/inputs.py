@@ -360,7 +360,9 @@ def _decoded(raw) -> str:
 COUNTS = ("cylinders", "seed")
 
 # Keys the page itself uses, not inputs.
-IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab", "restored"}
+IGNORED_QUERY_KEYS = {
+    "theme", "resolution", "preset", "presentation", "tab", "restored", "units",
+}  # fmt: skip
 
 # name: (values, one sentence saying what to look at). A name fits the sidebar's select box in
 # presentation mode's text (~26 characters: a select shows its choice on one line and cuts it at
@@ -428,7 +430,7 @@ PRESETS = {
         "hole costs about 4 % of the water (over this run, slow while it spins up, about 6 %: the "
         "volumetric efficiency).",
     ),
-    "An 8-ft Aermotor on a 175-ft well": (
+    "8-ft Aermotor, 175-ft well": (
         {
             "windmill": "aermotor",
             "h": 175 * METRES_PER_FOOT,

@@ -15,6 +15,7 @@ import panel as pn
 
 import windpump
 from windpump import Status
+from windpump.readers.quantities import format_quantity
 from windpump.units import LITRES_PER_M3
 
 from .styles import COMPACT, ZOOM_VARIABLE, keep_terms, keep_units, px
@@ -92,8 +93,9 @@ class Readout(TextOnlyUpdates, pn.pane.HTML):
 class Readouts(pn.viewable.Viewer):
     """The row of readouts (``readouts[name]``) and the status line under it."""
 
-    def __init__(self, **params):
+    def __init__(self, system: str = "si", **params):
         super().__init__(**params)
+        self.system = system  # the units the readouts are shown in: "si" or "us"
         self.readouts = {name: Readout(name) for name in READOUTS}
         self.row = pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width")
         self.status = StatusAlert(
@@ -108,8 +110,8 @@ class Readouts(pn.viewable.Viewer):
         figures = seen.intermittency
         started = seen.status is not Status.NEVER_STARTED
         values = {
-            "mean_flow": ("Mean flow", f"{LITRES_PER_M3 * seen.mean_flow:.4f} L/s"),
-            "volume": ("Volume pumped", f"{LITRES_PER_M3 * seen.pumped_volume:.1f} L"),
+            "mean_flow": ("Mean flow", flow_text(seen.mean_flow, self.system)),
+            "volume": ("Volume pumped", volume_text(seen.pumped_volume, self.system)),
             "tau": (TAU_LABEL, f"{seen.tau:.1f} s" if seen.tau and started else "–"),
             "margin": (MARGIN_LABEL, margin_text(seen.margin)),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
@@ -125,7 +127,7 @@ class Readouts(pn.viewable.Viewer):
         # show_averaged; each set once, as a change of it is sent to the page.)
         rotor = seen.design.rotor is not None
         if rotor:
-            values.update(rotor_readouts(seen))
+            values.update(rotor_readouts(seen, self.system))
         tips = {"efficiency": EFFICIENCY_TIP, "max_head": MAX_HEAD_TIP}
         for name, readout in self.readouts.items():
             if name in values:
@@ -290,7 +292,27 @@ MAX_HEAD_TIP = (
 )
 
 
-def rotor_readouts(seen: windpump.Exploration) -> dict[str, tuple[str, str]]:
+def flow_text(flow: float, system: str) -> str:
+    """A mean flow [m^3/s] as the readout shows it: L/s to four decimals, or in US units gal/h
+    to three significant figures (``windpump.readers.quantities``)."""
+    if system == "us":
+        return format_quantity(flow, "flow", "us", digits=3)
+    return f"{LITRES_PER_M3 * flow:.4f} L/s"
+
+
+def volume_text(volume: float, system: str) -> str:
+    """A volume [m^3] as the readout shows it: litres to a decimal, or US gallons."""
+    if system == "us":
+        return format_quantity(volume, "volume", "us", digits=4)
+    return f"{LITRES_PER_M3 * volume:.1f} L"
+
+
+def head_text(head: float, system: str) -> str:
+    """A head [m] as the readout shows it (∞: none stops it), in m or, in US units, ft."""
+    return "∞" if math.isinf(head) else format_quantity(head, "head", system, digits=4)
+
+
+def rotor_readouts(seen: windpump.Exploration, system: str = "si") -> dict[str, tuple[str, str]]:
     """A rotor design's readouts where it runs (the averaged running speed α₊: the windmill at
     ω = R† α₊): its tip-speed ratio λ, the pump's strokes a minute, the wheel's power coefficient
     C_P there; and its maximum heads running and starting in its wind (``windpump.max_head``)."""
@@ -300,7 +322,7 @@ def rotor_readouts(seen: windpump.Exploration) -> dict[str, tuple[str, str]]:
     strokes = f"{op.crank_speed * 60.0 / (2.0 * math.pi):.1f} /min" if running else "–"
     cp = f"{float(design.rotor.cp(tsr)):.3f}" if running else "–"
     heads = [windpump.max_head(design), windpump.max_head(design, start=True)]
-    shown = ", ".join("∞" if math.isinf(h) else f"{h:,.1f} m" for h in heads)
+    shown = ", ".join(head_text(h, system) for h in heads)
     return {
         "tsr": ("Tip-speed ratio λ", f"{tsr:.2f}" if running else "–"),
         "strokes": ("Strokes a minute", strokes),

@@ -287,6 +287,9 @@ class Sidebar(pn.viewable.Viewer):
         self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=PRESET_NOTE_CSS)
         self.pin_button = ActionButton(label="Pin this run", **button)
         self.clear_button = ActionButton(label="Clear pinned", disabled=True, **button)
+        self.units_switch = pn.widgets.RadioButtonGroup(
+            options={"SI units": "si", "US units (ft, gal)": "us"}, **button
+        )
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
         self.present_toggle.jscallback(value=ZOOM_JS)
         self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
@@ -339,6 +342,7 @@ class Sidebar(pn.viewable.Viewer):
             self.reset_button,
             self.copy_link,
             pn.Row(self.present_toggle, self.dark_toggle, sizing_mode="stretch_width"),
+            self.units_switch,
             pn.pane.Markdown(
                 "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
             ),

@@ -22,7 +22,7 @@ from windpump_app.map_tab import GRID
 from windpump_app.views import BINS
 
 SEED = windpump.Design.seed_example()
-AERMOTOR = "An 8-ft Aermotor on a 175-ft well"
+AERMOTOR = "8-ft Aermotor, 175-ft well"
 
 
 def readouts(app) -> dict[str, str]:
@@ -149,7 +149,7 @@ def test_a_wheels_readouts_are_the_cores_where_it_runs():
     cq = float(design.rotor.cq(tsr))
     assert shown_now["cp"] == f"{tsr * cq:.3f}"  # C_P = λ C_Q
     running, start = windpump.max_head(design), windpump.max_head(design, start=True)
-    assert shown_now["max_head"] == f"{running:,.1f} m, {start:,.1f} m"
+    assert shown_now["max_head"] == f"{running:.4g} m, {start:.4g} m"
     # running: the stall margin falls to 1 there; starting: the torque at rest meets the peak load
     assert windpump.stall_margin(design.replace(h=running)) == pytest.approx(1.0, rel=1e-9)
     at_start = design.replace(h=start)
@@ -262,3 +262,48 @@ def test_the_site_tab_with_a_wheel_is_the_cores():
     assert np.isfinite(monthly["pumped"]).all() and sum(monthly["pumped"]) > 0
     np.testing.assert_array_equal(monthly["pumped"], np.asarray(supplied.monthly.pumped))
     assert value(site.readouts["site_lolp"], "site_lolp") == f"{100 * supplied.lolp:.1f} %"
+
+
+def test_the_units_switch_shows_the_readouts_in_us_units_and_is_kept_in_the_link():
+    app = Explorer(query={"windmill": [b"multiblade"], "units": [b"us"]})
+    assert app.sidebar.units_switch.value == "us" and not app.notices.visible
+    seen = app.seen
+    gallons_an_hour = seen.mean_flow * 3600 / M3_PER_US_GALLON
+    shown_now = readouts(app)
+    assert shown_now["mean_flow"] == f"{gallons_an_hour:.3g} gal/h"
+    assert shown_now["volume"] == f"{seen.pumped_volume / M3_PER_US_GALLON:.4g} gal"
+    feet = [
+        windpump.max_head(seen.design, start=start) / METRES_PER_FOOT for start in (False, True)
+    ]
+    assert shown_now["max_head"] == f"{feet[0]:.4g} ft, {feet[1]:.4g} ft"
+    assert "units=us" in app.link_query()
+    assert readouts(reopened(app)) == shown_now
+    app.sidebar.units_switch.value = "si"  # back: the link drops it, the readouts in SI
+    assert "units" not in app.link_query()
+    assert readouts(app)["mean_flow"] == f"{1e3 * seen.mean_flow:.4f} L/s"
+    app.sidebar.units_switch.value = "us"
+    app.reset()  # a mode of the page: Reset keeps it
+    assert app.units == "us" and readouts(app)["mean_flow"].endswith(" gal/h")
+    bad = Explorer(query={"units": [b"metric"]})
+    assert "Units (units) = “metric” ignored: si or us." in bad.notices.object
+
+
+def test_the_wind_tab_says_its_winds_in_mph_and_its_water_in_gallons_in_us_units():
+    app = wheel_page(2)
+    wind = app.wind
+    design = app.inputs.design_at_v_ref()
+    V_stop, V_start = windpump.wind_thresholds(design)
+    mph = 3600 / 1609.344  # [mph per m/s]: a mile is 1609.344 m
+    app.sidebar.units_switch.value = "us"
+    thresholds = wind.readouts["thresholds"]
+    assert "[mph]" in thresholds.object
+    assert value(thresholds, "thresholds") == f"{V_stop * mph:.1f} · {V_start * mph:.1f}"
+    low, high = windpump.water_per_day(design, app.inputs.mean_wind, app.inputs.k)
+    gallons = [
+        f"{float(f'{g:.3g}'):,.0f}" for g in (low / M3_PER_US_GALLON, high / M3_PER_US_GALLON)
+    ]
+    assert value(wind.readouts["site_bounds"], "site_bounds") == " · ".join(gallons)
+    assert "[gal/day]" in wind.readouts["day_litres"].object
+    app.sidebar.units_switch.value = "si"
+    assert value(thresholds, "thresholds") == f"{V_stop:.1f} · {V_start:.1f}"
+    assert "[m/s]" in thresholds.object

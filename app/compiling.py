@@ -280,7 +280,7 @@ def record_compiled(name: str) -> None:
 class Compile:
     """Which parts of the solver are ready: all of them unless a first start compiles them
     (``begin``). ``wait(name)`` blocks until part ``name`` is ready; ``progress()`` says how far
-    the compile is ("compiling the solver (once after an install): 2 of 5 parts ready"), or ""
+    the compile is ("compiling the solver (once after an install): 2 of 6 parts ready"), or ""
     once every part is ready."""
 
     def __init__(self, parts=PARTS):
@@ -312,7 +312,7 @@ class Compile:
 
     def waiting(self, name: str) -> str:
         """What a page says while part ``name`` is compiling (Markdown), or "" once it is ready:
-        "**Compiling the solver (once after an install): 1 of 5 parts ready.** These numbers
+        "**Compiling the solver (once after an install): 1 of 6 parts ready.** These numbers
         follow once its part (the Wind tab) is ready." """
         return "" if self.ready[name].is_set() else self.saying(name)
 

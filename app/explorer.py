@@ -155,7 +155,7 @@ class Explorer(pn.viewable.Viewer):
     def say_compiling(self) -> None:
         """The status, while the part of the solver this page's first run needs compiles (a
         first start after an install): how far it is, "Compiling the solver (once after an
-        install): 1 of 5 parts ready" (``serving.first_run_when_ready`` says it again as parts
+        install): 1 of 6 parts ready" (``serving.first_run_when_ready`` says it again as parts
         get ready), and meanwhile the averaged theory's τ, stall margin and α₊, which need no
         compiled code (``Readouts.show_averaged``)."""
         part = self.part_awaited()

@@ -333,9 +333,10 @@ class Sidebar(pn.viewable.Viewer):
         return pn.Column(
             self.preset,
             self.preset_note,
-            self.windmill,
             *main,
             *self.switches.values(),
+            # under the pump's sliders: a phone's controls pane shows the presets and a slider
+            self.windmill,
             self.more_card,
             self.real_card,
             pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),

@@ -307,3 +307,18 @@ def test_the_wind_tab_says_its_winds_in_mph_and_its_water_in_gallons_in_us_units
     app.sidebar.units_switch.value = "si"
     assert value(thresholds, "thresholds") == f"{V_stop:.1f} · {V_start:.1f}"
     assert "[m/s]" in thresholds.object
+
+
+def test_a_lab_fit_applied_on_a_wheels_page_is_the_papers_curve_it_fits():
+    """A lab file's fit is of Eq. (11): applied, the page's windmill is the paper's curve with
+    the fitted Tₘ and ωₘ, and the measurements are drawn over its power curve."""
+    app = Explorer()
+    app.set_values(windmill="multiblade")
+    omega = np.linspace(5, 75, 15)
+    torque = 0.8 * (omega / 40) * (2 - omega / 40)  # Eq. 11, T_m = 0.8 N m, omega_m = 40 rad/s
+    app.load_lab_data("".join(f"{w},{q}\n" for w, q in zip(omega, torque, strict=True)).encode())
+    assert app.inputs.windmill == "eq11" and app.seen.design.rotor is None
+    assert app.seen.design.T_m == pytest.approx(0.8, rel=1e-6)
+    assert app.seen.design.omega_m == pytest.approx(40.0 * app.inputs.V / SEED.V_ref, rel=1e-6)
+    view = app.pump.built["operating"]
+    assert view.items["lab data"].visible and view.items["lab data"].renderers[0].visible

@@ -20,7 +20,7 @@ import windpump
 
 from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE, WHEEL
 from .figures import present
-from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
+from .inputs import CHOICES, FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -123,7 +123,7 @@ class Explorer(pn.viewable.Viewer):
         self._location: PageLink | None = None  # the page's address, once followed
         self._noted = ""  # the inputs' query when the presets' note was written (``_say``)
         # what start() runs first, and whether the link names the design (taken or refused)
-        designs = any(key in FORMATS or key in SWITCHES for key in pump_query)
+        designs = any(key in (*FORMATS, *SWITCHES, *CHOICES) for key in pump_query)
         self._link = (values, notices, designs)
         if start:
             self.start()

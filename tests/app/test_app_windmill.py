@@ -322,3 +322,9 @@ def test_a_lab_fit_applied_on_a_wheels_page_is_the_papers_curve_it_fits():
     assert app.seen.design.omega_m == pytest.approx(40.0 * app.inputs.V / SEED.V_ref, rel=1e-6)
     view = app.pump.built["operating"]
     assert view.items["lab data"].visible and view.items["lab data"].renderers[0].visible
+
+
+def test_a_link_naming_only_the_windmill_says_it_is_the_links_design():
+    app = Explorer(query={"windmill": [b"multiblade"]})
+    assert app.sidebar.preset_note.visible
+    assert app.sidebar.preset_note.object == "Your design, from the link."

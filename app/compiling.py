@@ -101,6 +101,22 @@ def real_in_wind() -> None:
     warm_up(real_presets()[0])
 
 
+def wheel() -> None:
+    """What a page choosing a wheel runs (the multiblade wheel, an Aermotor, their preset): the
+    driver compiled for a rotor's C_Q table (a specialisation of its own), ideal and in a wind
+    record (the Wind tab's gusty day)."""
+    import windpump
+
+    from .inputs import PumpInputs
+    from .wind_tab import warm_up
+
+    inputs = PumpInputs(windmill="multiblade")
+    seen = windpump.explore(inputs.design(), inputs.t_end, inputs.theta0, inputs.theta_dot0)
+    windpump.power_budget(seen.run).cycle_means()
+    windpump.playback_frames(seen.run)
+    warm_up(inputs)
+
+
 def site_tab() -> None:
     """What a first Site tab runs: the year at the sample site, its tank for 5 % and its
     loss-of-load curve (``site_year.run_year``)."""
@@ -130,15 +146,18 @@ class Part:
 
 FIRST_PAGE, REAL_MACHINE = "the first page", "the real machine"
 WIND_TAB, SITE_TAB, REAL_IN_WIND = "the Wind tab", "the Site tab", "the real machine in wind"
+WHEEL = "the wheel"
 # In the order a page needs them: the first page (in the server, alone on its core), then, in
 # workers, the presets' real machine (the deep-well and leak-hole presets: with it third, after
 # the Wind tab's, the deep-well preset waited 39.7 s after the first page), the Wind tab, the
 # Site tab, and the Wind tab's day of a preset with a real machine (a fourth compile of the
-# driver, the least likely to be needed first).
+# driver, the least likely to be needed first). The wheel's (a rotor's runs, ideal and in wind)
+# after the Wind tab's: a class opens the Wind tab before it chooses a windmill.
 PARTS = (
     Part(FIRST_PAGE, first_page),
     Part(REAL_MACHINE, real_machine),
     Part(WIND_TAB, wind_tab),
+    Part(WHEEL, wheel),
     Part(SITE_TAB, site_tab),
     Part(REAL_IN_WIND, real_in_wind),
 )
@@ -261,7 +280,7 @@ def record_compiled(name: str) -> None:
 class Compile:
     """Which parts of the solver are ready: all of them unless a first start compiles them
     (``begin``). ``wait(name)`` blocks until part ``name`` is ready; ``progress()`` says how far
-    the compile is ("compiling the solver (once after an install): 2 of 5 parts ready"), or ""
+    the compile is ("compiling the solver (once after an install): 2 of 6 parts ready"), or ""
     once every part is ready."""
 
     def __init__(self, parts=PARTS):
@@ -293,7 +312,7 @@ class Compile:
 
     def waiting(self, name: str) -> str:
         """What a page says while part ``name`` is compiling (Markdown), or "" once it is ready:
-        "**Compiling the solver (once after an install): 1 of 5 parts ready.** These numbers
+        "**Compiling the solver (once after an install): 1 of 6 parts ready.** These numbers
         follow once its part (the Wind tab) is ready." """
         return "" if self.ready[name].is_set() else self.saying(name)
 

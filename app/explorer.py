@@ -18,9 +18,9 @@ import param
 
 import windpump
 
-from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE
+from .compiling import COMPILE, FIRST_PAGE, REAL_MACHINE, WHEEL
 from .figures import present
-from .inputs import FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
+from .inputs import CHOICES, FORMATS, FROM_THE_LINK, PRESETS, SWITCHES, PumpInputs, preset_of
 from .link import (
     RESTORED,
     PageLink,
@@ -32,6 +32,8 @@ from .link import (
     restored_from,
     tab_from,
     tab_query,
+    units_from,
+    units_query,
 )
 from .map_tab import MapTab
 from .mechanisms import Mechanisms
@@ -57,6 +59,13 @@ STALE = {"opacity": "0.35", "filter": "grayscale(1)"}
 WORKING = "**Running the new design…**"
 
 
+def parts_of(design: windpump.Design) -> list[str]:
+    """The parts of the solver a run of ``design`` needs beyond the first page's: the real
+    machine's (its losses), the wheel's (a rotor's C_Q table)."""
+    return [part for part, needs in ((REAL_MACHINE, not design.is_ideal), (WHEEL, design.rotor))
+            if needs]  # fmt: skip
+
+
 class Explorer(pn.viewable.Viewer):
     """One session's explorer. ``template()`` is the page; ``query`` a URL query to start from;
     ``start=False`` waits for ``start()`` to run it (while the server compiles the solver);
@@ -69,6 +78,9 @@ class Explorer(pn.viewable.Viewer):
 
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
+    units = param.Selector(
+        objects=["si", "us"], default="si", doc="The readouts' units: SI or US (?units=us)."
+    )
 
     def __init__(
         self,
@@ -84,6 +96,7 @@ class Explorer(pn.viewable.Viewer):
         query, notices = readable(query or {})
         # First: the theme button's label and every figure's colours follow it.
         self.dark = dark_from(query, notices)
+        self.units = units_from(query, notices)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)
@@ -91,7 +104,7 @@ class Explorer(pn.viewable.Viewer):
         self.lazy_views = lazy_views  # each view built once the page says it is seen
         self._views_shown = False
         self.sidebar = Sidebar(self.inputs, self.dark, self._csv, self._show_lab_points)
-        self.readouts = Readouts()
+        self.readouts = Readouts(system=self.units)
         self._build_messages(restored_from(query))
         self._build_tabs()
         self._wire()
@@ -110,7 +123,7 @@ class Explorer(pn.viewable.Viewer):
         self._location: PageLink | None = None  # the page's address, once followed
         self._noted = ""  # the inputs' query when the presets' note was written (``_say``)
         # what start() runs first, and whether the link names the design (taken or refused)
-        designs = any(key in FORMATS or key in SWITCHES for key in pump_query)
+        designs = any(key in (*FORMATS, *SWITCHES, *CHOICES) for key in pump_query)
         self._link = (values, notices, designs)
         if start:
             self.start()
@@ -142,7 +155,7 @@ class Explorer(pn.viewable.Viewer):
     def say_compiling(self) -> None:
         """The status, while the part of the solver this page's first run needs compiles (a
         first start after an install): how far it is, "Compiling the solver (once after an
-        install): 1 of 5 parts ready" (``serving.first_run_when_ready`` says it again as parts
+        install): 1 of 6 parts ready" (``serving.first_run_when_ready`` says it again as parts
         get ready), and meanwhile the averaged theory's τ, stall margin and α₊, which need no
         compiled code (``Readouts.show_averaged``)."""
         part = self.part_awaited()
@@ -159,15 +172,15 @@ class Explorer(pn.viewable.Viewer):
     def part_awaited(self) -> str | None:
         """The part of the solver this page's first run waits for while a first start compiles
         it, or None once it is ready: the first page's; then, for a page whose link opens a real
-        machine (a deep well), the real machine's, compiled in a worker (waited for off the
-        event loop: on it every page stood still)."""
+        machine (a deep well), the real machine's, or a wheel, the wheel's, compiled in a worker
+        (waited for off the event loop: on it every page stood still)."""
         if not (SOLVER_READY.is_set() and COMPILE.ready[FIRST_PAGE].is_set()):
             return FIRST_PAGE
         try:
-            ideal = self.inputs.design().is_ideal
+            design = self.inputs.design()
         except Exception:  # refused: its first run says why, and compiles nothing
             return None
-        return None if ideal or COMPILE.ready[REAL_MACHINE].is_set() else REAL_MACHINE
+        return next((p for p in parts_of(design) if not COMPILE.ready[p].is_set()), None)
 
     def _build_messages(self, restored: bool) -> None:
         self.notices = pn.pane.Alert(
@@ -186,6 +199,7 @@ class Explorer(pn.viewable.Viewer):
         reveal = self.sidebar.reveal
         self.mechanisms_tab = Mechanisms(slider, self.dark)
         self.wind_tab = WindTab(self.inputs, self.sidebar.sliders, self.bins, reveal, self.dark)
+        self.wind_tab.system = self.units
         self.map_tab = MapTab(self.inputs, self.dark)
         self.site_inputs = SiteInputs()  # the Site tab's own inputs, in the link
         self.site_tab = SiteTab(self.inputs, self.site_inputs, reveal, self.dark)
@@ -201,6 +215,9 @@ class Explorer(pn.viewable.Viewer):
         bar.pin_button.on_click(lambda _e: self.pin())
         bar.clear_button.on_click(lambda _e: self.clear_pinned())
         bar.present_toggle.link(self, value="presentation", bidirectional=True)
+        bar.units_switch.value = self.units
+        bar.units_switch.link(self, value="units", bidirectional=True)
+        self.param.watch(self._units_chosen, "units")
         bar.refused_upload.param.watch(self._on_refused_upload, "value")
         self.pump.channel.param.watch(self._on_views_seen, "value")
         self.param.watch(self._restyle, "presentation")
@@ -308,7 +325,8 @@ class Explorer(pn.viewable.Viewer):
         status = self.readouts.status
         if working:
             self._status_before = (status.object, status.alert_type)
-            compiling = "" if self.inputs.design().is_ideal else COMPILE.waiting(REAL_MACHINE)
+            parts = parts_of(self.inputs.design())
+            compiling = next((said for said in map(COMPILE.waiting, parts) if said), "")
             status.object, status.alert_type = compiling or WORKING, "info"
             self._mark_stale(True)
             return
@@ -446,6 +464,14 @@ class Explorer(pn.viewable.Viewer):
     def _csv(self) -> io.StringIO:
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
+    def _units_chosen(self, event) -> None:
+        """The readouts in the units chosen, the pump's and the Wind tab's (a mode of the page,
+        as presentation mode: Reset and the presets keep it)."""
+        self.readouts.system = event.new
+        if self.seen is not None:
+            self.readouts.show(self.seen)
+        self.wind_tab.show_units(event.new)
+
     def _restyle(self, event) -> None:
         self._restyle_views(event.new)  # the readouts follow the page's zoom (styles.px)
 
@@ -474,6 +500,7 @@ class Explorer(pn.viewable.Viewer):
             self.bins is None,
             self.site_inputs.query(),
             tab_query(shown),
+            units_query(self.units),
         )
 
     def follow_in_link(self, location) -> None:
@@ -481,7 +508,7 @@ class Explorer(pn.viewable.Viewer):
         self._location = PageLink(location, self.link_query)
         self.inputs.param.watch(self._location.write_later, self.inputs.names())  # after a move's
         self.site_inputs.param.watch(self._location.write, list(self.site_inputs.keys()))
-        self.param.watch(self._location.write, "presentation")
+        self.param.watch(self._location.write, ["presentation", "units"])
         if hasattr(self, "tabs"):
             self.tabs.param.watch(self._location.write, "active")
 

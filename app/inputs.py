@@ -12,7 +12,9 @@ from urllib.parse import urlencode
 import param
 
 import windpump
-from windpump.units import MM_PER_M
+from windpump.catalogue import aermotor_702
+from windpump.catalogue.aermotor import CYLINDERS, WHEELS_FT
+from windpump.units import M_S_PER_MPH, METRES_PER_FOOT, MM_PER_M
 
 from .escape import as_text
 
@@ -25,6 +27,7 @@ FORMATS = {
     "L_over_R": ("0.00", "main"),
     "R_dagger": ("0.0", "main"),
     "h": ("0.0", "main"),
+    "diameter": ("0.0", "windmill"),
     "T_m": ("0.00", "main"),
     "omega_m": ("0", "more"),
     "t_end": ("0", "more"),
@@ -55,6 +58,34 @@ REAL_MACHINE_INPUTS = tuple(name for name, (_f, place) in FORMATS.items() if pla
 # Switches (check boxes), by name; in the link as true/false.
 SWITCHES = ("double_acting",)
 
+# The windmill: the paper's curve, a multiblade wheel of the diameter slider, or an Aermotor 702
+# of the catalogue's sizes (``windpump.catalogue``); in the link as ``windmill=``.
+WINDMILLS = {
+    "eq11": "The paper's curve (Eq. 11)",
+    "multiblade": "A multiblade wheel",
+    "aermotor": "An Aermotor 702",
+}
+# The Aermotor's sizes as the catalogue prints them: wheels [ft], cylinders [in] ("1 7/8"),
+# strokes; in the link as their numbers (``wheel_ft=8``, ``cylinder_in=1.875``, ``stroke=long``).
+CYLINDER_LABELS = {inches: label for label, inches in CYLINDERS.items()}
+STROKES = {"long": "Long", "short": "Short"}
+# Choices (select boxes), by name: their values as the link writes them.
+CHOICES = ("windmill", "wheel_ft", "cylinder_in", "stroke")
+# The inputs each windmill uses beside the pump's: the others are set by the windmill, and their
+# sliders say so (sidebar.Sidebar).
+WINDMILL_INPUTS = {
+    "eq11": (),
+    "multiblade": ("diameter",),
+    "aermotor": ("wheel_ft", "cylinder_in", "stroke"),
+}
+# The sliders a windmill sets itself: a rotor's curve sets Tₘ, ωₘ and T₀; the Aermotor's catalogue
+# also its back gear (R₁/R₀) and its wheel's and crank's inertias.
+SET_BY = {
+    "eq11": (),
+    "multiblade": ("T_m", "omega_m", "T_0"),
+    "aermotor": ("T_m", "omega_m", "T_0", "R_dagger", "I0", "I1"),
+}
+
 
 class PumpInputs(param.Parameterized):
     """The design and the run the explorer shows; defaults are the paper's example (Fig. 3)."""
@@ -63,7 +94,16 @@ class PumpInputs(param.Parameterized):
     R_dagger = param.Number(
         SEED.R_dagger, bounds=(0.5, 10.0), step=0.1, label="R₁/R₀, sprocket ratio"
     )
-    h = param.Number(SEED.h, bounds=(0.0, 30.0), step=0.1, label="Head h [m]")
+    h = param.Number(SEED.h, bounds=(0.0, 300.0), step=0.1, label="Head h [m]")
+    windmill = param.Selector(objects=list(WINDMILLS), default="eq11", label="Windmill")
+    diameter = param.Number(
+        2.4, bounds=(1.5, 6.0), step=0.1, label="Wheel diameter D [m] (8 ft = 2.4 m)"
+    )
+    wheel_ft = param.Selector(objects=list(WHEELS_FT), default=8, label="Wheel [ft]")
+    cylinder_in = param.Selector(
+        objects=list(CYLINDERS.values()), default=1.875, label="Cylinder bore [in]"
+    )
+    stroke = param.Selector(objects=list(STROKES), default="long", label="Stroke")
     T_m = param.Number(SEED.T_m, bounds=(0.05, 5.0), step=0.05, label="Peak torque Tₘ [N·m]")
     omega_m = param.Number(
         SEED.omega_m, bounds=(5.0, 150.0), step=1.0, label="Windmill peak speed ωₘ [rad/s]"
@@ -107,7 +147,7 @@ class PumpInputs(param.Parameterized):
     seed = param.Number(1, bounds=(0, 999), step=1, label="Gusty day number (seed)")
 
     def names(self) -> list[str]:
-        return [*FORMATS, *SWITCHES]
+        return [*FORMATS, *SWITCHES, *CHOICES]
 
     def values(self) -> dict[str, float | bool]:
         return {name: getattr(self, name) for name in self.names()}
@@ -118,20 +158,27 @@ class PumpInputs(param.Parameterized):
         return self.design_at_v_ref().in_wind(self.V)
 
     def design_at_v_ref(self) -> windpump.Design:
-        """The design with its curve as the sliders give it, at V_ref (for a wind record)."""
-        return SEED.with_ratios(
-            L_over_R=self.L_over_R,
-            R_dagger=self.R_dagger,
-            h=self.h,
-            T_m=self.T_m,
-            omega_m=self.omega_m,
-            I0=self.I0,
-            I1=self.I1,
-            cylinders=round(self.cylinders),
-            double_acting=self.double_acting,
-            T_0=self.T_0,
+        """The design with its windmill as the inputs give it, at V_ref (for a wind record): the
+        paper's curve (Eq. 11) of the Tₘ, ωₘ and T₀ sliders; a multiblade wheel of the diameter
+        slider (``Rotor.multiblade``) on the sliders' pump; or an Aermotor 702 of the catalogue's
+        wheel, cylinder and stroke (``windpump.catalogue.aermotor_702``: its back gear, stroke,
+        bore and inertias) lifting by the head h."""
+        pump = {
+            "L_over_R": self.L_over_R,
+            "cylinders": round(self.cylinders),
+            "double_acting": self.double_acting,
             **self.real_machine(),
-        )
+        }
+        if self.windmill == "aermotor":
+            mill = aermotor_702(
+                self.wheel_ft, self.cylinder_in, stroke=self.stroke, lift_ft=0.0,
+                V_ref=SEED.V_ref, **pump,
+            )  # fmt: skip
+            return mill.replace(h=self.h)
+        pump.update(R_dagger=self.R_dagger, h=self.h, I0=self.I0, I1=self.I1)
+        if self.windmill == "multiblade":
+            return SEED.with_ratios(**pump).replace(rotor=windpump.Rotor.multiblade(self.diameter))
+        return SEED.with_ratios(**pump, T_m=self.T_m, omega_m=self.omega_m, T_0=self.T_0)
 
     def real_machine(self) -> dict[str, float]:
         """The real machine's Design fields these inputs give [SI units: the mm shown in m]."""
@@ -160,11 +207,11 @@ class PumpInputs(param.Parameterized):
             }
         )
 
-    def is_default(self, name: str, value: float | bool) -> bool:
+    def is_default(self, name: str, value: float | bool | str) -> bool:
         """Whether ``value`` is input ``name``'s default, but for the float noise of a slider
         moved in the browser (3 + 0.1 - 0.1 = 3.0000000000000004)."""
         default = self.param[name].default
-        if isinstance(value, bool) or isinstance(default, bool):
+        if name in CHOICES or isinstance(value, bool) or isinstance(default, bool):
             return value == default
         return abs(value - default) <= 1e-9 * self.param[name].step
 
@@ -177,7 +224,7 @@ class PumpInputs(param.Parameterized):
             raws = list(raws) if isinstance(raws, list | tuple) else [raws]
             texts = [_decoded(raw) for raw in raws] or [""]
             text = texts[-1]
-            if len(texts) > 1 and (key in FORMATS or key in SWITCHES):
+            if len(texts) > 1 and (key in FORMATS or key in SWITCHES or key in CHOICES):
                 given = ", ".join(clipped(t) for t in texts[:5]) + (", …" if len(texts) > 5 else "")
                 notices.append(
                     f"“{clipped(key)}” is given {len(texts)} times ({given}): the last, "
@@ -191,6 +238,13 @@ class PumpInputs(param.Parameterized):
                     notices.append(
                         f"{label} ({key}) = “{clipped(text)}” ignored: it must be true or false."
                     )
+                continue
+            if key in CHOICES:
+                choice, notice = read_choice(self.param[key], key, text)
+                if notice:
+                    notices.append(notice)
+                else:
+                    values[key] = choice
                 continue
             if key not in FORMATS:
                 if key not in IGNORED_QUERY_KEYS:
@@ -237,6 +291,21 @@ def read_slider_number(
     return value, ""
 
 
+def read_choice(parameter: param.Selector, key: str, text: str) -> tuple[object, str]:
+    """A link's ``key=text`` for a select box's ``parameter``: the choice (as the link writes it,
+    ``choice_text``) and what to tell the student ("" if nothing)."""
+    for choice in parameter.objects:
+        if choice_text(choice) == text:
+            return choice, ""
+    allowed = ", ".join(choice_text(choice) for choice in parameter.objects)
+    return None, f"{parameter.label} ({key}) = “{clipped(text)}” ignored: one of {allowed}."
+
+
+def choice_text(choice: object) -> str:
+    """A select box's choice as the link writes it: ``multiblade``, ``8``, ``1.875``, ``long``."""
+    return f"{choice:g}" if isinstance(choice, float) else str(choice)
+
+
 def step_decimals(step: float) -> int:
     """Decimals a slider's step needs: 0.05 -> 2, 0.0005 -> 4, 10.0 -> 0."""
     return len(f"{step:.10f}".rstrip("0").split(".")[1])
@@ -248,9 +317,12 @@ def on_grid(value: float, step: float) -> float:
     return round(round(value / step) * step, step_decimals(step))
 
 
-def link_text(name: str, value: float | bool) -> str:
+def link_text(name: str, value: float | bool | str) -> str:
     """A value as the link carries it: as its slider shows it if it is on the slider's grid
-    (``3.1``, ``0.8``, ``2``, ``true``), else in full (``grid_text``)."""
+    (``3.1``, ``0.8``, ``2``, ``true``), else in full (``grid_text``); a choice as
+    ``choice_text`` writes it (``aermotor``, ``1.875``)."""
+    if name in CHOICES:
+        return choice_text(value)
     if isinstance(value, bool):
         return str(value).lower()
     return grid_text(value, PumpInputs.param[name].step)
@@ -288,7 +360,9 @@ def _decoded(raw) -> str:
 COUNTS = ("cylinders", "seed")
 
 # Keys the page itself uses, not inputs.
-IGNORED_QUERY_KEYS = {"theme", "resolution", "preset", "presentation", "tab", "restored"}
+IGNORED_QUERY_KEYS = {
+    "theme", "resolution", "preset", "presentation", "tab", "restored", "units",
+}  # fmt: skip
 
 # name: (values, one sentence saying what to look at). A name fits the sidebar's select box in
 # presentation mode's text (~26 characters: a select shows its choice on one line and cuts it at
@@ -355,6 +429,19 @@ PRESETS = {
         "water slips back at rest, the load vanishes and the pump starts on its own; at speed the "
         "hole costs about 4 % of the water (over this run, slow while it spins up, about 6 %: the "
         "volumetric efficiency).",
+    ),
+    "8-ft Aermotor, 175-ft well": (
+        {
+            "windmill": "aermotor",
+            "h": 175 * METRES_PER_FOOT,
+            "V": 15 * M_S_PER_MPH,
+            "theta_dot0": 0.0,
+            "t_end": 120.0,
+        },
+        "The catalogue's 8-ft mill on a 1 7/8 in cylinder at its table's 175 ft lift, in a 15 mph "
+        "wind: its wheel's torque at rest starts it with no kick, and within seconds it settles "
+        "at some 28 strokes a minute and about 160 gal/h (the table says 180), lightly loaded: "
+        "at λ ≈ 1.8, past the C_P peak near λ = 1 that a heavier load would bring it to.",
     ),
     "A stalled pump": (
         {"h": 21.0},

@@ -145,7 +145,8 @@ class LabData:
             summary or f"Applied the fit: Tₘ = {fit.T_m:.3f} N·m, ωₘ = {fit.omega_m:.1f} rad/s."
         )
         self.note.visible = True
-        self.inputs.param.update(T_m=fit.T_m, omega_m=fit.omega_m)
+        # a fit of Eq. (11): the paper's curve, whichever windmill was chosen
+        self.inputs.param.update(windmill="eq11", T_m=fit.T_m, omega_m=fit.omega_m)
         self.reveal.show(LAB_NOTE)
 
     def hide(self) -> None:

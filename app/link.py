@@ -72,6 +72,25 @@ def dark_from(query: dict, notices: list[str]) -> bool:
     return raw == "dark"
 
 
+UNITS = ("si", "us")  # ``units=``: the readouts in SI (the default) or US customary units
+
+
+def units_from(query: dict, notices: list[str]) -> str:
+    """``?units=us`` shows the readouts in US customary units (ft, gal/h, gal); ``si`` (or
+    nothing) in SI; any other value is ignored with a notice."""
+    raw = text(query.get("units", [b""]))
+    if raw in UNITS:
+        return raw
+    if raw:
+        notices.append(f"Units (units) = “{clipped(raw)}” ignored: si or us.")
+    return "si"
+
+
+def units_query(units: str) -> str:
+    """The link's part for the units shown (none for SI, the default)."""
+    return "units=us" if units == "us" else ""
+
+
 TABS = ("mechanisms", "wind", "map", "site")  # ``tab=``: the tabs after the pump's, in order
 
 

@@ -9,7 +9,7 @@ from functools import partial
 
 import panel as pn
 
-from .compiling import COMPILE, REAL_MACHINE
+from .compiling import COMPILE, REAL_MACHINE, WHEEL
 from .explorer import BINS, Explorer
 from .keyboard import keyboard_and_screen_readers
 from .link import utf8_keys
@@ -49,7 +49,8 @@ full = query.get("resolution", [b""])[0] == b"full"
 # The first start after an install compiles the solver in the background: this page opens at
 # once and runs its design when the solver is ready (server.sessions.first_run_when_ready).
 # So does one opened while a worker compiles the real machine: its link may open one (a deep well)
-ready = SOLVER_READY.is_set() and COMPILE.ready[REAL_MACHINE].is_set()
+# or a wheel (the Aermotor's preset)
+ready = SOLVER_READY.is_set() and all(COMPILE.ready[p].is_set() for p in (REAL_MACHINE, WHEEL))
 explorer = Explorer(
     bins=None if full else BINS, query=query, defer_views=True, lazy_views=True, start=ready
 )

@@ -47,6 +47,9 @@ from .views import refill
 log = logging.getLogger("windpump.app")
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
+# [m] the map's heads: the paper's pump's (it stalls at 21 m; sidebar.PAPERS_HEADS); the head
+# goes on to a catalogue mill's lifts (inputs.PumpInputs.h), whose star then stands above the map
+MAP_HEADS = (0.0, 30.0)
 LEAKY_GRID = COARSE  # a leaky pump's map, interpolated onto GRID: ~1.7 s
 STALE_ALPHA = (
     0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
@@ -350,7 +353,7 @@ class MapTab(Tab):
         self.colors = palette(self.dark)
         self.grid = (  # (low, high, points) of the ratios and of the heads
             (*self.inputs.param["R_dagger"].bounds, GRID),
-            (*self.inputs.param["h"].bounds, GRID),
+            (*MAP_HEADS, GRID),
         )
         self.ratios, self.heads = (np.linspace(*axis) for axis in self.grid)
         self.sources: dict[str, ColumnDataSource] = {

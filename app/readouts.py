@@ -15,6 +15,7 @@ import panel as pn
 
 import windpump
 from windpump import Status
+from windpump.readers.quantities import format_quantity
 from windpump.units import LITRES_PER_M3
 
 from .styles import COMPACT, ZOOM_VARIABLE, keep_terms, keep_units, px
@@ -44,7 +45,9 @@ PAIR = ["pair"]
 # 16 px, the label at 14) put two or three in a row, and the three fit its first screen.
 READOUTS = (
     "mean_flow", "volume", "tau", "margin", "peak_to_mean", "ripple", "efficiency", "energy",
+    "tsr", "strokes", "cp", "max_head",
 )  # fmt: skip
+ROTOR_READOUTS = ("tsr", "strokes", "cp", "max_head")  # a wheel's: shown for a rotor design
 TAU_LABEL, MARGIN_LABEL = "Spin-up time τ, Eq. (25)", "Stall margin, Eq. (22)"
 STATUS_STYLE = {
     Status.RUNNING: "success",
@@ -90,8 +93,9 @@ class Readout(TextOnlyUpdates, pn.pane.HTML):
 class Readouts(pn.viewable.Viewer):
     """The row of readouts (``readouts[name]``) and the status line under it."""
 
-    def __init__(self, **params):
+    def __init__(self, system: str = "si", **params):
         super().__init__(**params)
+        self.system = system  # the units the readouts are shown in: "si" or "us"
         self.readouts = {name: Readout(name) for name in READOUTS}
         self.row = pn.FlexBox(*self.readouts.values(), sizing_mode="stretch_width")
         self.status = StatusAlert(
@@ -106,8 +110,8 @@ class Readouts(pn.viewable.Viewer):
         figures = seen.intermittency
         started = seen.status is not Status.NEVER_STARTED
         values = {
-            "mean_flow": ("Mean flow", f"{LITRES_PER_M3 * seen.mean_flow:.4f} L/s"),
-            "volume": ("Volume pumped", f"{LITRES_PER_M3 * seen.pumped_volume:.1f} L"),
+            "mean_flow": ("Mean flow", flow_text(seen.mean_flow, self.system)),
+            "volume": ("Volume pumped", volume_text(seen.pumped_volume, self.system)),
             "tau": (TAU_LABEL, f"{seen.tau:.1f} s" if seen.tau and started else "–"),
             "margin": (MARGIN_LABEL, margin_text(seen.margin)),
             "peak_to_mean": ("Peak / mean flow", f"{figures.peak_to_mean:.2f}" if figures else "–"),
@@ -121,10 +125,17 @@ class Readouts(pn.viewable.Viewer):
         # The ideal machine delivers what it sweeps: its efficiencies say little, and a projector's
         # first screen has no row to spare. (Others were hidden while the solver compiled:
         # show_averaged; each set once, as a change of it is sent to the page.)
-        tips = {"efficiency": EFFICIENCY_TIP}
-        for name, (label, value) in values.items():
-            self.readouts[name].show(label, value, tips.get(name, ""))
-            self.readouts[name].visible = name != "efficiency" or not seen.design.is_ideal
+        rotor = seen.design.rotor is not None
+        if rotor:
+            values.update(rotor_readouts(seen, self.system))
+        tips = {"efficiency": EFFICIENCY_TIP, "max_head": MAX_HEAD_TIP}
+        for name, readout in self.readouts.items():
+            if name in values:
+                label, value = values[name]
+                readout.show(label, value, tips.get(name, ""))
+            readout.visible = (name != "efficiency" or not seen.design.is_ideal) and (
+                rotor or name not in ROTOR_READOUTS
+            )
         self.status.object, self.status.alert_type = (
             keep_units(f"{status_text(seen)} {start_text(seen)}"),
             STATUS_STYLE[seen.status],
@@ -262,6 +273,62 @@ def energy_readout(seen: windpump.Exploration) -> tuple[str, str]:
     # "Work" on a phone: the label keeps one line there (page.NARROW_CSS: the first screen)
     work = '<span class="not-phone">Windmill\'s work</span><span class="phone">Work</span>'
     return f"{work}{back} = {losses}{gained}lifted water", words
+
+
+def running_tsr(design: windpump.Design, omega: float) -> float:
+    """A rotor design's tip-speed ratio λ = ω r / V_s [-] at its windmill's speed ``omega``
+    [rad/s] in its wind V_ref (V_s: the wind the wheel turns in, capped where it furls); NaN
+    where it does not run (``omega`` None or NaN)."""
+    rotor = design.rotor
+    if rotor is None or omega is None:
+        return math.nan
+    return omega * rotor.radius / float(rotor.wind_at_rotor(design.V_ref))
+
+
+MAX_HEAD_TIP = (
+    "The largest head at which it keeps running in this steady wind (its stall margin falls to "
+    "1), and the largest at which it starts on its own from rest at any crank angle "
+    "(windpump.max_head): what a catalogue's maximum lift answers."
+)
+
+
+def flow_text(flow: float, system: str) -> str:
+    """A mean flow [m^3/s] as the readout shows it: L/s to four decimals, or in US units gal/h
+    to three significant figures (``windpump.readers.quantities``)."""
+    if system == "us":
+        return format_quantity(flow, "flow", "us", digits=3)
+    return f"{LITRES_PER_M3 * flow:.4f} L/s"
+
+
+def volume_text(volume: float, system: str) -> str:
+    """A volume [m^3] as the readout shows it: litres to a decimal, or US gallons."""
+    if system == "us":
+        return format_quantity(volume, "volume", "us", digits=4)
+    return f"{LITRES_PER_M3 * volume:.1f} L"
+
+
+def head_text(head: float, system: str) -> str:
+    """A head [m] as the readout shows it (∞: none stops it), in m or, in US units, ft."""
+    return "∞" if math.isinf(head) else format_quantity(head, "head", system, digits=4)
+
+
+def rotor_readouts(seen: windpump.Exploration, system: str = "si") -> dict[str, tuple[str, str]]:
+    """A rotor design's readouts where it runs (the averaged running speed α₊: the windmill at
+    ω = R† α₊): its tip-speed ratio λ, the pump's strokes a minute, the wheel's power coefficient
+    C_P there; and its maximum heads running and starting in its wind (``windpump.max_head``)."""
+    design, op = seen.design, seen.operating_point
+    tsr = running_tsr(design, op.omega if op is not None else None)
+    running = op is not None and math.isfinite(tsr)
+    strokes = f"{op.crank_speed * 60.0 / (2.0 * math.pi):.1f} /min" if running else "–"
+    cp = f"{float(design.rotor.cp(tsr)):.3f}" if running else "–"
+    heads = [windpump.max_head(design), windpump.max_head(design, start=True)]
+    shown = ", ".join(head_text(h, system) for h in heads)
+    return {
+        "tsr": ("Tip-speed ratio λ", f"{tsr:.2f}" if running else "–"),
+        "strokes": ("Strokes a minute", strokes),
+        "cp": ("C_P where it runs", cp),
+        "max_head": ("Max head: running, starting", shown),
+    }
 
 
 def start_text(seen: windpump.Exploration) -> str:

@@ -14,7 +14,7 @@ import param
 
 import windpump
 
-from .compiling import COMPILE, REAL_MACHINE
+from .compiling import COMPILE, REAL_MACHINE, WHEEL
 from .escape import as_text
 from .inputs import FORMATS, SEED, PumpInputs, link_text
 from .server import api as serving
@@ -225,6 +225,8 @@ def shared_explore(design: windpump.Design, t_end: float, *start: float) -> wind
         serving.mark("run: worked out")
         if not design.is_ideal:  # a first start compiles it in a worker: not a second time here
             COMPILE.wait(REAL_MACHINE)
+        if design.rotor is not None:  # a wheel's runs: likewise
+            COMPILE.wait(WHEEL)
         seen = windpump.explore(design, t_end, *start)
         serving.mark("run: done")
         with SHARING:

@@ -10,7 +10,18 @@ import panel as pn
 import windpump
 
 from .buttons import ActionButton
-from .inputs import FORMATS, PRESETS, REAL_MACHINE_INPUTS, SWITCHES, PumpInputs
+from .inputs import (
+    CYLINDER_LABELS,
+    FORMATS,
+    PRESETS,
+    REAL_MACHINE_INPUTS,
+    SET_BY,
+    STROKES,
+    SWITCHES,
+    WINDMILL_INPUTS,
+    WINDMILLS,
+    PumpInputs,
+)
 from .keyboard import FOCUS_CSS
 from .lab import LabData
 from .styles import TEXT, ZOOM_JS, px
@@ -106,11 +117,14 @@ def closed_card(title: str, build: Callable[[], list]) -> pn.Card:
 
 class Sliders(dict):
     """The sliders of the pump's inputs by name (FORMATS), each built when first asked for: those
-    of a closed card or of a tab not yet opened cost the page nothing."""
+    of a closed card or of a tab not yet opened cost the page nothing. A slider the windmill
+    chosen sets itself (``SET_BY``: a wheel's Tₘ, ωₘ and T₀) is hidden while it is chosen."""
 
     def __init__(self, inputs: PumpInputs):
         super().__init__()
         self.inputs = inputs
+        inputs.param.watch(self._windmill_chosen, "windmill")
+        inputs.param.watch(self._head_end, ["windmill", "h"])
 
     def __missing__(self, name: str) -> PromptSlider:
         fmt, _place = FORMATS[name]
@@ -119,8 +133,111 @@ class Sliders(dict):
             format=fmt,
             stylesheets=[*TEXT, FOCUS_CSS],
             sizing_mode="stretch_width",
+            visible=shown_for(name, self.inputs.windmill),
         )
+        if name == "h":
+            built.end = head_end(self.inputs)
         return built
+
+    def _windmill_chosen(self, event) -> None:
+        for name, built in self.items():
+            built.visible = shown_for(name, event.new)
+
+    def _head_end(self, *_events) -> None:
+        if "h" in self:
+            self["h"].end = head_end(self.inputs)
+
+
+# [m] the head slider's end for the paper's pump (it stalls at 21 m): its full range, to a
+# catalogue mill's lifts (920 ft), for a wheel or a head beyond it (a link's, a preset's)
+PAPERS_HEADS = 30.0
+
+
+def head_end(inputs: PumpInputs) -> float:
+    """Where the head's slider ends: at PAPERS_HEADS for the paper's curve (a finer slider where
+    its pump works), at the input's bound for a wheel or for a head beyond it."""
+    if inputs.windmill == "eq11" and inputs.h <= PAPERS_HEADS:
+        return PAPERS_HEADS
+    return inputs.param["h"].bounds[1]
+
+
+def shown_for(name: str, windmill: str) -> bool:
+    """Whether input ``name``'s slider shows when ``windmill`` is chosen: not if the windmill
+    sets it (``SET_BY``), nor a windmill's own input (the diameter) when another is chosen."""
+    own = [n for names in WINDMILL_INPUTS.values() for n in names]
+    if name in own:
+        return name in WINDMILL_INPUTS[windmill]
+    return name not in SET_BY[windmill]
+
+
+# What the page says under the windmill's choice, about the sliders it sets (hidden meanwhile).
+WINDMILL_NOTES = {
+    "eq11": "",
+    "multiblade": (
+        "The wheel's torque curve (the American multiblade's C_Q(λ), ½ ρ π r³ V² C_Q) sets Tₘ, ωₘ "
+        "and T₀: their sliders are hidden."
+    ),
+    "aermotor": (
+        "The catalogue's mill sets its wheel (a multiblade), its back gear R₁/R₀, its stroke and "
+        "bore, its inertias, Tₘ, ωₘ and T₀: their sliders are hidden. The head h is its lift."
+    ),
+}
+
+
+class WindmillChoice(pn.viewable.Viewer):
+    """The windmill's choice (``inputs.windmill``) and its own inputs: the multiblade wheel's
+    diameter, the Aermotor's wheel, cylinder and stroke; each shown while its windmill is chosen,
+    with a line saying which sliders the windmill sets."""
+
+    def __init__(self, inputs: PumpInputs, sliders: Sliders):
+        super().__init__()
+        look = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
+        self.select = pn.widgets.Select(
+            label="Windmill", options={label: key for key, label in WINDMILLS.items()}, **look
+        )
+        self.wheel = pn.widgets.Select(
+            label="Wheel [ft]",
+            options={f"{ft}": ft for ft in inputs.param.wheel_ft.objects},
+            **look,
+        )
+        self.cylinder = pn.widgets.Select(
+            label="Bore [in]",
+            options={
+                CYLINDER_LABELS[inches]: inches for inches in inputs.param.cylinder_in.objects
+            },
+            **look,
+        )
+        self.stroke = pn.widgets.Select(
+            label="Stroke", options={label: key for key, label in STROKES.items()}, **look
+        )
+
+        for widget, name in (
+            (self.select, "windmill"),
+            (self.wheel, "wheel_ft"),
+            (self.cylinder, "cylinder_in"),
+            (self.stroke, "stroke"),
+        ):
+            widget.value = getattr(inputs, name)
+            widget.link(inputs, value=name, bidirectional=True)
+        self.diameter = sliders["diameter"]
+        # a third of the sidebar's width each
+        self.aermotor = pn.GridBox(
+            self.wheel, self.cylinder, self.stroke, ncols=3, sizing_mode="stretch_width"
+        )
+        self.note = pn.pane.HTML("", stylesheets=CARD_NOTE_CSS, sizing_mode="stretch_width")
+        self.show(inputs.windmill)
+        inputs.param.watch(lambda event: self.show(event.new), "windmill")
+
+    def show(self, windmill: str) -> None:
+        """The inputs and the note of ``windmill``."""
+        self.aermotor.visible = windmill == "aermotor"
+        self.note.object = WINDMILL_NOTES[windmill]
+        self.note.visible = bool(WINDMILL_NOTES[windmill])
+
+    def __panel__(self) -> pn.Column:
+        return pn.Column(
+            self.select, self.diameter, self.aermotor, self.note, sizing_mode="stretch_width"
+        )
 
 
 def ideal_machine(inputs: PumpInputs) -> bool:
@@ -136,6 +253,7 @@ class Sidebar(pn.viewable.Viewer):
     def __init__(self, inputs: PumpInputs, dark: bool, run_csv: Callable, show_points: Callable):
         super().__init__()
         self.sliders = Sliders(inputs)
+        self.windmill = WindmillChoice(inputs, self.sliders)
         self.switches = {
             name: pn.widgets.Checkbox.from_param(
                 inputs.param[name], stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
@@ -169,6 +287,9 @@ class Sidebar(pn.viewable.Viewer):
         self.preset_note = pn.pane.Markdown("", visible=False, stylesheets=PRESET_NOTE_CSS)
         self.pin_button = ActionButton(label="Pin this run", **button)
         self.clear_button = ActionButton(label="Clear pinned", disabled=True, **button)
+        self.units_switch = pn.widgets.RadioButtonGroup(
+            options={"SI units": "si", "US units (ft, gal)": "us"}, **button
+        )
         self.present_toggle = pn.widgets.Toggle(label="Presentation mode", **button)
         self.present_toggle.jscallback(value=ZOOM_JS)
         self.copy_link = pn.widgets.Button(label="Copy link to this state", **button)
@@ -214,12 +335,15 @@ class Sidebar(pn.viewable.Viewer):
             self.preset_note,
             *main,
             *self.switches.values(),
+            # under the pump's sliders: a phone's controls pane shows the presets and a slider
+            self.windmill,
             self.more_card,
             self.real_card,
             pn.Row(self.pin_button, self.clear_button, sizing_mode="stretch_width"),
             self.reset_button,
             self.copy_link,
             pn.Row(self.present_toggle, self.dark_toggle, sizing_mode="stretch_width"),
+            self.units_switch,
             pn.pane.Markdown(
                 "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
             ),

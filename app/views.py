@@ -35,7 +35,7 @@ from .figures import (
     new_figure,
     palette,
 )
-from .readouts import shown_totals
+from .readouts import running_tsr, shown_totals
 from .styles import CAPTION_CSS
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
@@ -452,10 +452,22 @@ class StallView(View):
 
 
 class OperatingView(View):
+    """The windmill against the pump: for the paper's curve (Eq. 11) its power T(ω) ω and the
+    pump's load line with the operating points; for a rotor (a wheel of a C_Q table) its torque
+    and power coefficients C_Q(λ) and C_P(λ) against the tip-speed ratio, with where it runs."""
+
     caption = (
         "Eq. (5): the windmill's power T(ω) ω (Eq. 11) against the pump's load line; they meet at "
-        "the operating point (filled: stable) and an unstable one (open)."
+        "the operating point (filled: stable) and an unstable one (open). A wheel: its torque "
+        "and power coefficients C_Q(λ) and C_P(λ) = λ C_Q against the tip-speed ratio "
+        "λ = ω r / V, and where it runs (ω = R† α₊)."
     )
+    TITLES = {
+        False: ("Operating point, Eq. (5)", "windmill speed ω [rad/s]", "power [W]"),
+        True: ("The wheel's coefficients", "tip-speed ratio λ = ω r / V", "C_Q, C_P [–]"),
+    }
+    ROTOR_ITEMS = ("torque coefficient C_Q", "power coefficient C_P", "where it runs")
+    CURVE_ITEMS = ("windmill, Eq. (11)", "pump load, Eq. (5)", "operating point", "unstable")
 
     def __init__(self, dark: bool = False):
         super().__init__(dark)
@@ -466,14 +478,14 @@ class OperatingView(View):
                 for name in ("curve", "load_line", "stable", "unstable", "data")
             }
         )
-        self.figure = fig = new_figure(
-            "Operating point, Eq. (5)",
-            "windmill speed ω [rad/s]",
-            "power [W]",
-            tools="pan,box_zoom,reset,save",
-        )
+        s.update({name: empty("tsr", "cq", "cp") for name in ("coefficients", "running")})
+        self.rotor = False  # what is drawn: a rotor's coefficients, or the paper's curve
+        self.figure = fig = new_figure(*self.TITLES[False], tools="pan,box_zoom,reset,save")
         point = dict(x="omega", y="power", size=14)
         curve = line(fig, "omega", "power", s["curve"], c["windmill"], 3)
+        cq = line(fig, "tsr", "cq", s["coefficients"], c["windmill"], 3)
+        cp = line(fig, "tsr", "cp", s["coefficients"], c["flow"], 3, "dashed")
+        running = dict(source=s["running"], size=14, color=c["ink"])
         self.items = legend(
             fig,
             {
@@ -495,6 +507,12 @@ class OperatingView(View):
                     marker="triangle",
                     color=c["data"],
                 ),
+                "torque coefficient C_Q": cq,
+                "power coefficient C_P": cp,
+                "where it runs": [
+                    fig.scatter("tsr", "cq", **running),
+                    fig.scatter("tsr", "cp", **running),
+                ],
             },
         )
         fig.add_tools(
@@ -502,10 +520,31 @@ class OperatingView(View):
                 tooltips=[("ω", "@omega{0.0} rad/s"), ("power", "@power{0.00} W")],
                 renderers=[curve],
                 mode="vline",
-            )
+            ),
+            HoverTool(
+                tooltips=[("λ", "@tsr{0.00}"), ("C_Q", "@cq{0.000}"), ("C_P", "@cp{0.000}")],
+                renderers=[cq],
+                mode="vline",
+            ),
         )
+        self._show_items(False)
 
     def update(self, seen, bins):
+        d = seen.design
+        rotor = d.rotor is not None
+        if rotor:
+            self._draw_rotor(seen)
+        else:
+            self._draw_curve(seen)
+        if rotor != self.rotor:
+            self.rotor = rotor
+            title, x_label, y_label = self.TITLES[rotor]
+            self.figure.title.text = title
+            self.figure.xaxis.axis_label, self.figure.yaxis.axis_label = x_label, y_label
+        self._show_items(rotor, seen.operating_point is not None)
+
+    def _draw_curve(self, seen) -> None:
+        """Eq. (11)'s power curve, the load line and the operating points; no coefficients."""
         d, s, op = seen.design, self.sources, seen.operating_point
         omega = np.linspace(0.0, 1.05 * d.runaway_speed, 211)  # to where T is 0, and a little
         refill(s["curve"], {"omega": omega, "power": windpump.windmill_power(d, omega)})
@@ -518,11 +557,37 @@ class OperatingView(View):
                 "power": [op.power_unstable] if op else [],
             },
         )
-        for label in ("operating point", "unstable"):
-            self.items[label].visible = op is not None
-        self.items["lab data"].visible = len(s["data"].data["omega"]) > 0
+        for name in ("coefficients", "running"):
+            refill(s[name], {"tsr": [], "cq": [], "cp": []})
+
+    def _draw_rotor(self, seen) -> None:
+        """The rotor's C_Q(λ) and C_P(λ) to a little past its runaway, and where it runs."""
+        d, s, op = seen.design, self.sources, seen.operating_point
+        rotor = d.rotor
+        tsr = np.linspace(0.0, 1.05 * rotor.runaway_tsr, 211)
+        refill(s["coefficients"], {"tsr": tsr, "cq": rotor.cq(tsr), "cp": rotor.cp(tsr)})
+        here = running_tsr(d, op.omega if op is not None else None)
+        at = [here] if math.isfinite(here) else []
+        refill(
+            s["running"],
+            {"tsr": at, "cq": list(rotor.cq(np.array(at))), "cp": list(rotor.cp(np.array(at)))},
+        )
+        for name in ("curve", "load_line", "stable", "unstable"):
+            refill(s[name], {"omega": [], "power": []})
+
+    def _show_items(self, rotor: bool, running: bool = False) -> None:
+        """The legend's items of what is drawn (and the lab points only over ω)."""
+        for label in self.CURVE_ITEMS:
+            self.items[label].visible = not rotor and (
+                running or label.startswith(("wind", "pump"))
+            )
+        for label in self.ROTOR_ITEMS:
+            self.items[label].visible = rotor and (running or label != "where it runs")
+        lab = self.items["lab data"]
+        lab.renderers[0].visible = not rotor
+        lab.visible = not rotor and len(self.sources["data"].data["omega"]) > 0
 
     def show_lab_data(self, omega, power) -> None:
         """Measured speeds [rad/s] and shaft powers [W] (``windpump.TorqueTable.power``)."""
         self.sources["data"].data = {"omega": np.asarray(omega), "power": np.asarray(power)}
-        self.items["lab data"].visible = len(omega) > 0
+        self.items["lab data"].visible = len(omega) > 0 and not self.rotor

@@ -20,6 +20,7 @@ from bokeh.models import ColumnDataSource
 import windpump
 from windpump.model.wind import gusty, read_csv
 from windpump.readers.labdata import LabDataError, check_file_size
+from windpump.readers.quantities import display_unit
 from windpump.sites.site import kick_in_wind
 from windpump.units import LITRES_PER_M3, SECONDS_PER_DAY
 
@@ -134,16 +135,38 @@ def is_a_day(duration: float) -> bool:
     return a_day(duration)
 
 
-def record_water_text(litres: float, per_day: float, duration: float) -> tuple[str, str]:
+def record_water_text(
+    litres: float, per_day: float, duration: float, system: str = "si"
+) -> tuple[str, str]:
     """The day_litres readout's (label, value): a day's litres for a record of a day; for a
     shorter or longer record its own litres, over its length, and the rate a day that makes (so
-    three hours' water is not read as a day's)."""
+    three hours' water is not read as a day's). In US units (``system``), gallons: ``litres``
+    and ``per_day`` are then gallons and gallons a day."""
+    water = "gal" if system == "us" else "L"
     if is_a_day(duration):
-        return WIND_READOUTS["day_litres"], f"{litres:,.0f}"
+        return in_units(WIND_READOUTS["day_litres"], system), f"{litres:,.0f}"
     return (
         f"This record ({duration_text(duration)}), in full",
-        f"{litres:,.0f} L ({per_day:,.0f} L/day at this rate)",
+        f"{litres:,.0f} {water} ({per_day:,.0f} {water}/day at this rate)",
     )
+
+
+def in_units(label: str, system: str) -> str:
+    """A readout's label in the units of ``system``: the SI labels' L/day and m/s, or gal/day
+    and mph."""
+    if system != "us":
+        return label
+    return label.replace("[L/day]", "[gal/day]").replace("[m/s]", "[mph]")
+
+
+def water_factor(system: str) -> float:
+    """[shown unit / m^3] litres, or in US units gallons (``windpump.readers.quantities``)."""
+    return display_unit("volume", system)[0] if system == "us" else LITRES_PER_M3
+
+
+def wind_factor(system: str) -> float:
+    """[shown unit / (m/s)] 1, or in US units mph."""
+    return display_unit("wind speed", system)[0]
 
 
 def read_record(data: bytes | Encoded) -> windpump.model.wind.WindRecord | str:
@@ -215,6 +238,8 @@ class WindTab(Tab):
         self.sliders = sliders
         self.bins = bins
         self.reveal = reveal  # scrolls an upload's outcome into view
+        self.system = "si"  # the readouts' units (the page's units switch)
+        self._said: dict[str, tuple] = {}  # what the readouts say, in SI, to say again in US units
 
     def build(self) -> None:
         self.colors = palette(self.dark)
@@ -310,13 +335,32 @@ class WindTab(Tab):
         self.stop_span.location = steady.V_stop
         self.start_span.location = steady.V_start if steady.V_start is not None else -1.0
         self.start_span.visible = steady.V_start is not None
-        start = f"{steady.V_start:.1f}" if steady.V_start is not None else "never (T₀ = 0)"
+        self._said["curve"] = (steady.V_stop, steady.V_start, steady.low, steady.high)
+        self._say_curve()
+
+    def _say_curve(self) -> None:
+        """The steady winds' readouts (the stopping and starting winds [m/s], the site's water a
+        day [L/day]) in the page's units."""
+        V_stop, V_start, low, high = self._said["curve"]
+        system, wind = self.system, wind_factor(self.system)
+        water = water_factor(self.system) / LITRES_PER_M3
+        start = f"{wind * V_start:.1f}" if V_start is not None else "never (T₀ = 0)"
         self.readouts["thresholds"].show(
-            WIND_READOUTS["thresholds"], f"{steady.V_stop:.1f} · {start}"
+            in_units(WIND_READOUTS["thresholds"], system), f"{wind * V_stop:.1f} · {start}"
         )
         self.readouts["site_bounds"].show(
-            WIND_READOUTS["site_bounds"], bounds_text(steady.low, steady.high), BOUNDS_TIP
+            in_units(WIND_READOUTS["site_bounds"], system),
+            bounds_text(water * low, water * high),
+            BOUNDS_TIP,
         )
+
+    def show_units(self, system: str) -> None:
+        """The readouts in ``system``'s units ("si" or "us"), now and from now on."""
+        self.system = system
+        if self.built and "curve" in self._said:
+            self._say_curve()
+        if self.built and "day" in self._said:
+            self._say_day()
 
     def wind(self, inputs) -> windpump.model.wind.WindRecord | tuple:
         """The day's wind: the measured record if one was loaded, else the gusty day's key
@@ -402,16 +446,8 @@ class WindTab(Tab):
                 {"t": events.t / unit, "y": LITRES_PER_M3 * events.volume},
             )
             self.marker_items[kind].visible = len(events) > 0
-        self.readouts["day_litres"].show(
-            *record_water_text(LITRES_PER_M3 * day.volume, LITRES_PER_M3 * day.per_day, duration)
-        )
-        self.readouts["record_bounds"].show(
-            WIND_READOUTS["record_bounds"]
-            if is_a_day(duration)
-            else f"Averaged over this record's wind [L/day], {BOUNDS}",
-            bounds_text(LITRES_PER_M3 * low, LITRES_PER_M3 * high),
-            BOUNDS_TIP,
-        )
+        self._said["day"] = (day.volume, day.per_day, low, high, duration)
+        self._say_day()
         if self.measured is not None:
             source += f" ({duration_text(duration)})"
         start = "starts on its own" if day.kick == 0.0 else f"is kicked at {day.kick:g} rad/s"
@@ -419,6 +455,22 @@ class WindTab(Tab):
             f"Integrated in full over {source}: the pump {start}, "
             f"{stops_and_starts(len(day.stops), len(day.starts))}; "
             f"mean wind {day.mean_wind:.2f} m/s."
+        )
+
+    def _say_day(self) -> None:
+        """The day's readouts (its water in full, the averaged bounds) in the page's units."""
+        volume, per_day, low, high, duration = self._said["day"]
+        water = water_factor(self.system)
+        self.readouts["day_litres"].show(
+            *record_water_text(water * volume, water * per_day, duration, self.system)
+        )
+        label = (
+            WIND_READOUTS["record_bounds"]
+            if is_a_day(duration)
+            else f"Averaged over this record's wind [L/day], {BOUNDS}"
+        )
+        self.readouts["record_bounds"].show(
+            in_units(label, self.system), bounds_text(water * low, water * high), BOUNDS_TIP
         )
 
     # -- a measured record -------------------------------------------------------------------

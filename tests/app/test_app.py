@@ -18,7 +18,7 @@ import windpump
 from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
-from windpump_app.inputs import FROM_THE_LINK, PRESETS, PumpInputs
+from windpump_app.inputs import FORMATS, FROM_THE_LINK, PRESETS, PumpInputs
 from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
@@ -370,8 +370,8 @@ def _query_pairs(query: str):
 @pytest.mark.parametrize(
     "key, raw, words",
     [
-        ("h", b"banana", "Head h [m] (h) = “banana” ignored: it must be a number from 0 to 30."),
-        ("h", b"1e9", "from 0 to 30"),
+        ("h", b"banana", "Head h [m] (h) = “banana” ignored: it must be a number from 0 to 300."),
+        ("h", b"1e9", "from 0 to 300"),
         ("L_over_R", b"nan", "L/R, rod / crank (L_over_R) = “nan” ignored"),
         ("T_m", b"-1", "from 0.05 to 5"),
         ("bogus", b"1", "“bogus” is not a parameter of this page"),
@@ -859,7 +859,7 @@ def test_no_figure_asks_for_webgl(app):
 
 # -- the link as it is written --------------------------------------------------------------------
 
-SLIDERS = [name for name in PumpInputs().names() if name != "double_acting"]
+SLIDERS = [name for name in PumpInputs().names() if name in FORMATS]  # not switches, choices
 
 
 def _grid(name: str, index: int) -> float:

@@ -597,7 +597,7 @@ def test_every_select_shows_each_option_whole(browser, url, width, height):
         page.get_by_text("Site", exact=True).first.click()  # shown again: its selects measured
         page.get_by_text("Restart after a calm").wait_for(timeout=60_000)
         shown = page.evaluate(CUT_OPTIONS)
-        assert shown["boxes"] == 4, shown  # the presets, playback speed, site and restart
+        assert shown["boxes"] == 5, shown  # the presets, windmill, playback speed, site, restart
         assert shown["cut"] == [], f"options cut at {width}×{height}: {shown['cut']}"
         assert page.problems == []
     finally:

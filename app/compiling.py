@@ -104,17 +104,21 @@ def real_in_wind() -> None:
 def wheel() -> None:
     """What a page choosing a wheel runs (the multiblade wheel, an Aermotor, their preset): the
     driver compiled for a rotor's C_Q table (a specialisation of its own), ideal and in a wind
-    record (the Wind tab's gusty day)."""
+    record (the Wind tab's gusty day), and with the real machine's losses (the sliders under
+    "Real machine"), alone and in wind."""
     import windpump
 
     from .inputs import PumpInputs
     from .wind_tab import warm_up
 
-    inputs = PumpInputs(windmill="multiblade")
-    seen = windpump.explore(inputs.design(), inputs.t_end, inputs.theta0, inputs.theta_dot0)
-    windpump.power_budget(seen.run).cycle_means()
-    windpump.playback_frames(seen.run)
-    warm_up(inputs)
+    for real in (False, True):
+        inputs = PumpInputs(windmill="multiblade")
+        if real:
+            inputs.param.update(eta_t=0.9)
+        seen = windpump.explore(inputs.design(), inputs.t_end, inputs.theta0, inputs.theta_dot0)
+        windpump.power_budget(seen.run).cycle_means()
+        windpump.playback_frames(seen.run)
+        warm_up(inputs)
 
 
 def site_tab() -> None:

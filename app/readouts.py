@@ -280,9 +280,9 @@ def running_tsr(design: windpump.Design, omega: float) -> float:
     [rad/s] in its wind V_ref (V_s: the wind the wheel turns in, capped where it furls); NaN
     where it does not run (``omega`` None or NaN)."""
     rotor = design.rotor
-    if rotor is None or omega is None:
+    if rotor is None or omega is None or math.isnan(omega):
         return math.nan
-    return omega * rotor.radius / float(rotor.wind_at_rotor(design.V_ref))
+    return float(rotor.tip_speed_ratio(omega, design.V_ref))
 
 
 MAX_HEAD_TIP = (

@@ -235,6 +235,21 @@ class Rotor:
         V = finite_array("V", V, "m/s", minimum=0.0, maximum=LARGEST)
         return V if self.V_furl is None else np.minimum(V, self.V_furl)
 
+    def tip_speed_ratio(self, omega, V):
+        """The tip-speed ratio lambda = omega r / V_s [-] at the wheel's speeds ``omega`` [rad/s]
+        in steady winds ``V`` [m/s] > 0 (V_s = min(V, V_furl): the wind it turns in).
+
+        Examples
+        --------
+        >>> Rotor.multiblade(2.0, V_furl=8.0).tip_speed_ratio(10.0, [5.0, 12.0]).tolist()
+        [2.0, 1.25]
+        """
+        omega = finite_array("omega", omega, "rad/s", minimum=0.0, maximum=LARGEST)
+        V_s = self.wind_at_rotor(V)
+        if np.any(V_s <= 0.0):
+            raise ParameterError("V", float(np.min(V_s)), "wind speeds > 0", "m/s")
+        return omega * self.radius / V_s
+
     def torque(self, omega, V):
         """The wheel's torque T [N m] at speeds ``omega`` [rad/s] in steady winds ``V`` [m/s]:
         ``1/2 rho_air pi r^3 V_s^2 C_Q(omega r / V_s)``, 0 in calm air.

@@ -189,15 +189,20 @@ def rotors(seed: windpump.Design):
             51,
         )
         ref = reference_run(*args, windmill=rotor_law(design.rotor, design.V_ref))
-        errors = [
-            abs(run.theta[-1] - ref.theta) / ref.theta,
-            abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
-            abs(run.volume[-1] - ref.volume) / ref.volume,
-        ]
+        errors = final_errors(run, ref)
         print(
             f"{name:32s}{rotor_wall / wall:8.2f}{rotor_cpu / cpu:8.2f}{rotor_wall * 1e3:8.2f}"
             + "".join(f"{e:10.1e}" for e in errors)
         )
+
+
+def final_errors(run, ref) -> list[float]:
+    """A run's relative errors in theta, theta_dot and volume at its end against a reference's."""
+    return [
+        abs(run.theta[-1] - ref.theta) / ref.theta,
+        abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
+        abs(run.volume[-1] - ref.volume) / ref.volume,
+    ]
 
 
 def configurations(seed: windpump.Design, seed_time: float):
@@ -217,11 +222,7 @@ def configurations(seed: windpump.Design, seed_time: float):
         windpump.simulate(*args)
         seconds, run = median_time(lambda args=args: windpump.simulate(*args), 51)
         ref = general_reference_run(*args)
-        errors = [
-            abs(run.theta[-1] - ref.theta) / ref.theta,
-            abs(run.theta_dot[-1] - ref.theta_dot) / ref.theta_dot,
-            abs(run.volume[-1] - ref.volume) / ref.volume,
-        ]
+        errors = final_errors(run, ref)
         print(
             f"{name:32s}{seconds * 1e3:11.2f} ms{seconds / seed_time:8.2f}{run.steps:8d}"
             + "".join(f"{e:10.1e}" for e in errors)

@@ -238,33 +238,32 @@ class Points:
 
     def net_torque(self, alpha, which=slice(None)):
         """F(alpha) = eta_t R+ T(R+ alpha) - L-bar(alpha) [N m] of the points ``which``."""
+        drive, load = self._drive_and_load(alpha, which, tight=self.tight)
+        return drive - load
+
+    def ratio(self, alpha, which=slice(None)):
+        """The stall criterion's ratio eta_t R+ T(R+ alpha) / L-bar(alpha) [-] (tight pumps)."""
+        drive, load = self._drive_and_load(alpha, which, tight=True)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(load > 0.0, drive / load, np.where(drive > 0.0, math.inf, 0.0))
+
+    def _drive_and_load(self, alpha, which, tight: bool):
+        """(eta_t R+ T(R+ alpha), L-bar(alpha)) [N m]: the load M + c alpha^2 when ``tight``,
+        else the quadrature of a leak hole's."""
         d = self.design
         R_dagger = self.R_dagger[which]
         if np.ndim(alpha) > np.ndim(R_dagger):
             R_dagger = R_dagger[:, None]
         s = self.s[which].reshape(np.shape(R_dagger))
-        h = self.h[which].reshape(np.shape(R_dagger))
         if d.rotor is None:
             torque = windmill_torque(R_dagger * alpha / d.omega_m, s, d.T_m, d.T_0)
         else:
             torque = torque_in_wind(d, R_dagger * alpha, s)
-        if self.tight:
+        if tight:
             load = self.M[which].reshape(np.shape(R_dagger)) + self.friction * np.square(alpha)
         else:
-            load, _ = mean_load(d, alpha, h)
-        return d.eta_t * R_dagger * torque - load
-
-    def ratio(self, alpha, which=slice(None)):
-        """The stall criterion's ratio eta_t R+ T(R+ alpha) / L-bar(alpha) [-] (tight pumps)."""
-        d = self.design
-        R_dagger = self.R_dagger[which]
-        if np.ndim(alpha) > np.ndim(R_dagger):
-            R_dagger = R_dagger[:, None]
-        s = self.s[which].reshape(np.shape(R_dagger))
-        load = self.M[which].reshape(np.shape(R_dagger)) + self.friction * np.square(alpha)
-        drive = d.eta_t * R_dagger * torque_in_wind(d, R_dagger * alpha, s)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(load > 0.0, drive / load, np.where(drive > 0.0, math.inf, 0.0))
+            load, _ = mean_load(d, alpha, self.h[which].reshape(np.shape(R_dagger)))
+        return d.eta_t * R_dagger * torque, load
 
 
 def numeric_running_speeds(design, *, gear_ratio=None, head=None, V=None):

@@ -157,19 +157,37 @@ SITE_BOXES = """() => {
   };
 }"""
 
-# Installed before the tab is chosen: the boxes in the first frame whose page holds the year's
-# readouts (the tab's first paint), before that frame is painted.
+# Every stylesheet linked in the page (in the document and in every shadow root) loaded. Panel
+# links its widgets' stylesheets in each new view's shadow root, and the browser loads a link
+# after the view is drawn: on a busy machine a frame or more later (a CI run at load 6-8 drew
+# the tab's controls 16 px lower first, the selects' labels 10 px shorter, their margins not
+# yet styled; the same with each stylesheet's response held 0.3 s). That is the stylesheets,
+# not the figures, so the first paint measured is the first styled one.
+STYLED = """() => {
+  const links = (root, out) => {
+    out.push(...root.querySelectorAll('link[rel=stylesheet]'));
+    for (const el of root.querySelectorAll('*')) if (el.shadowRoot) links(el.shadowRoot, out);
+    return out;
+  };
+  return links(document, []).every(link => link.sheet !== null);
+}"""
+
+# Installed before the tab is chosen: the boxes in the first styled frame whose page holds the
+# year's readouts (the tab's first paint), before that frame is painted.
 BOXES_AT_FIRST_PAINT = (
     """() => {
   window.__siteFirst = null;
   const boxes = """
     + SITE_BOXES
     + """;
+  const styled = """
+    + STYLED
+    + """;
   const readout = () => ("""
     + DEEP_TEXT
     + """)('[data-name=site_lolp]') || '';
   const look = () => {
-    if (/%/.test(readout())) window.__siteFirst = boxes();
+    if (/%/.test(readout()) && styled()) window.__siteFirst = boxes();
     else requestAnimationFrame(look);
   };
   requestAnimationFrame(look);

@@ -15,7 +15,10 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
+
+import windpump
 
 PARTS_FILE = "windpump-parts-compiled.json"  # compiling.PARTS_FILE
 
@@ -579,3 +582,17 @@ def test_a_page_choosing_a_wheel_waits_for_the_wheels_part_which_runs_a_rotor(co
     compiling.ready[WHEEL].set()
     wheel()  # the part: a wheel's design, as a page's inputs make it
     assert PumpInputs(windmill="multiblade").design().rotor == windpump.Rotor.multiblade(2.4)
+
+
+@pytest.mark.parametrize("samples", [1, 2, 48])
+def test_a_records_kernel_arrays_are_typed_as_every_records(samples):
+    """The wind record as the kernels take it has numba's type of any other record's: a record
+    of one sample handed the driver its own read-only times, and a run compiled the driver anew
+    for them (~20-30 s)."""
+    import numba
+
+    from windpump.run.machine import kernel_wind
+
+    record = windpump.WindRecord(np.arange(samples) * 600.0, 5.0 + np.arange(samples) % 3)
+    reference = kernel_wind(windpump.WindRecord([0.0, 600.0, 1200.0], [4.0, 6.0, 5.0]), 5.0)
+    assert numba.typeof(kernel_wind(record, 5.0)) == numba.typeof(reference)

@@ -189,13 +189,16 @@ def test_in_a_lull_a_leaky_pump_rests_and_starts_again_by_its_torque_at_rest():
 def test_a_design_maps_simulated_points_run_the_real_machine():
     from windpump._kernels.grid import steady_runs
     from windpump.run.dynamics import MAX_STEPS, PACE_STEPS, RTOL, kernel_real_base
+    from windpump.run.machine import kernel_rotor
 
     design = DESIGNS["every effect"]
     base = np.array([design.T_m, design.T_0, design.omega_m, design.L_over_R])
+    # Every argument given, as design_map gives them: an omitted ``rotor`` is a type of its own
+    # to numba, and its parallel kernel took 1.5-5 minutes to compile for this test alone.
     speed, _, _ = steady_runs(
         np.array([design.R_dagger]), np.array([1 / design.I_eff]),
         np.array([design.load_torque]), np.array([23.0]), np.array([300.0]), base, 1, False, 5,
-        RTOL, MAX_STEPS, PACE_STEPS, kernel_real_base(design),
+        RTOL, MAX_STEPS, PACE_STEPS, kernel_real_base(design), kernel_rotor(design),
     )  # fmt: skip
     run = windpump.simulate(design, 300.0, theta_dot0=23.0)
     marks, times = windpump.revolution_marks(run.t, run.theta)

@@ -143,7 +143,7 @@ def kernel_wind(record: WindRecord, V_ref: float):
     steps = np.diff(t)
     even = len(t) > 1 and bool(np.all(t == t[0] + steps[0] * np.arange(len(t))))
     return _kernels.Wind(
-        np.ascontiguousarray(t, dtype=float),
+        np.array(t, dtype=float),  # writeable: a read-only array is a driver of its own to numba
         np.ascontiguousarray(V / V_ref),
         float(steps[0]) if even else 0.0,
     )

@@ -166,6 +166,12 @@ PARTS = (
     Part(REAL_IN_WIND, real_in_wind),
 )
 
+# The README's compile step (every part before the server starts: no page waits for one) runs
+# them longest first, so that neither worker is left alone with a long one at the end. Each
+# part's seconds in its worker (a CI run, load 6-8): the wheel 96, the real machine 79, the
+# first page 62, the real machine in wind 33, the Wind tab 20, the Site tab 3; in PARTS' order
+# the step took 178 s on 2 cores (the wheel started last), longest first ~150 s.
+LONGEST_FIRST = (WHEEL, REAL_MACHINE, FIRST_PAGE, REAL_IN_WIND, WIND_TAB, SITE_TAB)
 
 # Compiled ahead in the first worker while the server compiles the first page's part
 AHEAD = "the first page's last kernels"
@@ -396,12 +402,12 @@ BEFORE_SERVING = 2  # worker processes: one a core of the 2-core machines it is 
 
 
 def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], None] = print) -> int:
-    """Compile every part not yet in numba's cache for this source, in ``processes`` worker
-    processes, saying each as it is ready; the number of parts that failed (a server then
-    compiles what a page needs itself). After it, ``panel serve app/`` loads the solver from the
+    """Compile every part not yet in numba's cache for this source, longest first
+    (``LONGEST_FIRST``), in ``processes`` worker processes, saying each as it is ready; the
+    number of parts that failed (a server then compiles what a page needs itself). After it, ``panel serve app/`` loads the solver from the
     cache (its first page's readout in ~3-4 s) and runs no worker: the README's serve command runs
     it once before serving (``python -m windpump_app.compiling``)."""
-    todo = [part.name for part in PARTS if part.name not in compiled_parts()]
+    todo = [name for name in LONGEST_FIRST if name not in compiled_parts()]
     if not todo:
         say("The solver is compiled (numba's cache): nothing to do.")
         return 0

@@ -435,8 +435,8 @@ class FailingFor(SubmittedInOrder):
 
 def test_the_readmes_compile_step_compiles_every_part_not_yet_compiled(monkeypatch, tmp_path):
     """``python -m windpump_app.compiling`` (the README's serve command, before the server):
-    every part not recorded for this source, in the order a page needs them, each said as it is
-    ready; a part that fails is said, counted, and left to the server; run again with every part
+    every part not recorded for this source, longest first (no page waits for one), each said
+    as it is ready; a part that fails is said, counted, and left to the server; run again with every part
     recorded, it does nothing."""
     from windpump_app import compiling as parts
 
@@ -447,8 +447,9 @@ def test_the_readmes_compile_step_compiles_every_part_not_yet_compiled(monkeypat
     monkeypatch.setattr(parts, "ProcessPoolExecutor", lambda *args, **kwargs: pool)
     said: list[str] = []
     assert parts.compile_every_part(say=said.append) == 1
-    todo = [part.name for part in parts.PARTS if part.name != parts.SITE_TAB]
-    assert pool.sent == todo  # the first page first, the recorded Site tab's part not again
+    assert sorted(parts.LONGEST_FIRST) == sorted(part.name for part in parts.PARTS)
+    todo = [name for name in parts.LONGEST_FIRST if name != parts.SITE_TAB]
+    assert pool.sent == todo  # the wheel first, the recorded Site tab's part not again
     total = len(parts.PARTS)
     assert f"{total - 1} of its {total} parts, 2 at a time" in said[0]
     assert any(f"Compiling {parts.WIND_TAB} failed (RuntimeError" in line for line in said)

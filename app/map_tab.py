@@ -1,8 +1,10 @@
 """The Design map tab: mean flow over sprocket ratio and head, the stall boundary, the best gear.
 
-The map is ``windpump.design_map`` (the averaged theory) over the sliders' own ranges of R₁/R₀
-and h, for every other input as set: it is recomputed only when one of those changes, while the
-marker of the current design follows the R₁/R₀ and h sliders. A tap on the map moves the design
+The map is ``windpump.design_map`` (the averaged theory) over the R₁/R₀ slider's range and the
+heads from 0 to 30 m (the paper's pump), or further for a deeper well (``map_heads``: a catalogue
+mill's 53 m on a 0-100 m map), for every other input as set: it is recomputed only when one of
+those changes (or the head crosses to another map's range), while the marker of the current
+design follows the R₁/R₀ and h sliders. A tap on the map moves the design
 there. Every number comes from ``windpump``.
 """
 
@@ -47,9 +49,12 @@ from .views import refill
 log = logging.getLogger("windpump.app")
 
 GRID = 160  # ratios x heads: under the figure's pixels, ~2 ms to compute
-# [m] the map's heads: the paper's pump's (it stalls at 21 m; sidebar.PAPERS_HEADS); the head
-# goes on to a catalogue mill's lifts (inputs.PumpInputs.h), whose star then stands above the map
+# [m] the map's heads: the paper's pump's (it stalls at 21 m; sidebar.PAPERS_HEADS), or for a
+# deeper design (a catalogue mill's lift, inputs.PumpInputs.h to 300 m) from 0 to the first of
+# HEAD_TOPS at least HEAD_ROOM times its head (``map_heads``)
 MAP_HEADS = (0.0, 30.0)
+HEAD_TOPS = (30.0, 60.0, 100.0, 150.0, 200.0, 300.0, 450.0)
+HEAD_ROOM = 1.5
 LEAKY_GRID = COARSE  # a leaky pump's map, interpolated onto GRID: ~1.7 s
 STALE_ALPHA = (
     0.35  # the map drawn, dimmed while a newer design's is worked out (a leaky one ~1.7 s)
@@ -95,6 +100,19 @@ const image = source.data.image[value.index]
 const flow = Array.isArray(image[0]) ? image[value.j][value.i] : image[value.flat_index]
 return Number.isFinite(flow) ? `${flow.toFixed(1)} m³/day` : stalled
 """
+
+
+def map_heads(h: float) -> tuple[float, float]:
+    """The map's heads [m] for a design of head ``h`` [m]: the paper's 0 to 30 m, or from 0 to
+    the first of HEAD_TOPS at least HEAD_ROOM times ``h`` (the design's star inside, with the
+    heads above it where a deeper well would be): a round top that changes only as the head
+    crosses a step, each change a new map (a leaky pump's ~1.7 s), not one a move of h.
+
+    >>> map_heads(3.0), map_heads(20.0), map_heads(175 * 0.3048), map_heads(300.0)
+    ((0.0, 30.0), (0.0, 30.0), (0.0, 100.0), (0.0, 450.0))
+    """
+    wanted = HEAD_ROOM * h
+    return MAP_HEADS[0], next((top for top in HEAD_TOPS if top >= wanted), HEAD_TOPS[-1])
 
 
 def colour_range(flow: np.ndarray) -> tuple[float, float]:
@@ -351,7 +369,7 @@ class MapTab(Tab):
         self.mapped: tuple | None = None  # the last map drawn: (flow, stall and best ratios)
         self._lines = None  # its contour lines (bokeh's contour_data), labelled by place_labels
         self.colors = palette(self.dark)
-        self.grid = (  # (low, high, points) of the ratios and of the heads
+        self.grid = (  # (low, high, points) of the ratios and of the heads, as drawn (_place)
             (*self.inputs.param["R_dagger"].bounds, GRID),
             (*MAP_HEADS, GRID),
         )
@@ -392,7 +410,7 @@ class MapTab(Tab):
         for side in ("inner_width", "inner_height"):
             self.figure.on_change(side, lambda _attr, _old, _new: self.resized())
         self.readout = pn.pane.Markdown("", stylesheets=TEXT, sizing_mode="stretch_width")
-        self._mapped_key: windpump.Design | None = None  # what the map drawn is of
+        self._mapped_key: windpump.Design | None = None  # what the map drawn is of (its grid)
         self.maps = Newest()  # the map and mark of the design last asked for
 
     def _figure(self):
@@ -512,22 +530,50 @@ class MapTab(Tab):
         turn in the pool is not worked out; a leaky pump's map is ~1.7 s of quadrature)."""
         design = seen.design
         key = design.replace(R1=design.R0, h=0.0)  # the map depends on everything else
+        grid = self.grid_for(design)  # and its heads on how deep the design's well is
         if self._mapped_key is None:  # the first map: later ones replace it when they come
             self.readout.object = self.placeholder(design)
-        elif key != self._mapped_key:  # the map drawn is another design's until the new one comes
+        elif (key, grid) != self.drawn():  # the map drawn is another's until the new one comes
             self.image.glyph.global_alpha = STALE_ALPHA
-        grid = self.grid
 
         self.maps.ask(
             design,
             lambda: (map_of(key, *grid), marks_of(design, grid[0])),
-            lambda outcome: self._show(design, key, outcome),
+            lambda outcome: self._show(design, (key, grid), outcome),
             off_the_loop,
         )
 
-    def _show(self, design: windpump.Design, key: windpump.Design, outcome) -> None:
-        """Draw the map and mark ``outcome`` of ``design`` (the newest asked for); one that
-        cannot be mapped says why."""
+    def drawn(self) -> tuple:
+        """What the map drawn is of: (the design but R₁ and h, the grid; ``grid_for``)."""
+        return self._mapped_key, self.grid
+
+    def grid_for(self, design: windpump.Design) -> tuple:
+        """The map's (low, high, points) of the ratios (the R₁/R₀ slider's range) and of the
+        heads (``map_heads``: to 30 m, or further for a deeper well) for ``design``."""
+        return (
+            (*self.inputs.param["R_dagger"].bounds, GRID),
+            (*map_heads(design.h), GRID),
+        )
+
+    def _place(self, grid: tuple) -> None:
+        """The map over ``grid`` (``grid_for``): its axes' ranges and its image's place, in the
+        figure as built (a deeper well's heads: the same figure, its ranges moved)."""
+        if grid == self.grid:
+            return
+        self.grid = grid
+        self.ratios, self.heads = (np.linspace(*axis) for axis in grid)
+        (x0, x1, _), (y0, y1, _) = grid
+        glyph = self.image.glyph
+        glyph.update(x=x0, y=y0, dw=x1 - x0, dh=y1 - y0)
+        for axis, (start, end) in (
+            (self.figure.x_range, (x0, x1)),
+            (self.figure.y_range, (y0, y1)),
+        ):
+            axis.update(start=start, end=end, reset_start=start, reset_end=end)
+
+    def _show(self, design: windpump.Design, mapped: tuple, outcome) -> None:
+        """Draw the map and mark ``outcome`` of ``design`` (the newest asked for; ``mapped``:
+        the design it maps and its grid); one that cannot be mapped says why."""
         if isinstance(outcome, Exception):
             said = as_text(outcome)
             if not isinstance(outcome, ValueError):  # a bug: say so, log it, keep the page alive
@@ -535,10 +581,12 @@ class MapTab(Tab):
                 said = f"Something went wrong ({type(outcome).__name__}: {as_text(outcome)})."
             self.failed(said)
             return
-        mapped, marks = outcome
+        drawn, marks = outcome
+        key, grid = mapped
         with pn.io.hold():
-            if key != self._mapped_key:
-                self._draw_map(mapped)
+            if mapped != self.drawn():
+                self._place(grid)
+                self._draw_map(drawn)
                 said = DELIVERY_LABEL if key.d_leak > 0.0 else STALL_LABEL
                 self.legend[STALL_LABEL].label = text_value(said)  # a text, not a column's name
                 self._mapped_key = key

@@ -526,3 +526,35 @@ def test_before_its_first_map_the_tab_draws_no_image_to_hover():
     work, then = held[-1]
     then(work())
     assert np.shape(tab.sources["flow"].data["image"][0]) == (GRID, GRID)
+
+
+def test_a_deep_wells_design_is_on_the_map_whose_heads_follow_it():
+    """The map's heads stopped at 30 m: the Aermotor preset (175 ft, 53 m) stood above it. The
+    map reaches past the design's head, drawn by the core over the figure's ranges, the star on
+    a flow the pump lifts; back at a shallow head the paper's 0-30 m map returns, in the same
+    figure."""
+    app = Explorer()
+    app.main().active = 3
+    tab = app.design_map
+    figure = tab.figure
+    app.sidebar.preset.value = "8-ft Aermotor, 175-ft well"
+    design = app.seen.design
+    x_range, y_range = figure.x_range, figure.y_range
+    assert y_range.start == 0.0 and y_range.end >= 1.5 * design.h > 75.0
+    assert x_range.start < design.R_dagger < x_range.end
+    glyph = tab.image.glyph
+    assert (glyph.x, glyph.x + glyph.dw) == (x_range.start, x_range.end)
+    assert (glyph.y, glyph.y + glyph.dh) == (y_range.start, y_range.end)
+    ratios = np.linspace(x_range.start, x_range.end, GRID)
+    heads = np.linspace(y_range.start, y_range.end, GRID)
+    expected = windpump.design_map(design, ratios, heads)
+    image = tab.sources["flow"].data["image"][0]
+    np.testing.assert_allclose(image, expected.mean_flow * SECONDS_PER_DAY, rtol=1e-12)
+    assert tab.sources["here"].data["h"] == [design.h]
+    row = np.searchsorted(heads, design.h)  # the map's flow about the star: it lifts water
+    column = np.searchsorted(ratios, design.R_dagger)
+    assert np.isfinite(image[row - 1 : row + 1, column - 1 : column + 1]).all()
+    assert "no sprocket ratio on this map carries the load" not in tab.readout.object
+    app.reset()  # the paper's example, 3 m: the paper's map
+    assert (y_range.start, y_range.end) == (0.0, 30.0) and tab.figure is figure
+    assert tab.sources["here"].data["h"] == [3.0]

@@ -203,6 +203,7 @@ class Explorer(pn.viewable.Viewer):
         self.map_tab = MapTab(self.inputs, self.dark)
         self.site_inputs = SiteInputs()  # the Site tab's own inputs, in the link
         self.site_tab = SiteTab(self.inputs, self.site_inputs, reveal, self.dark)
+        self.site_tab.system = self.units
         self.page_tabs = PageTabs(
             [self.mechanisms_tab, self.wind_tab, self.map_tab, self.site_tab], self._open
         )
@@ -465,12 +466,13 @@ class Explorer(pn.viewable.Viewer):
         return io.StringIO(self.seen.run.to_csv(litres=True) if self.seen else "")
 
     def _units_chosen(self, event) -> None:
-        """The readouts in the units chosen, the pump's and the Wind tab's (a mode of the page,
-        as presentation mode: Reset and the presets keep it)."""
+        """The readouts in the units chosen, the pump's, the Wind tab's and the Site tab's (its
+        figures too; a mode of the page, as presentation mode: Reset and the presets keep it)."""
         self.readouts.system = event.new
         if self.seen is not None:
             self.readouts.show(self.seen)
         self.wind_tab.show_units(event.new)
+        self.site_tab.show_units(event.new)
 
     def _restyle(self, event) -> None:
         self._restyle_views(event.new)  # the readouts follow the page's zoom (styles.px)

@@ -8,6 +8,8 @@ import math
 import numpy as np
 from bokeh.models import CustomJS, FactorRange, HoverTool, Range1d, Span
 
+from windpump.readers.quantities import display_unit
+
 from .figures import HEIGHT, LABEL, empty, legend, line, new_figure
 from .site_record import span
 from .views import refill
@@ -24,6 +26,53 @@ for (const axis of plot.below) {  // the axis (a legend lies below too)
   axis.setv({major_label_orientation: tilt}, {sync: false})
 }
 """
+
+
+SI_WATER = "m³"  # the figures' unit of water as built (the core's): ``say_water_in`` rewrites it
+
+
+def page_unit(unit: str) -> str:
+    """A unit in pint's spelling (``windpump.readers.quantities``) as the page writes it.
+
+    >>> page_unit("m^3/day"), page_unit("gal")
+    ('m³/day', 'gal')
+    """
+    return unit.replace("^3", "³").replace("^2", "²")
+
+
+def shown_in(kind: str, system: str) -> tuple[float, str]:
+    """[shown unit / core unit] and the unit the Site tab shows a quantity of ``kind`` in, as
+    the command line does (``windpump supply --units``): the core's m³ and m³/day, or US
+    gallons and gallons a day (``windpump.readers.quantities.display_unit``: pint's factors).
+
+    >>> shown_in("tank", "si"), shown_in("daily flow", "us")[1]
+    ((1.0, 'm³'), 'gal/day')
+    """
+    factor, unit = display_unit(kind, system)
+    return factor, page_unit(unit)
+
+
+def water_texts(figures) -> list[tuple]:
+    """The texts of ``figures`` that name the water's unit (axis labels, hover tooltips) as
+    built, in m³: (model, attribute, text), for ``say_water_in``."""
+    texts: list[tuple] = []
+    for fig in figures:
+        for axis in (*fig.xaxis, *fig.yaxis):
+            if SI_WATER in (axis.axis_label or ""):
+                texts.append((axis, "axis_label", axis.axis_label))
+        for hover in fig.select(HoverTool):
+            if any(SI_WATER in text for _, text in hover.tooltips):
+                texts.append((hover, "tooltips", list(hover.tooltips)))
+    return texts
+
+
+def say_water_in(texts: list[tuple], unit: str) -> None:
+    """The figures' texts (``water_texts``) naming ``unit`` for the water (m³ or gal)."""
+    for model, attribute, built in texts:
+        if attribute == "tooltips":
+            setattr(model, attribute, [(n, t.replace(SI_WATER, unit)) for n, t in built])
+        else:
+            setattr(model, attribute, built.replace(SI_WATER, unit))
 
 
 DRY = "days short of water"  # the level figure's rug, in its legend when there are any
@@ -99,18 +148,20 @@ def short_tops(delivered, shortfall) -> np.ndarray:
     return np.where(shortfall > 0.0, delivered + shortfall, np.nan)
 
 
-def show_monthly(source, fig, monthly) -> None:
-    """A year's months (``windpump.MonthTable``) in the monthly figure, cut at ``water_range``."""
-    top, cut = water_range(monthly.pumped, monthly.demand)
+def show_monthly(source, fig, monthly, water: float = 1.0) -> None:
+    """A year's months (``windpump.MonthTable``, m³) in the monthly figure, cut at
+    ``water_range``, in the unit ``water`` m³ make [shown unit / m³] (1: m³)."""
+    drawn = {
+        name: water * np.asarray(getattr(monthly, name))
+        for name in ("pumped", "demand", "delivered", "shortfall")
+    }
+    top, cut = water_range(drawn["pumped"], drawn["demand"])
     refill(
         source,
         {
             "month": [MONTHS[m - 1] for m in monthly.month],
-            "pumped": np.asarray(monthly.pumped),
-            "demand": np.asarray(monthly.demand),
-            "delivered": np.asarray(monthly.delivered),
-            "shortfall": np.asarray(monthly.shortfall),
-            "short_top": short_tops(monthly.delivered, monthly.shortfall),
+            **drawn,
+            "short_top": short_tops(drawn["delivered"], drawn["shortfall"]),
             "cut": cut,
             "cut_at": np.full(len(cut), 0.98 * top),
         },
@@ -152,14 +203,16 @@ def level_figure(s: dict, c: dict):
     return fig, size
 
 
-def show_level(sources: dict, fig, supplied, tank: float) -> None:
-    """A year's tank (``windpump.Supply``) in the level figure: each day's mean (its range for
-    the hover), the days short of water, the title and axis by the record's span."""
+def show_level(sources: dict, fig, supplied, tank: float, water: float = 1.0) -> None:
+    """A year's tank (``windpump.Supply``; ``tank`` [m³]) in the level figure: each day's mean
+    (its range for the hover), the days short of water, the title and axis by the record's
+    span; in the unit ``water`` m³ make [shown unit / m³] (1: m³)."""
     days = np.arange(supplied.hours) / 24.0
-    x, lower, upper, mean = daily_band(days, supplied.level)
+    tank = water * tank
+    x, lower, upper, mean = daily_band(days, water * np.asarray(supplied.level))
     refill(sources["level"], {"t": x, "lower": lower, "upper": upper, "mean": mean})
     dry = np.flatnonzero(supplied.dry) + 0.5
-    rug = 0.05 * max(tank, float(np.max(upper, initial=0.0)), 1e-3)  # [m³] the rug's height
+    rug = 0.05 * max(tank, float(np.max(upper, initial=0.0)), 1e-3 * water)  # the rug's height
     refill(sources["dry"], {"t": dry, "top": np.full(dry.size, rug)})
     for item in fig.legend[0].items:  # an empty rug draws a blank swatch: left out
         if item.label.value == DRY:
@@ -170,9 +223,9 @@ def show_level(sources: dict, fig, supplied, tank: float) -> None:
 
 
 def placeholder_year(sources: dict, largest_tank: float) -> None:
-    """Flat, empty bars and lines over a year and the tanks up to ``largest_tank`` [m³], so that
-    the figures have ranges before the first year comes (Bokeh cannot set the ranges of figures
-    with no data) and their legends their swatches."""
+    """Flat, empty bars and lines over a year and the tanks up to ``largest_tank`` (in the unit
+    shown), so that the figures have ranges before the first year comes (Bokeh cannot set the
+    ranges of figures with no data) and their legends their swatches."""
     months = {name: np.zeros(len(MONTHS)) for name in sources["monthly"].data}
     refill(sources["monthly"], {**months, "month": list(MONTHS), "cut": [""] * len(MONTHS)})
     zeros = [0.0, 0.0]

@@ -13,6 +13,7 @@ import logging
 import math
 from collections.abc import Callable
 
+import numpy as np
 import panel as pn
 from bokeh.models import ColumnDataSource
 
@@ -30,8 +31,11 @@ from .site_figures import (
     lolp_figure,
     monthly_figure,
     placeholder_year,
+    say_water_in,
     show_level,
     show_monthly,
+    shown_in,
+    water_texts,
 )
 from .site_inputs import RESTARTS, SITES, UPLOADED, SiteInputs
 from .site_record import SiteRecords, read_upload, span, supply_status
@@ -45,7 +49,7 @@ from .views import refill
 log = logging.getLogger("windpump.app")
 
 SITE_READOUTS = {
-    "site_water": "Pumped · delivered [m³ over {span}]",  # "[m³/year]" for a year
+    "site_water": "Pumped · delivered [{unit} over {span}]",  # "[m³/year]" for a year
     "site_lolp": "Loss of load",
     "dry_days": "Dry days",
     "dry_spell": "Longest dry spell",
@@ -73,6 +77,10 @@ if (source.value === 1) {
 FIGURES_AFTER = 5000  # [ms] the figures placed anyway (a page in a hidden browser tab paints none)
 CONTROLS_CLASS, SLOT_CLASS = "site-controls", "site-figure-slot"  # for a browser test
 SLOT_TITLES = ("the water each month", "the tank over the year", "the loss-of-load curve")
+# The sliders' kinds of quantity (``windpump.readers.quantities.KINDS``): in US units each says
+# its value in feet or gallons first, then as it moves (in the core's units, the link's).
+SLIDER_KINDS = {"hub": "height", "demand": "daily flow", "tank": "tank"}
+US_DECIMALS = {"height": 1, "daily flow": 0, "tank": 0}  # to about a slider's step or finer
 
 
 class AfterPaint(pn.widgets.IntInput):
@@ -107,6 +115,29 @@ def number_text(value: float, unit: str = "", digits: int = 1) -> str:
     return f"{value:,.{digits}f}" + (f" {unit}" if unit else "")
 
 
+def water_decimals(unit: str) -> int:
+    """The decimals a readout gives water in ``unit``: a tenth of a m³, a whole gallon."""
+    return 1 if unit.startswith("m³") else 0
+
+
+def slider_title(label: str, value: float, kind: str, system: str) -> str | None:
+    """A Site tab slider's title in ``system``'s units, for its value [the core's unit, in
+    ``label``'s brackets]: None in SI (Panel's own, "Demand [m³/day]: 10.0"); in US units the
+    value in feet or gallons, then as the slider moves it (``windpump.readers.quantities``).
+
+    >>> slider_title("Demand [m³/day]", 10.0, "daily flow", "us")
+    'Demand: 2,642 gal/day (10.0 m³/day)'
+    >>> slider_title("Hub height [m]", 10.0, "height", "us"), slider_title("Tank [m³]", 5.0, "tank", "si")
+    ('Hub height: 32.8 ft (10.0 m)', None)
+    """
+    if system == "si":
+        return None
+    factor, unit = shown_in(kind, system)
+    name, _, si_unit = label.partition(" [")
+    shown = f"{factor * value:,.{US_DECIMALS[kind]}f} {unit}"
+    return f"{name}: {shown} ({value:.1f} {si_unit.rstrip(']')})"
+
+
 class SiteTab(Tab):
     """The Site tab: ``inputs`` are the page's (the design), ``site`` the tab's own (in the
     link); ``reveal`` scrolls an upload's outcome into view."""
@@ -118,6 +149,7 @@ class SiteTab(Tab):
         self.inputs, self.site, self.reveal = inputs, site, reveal
         self.design: windpump.Design | None = None  # at V_ref, of the page's latest run
         self.records = SiteRecords()
+        self.system = "si"  # the page's units, "si" or "us" (its units switch: ``show_units``)
 
     def update(self, seen: windpump.Exploration) -> None:
         self.design = self.inputs.design_at_v_ref()  # the page ran it: valid
@@ -162,7 +194,11 @@ class SiteTab(Tab):
         self._drawn: Asked | None = None  # what the year drawn was asked for
         self.years = Newest()  # the year last asked for
         self.files = Newest()  # the file last chosen: its outcome is shown, not an earlier one's
+        self._lolp: dict | None = None  # the loss-of-load curve drawn, in SI (m³, %)
+        self._water_texts = water_texts(self.figures())  # their texts naming m³, as built
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
+        self.site.param.watch(lambda *_e: self._title_sliders(), list(SLIDER_KINDS))
+        self.show_units(self.system)
 
     def _build_controls(self) -> None:
         style = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
@@ -185,6 +221,28 @@ class SiteTab(Tab):
             lambda *_e: self.load_data(self.records.chosen()), ["value", "filename"]
         )
 
+    # -- units -------------------------------------------------------------------------------
+
+    def show_units(self, system: str) -> None:
+        """The tab in ``system``'s units ("si" or "us"): its readouts, the sliders' titles, the
+        figures' axes and hovers, and the year drawn, redrawn in place (the same figures, their
+        sources refilled), now and from now on."""
+        self.system = system
+        if not hasattr(self, "sliders"):  # not built: built in these units
+            return
+        with pn.io.hold():
+            say_water_in(self._water_texts, shown_in("tank", system)[1])
+            self._title_sliders()
+            if self.supplied is not None and self._drawn is not None:
+                self._paint()
+
+    def _title_sliders(self) -> None:
+        """The volume and height sliders' titles in the page's units (``slider_title``)."""
+        for name, kind in SLIDER_KINDS.items():
+            slider, label = self.sliders[name], self.site.param[name].label
+            title = slider_title(label, getattr(self.site, name), kind, self.system)
+            slider.param.update(name=title or label, show_value=title is None)
+
     # -- updates -----------------------------------------------------------------------------
 
     def draw(self, seen: windpump.Exploration) -> None:
@@ -206,7 +264,8 @@ class SiteTab(Tab):
         self.computing.object = COMPILE.waiting(SITE_TAB) or COMPUTING
         self.computing.visible = True
         if self.supplied is None:  # a first year: the figures get ranges until it comes
-            placeholder_year(self.sources, tank_range(asked.tank, math.inf, asked.largest_tank))
+            largest = tank_range(asked.tank, math.inf, asked.largest_tank)
+            placeholder_year(self.sources, shown_in("tank", self.system)[0] * largest)
         records, curve, tank_5 = self.records, self._curve, self.tank_5  # as drawn now
 
         self.years.ask(
@@ -274,32 +333,43 @@ class SiteTab(Tab):
 
     def _draw_year(self, asked: Asked, year: Year) -> None:
         if year.lolp is not None:
-            refill(self.sources["lolp"], year.lolp)
-            self.lolp.x_range.end = year.curve[-1]
+            self._lolp = year.lolp
         self._curve, self.tank_5 = year.curve, year.tank_5
         self.error.visible = False
         self.supplied, self._drawn = year.supplied, asked
-        supplied, tank = year.supplied, asked.tank
-        show_monthly(self.sources["monthly"], self.monthly, supplied.monthly)
-        show_level(self.sources, self.level, supplied, tank)
-        self.tank_line.location = tank
-        refill(self.sources["lolp_here"], {"tank": [tank], "lolp": [100 * supplied.lolp]})
-        self._readouts(supplied)
+        self._paint()
         self.note.object = year.note
+
+    def _paint(self) -> None:
+        """The year drawn (``supplied``, for ``_drawn``) in the figures and readouts, its water
+        in the page's units (m³, or gallons: ``shown_in``)."""
+        supplied, tank = self.supplied, self._drawn.tank
+        water = shown_in("tank", self.system)[0]  # [shown unit / m³]
+        if self._lolp is not None:
+            tanks = water * np.asarray(self._lolp["tank"])
+            refill(self.sources["lolp"], {"tank": tanks, "lolp": self._lolp["lolp"]})
+            self.lolp.x_range.end = water * self._curve[-1]
+        show_monthly(self.sources["monthly"], self.monthly, supplied.monthly, water)
+        show_level(self.sources, self.level, supplied, tank, water)
+        self.tank_line.location = water * tank
+        here = {"tank": [water * tank], "lolp": [100 * supplied.lolp]}
+        refill(self.sources["lolp_here"], here)
+        self._readouts(supplied)
 
     def _readouts(self, supplied) -> None:
         totals = supplied.totals
+        water, unit = shown_in("tank", self.system)
         shown = {
-            "site_water": f"{totals.pumped:,.0f} · {totals.delivered:,.0f}",
+            "site_water": f"{water * totals.pumped:,.0f} · {water * totals.delivered:,.0f}",
             "site_lolp": f"{100 * supplied.lolp:.1f} %",
             "dry_days": f"{supplied.dry_days:d}",
             "dry_spell": f"{supplied.longest_dry_spell:d} days",
-            "tank_for_5": number_text(self.tank_5, "m³"),
+            "tank_for_5": number_text(water * self.tank_5, unit, water_decimals(unit)),
         }
         over = span(supplied.hours)
         for name, value in shown.items():
-            label = SITE_READOUTS[name].format(span=over)
-            self.readouts[name].show(label.replace("m³ over the year", "m³/year"), value)
+            label = SITE_READOUTS[name].format(span=over, unit=unit)
+            self.readouts[name].show(label.replace(f"{unit} over the year", f"{unit}/year"), value)
         self.status.object, self.status.alert_type = supply_status(supplied)
         self.status.visible = True
 

@@ -17,6 +17,7 @@ import numpy as np
 import panel as pn
 import param
 import pytest
+from bokeh.models import HoverTool
 
 import windpump
 from windpump.readers.labdata import LabDataError
@@ -657,3 +658,69 @@ def test_the_server_reads_the_first_site_tabs_record_as_it_starts(monkeypatch):
     app = Explorer()
     app.main().active = SITE_TAB
     assert value(app, "site_lolp") == f"{100 * expected.lolp:.1f} %"
+
+
+def gallons_per_m3() -> float:
+    """[gal/m³] by pint's own registry (the US liquid gallon, 231 in³), not the package's."""
+    import pint
+
+    return float(pint.UnitRegistry().Quantity(1.0, "m**3").to("gallon").magnitude)
+
+
+def test_in_us_units_the_site_tab_says_gallons_and_redraws_in_place(app):
+    """The units switch on US: the year's readouts, the sliders' titles, the figures' axes and
+    hovers and their data in gallons; back on SI, the same figures and sources hold the core's
+    m³ again (nothing is built anew)."""
+    site = app.site
+    figures, sources = site.figures(), dict(site.sources)
+    record, supplied = year()
+    gal = gallons_per_m3()
+    app.sidebar.units_switch.value = "us"
+    totals = supplied.totals
+    assert "[gal/year]" in site.readouts["site_water"].object
+    assert value(app, "site_water") == f"{gal * totals.pumped:,.0f} · {gal * totals.delivered:,.0f}"
+    smallest = windpump.tank_for(SEED, record, 10.0, 0.05, restart="attended")
+    assert value(app, "tank_for_5") == f"{gal * smallest:,.0f} gal"
+    monthly = data(app, "monthly")
+    for column in ("pumped", "demand", "delivered", "shortfall"):
+        expected = gal * np.asarray(getattr(supplied.monthly, column))
+        np.testing.assert_allclose(monthly[column], expected, rtol=1e-12)
+    days = np.asarray(supplied.level).reshape(365, 24)
+    np.testing.assert_allclose(data(app, "level")["mean"], gal * days.mean(axis=1), rtol=1e-12)
+    assert data(app, "lolp_here")["tank"] == [pytest.approx(5.0 * gal, rel=1e-12)]
+    assert site.tank_line.location == pytest.approx(5.0 * gal, rel=1e-12)
+    labels = [site.monthly.yaxis[0].axis_label, site.level.yaxis[0].axis_label]
+    labels.append(site.lolp.xaxis[0].axis_label)
+    assert labels == ["water [gal]", "water in the tank [gal]", "tank [gal]"]
+    tips = [
+        text for fig in figures for hover in fig.select(HoverTool) for _, text in hover.tooltips
+    ]
+    assert any(text.endswith(" gal") for text in tips) and not any("m³" in t for t in tips)
+    # the sliders say the US value first, then the slider's own (the link's) value
+    demand, tank = site.sliders["demand"], site.sliders["tank"]
+    assert demand.name == f"Demand: {10.0 * gal:,.0f} gal/day (10.0 m³/day)"
+    assert tank.name == f"Tank: {5.0 * gal:,.0f} gal (5.0 m³)" and not tank.show_value
+    hub_ft = 10.0 / 0.3048
+    assert site.sliders["hub"].name == f"Hub height: {hub_ft:.1f} ft (10.0 m)"
+    app.site_inputs.tank = 7.5  # a move: the title follows, the year is drawn in gallons
+    assert tank.name == f"Tank: {7.5 * gal:,.0f} gal (7.5 m³)"
+    assert site.tank_line.location == pytest.approx(7.5 * gal, rel=1e-12)
+    app.sidebar.units_switch.value = "si"
+    check_drawn(app, year(tank=7.5)[1], 7.5)
+    assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
+    assert site.lolp.xaxis[0].axis_label == "tank [m³]" and tank.show_value
+    assert tank.name == "Tank [m³]" and demand.name == "Demand [m³/day]"
+    assert all(a is b for a, b in zip(site.figures(), figures, strict=True))
+    assert all(site.sources[name] is source for name, source in sources.items())
+
+
+def test_a_page_opened_in_us_units_draws_its_first_year_in_gallons():
+    app = Explorer(query={"units": [b"us"]})
+    app.main().active = SITE_TAB
+    _, supplied = year()
+    gal = gallons_per_m3()
+    np.testing.assert_allclose(
+        data(app, "monthly")["pumped"], gal * np.asarray(supplied.monthly.pumped), rtol=1e-12
+    )
+    assert app.site.level.yaxis[0].axis_label == "water in the tank [gal]"
+    assert app.site.sliders["demand"].name.startswith("Demand: 2,642 gal/day")

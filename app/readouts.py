@@ -293,10 +293,16 @@ MAX_HEAD_TIP = (
 
 
 def flow_text(flow: float, system: str) -> str:
-    """A mean flow [m^3/s] as the readout shows it: L/s to four decimals, or in US units gal/h
-    to three significant figures (``windpump.readers.quantities``)."""
+    """A mean flow [m^3/s] as the readout shows it: L/s to four decimals, or in US units gallons
+    a minute (as a US pump's or well's flow is written) and an hour (as a windmill catalogue
+    rates its capacity), each to three significant figures (``windpump.readers.quantities``).
+
+    >>> flow_text(1.68e-4, "us"), flow_text(1.68e-4, "si")
+    ('2.66 gpm · 160 gal/h', '0.1680 L/s')
+    """
     if system == "us":
-        return format_quantity(flow, "flow", "us", digits=3)
+        per_minute = format_quantity(flow, "flow per minute", "us", digits=3)
+        return f"{per_minute} · {format_quantity(flow, 'flow', 'us', digits=3)}"
     return f"{LITRES_PER_M3 * flow:.4f} L/s"
 
 

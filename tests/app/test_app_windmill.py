@@ -270,7 +270,7 @@ def test_the_units_switch_shows_the_readouts_in_us_units_and_is_kept_in_the_link
     seen = app.seen
     gallons_an_hour = seen.mean_flow * 3600 / M3_PER_US_GALLON
     shown_now = readouts(app)
-    assert shown_now["mean_flow"] == f"{gallons_an_hour:.3g} gal/h"
+    assert shown_now["mean_flow"].endswith(f" · {gallons_an_hour:.3g} gal/h")
     assert shown_now["volume"] == f"{seen.pumped_volume / M3_PER_US_GALLON:.4g} gal"
     feet = [
         windpump.max_head(seen.design, start=start) / METRES_PER_FOOT for start in (False, True)
@@ -286,6 +286,19 @@ def test_the_units_switch_shows_the_readouts_in_us_units_and_is_kept_in_the_link
     assert app.units == "us" and readouts(app)["mean_flow"].endswith(" gal/h")
     bad = Explorer(query={"units": [b"metric"]})
     assert "Units (units) = “metric” ignored: si or us." in bad.notices.object
+
+
+def test_in_us_units_the_mean_flow_is_in_gallons_a_minute_and_an_hour_by_pint():
+    """A builder reads a pump's flow in gallons a minute, a windmill catalogue in gallons an
+    hour: both, each pint's conversion of the core's mean flow."""
+    import pint
+
+    app = Explorer(query={"units": [b"us"]})
+    app.sidebar.preset.value = AERMOTOR
+    flow = pint.UnitRegistry().Quantity(app.seen.mean_flow, "m**3/s")
+    per_minute, per_hour = (flow.to(unit).magnitude for unit in ("gallon/minute", "gallon/hour"))
+    assert readouts(app)["mean_flow"] == f"{per_minute:.3g} gpm · {per_hour:.3g} gal/h"
+    assert 2.5 < per_minute < 2.85  # the preset's "about 160 gal/h"
 
 
 def test_the_wind_tab_says_its_winds_in_mph_and_its_water_in_gallons_in_us_units():

@@ -45,8 +45,8 @@ __all__ = [
 ]
 
 SYSTEMS = ("si", "us")
-"""The systems :func:`format_quantity` shows in: SI (m, mm, L, L/s, m/s) and US customary (ft, in,
-gal, gal/h, mph, lb)."""
+"""The systems :func:`format_quantity` shows in: SI (m, mm, L, L/s, L/min, m/s) and US customary
+(ft, in, gal, gal/h, gpm, mph, lb)."""
 
 
 @dataclass(frozen=True)
@@ -76,6 +76,7 @@ KINDS: dict[str, Kind] = {
     "area": Kind("m^2", si="m^2", us="in^2"),
     "wind speed": Kind("m/s", si="m/s", us="mph"),
     "flow": Kind("m^3/s", si="L/s", us="gal/h"),
+    "flow per minute": Kind("m^3/s", si="L/min", us="gpm"),
     "daily flow": Kind("m^3/day", si="m^3/day", us="gal/day"),
     "volume": Kind("m^3", si="L", us="gal"),
     "tank": Kind("m^3", si="m^3", us="gal"),
@@ -84,7 +85,8 @@ KINDS: dict[str, Kind] = {
     "inertia": Kind("kg m^2", si="kg m^2", us="lb ft^2"),
 }
 """Every kind of quantity the command line (and the page) shows, in one place: the core's unit
-and the unit of each system."""
+and the unit of each system (a pump's flow in gal/h, as a windmill catalogue rates it, and in
+gallons a minute, as a US pump's or well's flow is written: ``"flow per minute"``)."""
 
 # What a field of a dimension takes, in words, with examples a builder would type; keyed by the
 # core unit of the field (windpump.model.design.UNITS and the options' units).
@@ -347,6 +349,8 @@ def format_quantity(value_si: float, kind: str, system: str, digits: int = 4) ->
     ('15 mph', '6.706 m/s')
     >>> format_quantity(3.155e-4, "flow", "us", digits=3), format_quantity(3.155e-4, "flow", "si")
     ('300 gal/h', '0.3155 L/s')
+    >>> format_quantity(1.892705892e-4, "flow per minute", "us")  # 3 gal a minute
+    '3 gpm'
     """
     factor, shown_in = display_unit(kind, system)
     number = value_si * factor

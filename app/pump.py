@@ -25,7 +25,6 @@ from .views import (
     StallView,
     TimeView,
     View,
-    caption_pane,
 )
 
 VIEW_FLEX = {"flex": "1 1 460px", "min-width": "300px"}  # two or more columns from ~1600 px
@@ -133,7 +132,7 @@ class PumpViews:
             self._draw_new(name, view)
             self.slots[name] = pn.Column(
                 view.drawing(),
-                caption_pane(view.caption),
+                view.caption_panel(),
                 sizing_mode="stretch_width",
                 styles=VIEW_FLEX,
             )

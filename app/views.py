@@ -35,7 +35,7 @@ from .figures import (
     new_figure,
     palette,
 )
-from .readouts import running_tsr, shown_totals
+from .readouts import TextOnlyUpdates, running_tsr, shown_totals
 from .styles import CAPTION_CSS
 
 BINS = 450  # min/max bands of 2-pixel bins on the widest a view is drawn: fewer points than pixels
@@ -85,6 +85,13 @@ def caption_pane(caption: str) -> pn.pane.HTML:
     return pn.pane.HTML(f"<p>{caption}</p>", stylesheets=CAPTION_CSS)
 
 
+class Caption(TextOnlyUpdates, pn.pane.HTML):
+    """A view's caption that says what the view draws now: a change sends its text alone."""
+
+    def __init__(self, caption: str, **params):
+        super().__init__(f"<p>{caption}</p>", stylesheets=CAPTION_CSS, **params)
+
+
 class View:
     """A figure with a one-line caption naming its equation; subclasses fill ``sources``."""
 
@@ -100,9 +107,14 @@ class View:
         """The figure as the page shows it, above its caption."""
         return pn.pane.Bokeh(self.figure, sizing_mode="stretch_width")
 
+    def caption_panel(self) -> pn.pane.HTML:
+        """The caption under the figure: ``caption``, or (a view whose figure draws one thing or
+        another) what it draws now."""
+        return caption_pane(self.caption)
+
     def panel(self, **options) -> pn.Column:
         return pn.Column(
-            self.drawing(), caption_pane(self.caption), sizing_mode="stretch_width", **options
+            self.drawing(), self.caption_panel(), sizing_mode="stretch_width", **options
         )
 
     def update(self, seen: windpump.Exploration, bins: int | None) -> None:
@@ -461,6 +473,17 @@ class OperatingView(View):
         "the operating point (filled: stable) and an unstable one (open). A wheel: its torque "
         "and power coefficients C_Q(λ) and C_P(λ) = λ C_Q against the tip-speed ratio "
         "λ = ω r / V, and where it runs (ω = R† α₊)."
+    )  # until the first run is drawn (the view's placeholder); then what it draws (``said``)
+    CURVE_CAPTION = (
+        "Eq. (5): the windmill's power T(ω) ω (Eq. 11, solid) against the pump's load line (its "
+        "power at each speed); they meet at the operating point (filled: stable) and an unstable "
+        "one (open)."
+    )
+    ROTOR_CAPTION = (
+        "The wheel's coefficients against the tip-speed ratio λ = ω r / V: solid, its torque "
+        "coefficient C_Q(λ) (its torque T = ½ ρ π r³ V² C_Q, largest at rest); dashed, its power "
+        "coefficient C_P(λ) = λ C_Q (the share it takes of the wind's power through its disc, "
+        "½ ρ π r² V³). {where}"
     )
     TITLES = {
         False: ("Operating point, Eq. (5)", "windmill speed ω [rad/s]", "power [W]"),
@@ -528,6 +551,28 @@ class OperatingView(View):
             ),
         )
         self._show_items(False)
+        self.caption_shown = Caption(self.caption)
+
+    def caption_panel(self) -> Caption:
+        return self.caption_shown
+
+    @classmethod
+    def said(cls, seen) -> str:
+        """What the figure draws for ``seen``, in words (its caption): the paper's curve and the
+        load line, or a wheel's C_Q and C_P, which is which and where it runs."""
+        design = seen.design
+        if design.rotor is None:
+            return cls.CURVE_CAPTION
+        op = seen.operating_point
+        tsr = running_tsr(design, op.omega if op is not None else None)
+        if not math.isfinite(tsr):
+            where = "It does not run in this wind: no point is marked."
+        else:
+            cq, cp = float(design.rotor.cq(tsr)), float(design.rotor.cp(tsr))
+            where = (
+                f"Dots: where it runs (ω = R† α₊), λ = {tsr:.2f}, C_Q = {cq:.3f}, C_P = {cp:.3f}."
+            )
+        return cls.ROTOR_CAPTION.format(where=where)
 
     def update(self, seen, bins):
         d = seen.design
@@ -542,6 +587,9 @@ class OperatingView(View):
             self.figure.title.text = title
             self.figure.xaxis.axis_label, self.figure.yaxis.axis_label = x_label, y_label
         self._show_items(rotor, seen.operating_point is not None)
+        said = f"<p>{self.said(seen)}</p>"
+        if said != self.caption_shown.object:
+            self.caption_shown.object = said
 
     def _draw_curve(self, seen) -> None:
         """Eq. (11)'s power curve, the load line and the operating points; no coefficients."""

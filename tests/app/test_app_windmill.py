@@ -301,6 +301,35 @@ def test_in_us_units_the_mean_flow_is_in_gallons_a_minute_and_an_hour_by_pint():
     assert 2.5 < per_minute < 2.85  # the preset's "about 160 gal/h"
 
 
+def test_the_coefficients_caption_says_which_curve_is_which_and_where_it_runs():
+    """One caption served both the paper's curve and a wheel's coefficients: it says what the
+    view draws now, which curve is C_Q and which C_P, and where it runs."""
+    app = Explorer()
+    view = app.pump.built["operating"]
+    caption = view.caption_panel()
+    assert caption in app.pump.slots["operating"].objects  # the one under the figure
+
+    def said() -> str:
+        return re.sub(r"<[^>]+>", "", caption.object)
+
+    assert "Eq. 11, solid" in said() and "C_Q" not in said()
+    app.set_values(windmill="multiblade", diameter=4.0, h=8.0)
+    design = app.seen.design
+    tsr = hand_tsr(design)
+    cq = float(design.rotor.cq(tsr))
+    assert "solid, its torque coefficient C_Q(λ)" in said()
+    assert "dashed, its power coefficient C_P(λ) = λ C_Q" in said()
+    assert f"λ = {tsr:.2f}, C_Q = {cq:.3f}, C_P = {tsr * cq:.3f}." in said()
+    (cq_line,) = view.items["torque coefficient C_Q"].renderers  # drawn as the caption says
+    (cp_line,) = view.items["power coefficient C_P"].renderers
+    assert cq_line.glyph.line_dash == [] and cp_line.glyph.line_dash == [6]  # solid, dashed
+    app.set_values(diameter=1.5, V=1.0, h=100.0)  # a small wheel, a calm, a deep well
+    assert app.seen.operating_point is None
+    assert "does not run in this wind" in said() and "C_P(λ) = λ C_Q" in said()
+    app.set_values(windmill="eq11", h=3.0)
+    assert "Eq. 11, solid" in said() and "C_Q" not in said()
+
+
 def test_the_wind_tab_says_its_winds_in_mph_and_its_water_in_gallons_in_us_units():
     app = wheel_page(2)
     wind = app.wind

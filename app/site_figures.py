@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from bokeh.models import CustomJS, FactorRange, HoverTool, Range1d, Span
+from bokeh.models import CustomJS, FactorRange, HoverTool, NumeralTickFormatter, Range1d, Span
 
 from windpump.readers.quantities import display_unit
 
@@ -28,6 +28,8 @@ for (const axis of plot.below) {  // the axis (a legend lies below too)
 """
 
 
+# The water's ticks in whole numbers with thousands separated (gallons: "150,000", not "1.5e+5")
+WATER_TICKS = "0,0.[00]"
 SI_WATER = "m³"  # the figures' unit of water as built (the core's): ``say_water_in`` rewrites it
 
 
@@ -95,6 +97,7 @@ def monthly_figure(s: dict, c: dict):
         y_range=Range1d(0, 1),
     )
     fig.js_on_change("outer_width", CustomJS(args=dict(plot=fig, angle=math.pi / 3), code=TILT_JS))
+    fig.yaxis.formatter = NumeralTickFormatter(format=WATER_TICKS)
     source = s["monthly"]
     pumped = fig.vbar(
         x="month", top="pumped", width=0.85, source=source, fill_color=c["ghost"],
@@ -181,6 +184,7 @@ def level_figure(s: dict, c: dict):
         "The tank over the year", "day of the year", "water in the tank [m³]", SITE_HEIGHT
     )
     fig.y_range.start = 0
+    fig.yaxis.formatter = NumeralTickFormatter(format=WATER_TICKS)
     mean = fig.varea(x="t", y1=0.0, y2="mean", source=s["level"], color=c["integrated"], alpha=0.8)
     dry = fig.vbar(x="t", top="top", width=0.9, source=s["dry"], color=c["load"])
     size = Span(
@@ -259,6 +263,7 @@ def lolp_figure(s: dict, c: dict):
         SITE_HEIGHT,
     )
     fig.y_range.start = 0
+    fig.xaxis.formatter = NumeralTickFormatter(format=WATER_TICKS)
     curve = line(fig, "tank", "lolp", s["lolp"], c["flow"], 3)
     here = fig.scatter(
         "tank", "lolp", source=s["lolp_here"], marker="circle", size=14, color=c["mean"],

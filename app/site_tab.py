@@ -15,7 +15,7 @@ from collections.abc import Callable
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColumnDataSource
+from bokeh.models import ColumnDataSource, CustomJSTickFormatter
 
 import windpump
 
@@ -77,10 +77,15 @@ if (source.value === 1) {
 FIGURES_AFTER = 5000  # [ms] the figures placed anyway (a page in a hidden browser tab paints none)
 CONTROLS_CLASS, SLOT_CLASS = "site-controls", "site-figure-slot"  # for a browser test
 SLOT_TITLES = ("the water each month", "the tank over the year", "the loss-of-load curve")
-# The sliders' kinds of quantity (``windpump.readers.quantities.KINDS``): in US units each says
+# The sliders' kinds of quantity (``windpump.readers.quantities.KINDS``): in US units each shows
 # its value in feet or gallons first, then as it moves (in the core's units, the link's).
+SLIDER_FORMAT = "0.0"  # the sliders' values as shown in SI (Panel's numbro format)
 SLIDER_KINDS = {"hub": "height", "demand": "daily flow", "tank": "tank"}
 US_DECIMALS = {"height": 1, "daily flow": 0, "tank": 0}  # to about a slider's step or finer
+US_VALUE_JS = """
+const shown = {minimumFractionDigits: digits, maximumFractionDigits: digits}
+return `${(tick * factor).toLocaleString("en-US", shown)} ${unit} (${tick.toFixed(1)} ${si_unit})`
+"""
 
 
 class AfterPaint(pn.widgets.IntInput):
@@ -120,22 +125,17 @@ def water_decimals(unit: str) -> int:
     return 1 if unit.startswith("m³") else 0
 
 
-def slider_title(label: str, value: float, kind: str, system: str) -> str | None:
-    """A Site tab slider's title in ``system``'s units, for its value [the core's unit, in
-    ``label``'s brackets]: None in SI (Panel's own, "Demand [m³/day]: 10.0"); in US units the
-    value in feet or gallons, then as the slider moves it (``windpump.readers.quantities``).
-
-    >>> slider_title("Demand [m³/day]", 10.0, "daily flow", "us")
-    'Demand: 2,642 gal/day (10.0 m³/day)'
-    >>> slider_title("Hub height [m]", 10.0, "height", "us"), slider_title("Tank [m³]", 5.0, "tank", "si")
-    ('Hub height: 32.8 ft (10.0 m)', None)
-    """
-    if system == "si":
-        return None
-    factor, unit = shown_in(kind, system)
-    name, _, si_unit = label.partition(" [")
-    shown = f"{factor * value:,.{US_DECIMALS[kind]}f} {unit}"
-    return f"{name}: {shown} ({value:.1f} {si_unit.rstrip(']')})"
+def us_format(label: str, kind: str) -> CustomJSTickFormatter:
+    """A Site tab slider's shown value in US units: the value in feet, gal/day or gallons, then
+    as the slider moves it (in ``label``'s unit, the core's and the link's), "2,642 gal/day (10.0
+    m³/day)", the factor pint's (``windpump.readers.quantities``): written by the browser as the
+    thumb moves, as its SI value is."""
+    factor, unit = shown_in(kind, "us")
+    si_unit = label.partition(" [")[2].rstrip("]")
+    return CustomJSTickFormatter(
+        args=dict(factor=factor, unit=unit, digits=US_DECIMALS[kind], si_unit=si_unit),
+        code=US_VALUE_JS,
+    )
 
 
 class SiteTab(Tab):
@@ -197,14 +197,17 @@ class SiteTab(Tab):
         self._lolp: dict | None = None  # the loss-of-load curve drawn, in SI (m³, %)
         self._water_texts = water_texts(self.figures())  # their texts naming m³, as built
         self.site.param.watch(lambda *_e: self.redraw(), list(self.site.keys()))
-        self.site.param.watch(lambda *_e: self._title_sliders(), list(SLIDER_KINDS))
         self.show_units(self.system)
 
     def _build_controls(self) -> None:
         style = dict(stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width")
         self.sliders = {
-            name: PromptSlider.from_param(self.site.param[name], format=fmt, **style)
-            for name, fmt in (("hub", "0.0"), ("demand", "0.0"), ("tank", "0.0"))
+            name: PromptSlider.from_param(self.site.param[name], format=SLIDER_FORMAT, **style)
+            for name in ("hub", "demand", "tank")
+        }
+        self._us_formats = {
+            name: us_format(self.site.param[name].label, kind)
+            for name, kind in SLIDER_KINDS.items()
         }
         self.site_select = pn.widgets.Select(
             label="Site", options={label: key for key, label in SITES.items()}, **style
@@ -232,16 +235,19 @@ class SiteTab(Tab):
             return
         with pn.io.hold():
             say_water_in(self._water_texts, shown_in("tank", system)[1])
-            self._title_sliders()
+            self._slider_units()
             if self.supplied is not None and self._drawn is not None:
                 self._paint()
 
-    def _title_sliders(self) -> None:
-        """The volume and height sliders' titles in the page's units (``slider_title``)."""
-        for name, kind in SLIDER_KINDS.items():
+    def _slider_units(self) -> None:
+        """The hub's, demand's and tank's sliders in the page's units: in SI as built ("Demand
+        [m³/day]: 10.0"), in US units their values in feet or gallons first (``us_format``)."""
+        for name in SLIDER_KINDS:
             slider, label = self.sliders[name], self.site.param[name].label
-            title = slider_title(label, getattr(self.site, name), kind, self.system)
-            slider.param.update(name=title or label, show_value=title is None)
+            if self.system == "us":
+                slider.param.update(name=label.partition(" [")[0], format=self._us_formats[name])
+            else:
+                slider.param.update(name=label, format=SLIDER_FORMAT)
 
     # -- updates -----------------------------------------------------------------------------
 

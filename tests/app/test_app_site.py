@@ -696,19 +696,23 @@ def test_in_us_units_the_site_tab_says_gallons_and_redraws_in_place(app):
         text for fig in figures for hover in fig.select(HoverTool) for _, text in hover.tooltips
     ]
     assert any(text.endswith(" gal") for text in tips) and not any("m³" in t for t in tips)
-    # the sliders say the US value first, then the slider's own (the link's) value
-    demand, tank = site.sliders["demand"], site.sliders["tank"]
-    assert demand.name == f"Demand: {10.0 * gal:,.0f} gal/day (10.0 m³/day)"
-    assert tank.name == f"Tank: {5.0 * gal:,.0f} gal (5.0 m³)" and not tank.show_value
-    hub_ft = 10.0 / 0.3048
-    assert site.sliders["hub"].name == f"Hub height: {hub_ft:.1f} ft (10.0 m)"
-    app.site_inputs.tank = 7.5  # a move: the title follows, the year is drawn in gallons
-    assert tank.name == f"Tank: {7.5 * gal:,.0f} gal (7.5 m³)"
+    # the sliders show the US value first, then their own (the link's): the browser writes it
+    # as the thumb moves (test_browser_site), by pint's factor
+    demand, tank, hub = (site.sliders[name] for name in ("demand", "tank", "hub"))
+    assert (demand.name, tank.name, hub.name) == ("Demand", "Tank", "Hub height")
+    shown = {name: site.sliders[name].format.args for name in ("demand", "tank", "hub")}
+    assert shown["demand"]["factor"] == pytest.approx(gal, rel=1e-12)  # [gal/day per m³/day]
+    assert (shown["demand"]["unit"], shown["demand"]["si_unit"]) == ("gal/day", "m³/day")
+    assert shown["tank"]["factor"] == pytest.approx(gal, rel=1e-12)
+    assert (shown["tank"]["unit"], shown["tank"]["si_unit"]) == ("gal", "m³")
+    assert shown["hub"]["factor"] == pytest.approx(1 / 0.3048, rel=1e-12)  # [ft/m]
+    assert (shown["hub"]["unit"], shown["hub"]["si_unit"]) == ("ft", "m")
+    app.site_inputs.tank = 7.5  # a move: the year is drawn in gallons
     assert site.tank_line.location == pytest.approx(7.5 * gal, rel=1e-12)
     app.sidebar.units_switch.value = "si"
     check_drawn(app, year(tank=7.5)[1], 7.5)
     assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
-    assert site.lolp.xaxis[0].axis_label == "tank [m³]" and tank.show_value
+    assert site.lolp.xaxis[0].axis_label == "tank [m³]" and tank.format == "0.0"
     assert tank.name == "Tank [m³]" and demand.name == "Demand [m³/day]"
     assert all(a is b for a, b in zip(site.figures(), figures, strict=True))
     assert all(site.sources[name] is source for name, source in sources.items())
@@ -723,4 +727,4 @@ def test_a_page_opened_in_us_units_draws_its_first_year_in_gallons():
         data(app, "monthly")["pumped"], gal * np.asarray(supplied.monthly.pumped), rtol=1e-12
     )
     assert app.site.level.yaxis[0].axis_label == "water in the tank [gal]"
-    assert app.site.sliders["demand"].name.startswith("Demand: 2,642 gal/day")
+    assert app.site.sliders["demand"].format.args["unit"] == "gal/day"

@@ -137,6 +137,39 @@ def test_the_site_tab_fits_every_screen(browser, url, width, height, query):
         page.close()
 
 
+def test_in_us_units_the_site_tab_shows_gallons_its_sliders_as_they_move(browser, url):
+    """``?units=us`` on a phone: the readouts, the axes (no "1.5e+5") and the sliders in gallons
+    and feet, each slider's US value written by the browser (site_tab.us_format) beside the
+    value the link keeps, following a key press; nothing cut or scrolling sideways."""
+    import pint
+
+    gal = pint.UnitRegistry().Quantity(1.0, "m**3").to("gallon").magnitude
+    page = open_page(browser, url, 390, 844, "?units=us&tab=site")
+    try:
+        page.wait_for_function(f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')")
+        page.wait_for_function(FIGURES_DRAWN, arg=list(SITE_FIGURES), timeout=60_000)
+        time.sleep(1.0)
+        assert page.locator(".label", has_text="Pumped · delivered [gal/year]").count() == 1
+        assert text(page, "tank_for_5").endswith(" gal")
+        titles = page.locator(".bk-slider-title")
+        demand = f"Demand: {10.0 * gal:,.0f} gal/day (10.0 m³/day)"
+        assert demand in titles.all_text_contents()
+        assert f"Tank: {5.0 * gal:,.0f} gal (5.0 m³)" in titles.all_text_contents()
+        assert f"Hub height: {10.0 / 0.3048:.1f} ft (10.0 m)" in titles.all_text_contents()
+        press(page, "Demand: ", "ArrowRight", 1)  # 10.0 -> 10.1 m³/day
+        page.wait_for_function(f"() => ({QUERY})('demand') === '10.1'", timeout=60_000)
+        assert f"Demand: {10.1 * gal:,.0f} gal/day (10.1 m³/day)" in titles.all_text_contents()
+        sideways = [(s, extra) for s, extra in page.evaluate(SCROLLS) if extra > 0]
+        assert sideways == []
+        cut = {n: page.evaluate(CANVAS_TEXT, f"site_{n}_figure") for n in SITE_FIGURES}
+        assert {n: c for n, c in cut.items() if c} == {}
+        ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        page.screenshot(path=str(ARTIFACTS / "site_us_390x844.png"))
+        assert page.problems == []
+    finally:
+        page.close()
+
+
 # Boxes [x, y, width, height] of the Site tab's controls and of each figure's slot (its
 # placeholder, then the figure), through the shadow roots, by CSS class (site_tab.CONTROLS_CLASS,
 # site_tab.SLOT_CLASS); and the fill of each placeholder on the page (viewport.PLACEHOLDER_CSS).

@@ -13,6 +13,7 @@ import panel as pn
 
 import windpump
 from windpump.readers.labdata import check_file_size
+from windpump.readers.quantities import display_unit
 
 from .escape import as_text
 from .inputs import clipped
@@ -128,12 +129,15 @@ class SiteRecords:
             True,
         )
 
-    def describe(self, site: str, hub: float) -> str:
-        """A line on the record: where, the station, the hub's height."""
+    def describe(self, site: str, hub: float, system: str = "si") -> str:
+        """A line on the record: where, the station, the hub's height [m], in ``system``'s
+        units (``"si"``: "10 m"; ``"us"``: "32.8 ft", pint's)."""
         record = sample(site) if site != UPLOADED else self.uploaded
         where = SITES.get(site, f"the uploaded file *{as_text(self.uploaded_name)}*")
         name = f" ({as_text(record.name)})" if record is not None and record.name else ""
-        return f"**{where}**{name}, the hub at {hub:g} m."
+        feet, unit = display_unit("height", system)
+        height = f"{hub:g} m" if system == "si" else f"{feet * hub:.1f} {unit}"
+        return f"**{where}**{name}, the hub at {height}."
 
 
 HOURS_IN_A_YEAR = (8760, 8784)  # a typical year, a leap year

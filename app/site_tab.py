@@ -344,7 +344,6 @@ class SiteTab(Tab):
         self.error.visible = False
         self.supplied, self._drawn = year.supplied, asked
         self._paint()
-        self.note.object = year.note
 
     def _paint(self) -> None:
         """The year drawn (``supplied``, for ``_drawn``) in the figures and readouts, its water
@@ -361,6 +360,7 @@ class SiteTab(Tab):
         here = {"tank": [water * tank], "lolp": [100 * supplied.lolp]}
         refill(self.sources["lolp_here"], here)
         self._readouts(supplied)
+        self.note.object = self.records.describe(self._drawn.site, self._drawn.hub, self.system)
 
     def _readouts(self, supplied) -> None:
         totals = supplied.totals

@@ -39,14 +39,12 @@ class Asked:
 class Year:
     """A year computed for an ``Asked``: the core's ``Supply``, the smallest tank for 5 % [m³]
     (inf: none is enough), what the loss-of-load curve is for (design, record, demand, restart,
-    its largest tank), the curve's points (None: the one drawn stands) and the line on the
-    record."""
+    its largest tank) and the curve's points (None: the one drawn stands)."""
 
     supplied: windpump.Supply
     tank_5: float
     curve: tuple
     lolp: dict | None
-    note: str
 
 
 def tank_range(tank: float, tank_5: float, largest: float) -> float:
@@ -76,5 +74,4 @@ def run_year(records: SiteRecords, asked: Asked, curve: tuple, tank_5: float) ->
         mapped = windpump.supply_map(design, record, demand, [design.R_dagger], tanks, **rule)
         lolp = {"tank": tanks, "lolp": 100 * mapped.lolp[:, 0]}
     supplied = windpump.supply(design, record, demand, asked.tank, **rule)
-    note = records.describe(asked.site, asked.hub)
-    return Year(supplied, tank_5, (*of, top), lolp, note)
+    return Year(supplied, tank_5, (*of, top), lolp)

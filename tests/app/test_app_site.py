@@ -707,6 +707,7 @@ def test_in_us_units_the_site_tab_says_gallons_and_redraws_in_place(app):
     assert (shown["tank"]["unit"], shown["tank"]["si_unit"]) == ("gal", "m³")
     assert shown["hub"]["factor"] == pytest.approx(1 / 0.3048, rel=1e-12)  # [ft/m]
     assert (shown["hub"]["unit"], shown["hub"]["si_unit"]) == ("ft", "m")
+    assert f"the hub at {10.0 / 0.3048:.1f} ft." in site.note.object
     app.site_inputs.tank = 7.5  # a move: the year is drawn in gallons
     assert site.tank_line.location == pytest.approx(7.5 * gal, rel=1e-12)
     app.sidebar.units_switch.value = "si"
@@ -714,6 +715,7 @@ def test_in_us_units_the_site_tab_says_gallons_and_redraws_in_place(app):
     assert value(app, "tank_for_5") == f"{smallest:,.1f} m³"
     assert site.lolp.xaxis[0].axis_label == "tank [m³]" and tank.format == "0.0"
     assert tank.name == "Tank [m³]" and demand.name == "Demand [m³/day]"
+    assert "the hub at 10 m." in site.note.object
     assert all(a is b for a, b in zip(site.figures(), figures, strict=True))
     assert all(site.sources[name] is source for name, source in sources.items())
 

@@ -211,7 +211,9 @@ def test_a_link_value_of_any_length_is_named_in_a_notice(value):
     assert app.inputs.h == 3.0 and app.readouts.status.alert_type != "danger"
 
 
-@pytest.mark.parametrize("module", ["escape", "link", "server.policy"])
+@pytest.mark.parametrize(
+    "module", ["escape", "link", "server.policy", "readouts", "site_figures", "map_tab"]
+)
 def test_the_examples_in_the_docstrings_hold(module):
     """The app's folder is not collected for doctests (its main.py is the page's script)."""
     import doctest

@@ -11,11 +11,10 @@ from bokeh.models import CustomJS, FactorRange, HoverTool, NumeralTickFormatter,
 from windpump.readers.quantities import display_unit
 
 from .figures import HEIGHT, LABEL, empty, legend, line, new_figure
-from .site_record import span
+from .site_record import LOLP_TARGET, span
 from .views import refill
 
 MONTHS = ("Jan", "Feb", "Mar", "Apr", "May", "Jun", "Jul", "Aug", "Sep", "Oct", "Nov", "Dec")
-LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %"
 SITE_HEIGHT = HEIGHT + 40  # [px] each keeps a frame to read under its legend in presentation mode
 
 # On a narrow figure (a phone) the months' names are tilted, so that they do not run together.

@@ -157,16 +157,27 @@ def span(hours: int) -> str:
     return f"{hours} h"
 
 
+LOLP_TARGET = 0.05  # the readout's "smallest tank for 5 %", and a year that meets its demand
+MOSTLY_SHORT = 0.5  # a year that leaves half its demand or more undelivered: a red box
+
+
 def supply_status(supplied) -> tuple[str, str]:
     """What the year's run says of itself, as a status box's (text, alert type): its starts, or
-    why it never starts (and, when it restarts on its own, the tab's option that helps)."""
+    why it never starts (and, when it restarts on its own, the tab's option that helps). Green
+    only for a year that meets its demand (loss of load within ``LOLP_TARGET``): a pump that ran
+    1 h of the year, 99.9 % of its demand short, once said so in a green box."""
     if supplied.why:
         hint = f" {ATTENDED_HINT}" if supplied.restart == "self" else ""
         why = supplied.why[0].upper() + supplied.why[1:]
         return f"**The pump never starts.** {why}.{hint}", "warning"
     starts = supplied.starts
-    return (
-        f"**The pump runs** {supplied.totals.running_hours:,d} h of {span(supplied.hours)}, "
-        f"starting {starts:,d} time{'' if starts == 1 else 's'}.",
-        "success",
+    runs = (
+        f"{supplied.totals.running_hours:,d} h of {span(supplied.hours)}, "
+        f"starting {starts:,d} time{'' if starts == 1 else 's'}"
     )
+    if supplied.lolp <= LOLP_TARGET:
+        return f"**The pump runs** {runs}.", "success"
+    short = f"{100 * supplied.lolp:.1f} % of the demand goes undelivered"
+    if supplied.lolp < MOSTLY_SHORT:
+        return f"**The pump runs** {runs}, but {short}.", "warning"
+    return f"**The pump falls far short.** It runs {runs}, and {short}.", "danger"

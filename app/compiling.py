@@ -25,7 +25,7 @@ import os
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, as_completed, wait
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from multiprocessing import get_context
 from pathlib import Path
 
@@ -403,10 +403,11 @@ BEFORE_SERVING = 2  # worker processes: one a core of the 2-core machines it is 
 
 def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], None] = print) -> int:
     """Compile every part not yet in numba's cache for this source, longest first
-    (``LONGEST_FIRST``), in ``processes`` worker processes, saying each as it is ready; the
-    number of parts that failed (a server then compiles what a page needs itself). After it, ``panel serve app/`` loads the solver from the
-    cache (its first page's readout in ~3-4 s) and runs no worker: the README's serve command runs
-    it once before serving (``python -m windpump_app.compiling``)."""
+    (``LONGEST_FIRST``), in ``processes`` worker processes, saying each as it is ready and, while
+    none is, how long it has been every ``HEARTBEAT`` seconds; the number of parts that failed (a
+    server then compiles what a page needs itself). After it, ``panel serve app/`` loads the
+    solver from the cache (its first page's readout in ~3-4 s) and runs no worker: the README's
+    serve command runs it once before serving (``python -m windpump_app.compiling``)."""
     todo = [name for name in LONGEST_FIRST if name not in compiled_parts()]
     if not todo:
         say("The solver is compiled (numba's cache): nothing to do.")
@@ -416,25 +417,40 @@ def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], Non
     )
     say(
         f"{COMPILING[0].upper()}{COMPILING[1:]}: {which}, {processes} at a time, "
-        f"1-2 minutes on 2 cores; later starts load them from numba's cache."
+        f"1.5-4 minutes on 2 cores; later starts load them from numba's cache."
     )
     run, started, failed = installed_run_part(), time.perf_counter(), 0
     ready = len(PARTS) - len(todo)
     with ProcessPoolExecutor(processes, mp_context=get_context("spawn")) as pool:
         running = {pool.submit(run, name, os.getpid()): name for name in todo}
-        for future in as_completed(running):
-            name = running[future]
-            try:
-                seconds = future.result()
-            except Exception as error:  # the server compiles it on a page's first use instead
-                failed += 1
-                say(f"Compiling {name} failed ({type(error).__name__}: {error}); the server will.")
-                continue
-            ready += 1
-            said = f"{name}, {seconds:.1f} s in its worker"
-            say(f"{COMPILING}: {ready} of {len(PARTS)} parts ready ({said})")
+        while running:
+            finished, _ = wait(list(running), timeout=HEARTBEAT, return_when=FIRST_COMPLETED)
+            if not finished:  # a newcomer's terminal silent for minutes looked hung
+                elapsed = time.perf_counter() - started
+                now = ", ".join(name for future, name in running.items() if future.running())
+                say(
+                    f"{COMPILING}: {ready} of {len(PARTS)} parts ready, {elapsed:.0f} s (now {now})"
+                )
+            for future in finished:
+                name = running.pop(future)
+                try:
+                    seconds = future.result()
+                except Exception as error:  # the server compiles it on a page's first use instead
+                    failed += 1
+                    say(
+                        f"Compiling {name} failed ({type(error).__name__}: {error}); the server will."
+                    )
+                    continue
+                ready += 1
+                said = f"{name}, {seconds:.1f} s in its worker"
+                say(f"{COMPILING}: {ready} of {len(PARTS)} parts ready ({said})")
     say(f"Compiled in {time.perf_counter() - started:.0f} s.")
     return failed
+
+
+# [s] the README's compile step says how long it has been after this long without a part ready
+# (its longest part took 96-233 s in its worker: 150 s of silence on a busy machine)
+HEARTBEAT = 30.0
 
 
 if __name__ == "__main__":

@@ -462,6 +462,29 @@ def test_the_readmes_compile_step_compiles_every_part_not_yet_compiled(monkeypat
     assert said == ["The solver is compiled (numba's cache): nothing to do."]
 
 
+def test_the_readmes_compile_step_says_how_long_while_no_part_is_ready(monkeypatch, tmp_path):
+    """While no part gets ready the step says how long it has been and which parts it compiles
+    (a newcomer's terminal was silent 150 s after its first line and looked hung)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from windpump_app import compiling as parts
+
+    class Slow(ThreadPoolExecutor):
+        def submit(self, run, name, parent):
+            return super().submit(lambda: time.sleep(0.4) or 0.4)
+
+    monkeypatch.setattr(parts, "parts_file", lambda: tmp_path / PARTS_FILE)
+    monkeypatch.setattr(parts, "installed_run_part", lambda: parts.run_part)
+    monkeypatch.setattr(parts, "ProcessPoolExecutor", lambda *args, **kwargs: Slow(2))
+    monkeypatch.setattr(parts, "HEARTBEAT", 0.05)
+    said: list[str] = []
+    assert parts.compile_every_part(say=said.append) == 0
+    first, second = parts.LONGEST_FIRST[:2]
+    waiting = [line for line in said if line.endswith(f"(now {first}, {second})")]
+    assert waiting and all(f"0 of {len(parts.PARTS)} parts ready, " in line for line in waiting)
+    assert sum("parts ready (" in line for line in said) == len(parts.PARTS)
+
+
 CALLER = """
 from windpump._kernels.jit import kernel
 from windpump._kernels.zz_callee import step

@@ -288,8 +288,18 @@ def running_tsr(design: windpump.Design, omega: float) -> float:
 MAX_HEAD_TIP = (
     "The largest head at which it keeps running in this steady wind (its stall margin falls to "
     "1), and the largest at which it starts on its own from rest at any crank angle "
-    "(windpump.max_head): what a catalogue's maximum lift answers."
+    "(windpump.max_head). A catalogue's maximum lift is a rating well below both: the "
+    "documentation's validation page sets them side by side."
 )
+
+
+def wind_text(V: float, system: str) -> str:
+    """A wind [m/s] as a readout's label says it: 6.71 m/s, or in US units 15 mph.
+
+    >>> wind_text(6.7056, "si"), wind_text(6.7056, "us")
+    ('6.71 m/s', '15 mph')
+    """
+    return format_quantity(V, "wind speed", system, digits=3)
 
 
 def flow_text(flow: float, system: str) -> str:
@@ -333,7 +343,7 @@ def rotor_readouts(seen: windpump.Exploration, system: str = "si") -> dict[str, 
         "tsr": ("Tip-speed ratio λ", f"{tsr:.2f}" if running else "–"),
         "strokes": ("Strokes a minute", strokes),
         "cp": ("C_P where it runs", cp),
-        "max_head": ("Max head: running, starting", shown),
+        "max_head": (f"Max head in {wind_text(design.V_ref, system)}: running, starting", shown),
     }
 
 

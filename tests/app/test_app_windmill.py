@@ -276,11 +276,18 @@ def test_the_units_switch_shows_the_readouts_in_us_units_and_is_kept_in_the_link
         windpump.max_head(seen.design, start=start) / METRES_PER_FOOT for start in (False, True)
     ]
     assert shown_now["max_head"] == f"{feet[0]:.4g} ft, {feet[1]:.4g} ft"
+    # the heads are for the design's wind, and the label says which (a new user read "456 m")
+    mph = seen.design.V_ref / 0.44704
+    assert (
+        f"Max head in {mph:.3g} mph: running, starting" in app.readouts.readouts["max_head"].object
+    )
     assert "units=us" in app.link_query()
     assert readouts(reopened(app)) == shown_now
     app.sidebar.units_switch.value = "si"  # back: the link drops it, the readouts in SI
     assert "units" not in app.link_query()
     assert readouts(app)["mean_flow"] == f"{1e3 * seen.mean_flow:.4f} L/s"
+    label = f"Max head in {seen.design.V_ref:.3g} m/s: running, starting"
+    assert label in app.readouts.readouts["max_head"].object
     app.sidebar.units_switch.value = "us"
     app.reset()  # a mode of the page: Reset keeps it
     assert app.units == "us" and readouts(app)["mean_flow"].endswith(" gal/h")

@@ -145,3 +145,33 @@ def test_rate_a_catalogue_mill_by_its_sizes():
 def test_a_catalogue_mill_the_table_has_not_is_refused_by_name(args, words):
     done = windpump_command("rate", *args)
     assert done.returncode == 1 and words in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("units", ["us", "si"])
+def test_rate_names_a_catalogue_mill_and_gives_its_tables_row(units):
+    """A catalogue mill's rating names it and gives the maker's row as printed in the package's
+    table (read here with the csv module): 180 gal/h and 175 ft for the 8-ft mill on 1 7/8 in."""
+    import csv
+    from importlib import resources
+
+    with resources.files("windpump.catalogue").joinpath("aermotor_702.csv").open() as f:
+        found = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    (row,) = [
+        r for r in found
+        if (r["source"], r["stroke"], r["cylinder"], r["wheel_ft"]) == ("aermotor", "long", "1 7/8", "8")
+    ]  # fmt: skip
+    done = windpump_command(
+        "rate", "--wheel-ft", "8", "--cylinder-in", "1 7/8", "--lift", "175 ft", "--units", units
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert (
+        lines[0].split() == "mill Aermotor 702, 8-ft wheel, 1 7/8 in cylinder, long stroke".split()
+    )
+    gph, lift_ft = float(row["capacity_gph"]), float(row["lift_ft"])
+    if units == "us":
+        shown = f"{gph:.3g} gal/h, maximum lift {lift_ft:.3g} ft"
+    else:
+        shown = f"{gph * GAL / 3600 * 1000:.3g} L/s, maximum lift {lift_ft * FT:.3g} m"
+    assert lines[1].split() == f"catalogue {shown} (in a 15-20 mph wind)".split()
+    assert list(columns(done.stdout))  # the table follows, its notes each in parentheses

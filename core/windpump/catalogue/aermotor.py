@@ -60,6 +60,7 @@ __all__ = [
     "MillParts",
     "aermotor_702",
     "aermotor_702_parts",
+    "aermotor_702_row",
     "aermotor_702_table",
     "wheel_inertia",
 ]
@@ -368,6 +369,48 @@ def aermotor_702(
         wheel_inertia=parts.wheel_inertia,
         **fields,
     )
+
+
+def aermotor_702_row(
+    wheel_ft: float, cylinder_in: float | str, *, stroke: str = "long"
+) -> CatalogueRow | None:
+    """The table's row for an Aermotor 702 of this wheel, cylinder and stroke: its published
+    capacity and maximum lift (the maker's row first, else a dealer's), or None when the table
+    has none for it.
+
+    Parameters
+    ----------
+    wheel_ft : float
+        The wheel's diameter [ft]: 6, 8, 10, 12, 14 or 16.
+    cylinder_in : float or str
+        The cylinder's bore [in], one of the table's (1.875 or "1 7/8", ...).
+    stroke : {"long", "short"}
+        The mill's stroke setting.
+
+    Returns
+    -------
+    CatalogueRow or None
+
+    Raises
+    ------
+    ParameterError
+        As :func:`aermotor_702_parts`: a wheel, cylinder or stroke the table does not have.
+
+    Examples
+    --------
+    >>> row = aermotor_702_row(8, "1 7/8")
+    >>> row.capacity_gph, row.lift_ft  # [US gal/h] in a 15-20 mph wind, [ft]
+    (180.0, 175.0)
+    """
+    aermotor_702_parts(wheel_ft, cylinder_in, stroke=stroke)  # the same refusals
+    wheel = _wheel(wheel_ft)
+    label = _cylinder(cylinder_in, wheel)
+    rows = [
+        row
+        for row in aermotor_702_table()
+        if (row.wheel_ft, row.cylinder, row.stroke) == (wheel, label, stroke)
+    ]
+    return next((row for row in rows if row.source == "aermotor"), rows[0] if rows else None)
 
 
 def _wheel(value: object) -> int:

@@ -12,7 +12,7 @@ import math
 
 from ..averaging.ratings import max_head
 from ..averaging.theory import steady_flow
-from ..catalogue.aermotor import aermotor_702
+from ..catalogue.aermotor import aermotor_702, aermotor_702_row
 from ..model.design import Design
 from ..readers.quantities import display_unit, format_quantity, parse_quantity, unit_of
 from ..sites.site import wind_thresholds
@@ -22,6 +22,14 @@ from .cliargs import chosen_design, quantity, units_option
 WINDS = {"us": "10, 15, 17.5, 20 mph", "si": "4, 6, 8, 10 m/s"}
 """The winds rated when ``--winds`` is not given: the catalogues' (US: 15 to 20 mph) and round
 SI ones."""
+
+NOTES = (
+    "(capacity at the design's head; the averaged theory in steady winds)",
+    "(max head running: the head at which a running pump stalls in that wind, Eq. 22's margin 1)",
+    "(max head starting: the head it starts against from rest at every crank angle)",
+    "(a catalogue's maximum lift is a rating well below both: docs/validation.rst compares them)",
+)
+"""What the table's columns mean, printed under it."""
 
 MAX_WINDS = 100
 """Most winds one ``--winds`` may list."""
@@ -88,9 +96,34 @@ def winds(text: str) -> list[float]:
 def rate_command(args: argparse.Namespace, extra: list[str]) -> int:
     """``windpump rate``: the design's ratings, a line for each wind, in ``--units``."""
     design = chosen_design(args, catalogue_mill(args))
-    for line in ratings(design, winds(args.winds or WINDS[args.units]), args.units):
+    for line in catalogue_lines(args) + ratings(
+        design, winds(args.winds or WINDS[args.units]), args.units
+    ):
         print(line)
     return 0
+
+
+def catalogue_lines(args: argparse.Namespace) -> list[str]:
+    """For a catalogue mill, the lines that name it and give its table's row (capacity and
+    maximum lift in the table's 15-20 mph wind), in ``--units``: a rating names what it rates,
+    and a builder compares the model's heads with the catalogue's lift."""
+    if args.wheel_ft is None:
+        return []
+    wheel = in_unit(args.wheel_ft, "--wheel-ft", "ft", METRES_PER_FOOT)
+    bore = in_unit(args.cylinder_in, "--cylinder-in", "in", METRES_PER_INCH)
+    stroke = args.stroke or "long"
+    row = aermotor_702_row(wheel, bore, stroke=stroke)
+    cylinder = row.cylinder if row is not None else f"{bore:g}"
+    named = f"mill                 Aermotor 702, {wheel:g}-ft wheel, {cylinder} in cylinder, {stroke} stroke"
+    if row is None:
+        return [named, "catalogue            no row for it in the maker's table", ""]
+    capacity = format_quantity(row.capacity, "flow", args.units, 3)
+    lift = format_quantity(row.lift, "head", args.units, 3)
+    return [
+        named,
+        f"catalogue            {capacity}, maximum lift {lift} (in a 15-20 mph wind)",
+        "",
+    ]
 
 
 def catalogue_mill(args: argparse.Namespace) -> Design | None:
@@ -160,5 +193,5 @@ def ratings(design: Design, speeds: list[float], units: str = "si") -> list[str]
             f"{show(max_head(design, V), 'head'):>20}"
             f"{show(max_head(design, V, start=True), 'head'):>20}"
         )
-    lines.append("(capacity at the design's head; the averaged theory in steady winds)")
+    lines.extend(NOTES)
     return lines

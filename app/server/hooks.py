@@ -33,7 +33,7 @@ from .policy import protect_pages
 from .sessions import SOLVER_READY
 from .threads import FILE_READERS, MOVE_RUNS, OFF_THE_LOOP, every_thread_started
 from .upload_route import serve_uploads
-from .watch import hide_session_ids, log_request, watch_the_loop
+from .watch import hide_session_ids, log_request, quiet_closed_pages, watch_the_loop
 
 log = logging.getLogger("windpump.app")
 log.setLevel(logging.INFO)  # `panel serve` shows its own INFO lines only: show these too
@@ -82,6 +82,7 @@ def on_server_loaded(_server_context) -> None:
     framework_patches()  # Panel's, Bokeh's and param's internals (patches/), said in the log
     watch_the_loop()  # only with WINDPUMP_LOOP_WATCH=<file> (what holds up the loop)
     hide_session_ids()  # no session's id in the server's log, at any level (watch.py)
+    quiet_closed_pages()  # a page closed mid-write: one debug line, not a traceback (watch.py)
     large_blocks_mapped()  # a freed upload leaves no heap of freed blocks behind (memory.py)
     servers = bokeh_servers()
     if not servers:

@@ -1,5 +1,6 @@
 """What the server writes down: its access log without queries, no session's id in any log
-(``hide_session_ids``), and what holds up its event loop (``LoopWatch``, ``mark``)."""
+(``hide_session_ids``), no traceback for a page that closed mid-write (``quiet_closed_pages``),
+and what holds up its event loop (``LoopWatch``, ``mark``)."""
 
 from __future__ import annotations
 
@@ -62,6 +63,29 @@ def hide_session_ids(logger: logging.Logger | None = None) -> None:
     for handler in (logger or logging.getLogger()).handlers:
         if not any(isinstance(f, HideSessionIds) for f in handler.filters):
             handler.addFilter(HideSessionIds())
+
+
+def quiet_closed_pages(loop: asyncio.AbstractEventLoop | None = None) -> None:
+    """A page closed while the server wrote to it: tornado's write task ends in its
+    ``WebSocketClosedError``, which nothing awaits, and asyncio printed a traceback ("Task
+    exception was never retrieved") in the server's terminal, as if something had failed. Such
+    a task is logged as one debug line; every other exception goes to the handler there was
+    (asyncio's own by default). ``loop``: the server's (tornado's current loop's by default)."""
+    from tornado.ioloop import IOLoop
+    from tornado.websocket import WebSocketClosedError
+
+    loop = loop or IOLoop.current().asyncio_loop
+    before = loop.get_exception_handler()
+
+    def handle(loop: asyncio.AbstractEventLoop, context: dict[str, Any]) -> None:
+        if isinstance(context.get("exception"), WebSocketClosedError):
+            log.debug("a page closed while the server wrote to it")
+        elif before is not None:
+            before(loop, context)
+        else:
+            loop.default_exception_handler(context)
+
+    loop.set_exception_handler(handle)
 
 
 class LoopWatch:

@@ -35,12 +35,16 @@ extensions = [
     "sphinx.ext.mathjax",
     "numpydoc",
     "layers",
+    "offline_math",
 ]
 
 templates_path = ["_templates"]
 exclude_patterns = ["_build"]
 html_theme = "alabaster"
 html_static_path: list[str] = []
+# MathJax from the site itself, not a CDN: offline the equations still render (docs/_ext/offline_math.py
+# copies it there from the PyPI package django-static-mathjax). Relative to the build's _static.
+mathjax_path = "mathjax/tex-mml-chtml.js"
 html_theme_options = {
     "description": "A wind-driven piston pump: a checked solver and a live explorer"
 }

@@ -33,6 +33,11 @@ DEEP_TEXT = """(selector) => {
   return el ? el.textContent : null;
 }"""
 
+# Every page a browser test opened (test_browser.open_page), with the requests each made to
+# another host than its server (``page.elsewhere``): tests/browser/conftest.py fails a test whose
+# pages asked the internet for anything (a font, a stylesheet, a script).
+OPENED_PAGES: list = []
+
 # How often a class's pages are checked [ms]: playwright's default checks on every animation
 # frame, and 30 pages walking their DOM 60 times a second cost chromium more than the pages do.
 POLL_MS = 250

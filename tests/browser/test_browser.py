@@ -17,6 +17,7 @@ from windpump.model.wind import gusty
 
 from served import (
     DEEP_TEXT,
+    OPENED_PAGES,
     VIEWS_DRAWN,
     server_log,
     show_view,
@@ -57,15 +58,10 @@ TEXT_SIZES = """() => {
 }"""
 
 
-def open_page(browser, url, width=1400, height=1000, query=""):
-    page = browser.new_page(viewport={"width": width, "height": height})
-    page.set_default_timeout(60_000)  # clicks and locators on a busy machine (playwright's: 30 s)
-    problems, elsewhere = [], []
-    page.on(
-        "console", lambda m: problems.append(m.text) if m.type in ("error", "warning") else None
-    )
-    page.on("pageerror", lambda error: problems.append(str(error)))
-    host = urlparse(url).netloc
+def record_elsewhere(page, url: str, opened: str) -> list[str]:
+    """Record in ``page.elsewhere`` (returned) every request ``page`` makes to another host than
+    ``url``'s, its frames' included; checked after each test (conftest.py)."""
+    host, elsewhere = urlparse(url).netloc, []
     page.on(
         "request",
         lambda r: (
@@ -75,6 +71,20 @@ def open_page(browser, url, width=1400, height=1000, query=""):
             else None
         ),
     )
+    page.elsewhere, page.opened = elsewhere, opened
+    OPENED_PAGES.append(page)
+    return elsewhere
+
+
+def open_page(browser, url, width=1400, height=1000, query=""):
+    page = browser.new_page(viewport={"width": width, "height": height})
+    page.set_default_timeout(60_000)  # clicks and locators on a busy machine (playwright's: 30 s)
+    problems: list[str] = []
+    page.on(
+        "console", lambda m: problems.append(m.text) if m.type in ("error", "warning") else None
+    )
+    page.on("pageerror", lambda error: problems.append(str(error)))
+    record_elsewhere(page, url, url + query)
     scripts, received = [], []
     page.on("request", lambda r: scripts.append(r.url) if r.resource_type == "script" else None)
     page.on("websocket", lambda ws: ws.on("framereceived", lambda frame: received.append(frame)))
@@ -87,7 +97,7 @@ def open_page(browser, url, width=1400, height=1000, query=""):
     )
     if width > 700:  # a phone shows the sidebar first: its views come when it scrolls to them
         page.wait_for_function(VIEWS_DRAWN, timeout=120_000)  # the views follow the readouts
-    page.problems, page.elsewhere, page.scripts = problems, elsewhere, scripts
+    page.problems, page.scripts = problems, scripts
     page.received = received  # the server's messages over the page's websocket
     page.sent, page.posts = sent, posts
     return page

@@ -25,6 +25,7 @@ from .link import (
     RESTORED,
     PageLink,
     dark_from,
+    embed_from,
     notices_text,
     page_query,
     presentation_from,
@@ -78,6 +79,7 @@ class Explorer(pn.viewable.Viewer):
 
     presentation = param.Boolean(False, doc="Larger text and thicker lines for a projector.")
     dark = param.Boolean(False, doc="Dark theme (the page's ?theme=dark).")
+    embed = param.Boolean(False, doc="In a course page's iframe: no header (?embed=true).")
     units = param.Selector(
         objects=["si", "us"], default="si", doc="The readouts' units: SI or US (?units=us)."
     )
@@ -97,6 +99,7 @@ class Explorer(pn.viewable.Viewer):
         # First: the theme button's label and every figure's colours follow it.
         self.dark = dark_from(query, notices)
         self.units = units_from(query, notices)
+        self.embed = embed_from(query, notices)  # for an iframe: no header (page.page)
         self.bins = bins  # None: every sample of every trace (the benchmark's baseline)
         self._to_plot: windpump.Exploration | None = None  # the run the next plot callback draws
         self.pump = PumpViews(self.dark, bins)
@@ -503,6 +506,7 @@ class Explorer(pn.viewable.Viewer):
             self.site_inputs.query(),
             tab_query(shown),
             units_query(self.units),
+            embed=self.embed,
         )
 
     def follow_in_link(self, location) -> None:
@@ -540,5 +544,7 @@ class Explorer(pn.viewable.Viewer):
         return pn.Row(pn.Column(self.sidebar, width=340), self.main(), sizing_mode="stretch_width")
 
     def template(self) -> pn.template.BootstrapTemplate:
-        """The page: the sidebar beside the tabs, under the title."""
-        return page(self.sidebar.__panel__(), self.main(), self.dark, self.presentation)
+        """The page: the sidebar beside the tabs, under the title (none when embedded)."""
+        return page(
+            self.sidebar.__panel__(), self.main(), self.dark, self.presentation, embed=self.embed
+        )

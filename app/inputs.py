@@ -361,7 +361,7 @@ COUNTS = ("cylinders", "seed")
 
 # Keys the page itself uses, not inputs.
 IGNORED_QUERY_KEYS = {
-    "theme", "resolution", "preset", "presentation", "tab", "restored", "units",
+    "theme", "resolution", "preset", "presentation", "tab", "restored", "units", "embed",
 }  # fmt: skip
 
 # name: (values, one sentence saying what to look at). A name fits the sidebar's select box in

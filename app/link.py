@@ -50,17 +50,27 @@ def text(raw) -> str:
     return raw.decode("utf-8", "replace") if isinstance(raw, bytes) else str(raw or "")
 
 
-def presentation_from(query: dict, notices: list[str]) -> bool | None:
-    """``?presentation=true`` opens the page in presentation mode (kept in the link, so the
-    theme switch, which reloads the page, keeps it too); None: not given, or ignored."""
-    raw = text(query.get("presentation", [b""]))
+def flag_from(query: dict, key: str, name: str, notices: list[str]) -> bool | None:
+    """A flag of the page, ``?key=true`` or ``false``; None: not given, or ignored with a notice
+    naming it (``name``, as the page calls it) and what it takes."""
+    raw = text(query.get(key, [b""]))
     if raw in ("true", "false"):
         return raw == "true"
     if raw:
-        notices.append(
-            f"Presentation mode (presentation) = “{clipped(raw)}” ignored: true or false."
-        )
+        notices.append(f"{name} ({key}) = “{clipped(raw)}” ignored: true or false.")
     return None
+
+
+def presentation_from(query: dict, notices: list[str]) -> bool | None:
+    """``?presentation=true`` opens the page in presentation mode (kept in the link, so the
+    theme switch, which reloads the page, keeps it too); None: not given, or ignored."""
+    return flag_from(query, "presentation", "Presentation mode", notices)
+
+
+def embed_from(query: dict, notices: list[str]) -> bool:
+    """``?embed=true`` opens the page for an iframe in a course page: the controls and the tabs
+    without the page's header (``page.EMBED_CSS``); kept in the link, as presentation mode."""
+    return bool(flag_from(query, "embed", "Embedded page", notices))
 
 
 def dark_from(query: dict, notices: list[str]) -> bool:
@@ -134,16 +144,20 @@ def notices_text(notices: list[str]) -> str:
     return title + "\n\n" + "\n".join(listed)
 
 
-def page_query(inputs, presentation: bool, dark: bool, full: bool, *more: str) -> str:
+def page_query(
+    inputs, presentation: bool, dark: bool, full: bool, *more: str, embed: bool = False
+) -> str:
     """The page's query as its link carries it: the inputs that differ from the defaults, each
     as its slider shows it, then ``more`` (a tab's own inputs' query), then presentation mode,
-    the dark theme and full resolution if on. Nothing else: a key the page ignored is not
-    carried on."""
+    the dark theme, full resolution and the embedded page if on. Nothing else: a key the page
+    ignored is not carried on."""
     page = {"presentation": "true"} if presentation else {}
     if dark:
         page["theme"] = "dark"
     if full:
         page["resolution"] = "full"
+    if embed:
+        page["embed"] = "true"
     return "&".join(part for part in (inputs.query(), *more, urlencode(page)) if part)
 
 

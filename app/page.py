@@ -8,16 +8,16 @@ from .keyboard import PAGE_FOCUS_CSS
 from .styles import px, zoom_css
 
 
-def page(sidebar, main, dark: bool, presentation: bool) -> pn.template.BootstrapTemplate:
+def page(
+    sidebar, main, dark: bool, presentation: bool, embed: bool = False
+) -> pn.template.BootstrapTemplate:
     """The page in Panel's Bootstrap template: ``sidebar`` beside ``main``, in the ``dark`` theme
-    or not, its HTML zoomed for ``presentation`` mode (``styles.zoom_css``)."""
+    or not, its HTML zoomed for ``presentation`` mode (``styles.zoom_css``); ``embed``: for an
+    iframe in a course page, without the header (``EMBED_CSS``)."""
+    citation = "M. Louge, <i>A simple wind-pump analysis</i> (2010)"
     template = pn.template.BootstrapTemplate(
         title="Wind pump explorer",
-        header=[
-            pn.pane.HTML(
-                "M. Louge, <i>A simple wind-pump analysis</i> (2010)", stylesheets=CITATION_CSS
-            )
-        ],
+        header=[] if embed else [pn.pane.HTML(citation, stylesheets=CITATION_CSS)],
         sidebar=[sidebar],
         main=[main],
         sidebar_width=330,
@@ -30,6 +30,8 @@ def page(sidebar, main, dark: bool, presentation: bool) -> pn.template.Bootstrap
         busy_indicator=None,
     )
     template.config.raw_css.extend([NARROW_CSS, PAGE_FOCUS_CSS, zoom_css(presentation)])
+    if embed:
+        template.config.raw_css.append(EMBED_CSS)
     return template
 
 
@@ -67,6 +69,15 @@ NARROW_CSS = f"""
   }}
   #content > #sidebar.collapsing {{ height: 0 !important; width: 100% !important; }}
 }}
+"""
+
+# ?embed=true: the page in a course page's iframe (docs/instructors.rst). The template's header
+# (its title, the paper, the sidebar's toggle) is not shown, and the sidebar has no toggle to
+# fold it: the controls stay beside the tabs, or below them in a pane of their own on a narrow
+# frame (NARROW_CSS), always in reach. The course page around it names the explorer.
+EMBED_CSS = """
+#header { display: none !important; }
+#content > #sidebar { box-shadow: none; }
 """
 
 

@@ -19,6 +19,7 @@ from windpump_app.envelope import band
 from windpump_app.explorer import Explorer, design_filename
 from windpump_app.figures import WIDTH
 from windpump_app.inputs import FORMATS, FROM_THE_LINK, PRESETS, PumpInputs
+from windpump_app.page import EMBED_CSS
 from windpump_app.sidebar import PRESET_PROMPT
 from windpump_app.views import BINS
 
@@ -787,6 +788,26 @@ def test_presentation_mode_comes_from_the_link(raw, presentation, notice):
     assert app.notices.visible is notice
     if notice:
         assert "Presentation mode (presentation) = “maybe” ignored" in app.notices.object
+
+
+@pytest.mark.parametrize(
+    "raw, embed, notice", [(b"true", True, False), (b"false", False, False), (b"1", False, True)]
+)
+def test_an_embedded_page_comes_from_the_link_and_stays_in_it(raw, embed, notice):
+    """``?embed=true``: the page for a course page's iframe, without the template's header; kept
+    in the link through a move and Reset, as presentation mode is; any other value than true or
+    false is ignored with the notice the other flags get (issue 40)."""
+    app = Explorer(query={"embed": [raw], "h": [b"5"]})
+    assert app.embed is embed and app.link_query() == ("h=5&embed=true" if embed else "h=5")
+    assert app.notices.visible is notice
+    if notice:
+        assert "Embedded page (embed) = “1” ignored: true or false." in app.notices.object
+    template = app.template()
+    assert (EMBED_CSS in template.config.raw_css) is embed
+    assert (len(template.header) == 0) is embed  # the paper's citation: the header's, not built
+    app.set_values(T_m=0.8)
+    app.reset()
+    assert app.link_query() == ("embed=true" if embed else "")
 
 
 # -- several cylinders, double-acting, torque at rest ---------------------------------------------

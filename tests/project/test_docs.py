@@ -61,7 +61,7 @@ def test_the_instructors_guide_names_every_link_parameter_and_preset():
     wind = "V mean_wind k time_scale seed"
     for name in (parameters + " " + wind).split():
         assert f"``{name}``" in text, name
-    for mode in ("presentation=true", "theme=dark", "resolution=full"):
+    for mode in ("presentation=true", "theme=dark", "resolution=full", "embed=true"):
         assert mode in text
     presets = (
         "The paper's example",

@@ -58,16 +58,28 @@ TEXT_SIZES = """() => {
 }"""
 
 
+# The addresses in chromium's console line for a load the page's policy blocked before it was
+# requested ("Loading the stylesheet 'https://…' violates the following Content Security Policy").
+ADDRESS = re.compile(r"(?:https?|wss?)://[^\s'\"]+")
+
+
 def record_elsewhere(page, url: str, opened: str) -> list[str]:
     """Record in ``page.elsewhere`` (returned) every request ``page`` makes to another host than
-    ``url``'s, its frames' included; checked after each test (conftest.py)."""
+    ``url``'s, its frames' included, and every such load its policy refused (app/server/policy.py:
+    refused, it is never requested, but it is what the page asked for); checked after each test
+    (conftest.py)."""
     host, elsewhere = urlparse(url).netloc, []
+
+    def other(address: str) -> bool:
+        parts = urlparse(address)
+        return parts.scheme in ("http", "https", "ws", "wss") and parts.netloc != host
+
+    page.on("request", lambda r: elsewhere.append(r.url) if other(r.url) else None)
     page.on(
-        "request",
-        lambda r: (
-            elsewhere.append(r.url)
-            if urlparse(r.url).scheme in ("http", "https", "ws", "wss")
-            and urlparse(r.url).netloc != host
+        "console",
+        lambda m: (
+            elsewhere.extend(a.rstrip(".") for a in ADDRESS.findall(m.text) if other(a))
+            if "Content Security Policy" in m.text
             else None
         ),
     )

@@ -15,7 +15,7 @@ from hypothesis import HealthCheck, settings
 import windpump
 
 from reference import reference_run
-from served import CHROMIUM, CHROMIUM_FLAGS, require_chromium, served_app
+from served import CHROMIUM, CHROMIUM_FLAGS, OPENED_PAGES, require_chromium, served_app
 
 SEED = windpump.Design.seed_example()
 SEED_MARGIN = windpump.stall_margin(SEED)
@@ -136,3 +136,17 @@ def browser():
         chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_FLAGS)
         yield chromium
         chromium.close()
+
+
+@pytest.fixture(autouse=True)
+def nothing_from_another_host():
+    """Every browser test: the pages it opened asked no host but their server for anything (a
+    CDN's font, stylesheet or script), checked once it has run, so a module need not remember to
+    (``test_browser.record_elsewhere``; a page the test closed counts too). Here, not in
+    tests/browser/conftest.py: a second module named ``conftest`` would shadow this one's names
+    (``from conftest import SEED``). Other tests open no page: nothing to check."""
+    OPENED_PAGES.clear()
+    yield
+    leaving = {page.opened: list(page.elsewhere) for page in OPENED_PAGES if page.elsewhere}
+    OPENED_PAGES.clear()
+    assert leaving == {}, "pages asked another host than their server"

@@ -34,7 +34,7 @@ DEEP_TEXT = """(selector) => {
 }"""
 
 # Every page a browser test opened (test_browser.open_page), with the requests each made to
-# another host than its server (``page.elsewhere``): tests/browser/conftest.py fails a test whose
+# another host than its server (``page.elsewhere``): tests/conftest.py fails a test whose
 # pages asked the internet for anything (a font, a stylesheet, a script).
 OPENED_PAGES: list = []
 

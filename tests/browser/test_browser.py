@@ -67,7 +67,7 @@ def record_elsewhere(page, url: str, opened: str) -> list[str]:
     """Record in ``page.elsewhere`` (returned) every request ``page`` makes to another host than
     ``url``'s, its frames' included, and every such load its policy refused (app/server/policy.py:
     refused, it is never requested, but it is what the page asked for); checked after each test
-    (conftest.py)."""
+    (tests/conftest.py)."""
     host, elsewhere = urlparse(url).netloc, []
 
     def other(address: str) -> bool:

@@ -40,8 +40,9 @@ def served_html(url: str, query: str) -> str:
 )
 def test_the_served_page_names_no_other_host(url, query):
     """Panel's template loads its fonts, stylesheets and scripts from this server in both themes
-    and presentation mode: no address with a host (``https://``, ``//``) in the page's HTML. What
-    its models load later (their stylesheets) is recorded by the browser tests' pages (conftest.py)."""
+    and presentation mode: no address with a host (``https://``, ``//``) in the page's HTML.
+    What its models load later (their stylesheets) is checked on every browser test's pages
+    (tests/conftest.py)."""
     page = served_html(url, query)
     assert "<title>Wind pump explorer</title>" in page
     assert re.findall(r"(?:https?:)?//[^\s\"'<>]+", page) == []  # every address relative to it

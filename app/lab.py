@@ -39,7 +39,11 @@ class LabData:
         self.reveal = reveal
         self.show_points = show_points
         self.upload = FileUpload(
-            accept=".csv,.txt,.tsv", stylesheets=[*TEXT, FOCUS_CSS], sizing_mode="stretch_width"
+            "Lab data",
+            "a CSV of windmill speed [rad/s], torque [N·m]",
+            accept=".csv,.txt,.tsv",
+            stylesheets=[*TEXT, FOCUS_CSS],
+            sizing_mode="stretch_width",
         )
         self.message = pn.pane.Alert(
             "", alert_type="danger", visible=False, stylesheets=TEXT, css_classes=[LAB_MESSAGE]

@@ -344,9 +344,7 @@ class Sidebar(pn.viewable.Viewer):
             self.copy_link,
             pn.Row(self.present_toggle, self.dark_toggle, sizing_mode="stretch_width"),
             self.units_switch,
-            pn.pane.Markdown(
-                "**Lab data**: a CSV of windmill speed [rad/s], torque [N·m]", stylesheets=TEXT
-            ),
+            lab.upload.heading,
             lab.upload,
             self.refused_upload,
             self.reveal,

@@ -72,6 +72,8 @@ class SiteRecords:
 
     def controls(self, message_class: str) -> tuple[pn.widgets.FileInput, pn.pane.Alert]:
         self.upload = FileUpload(
+            "Your own site",
+            "a TMY3 or EPW file, or a CSV of time, wind speed [m/s]",
             accept=",".join(SUFFIXES),
             css_classes=[SITE_CLASS],  # the page's size check knows it by this
             stylesheets=TEXT,

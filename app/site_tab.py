@@ -444,10 +444,7 @@ class SiteTab(Tab):
             self.sliders["demand"],
             self.sliders["tank"],
             self.restart,
-            pn.pane.Markdown(
-                "**Your own site**: a TMY3 or EPW file, or a CSV of time, wind speed [m/s]",
-                stylesheets=TEXT,
-            ),
+            self.upload.heading,
             self.upload,
             self.upload_message,
             sizing_mode="stretch_width",

@@ -25,6 +25,8 @@ from windpump.model.wind import MAX_CSV_BYTES
 from windpump.readers.labdata import MAX_BYTES
 
 from .inputs import clipped
+from .keyboard import LABEL_FOR_SCREEN_READERS_CSS
+from .styles import TEXT
 
 # A wind record is sent whole too: its limit stays below the ~15 MB that closes the connection.
 WIND_MAX_BYTES = min(MAX_CSV_BYTES, 10_000_000)
@@ -177,7 +179,16 @@ def decoded(data: bytes | Encoded) -> bytes:
 class FileUpload(pn.widgets.FileInput):
     """Panel's FileInput, whose ``value`` keeps the browser's base64 (``Encoded``): Panel decodes
     it as the message arrives, on the event loop (~0.1-0.15 s of every page's loop for 10 MB,
-    found by py-spy on the server); the work reading the file decodes it off the loop."""
+    found by py-spy on the server); the work reading the file decodes it off the loop.
+
+    ``title`` and ``what`` say what file it takes ("Lab data", "a CSV of ..."): ``heading`` shows
+    them above it, and they are its name to a screen reader (its own label, for screen readers
+    only: ``keyboard.LABEL_FOR_SCREEN_READERS_CSS``; Bokeh's file input has none)."""
+
+    def __init__(self, title: str, what: str, **params):
+        stylesheets = [*params.pop("stylesheets", []), LABEL_FOR_SCREEN_READERS_CSS]
+        super().__init__(name=f"{title}: {what}", stylesheets=stylesheets, **params)
+        self.heading = pn.pane.Markdown(f"**{title}**: {what}", stylesheets=TEXT)
 
     def _process_property_change(self, props: dict[str, Any]) -> dict[str, Any]:
         encoded = props.get("value")

@@ -250,6 +250,8 @@ class WindTab(Tab):
         for name, label in WIND_READOUTS.items():  # laid out as they will be: their numbers come
             self.readouts[name].show(label, "…")  # from threads, and would shift the tab on a phone
         self.upload = FileUpload(
+            "Measured wind",
+            "a CSV of time [s] or ISO timestamp, wind speed [m/s]",
             accept=".csv,.txt,.tsv",
             css_classes=[WIND_CLASS],  # the page's size check knows it by this
             stylesheets=TEXT,
@@ -585,10 +587,7 @@ class WindTab(Tab):
             self.sliders["k"],
             self.sliders["time_scale"],
             self.sliders["seed"],
-            pn.pane.Markdown(
-                "**Measured wind**: a CSV of time [s] or ISO timestamp, wind speed [m/s]",
-                stylesheets=TEXT,
-            ),
+            self.upload.heading,
             self.upload,
             self.upload_message,
             self.use_gusty,

@@ -56,7 +56,7 @@ def pytest_configure(config):
 # after them fill the gaps, so that neither worker is left running a long module alone at the end
 # (longest processing time first). Every other module keeps its place after them.
 SLOW_FIRST = (
-    "tests/browser/test_accessibility.py",  # 580 (one process at load 7-8: axe on 44 page states)
+    "tests/browser/test_accessibility.py",  # 580 at load 7-8, 200 quiet (one process; 44 states)
     "tests/browser/test_layout.py",  # 317 s
     "tests/browser/test_browser.py",  # 314
     "tests/run/test_real_machine.py",  # 237

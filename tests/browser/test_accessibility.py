@@ -138,6 +138,13 @@ def test_a_slider_says_its_value_as_shown_and_its_unit(browser, url):
             timeout=30_000,
         )
         assert head.get_attribute("aria-valuenow") == "3.1"
+        # a slider drawn later, with the machine's view: the run's time, in seconds
+        scrubber = page.get_by_role("slider", name="time t [s]", exact=True)
+        page.wait_for_function(
+            "(s) => s.getAttribute('aria-valuetext') === '0 seconds'",
+            arg=scrubber.element_handle(),
+            timeout=30_000,
+        )
         assert page.problems == []
     finally:
         page.close()

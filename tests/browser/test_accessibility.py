@@ -47,10 +47,19 @@ TAB_READY = {
     ),
     "Site": f"() => /%/.test(({DEEP_TEXT})('[data-name=site_lolp]') || '')",
 }
+# Panel's light theme writes a warning alert's text #997404 on #fff3cd, 3.9:1 (AA asks 4.5:1), in
+# every component's shadow root (its theme's ":host" variables, out of the page's CSS's reach): the
+# Site tab's year, yellow when some demand goes undelivered, fails. Its fix belongs in the theme
+# (--warning-text-color #664d03, 7.2:1; --info-text-color #055160 too: 4.3:1 now).
+LIGHT_WARNING = pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="color-contrast: Panel's light warning alert, #997404 on #fff3cd (Site tab's year)",
+)
 COMBINATIONS = [
-    pytest.param(1280, 720, "", id="1280x720-light"),
+    pytest.param(1280, 720, "", id="1280x720-light", marks=LIGHT_WARNING),
     pytest.param(1280, 720, "?theme=dark", id="1280x720-dark"),
-    pytest.param(390, 844, "", id="390x844-light"),
+    pytest.param(390, 844, "", id="390x844-light", marks=LIGHT_WARNING),
     pytest.param(390, 844, "?theme=dark", id="390x844-dark"),
 ]
 

@@ -427,7 +427,10 @@ def compile_every_part(processes: int = BEFORE_SERVING, say: Callable[[str], Non
             finished, _ = wait(list(running), timeout=HEARTBEAT, return_when=FIRST_COMPLETED)
             if not finished:  # a newcomer's terminal silent for minutes looked hung
                 elapsed = time.perf_counter() - started
-                now = ", ".join(name for future, name in running.items() if future.running())
+                # the pool queues one part ahead and calls it running: the first ``processes``
+                # in the order sent are the ones its workers run
+                busy = [name for future, name in running.items() if future.running()]
+                now = ", ".join(busy[:processes])
                 say(
                     f"{COMPILING}: {ready} of {len(PARTS)} parts ready, {elapsed:.0f} s (now {now})"
                 )
